@@ -1,0 +1,16 @@
+# cmake --install: the library, its headers and a package config, so that another CMake
+# project can use `find_package(bouncer)` and link `bouncer::bouncer`.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+install(TARGETS bouncer EXPORT bouncerTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(DIRECTORY lib/include/bouncer DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT bouncerTargets NAMESPACE bouncer:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)
+configure_package_config_file(cmake/bouncerConfig.cmake.in
+  ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfig.cmake
+  INSTALL_DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/bouncerConfigVersion.cmake
+  COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfigVersion.cmake
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)

@@ -1,0 +1,41 @@
+// `bouncer orbit`: iterate the impact map from one or more initial conditions and stream
+// the states with what happened at each step, as CSV, JSON or an aligned table.
+// Memory is constant in the number of steps.
+#pragma once
+
+#include <iosfwd>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bouncer/io/provenance.hpp"
+#include "bouncer/io/scene.hpp"
+
+namespace bouncer {
+
+enum class Format { csv, json, table };
+
+struct OrbitRequest {
+  ModelSpec model;
+  std::vector<InitialCondition> initial;
+  long long steps = 10;
+  long long every = 1;
+  Precision precision;
+  Format format = Format::csv;
+};
+
+const std::set<std::string>& orbit_keys();
+// All validation of an orbit scene; throws InputError naming the option.
+OrbitRequest orbit_request(const Options& o);
+
+struct OrbitOutcome {
+  long long steps_done = 0;      // steps completed (rows n = 1..steps_done exist)
+  bool undecided = false;        // stopped early at step steps_done + 1
+  std::string reason;            // why, when undecided
+  long long phase_lost_at = -1;  // first step after which theta had no correct bit, or -1
+};
+
+// Writes the provenance header, the rows and a final line per orbit.
+std::vector<OrbitOutcome> write_orbits(const OrbitRequest& r, const Provenance& p, std::ostream& out);
+
+}  // namespace bouncer

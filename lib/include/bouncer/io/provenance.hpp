@@ -1,0 +1,32 @@
+// What every output records so that it can be reproduced: tool version and git commit,
+// compiler and flags, library versions, scalar type and bits, exact inputs.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace bouncer {
+
+struct BuildInfo {
+  std::string version, commit, compiler, flags, build_type;
+};
+const BuildInfo& build_info();  // generated at build time (cmake/BuildInfo.cmake)
+
+std::string library_versions();  // "boost 1.74.0, mpfr 4.2.0, mpfi 1.5.3, gmp 6.2.1"
+
+struct Provenance {
+  std::string command;                                     // e.g. "orbit"
+  std::vector<std::pair<std::string, std::string>> inputs; // exact option texts, in order
+  std::string precision;                                   // e.g. "mpfr:256"
+  long bits = 0;                                           // significand bits really used
+  std::string decimal_note;  // how decimal inputs were converted for this precision
+  std::string invocation;    // the command line, for humans
+
+  // "# key: value" lines for CSV and text outputs.
+  std::string as_comment_lines() const;
+  // A JSON object (serialized) with the same content.
+  std::string as_json() const;
+};
+
+}  // namespace bouncer

@@ -1,0 +1,64 @@
+// The impact map (theta_n, v_n) -> (theta_{n+1}, v_{n+1}) of the piecewise linear bouncer,
+// derived from first principles (see README "The model") and written once for every
+// scalar type. The paper's explicit map (eqs. 3-4) is used only as a cross-check in tests.
+#pragma once
+
+#include "bouncer/model/model.hpp"
+
+namespace bouncer {
+
+enum class EventKind : unsigned char {
+  impact,    // a flight ending in a collision
+  sticking,  // a collision below the sticking threshold: collapse, ride, release
+  ride,      // started with zero relative velocity: rode the wall to a corner
+};
+const char* name(EventKind);
+
+template <class T>
+struct StepResult {
+  State<T> next;
+  T tau;                      // time from the start state to `next`
+  long long periods = 0;      // whole wall periods begun during the step (theta wraps)
+  int segment = 0;            // wall segment of the last contact (impact or ride)
+  EventKind kind = EventKind::impact;
+  bool corner = false;        // the last impact was exactly at a wall corner
+  Truth indirect = Truth::no; // the particle left the collision zone (rose above the top)
+  // Sticking only: the collision that started the collapse, its segment, and whether the
+  // ride passed an upward turn (where the downward-sticking convention applies).
+  int stick_segment = -1;
+  bool passed_upward_turn = false;
+  T stuck_theta, stuck_v;
+  // Bits of theta consumed by the whole part of theta_n + tau in a long flight: theta
+  // keeps (bits - phase_bits_lost) correct bits at best. 0 for flights within a period.
+  int phase_bits_lost = 0;
+};
+
+template <class T>
+class ImpactMap {
+ public:
+  explicit ImpactMap(Model<T> model) : m_(std::move(model)) {}
+  const Model<T>& model() const { return m_; }
+
+  // One step. Throws Undecided when a branch cannot be decided (intervals, NaN).
+  StepResult<T> step(const State<T>& s) const;
+
+ private:
+  Model<T> m_;
+  struct Walk;
+  void collide(Walk& w, int j, T theta, T speed) const;
+  void ride(Walk& w, int j, T pos) const;
+};
+
+// Explicitly instantiated in lib/src/impact_map.cpp for the supported scalar set.
+extern template class ImpactMap<double>;
+extern template class ImpactMap<long double>;
+extern template class ImpactMap<Quad>;
+extern template class ImpactMap<Mpfr>;
+extern template class ImpactMap<Mpfi>;
+extern template Model<double> make_model<double>(const ModelSpec&, long);
+extern template Model<long double> make_model<long double>(const ModelSpec&, long);
+extern template Model<Quad> make_model<Quad>(const ModelSpec&, long);
+extern template Model<Mpfr> make_model<Mpfr>(const ModelSpec&, long);
+extern template Model<Mpfi> make_model<Mpfi>(const ModelSpec&, long);
+
+}  // namespace bouncer

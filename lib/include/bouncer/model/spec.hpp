@@ -1,0 +1,70 @@
+// What a scene asks of the model, in exact decimals, validated once for every front end
+// (command line, scene file, tests). Model<T> is built from this for a chosen scalar type.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bouncer/scalar/decimal.hpp"
+
+namespace bouncer {
+
+// Bad input: names the field (command-line option or scene key) and the allowed range.
+struct InputError : std::runtime_error {
+  std::string field;
+  InputError(std::string f, const std::string& what)
+      : std::runtime_error(f + ": " + what), field(std::move(f)) {}
+};
+
+// Collision models (paper sec. I, eq. 2 and the eps(v) law).
+enum class Law { elastic, constant, veldep };
+// What happens when a collapse on a downward-moving wall reaches the wall's upward turn.
+//   paper:  the particle keeps riding the wall through the turn and is released at the
+//           next downward turn, (1/2, 4) for the triangle (paper sec. II.B.3);
+//   impact: the turn is an impact of relative speed u_next - u_prev (8 for the triangle),
+//           after which the map goes on (and may stick again).
+enum class DownwardSticking { paper, impact };
+
+const char* name(Law);
+const char* name(DownwardSticking);
+
+// A continuous periodic piecewise-linear wall: knots 0 = s_0 < s_1 < ... < s_{n-1} < 1 with
+// heights h_j; segment j runs from s_j to s_{j+1} (s_n = 1, h_n = h_0).
+struct WallSpec {
+  std::string text;  // as given: triangle, sawtooth, asymmetric:R, knots:s1:h1,s2:h2,...
+  std::vector<Decimal> knots;
+  std::vector<Decimal> heights;
+};
+
+struct ModelSpec {
+  Law law = Law::constant;
+  Decimal a = Decimal::from_int(24);
+  Decimal eps = Decimal::from_int(1);   // used by Law::constant
+  Decimal c = Decimal::from_int(1000);  // used by Law::veldep
+  WallSpec wall;
+  DownwardSticking downward = DownwardSticking::paper;
+};
+
+struct InitialCondition {
+  Decimal theta = Decimal::from_int(0);
+  Decimal v = Decimal::from_int(4);
+};
+
+// Parsers for the text forms; each throws InputError naming `field`.
+Decimal parse_decimal(const std::string& field, const std::string& text);
+Law parse_law(const std::string& field, const std::string& text);
+DownwardSticking parse_downward(const std::string& field, const std::string& text);
+WallSpec parse_wall(const std::string& field, const std::string& text);
+
+// Range checks of the model parameters (a > 0, 0 <= eps <= 1, c > 0, wall shape).
+void validate(const ModelSpec& m);
+// theta in [0, 1) and v at least the wall's velocity at theta (else inside the wall).
+void validate(const ModelSpec& m, const InitialCondition& ic, const std::string& theta_field,
+              const std::string& v_field);
+
+// Exact wall quantities (rationals) for validation and for classifying corners.
+mpq_class wall_velocity_exact(const WallSpec& w, const mpq_class& theta);
+int wall_segment_exact(const WallSpec& w, const mpq_class& theta);
+
+}  // namespace bouncer

@@ -1,0 +1,175 @@
+// Per-scalar knowledge in one place: parsing decimals, printing, precision, and the
+// three-valued predicates that are the impact map's only branch points.
+//
+// The contract a scalar type T must meet (see README "Scalar contract"):
+//   arithmetic  T op T, T op long (exact integer operand), unary -, and, found by ADL or
+//               std::, sqrt, exp, log.
+//   traits      ScalarTraits<T> with the members below.
+// Supported: double, long double, Quad (__float128 through Boost), Mpfr, Mpfi.
+#pragma once
+
+#include <boost/multiprecision/float128.hpp>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <string_view>
+
+#include "bouncer/scalar/mpfi.hpp"
+#include "bouncer/scalar/mpfr.hpp"
+#include "bouncer/scalar/truth.hpp"
+
+namespace bouncer {
+
+using Quad = boost::multiprecision::float128;
+
+// Decimal text of an MPFR number with enough digits to round-trip at its precision,
+// rounded in the given direction (RNDN for points; RNDD/RNDU for interval ends).
+std::string mpfr_to_string(mpfr_srcptr x, mpfr_rnd_t rnd);
+
+template <class T>
+struct ScalarTraits;
+
+namespace detail {
+
+// Shared by the IEEE-style point types (double, long double, Quad).
+template <class T>
+struct PointTraits {
+  static constexpr bool is_interval = false;
+  static Truth lt(const T& x, const T& y) { return nan(x, y) ? Truth::invalid : truth(x < y); }
+  static Truth le(const T& x, const T& y) { return nan(x, y) ? Truth::invalid : truth(x <= y); }
+  static Truth is_zero(const T& x) { return nan(x, x) ? Truth::invalid : truth(x == 0); }
+  static bool likely_negative(const T& x) { return x < 0; }
+  static T nonneg(const T& x) { return x < 0 ? T(0) : x; }
+  static bool is_finite(const T& x) { using std::isfinite; using boost::multiprecision::isfinite; return isfinite(x); }
+  static double to_double(const T& x) { return static_cast<double>(x); }
+  static T midpoint(const T& x) { return x; }
+  static T lower(const T& x) { return x; }
+  static T upper(const T& x) { return x; }
+  static bool nan(const T& x, const T& y) { using std::isnan; using boost::multiprecision::isnan; return isnan(x) || isnan(y); }
+};
+
+}  // namespace detail
+
+template <>
+struct ScalarTraits<double> : detail::PointTraits<double> {
+  static constexpr const char* family = "double";
+  static double from_decimal(std::string_view text, long bits);
+  static double from_int(long n, long) { return static_cast<double>(n); }
+  static long bits(const double&) { return std::numeric_limits<double>::digits; }
+  static double below(const double& x) { return std::nextafter(x, -std::numeric_limits<double>::infinity()); }
+  static int exponent(const double& x) { int e; std::frexp(x, &e); return e; }
+  static double floor(const double& x) { return std::floor(x); }
+  static double pow_3_5(const double& x) { return std::pow(x, 0.6); }
+  static std::string to_string(const double& x);
+};
+
+template <>
+struct ScalarTraits<long double> : detail::PointTraits<long double> {
+  static constexpr const char* family = "long";
+  static long double from_decimal(std::string_view text, long bits);
+  static long double from_int(long n, long) { return static_cast<long double>(n); }
+  static long bits(const long double&) { return std::numeric_limits<long double>::digits; }
+  static long double below(const long double& x) { return std::nextafter(x, -std::numeric_limits<long double>::infinity()); }
+  static int exponent(const long double& x) { int e; std::frexp(x, &e); return e; }
+  static long double floor(const long double& x) { return std::floor(x); }
+  static long double pow_3_5(const long double& x) { return std::pow(x, 0.6L); }
+  static std::string to_string(const long double& x);
+};
+
+template <>
+struct ScalarTraits<Quad> : detail::PointTraits<Quad> {
+  static constexpr const char* family = "quad";
+  static Quad from_decimal(std::string_view text, long bits);
+  static Quad from_int(long n, long) { return Quad(n); }
+  static long bits(const Quad&) { return 113; }
+  static Quad below(const Quad& x);
+  static int exponent(const Quad& x);
+  static Quad floor(const Quad& x) { return boost::multiprecision::floor(x); }
+  static Quad pow_3_5(const Quad& x);
+  static std::string to_string(const Quad& x);
+};
+
+template <>
+struct ScalarTraits<Mpfr> {
+  static constexpr bool is_interval = false;
+  static constexpr const char* family = "mpfr";
+  static Mpfr from_decimal(std::string_view text, long bits);
+  static Mpfr from_int(long n, long bits) { return Mpfr(n, bits); }
+  static long bits(const Mpfr& x) { return x.bits(); }
+  static Truth lt(const Mpfr& x, const Mpfr& y) { return nan(x, y) ? Truth::invalid : truth(x < y); }
+  static Truth le(const Mpfr& x, const Mpfr& y) { return nan(x, y) ? Truth::invalid : truth(x <= y); }
+  static Truth is_zero(const Mpfr& x) { return mpfr_nan_p(x.get()) ? Truth::invalid : truth(mpfr_zero_p(x.get()) != 0); }
+  static bool likely_negative(const Mpfr& x) { return mpfr_sgn(x.get()) < 0; }
+  static Mpfr nonneg(const Mpfr& x) { return mpfr_sgn(x.get()) < 0 ? Mpfr(0, x.bits()) : x; }
+  static bool is_finite(const Mpfr& x) { return mpfr_number_p(x.get()) != 0; }
+  static double to_double(const Mpfr& x) { return x.to_double(); }
+  static Mpfr midpoint(const Mpfr& x) { return x; }
+  static Mpfr lower(const Mpfr& x) { return x; }
+  static Mpfr upper(const Mpfr& x) { return x; }
+  static Mpfr below(const Mpfr& x) { Mpfr r = x; mpfr_nextbelow(r.get()); return r; }
+  static int exponent(const Mpfr& x) { return mpfr_zero_p(x.get()) ? 0 : static_cast<int>(mpfr_get_exp(x.get())); }
+  static Mpfr floor(const Mpfr& x) { return bouncer::floor(x); }
+  static Mpfr pow_3_5(const Mpfr& x);
+  static std::string to_string(const Mpfr& x) { return mpfr_to_string(x.get(), MPFR_RNDN); }
+  static bool nan(const Mpfr& x, const Mpfr& y) { return mpfr_nan_p(x.get()) || mpfr_nan_p(y.get()); }
+};
+
+template <>
+struct ScalarTraits<Mpfi> {
+  static constexpr bool is_interval = true;
+  static constexpr const char* family = "interval";
+  static Mpfi from_decimal(std::string_view text, long bits);
+  static Mpfi from_int(long n, long bits) { return Mpfi(n, bits); }
+  static long bits(const Mpfi& x) { return x.bits(); }
+  // Certainly x < y when every point of x is below every point of y.
+  static Truth lt(const Mpfi& x, const Mpfi& y);
+  static Truth le(const Mpfi& x, const Mpfi& y);
+  static Truth is_zero(const Mpfi& x);
+  // Only chooses between two algebraically equal formulas; never a model branch.
+  static bool likely_negative(const Mpfi& x) { return mpfr_sgn(x.mid().get()) < 0; }
+  // Intersection with [0, inf): the caller knows the exact value is non-negative.
+  static Mpfi nonneg(const Mpfi& x);
+  static bool is_finite(const Mpfi& x) { return !x.has_nan() && x.bounded(); }
+  static double to_double(const Mpfi& x) { return x.mid().to_double(); }
+  static Mpfr midpoint(const Mpfi& x) { return x.mid(); }
+  static Mpfr lower(const Mpfi& x) { return x.lower(); }
+  static Mpfr upper(const Mpfi& x) { return x.upper(); }
+  static Mpfi pow_3_5(const Mpfi& x);
+  static int exponent(const Mpfi& x) { Mpfr u = abs(x).upper(); return mpfr_zero_p(u.get()) ? 0 : static_cast<int>(mpfr_get_exp(u.get())); }
+  static std::string to_string(const Mpfi& x);  // "[lo, hi]"
+  static std::string lower_string(const Mpfi& x);  // rounded down
+  static std::string upper_string(const Mpfi& x);  // rounded up
+};
+
+// Restrict x to [lo, hi): the caller has decided that the exact value lies there, and
+// only rounding could put the computed value outside.
+template <class T>
+T clamp_to_segment(const T& x, const T& lo, const T& hi) {
+  using Tr = ScalarTraits<T>;
+  if constexpr (Tr::is_interval) {
+    return intersect(x, hull(lo, hi));
+  } else {
+    if (x < lo) return lo;
+    if (!(x < hi)) return Tr::below(hi);
+    return x;
+  }
+}
+
+// Integer part of x, when it is certain (for an interval: both ends agree).
+template <class T>
+Truth floor_certain(const T& x, T& out) {
+  using Tr = ScalarTraits<T>;
+  if constexpr (Tr::is_interval) {
+    Mpfr lo = bouncer::floor(x.lower()), hi = bouncer::floor(x.upper());
+    if (!(lo == hi)) return Truth::unknown;
+    out = Mpfi(lo, lo);
+    return Truth::yes;
+  } else {
+    if (!Tr::is_finite(x)) return Truth::invalid;
+    out = Tr::floor(x);
+    return Truth::yes;
+  }
+}
+
+}  // namespace bouncer

@@ -1,0 +1,55 @@
+#include "bouncer/io/provenance.hpp"
+
+#include <gmp.h>
+#include <mpfi.h>
+#include <mpfr.h>
+
+#include <boost/version.hpp>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace bouncer {
+
+std::string library_versions() {
+  std::ostringstream s;
+  s << "boost " << BOOST_VERSION / 100000 << "." << BOOST_VERSION / 100 % 1000 << "." << BOOST_VERSION % 100
+    << ", mpfr " << mpfr_get_version() << ", mpfi " << MPFI_VERSION_STRING << ", gmp " << gmp_version;
+  return s.str();
+}
+
+std::string Provenance::as_comment_lines() const {
+  const BuildInfo& b = build_info();
+  std::ostringstream s;
+  s << "# bouncer " << b.version << " (commit " << b.commit << ") " << command << "\n";
+  if (!invocation.empty()) s << "# invocation: " << invocation << "\n";
+  s << "# inputs:";
+  for (const auto& [k, v] : inputs) s << " " << k << "=" << v;
+  s << "\n# precision: " << precision << " (" << bits << " significand bits)\n";
+  if (!decimal_note.empty()) s << "# decimals: " << decimal_note << "\n";
+  s << "# libraries: " << library_versions() << "\n";
+  s << "# compiler: " << b.compiler << " " << b.build_type << " flags: " << b.flags << "\n";
+  return s.str();
+}
+
+std::string Provenance::as_json() const {
+  const BuildInfo& b = build_info();
+  nlohmann::ordered_json j;
+  j["tool"] = "bouncer";
+  j["version"] = b.version;
+  j["commit"] = b.commit;
+  j["command"] = command;
+  nlohmann::ordered_json in = nlohmann::ordered_json::object();
+  for (const auto& [k, v] : inputs) in[k] = v;
+  j["inputs"] = in;
+  j["precision"] = precision;
+  j["bits"] = bits;
+  j["decimals"] = decimal_note;
+  j["invocation"] = invocation;
+  j["libraries"] = library_versions();
+  j["compiler"] = b.compiler;
+  j["build_type"] = b.build_type;
+  j["flags"] = b.flags;
+  return j.dump();
+}
+
+}  // namespace bouncer

@@ -1,0 +1,177 @@
+#include <quadmath.h>
+
+#include <charconv>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "bouncer/scalar/traits.hpp"
+
+namespace bouncer {
+
+const char* describe(Reason r) {
+  switch (r) {
+    case Reason::phase_at_corner: return "theta's enclosure straddles a wall corner";
+    case Reason::impact_at_corner: return "the impact time straddles the end of a wall segment";
+    case Reason::corner_approach: return "at a corner hit, approach or separation is undecided";
+    case Reason::sticking_threshold: return "the velocity straddles the sticking threshold xi";
+    case Reason::riding: return "the relative velocity straddles zero (riding the wall or flying)";
+    case Reason::period_boundary: return "theta + flight time straddles a whole period";
+    case Reason::walk_limit: return "the flight crosses more wall segments than the walk allows";
+    case Reason::nonfinite: return "a value is NaN or infinite (overflow)";
+  }
+  return "unknown reason";
+}
+
+namespace {
+
+[[noreturn]] void bad_decimal(std::string_view text) {
+  throw std::invalid_argument("not a decimal number: '" + std::string(text) + "'");
+}
+
+}  // namespace
+
+std::string mpfr_to_string(mpfr_srcptr x, mpfr_rnd_t rnd) {
+  if (mpfr_nan_p(x)) return "nan";
+  if (mpfr_inf_p(x)) return mpfr_sgn(x) > 0 ? "inf" : "-inf";
+  if (mpfr_zero_p(x)) return mpfr_signbit(x) ? "-0" : "0";
+  // Enough digits that reading the string back at this precision gives x again.
+  const size_t digits = mpfr_get_str_ndigits(10, mpfr_get_prec(x));
+  mpfr_exp_t e = 0;
+  char* s = mpfr_get_str(nullptr, &e, 10, digits, x, rnd);
+  std::string m(s);
+  mpfr_free_str(s);
+  std::string sign;
+  if (m[0] == '-') { sign = "-"; m.erase(0, 1); }
+  // m = d1 d2 ... dn, value = 0.d1d2...dn * 10^e; print as d1.d2...dn e(e-1), trailing zeros cut.
+  while (m.size() > 1 && m.back() == '0') m.pop_back();
+  std::string out = sign + m.substr(0, 1);
+  if (m.size() > 1) out += "." + m.substr(1);
+  if (e - 1 != 0) out += "e" + std::to_string(static_cast<long>(e - 1));
+  return out;
+}
+
+double ScalarTraits<double>::from_decimal(std::string_view text, long) {
+  std::string s(text);
+  char* end = nullptr;
+  const double x = std::strtod(s.c_str(), &end);  // correctly rounded (glibc)
+  if (s.empty() || *end != '\0') bad_decimal(text);
+  return x;
+}
+
+std::string ScalarTraits<double>::to_string(const double& x) {
+  char buf[64];
+  auto r = std::to_chars(buf, buf + sizeof buf, x);  // shortest string that round-trips
+  return std::string(buf, r.ptr);
+}
+
+long double ScalarTraits<long double>::from_decimal(std::string_view text, long) {
+  std::string s(text);
+  char* end = nullptr;
+  const long double x = std::strtold(s.c_str(), &end);
+  if (s.empty() || *end != '\0') bad_decimal(text);
+  return x;
+}
+
+std::string ScalarTraits<long double>::to_string(const long double& x) {
+  char buf[96];
+  auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+Quad ScalarTraits<Quad>::from_decimal(std::string_view text, long) {
+  std::string s(text);
+  char* end = nullptr;
+  const __float128 x = strtoflt128(s.c_str(), &end);
+  if (s.empty() || *end != '\0') bad_decimal(text);
+  return Quad(x);
+}
+
+Quad ScalarTraits<Quad>::below(const Quad& x) {
+  return Quad(nextafterq(x.backend().value(), -HUGE_VALQ));
+}
+
+int ScalarTraits<Quad>::exponent(const Quad& x) {
+  int e = 0;
+  frexpq(x.backend().value(), &e);
+  return e;
+}
+
+Quad ScalarTraits<Quad>::pow_3_5(const Quad& x) {
+  return Quad(powq(x.backend().value(), strtoflt128("0.6", nullptr)));
+}
+
+std::string ScalarTraits<Quad>::to_string(const Quad& x) {
+  char buf[128];
+  // 113-bit significand: 36 significant digits always round-trip.
+  quadmath_snprintf(buf, sizeof buf, "%.35Qe", x.backend().value());
+  return buf;
+}
+
+Mpfr ScalarTraits<Mpfr>::from_decimal(std::string_view text, long bits) {
+  Mpfr x(bits);
+  if (!x.set_decimal(text)) bad_decimal(text);
+  return x;
+}
+
+Mpfr ScalarTraits<Mpfr>::pow_3_5(const Mpfr& x) {
+  // (x^3)^(1/5): two correctly rounded operations, no inexact exponent 0.6.
+  Mpfr r(x.bits());
+  mpfr_pow_ui(r.get(), x.get(), 3, MPFR_RNDN);
+  mpfr_rootn_ui(r.get(), r.get(), 5, MPFR_RNDN);
+  return r;
+}
+
+Mpfi ScalarTraits<Mpfi>::from_decimal(std::string_view text, long bits) {
+  Mpfi x(bits);
+  if (!x.set_decimal(text)) bad_decimal(text);
+  return x;
+}
+
+Truth ScalarTraits<Mpfi>::lt(const Mpfi& x, const Mpfi& y) {
+  if (x.has_nan() || y.has_nan()) return Truth::invalid;
+  if (mpfr_less_p(&x.get()->right, &y.get()->left)) return Truth::yes;
+  if (mpfr_greaterequal_p(&x.get()->left, &y.get()->right)) return Truth::no;
+  return Truth::unknown;
+}
+
+Truth ScalarTraits<Mpfi>::le(const Mpfi& x, const Mpfi& y) {
+  if (x.has_nan() || y.has_nan()) return Truth::invalid;
+  if (mpfr_lessequal_p(&x.get()->right, &y.get()->left)) return Truth::yes;
+  if (mpfr_greater_p(&x.get()->left, &y.get()->right)) return Truth::no;
+  return Truth::unknown;
+}
+
+Truth ScalarTraits<Mpfi>::is_zero(const Mpfi& x) {
+  if (x.has_nan()) return Truth::invalid;
+  if (mpfr_zero_p(&x.get()->left) && mpfr_zero_p(&x.get()->right)) return Truth::yes;
+  if (!mpfi_has_zero(x.get())) return Truth::no;
+  return Truth::unknown;
+}
+
+Mpfi ScalarTraits<Mpfi>::nonneg(const Mpfi& x) {
+  if (mpfr_sgn(&x.get()->left) >= 0) return x;
+  Mpfr zero(0, x.bits());
+  Mpfr hi = x.upper();
+  if (mpfr_sgn(hi.get()) < 0) hi = zero;  // cannot happen for a true non-negative value
+  return Mpfi(zero, hi);
+}
+
+Mpfi ScalarTraits<Mpfi>::pow_3_5(const Mpfi& x) {
+  // x^(3/5) = exp(3/5 * log x) for x > 0, with 3/5 itself enclosed; x = 0 gives 0.
+  if (certainly(is_zero(x))) return x;
+  Mpfi lo_part = nonneg(x);
+  if (mpfr_zero_p(&lo_part.get()->left)) {
+    // Monotone: enclose by the values at the ends, the lower end being 0.
+    Mpfi up(lo_part.upper(), lo_part.upper());
+    Mpfi r = exp(Mpfi(3, x.bits()) / 5 * log(up));
+    return Mpfi(Mpfr(0, x.bits()), r.upper());
+  }
+  return exp(Mpfi(3, x.bits()) / 5 * log(lo_part));
+}
+
+std::string ScalarTraits<Mpfi>::lower_string(const Mpfi& x) { return mpfr_to_string(&x.get()->left, MPFR_RNDD); }
+std::string ScalarTraits<Mpfi>::upper_string(const Mpfi& x) { return mpfr_to_string(&x.get()->right, MPFR_RNDU); }
+std::string ScalarTraits<Mpfi>::to_string(const Mpfi& x) { return "[" + lower_string(x) + ", " + upper_string(x) + "]"; }
+
+}  // namespace bouncer

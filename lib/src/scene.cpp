@@ -1,0 +1,198 @@
+#include "bouncer/io/scene.hpp"
+
+#include <toml++/toml.h>
+
+#include <sstream>
+
+namespace bouncer {
+
+std::string Options::get(const std::string& key) const {
+  auto it = values.find(key);
+  if (it == values.end() || it->second.empty()) throw InputError(key, "is required");
+  if (it->second.size() != 1) throw InputError(key, "takes one value, got a list");
+  return it->second.front();
+}
+
+std::string Options::get_or(const std::string& key, const std::string& fallback) const {
+  return has(key) ? get(key) : fallback;
+}
+
+std::vector<std::pair<std::string, std::string>> Options::inputs() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& [k, vs] : values) {
+    std::string joined;
+    for (size_t i = 0; i < vs.size(); ++i) joined += (i ? "," : "") + vs[i];
+    out.emplace_back(k, joined);
+  }
+  return out;
+}
+
+std::string Options::as_toml(const std::string& command) const {
+  std::ostringstream s;
+  s << "command = \"" << command << "\"\n";
+  for (const auto& [k, vs] : values) {
+    s << k << " = ";
+    if (vs.size() == 1) {
+      s << toml::value<std::string>(vs[0]);
+    } else {
+      s << "[";
+      for (size_t i = 0; i < vs.size(); ++i) s << (i ? ", " : "") << toml::value<std::string>(vs[i]);
+      s << "]";
+    }
+    s << "\n";
+  }
+  return s.str();
+}
+
+namespace {
+
+std::string scalar_text(const std::string& key, const toml::node& n) {
+  if (auto s = n.as_string()) return s->get();
+  if (auto i = n.as_integer()) return std::to_string(i->get());
+  if (auto b = n.as_boolean()) return b->get() ? "true" : "false";
+  if (n.is_floating_point())
+    throw InputError(key, "write decimals as strings (e.g. \"28.82\"): a TOML float is already rounded");
+  throw InputError(key, "must be a string or an integer");
+}
+
+}  // namespace
+
+Options load_scene(const std::string& path, const std::string& command, const std::set<std::string>& allowed) {
+  toml::table table;
+  try {
+    table = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << "cannot read scene '" << path << "': " << e.description() << " (line " << e.source().begin.line << ")";
+    throw InputError("scene", msg.str());
+  }
+  Options o;
+  for (const auto& [k, node] : table) {
+    const std::string key(k.str());
+    if (key == "command") {
+      auto s = node.as_string();
+      if (!s || s->get() != command)
+        throw InputError("scene", "'" + path + "' is a scene for '" + (s ? s->get() : std::string("?")) + "', not '" + command + "'");
+      continue;
+    }
+    if (!allowed.count(key)) throw InputError("scene", "unknown key '" + key + "' in '" + path + "' for command " + command);
+    if (auto arr = node.as_array()) {
+      std::vector<std::string> items;
+      for (const auto& item : *arr) items.push_back(scalar_text(key, item));
+      if (items.empty()) throw InputError(key, "an empty list");
+      o.set(key, items);
+    } else {
+      o.set(key, scalar_text(key, node));
+    }
+  }
+  return o;
+}
+
+Options merge(Options scene, const Options& command_line) {
+  for (const auto& [k, v] : command_line.values) scene.values[k] = v;
+  return scene;
+}
+
+const std::set<std::string>& model_keys() {
+  static const std::set<std::string> keys{"model", "a", "eps", "c", "wall", "downward-sticking"};
+  return keys;
+}
+
+ModelSpec model_from(const Options& o) {
+  ModelSpec m;
+  m.law = parse_law("model", o.get("model"));
+  m.a = parse_decimal("a", o.get("a"));
+  if (m.law == Law::constant) {
+    m.eps = parse_decimal("eps", o.get("eps"));
+  } else if (o.has("eps")) {
+    throw InputError("eps", "is only used with --model constant");
+  }
+  if (m.law == Law::veldep) {
+    m.c = parse_decimal("c", o.get("c"));
+  } else if (o.has("c")) {
+    throw InputError("c", "is only used with --model veldep");
+  }
+  m.wall = parse_wall("wall", o.get_or("wall", "triangle"));
+  m.downward = parse_downward("downward-sticking", o.get_or("downward-sticking", "paper"));
+  validate(m);
+  return m;
+}
+
+Precision precision_from(const Options& o) { return parse_precision("precision", o.get_or("precision", "double")); }
+
+long long integer_from(const Options& o, const std::string& key, long long lo, long long hi, long long fallback) {
+  if (!o.has(key)) return fallback;
+  const std::string text = o.get(key);
+  auto d = Decimal::parse(text);
+  const std::string range = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!d || d->value().get_den() != 1) throw InputError(key, "must be " + range + " (got '" + text + "')");
+  const mpz_class n = d->value().get_num();
+  if (n < mpz_class(std::to_string(lo)) || n > mpz_class(std::to_string(hi))) throw InputError(key, "must be " + range + " (got " + text + ")");
+  return std::stoll(n.get_str());
+}
+
+std::vector<InitialCondition> initial_conditions_from(const Options& o, const ModelSpec& m) {
+  auto list = [&](const std::string& key) {
+    auto it = o.values.find(key);
+    if (it == o.values.end()) throw InputError(key, "is required");
+    return it->second;
+  };
+  const auto thetas = list("theta"), vs = list("v");
+  if (thetas.size() != vs.size())
+    throw InputError("v", "needs as many values as theta (" + std::to_string(thetas.size()) + ")");
+  std::vector<InitialCondition> out;
+  for (size_t i = 0; i < thetas.size(); ++i) {
+    InitialCondition ic{parse_decimal("theta", thetas[i]), parse_decimal("v", vs[i])};
+    validate(m, ic, "theta", "v");
+    out.push_back(ic);
+  }
+  return out;
+}
+
+std::string Precision::text() const {
+  switch (kind) {
+    case Kind::double_: return "double";
+    case Kind::long_double: return "long";
+    case Kind::quad: return "quad";
+    case Kind::mpfr: return "mpfr:" + std::to_string(bits);
+    case Kind::interval: return "interval:" + std::to_string(bits);
+  }
+  return "?";
+}
+
+Precision parse_precision(const std::string& field, const std::string& text) {
+  Precision p;
+  if (text == "double") return {Precision::Kind::double_, 53};
+  if (text == "long") return {Precision::Kind::long_double, std::numeric_limits<long double>::digits};
+  if (text == "quad") return {Precision::Kind::quad, 113};
+  const std::string allowed = "allowed: double, long, quad, mpfr:BITS, interval:BITS with " +
+                              std::to_string(kMinBits) + " <= BITS <= " + std::to_string(kMaxBits);
+  for (auto [prefix, kind] : {std::pair{"mpfr:", Precision::Kind::mpfr}, std::pair{"interval:", Precision::Kind::interval}}) {
+    const std::string pre(prefix);
+    if (text.rfind(pre, 0) != 0) continue;
+    const std::string num = text.substr(pre.size());
+    auto d = Decimal::parse(num);
+    if (!d || d->value().get_den() != 1 || num.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(field, "'" + text + "': bits must be a whole number (" + allowed + ")");
+    const mpz_class bits = d->value().get_num();
+    if (bits < kMinBits || bits > kMaxBits)
+      throw InputError(field, "'" + text + "': bits out of range (" + allowed + ")");
+    return {kind, bits.get_si()};
+  }
+  throw InputError(field, "unknown precision '" + text + "' (" + allowed + ")");
+}
+
+std::string decimal_note(const Precision& p) {
+  switch (p.kind) {
+    case Precision::Kind::double_:
+    case Precision::Kind::long_double:
+    case Precision::Kind::quad:
+    case Precision::Kind::mpfr:
+      return "each decimal input is rounded to the nearest " + p.text() + " value; results are about those values";
+    case Precision::Kind::interval:
+      return "each decimal input is enclosed exactly (outward rounding); results are enclosures for the exact decimals";
+  }
+  return "";
+}
+
+}  // namespace bouncer

@@ -1,0 +1,42 @@
+// bouncer: command-line front end. One subcommand per experiment kind (tools/cmd_*.cpp);
+// every subcommand takes its options from the command line and/or a TOML scene
+// (--scene FILE, command line overrides).
+//
+// Exit status: 0 success (an orbit that stopped at an undecided step is a result, and is
+// reported), 2 bad input (one line on stderr naming the option and the allowed range; no
+// output file is left behind), 1 unexpected failure.
+#include <iostream>
+#include <vector>
+
+#include "bouncer/io/provenance.hpp"
+#include "bouncer/model/spec.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  using namespace bouncer;
+  using namespace bouncer::cli;
+  CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", build_info().version + " (commit " + build_info().commit + ")");
+  std::vector<Command> commands{add_orbit(app)};
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);
+    std::cerr << "bouncer: " << e.what() << " (see bouncer --help)\n";
+    return 2;
+  }
+  try {
+    for (const Command& c : commands)
+      if (c.app->parsed()) return c.run(invocation(argc, argv));
+  } catch (const InputError& e) {
+    std::cerr << "bouncer: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "bouncer: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,97 @@
+// Shared plumbing of the bouncer subcommands: scene + command-line merging, atomic output
+// files, and the one-line error with exit status 2 for bad input.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bouncer/io/provenance.hpp"
+#include "bouncer/io/scene.hpp"
+
+namespace bouncer::cli {
+
+// Registers string options whose values land in an Options map under their long name.
+class OptionSet {
+ public:
+  explicit OptionSet(CLI::App* app) : app_(app) {}
+  void add(const std::string& name, const std::string& help) {
+    app_->add_option("--" + name, single_[name], help);
+  }
+  void add_list(const std::string& name, const std::string& help) {
+    app_->add_option("--" + name, lists_[name], help)->delimiter(',');
+  }
+  Options collected() const {
+    Options o;
+    for (const auto& [k, v] : single_)
+      if (app_->count("--" + k)) o.set(k, v);
+    for (const auto& [k, v] : lists_)
+      if (app_->count("--" + k)) o.set(k, v);
+    return o;
+  }
+
+ private:
+  CLI::App* app_;
+  std::map<std::string, std::string> single_;
+  std::map<std::string, std::vector<std::string>> lists_;
+};
+
+// Writes to PATH.partial and renames it over PATH only when `body` succeeds, so that no
+// half-written file is ever left behind. Without a path, writes to stdout.
+inline void write_atomically(const std::optional<std::string>& path, const std::function<void(std::ostream&)>& body) {
+  if (!path) {
+    body(std::cout);
+    return;
+  }
+  const std::string tmp = *path + ".partial";
+  try {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw InputError("out", "cannot write '" + *path + "'");
+    body(f);
+    f.close();
+    if (!f) throw InputError("out", "writing '" + *path + "' failed");
+    std::filesystem::rename(tmp, *path);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+}
+
+// The command line as one string, for provenance.
+inline std::string invocation(int argc, char** argv) {
+  std::string s;
+  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  return s;
+}
+
+// The model options every command shares.
+inline void add_model_options(OptionSet& o) {
+  o.add("model", "Collision model: elastic | constant | veldep");
+  o.add("a", "Dimensionless gravity a = g T^2 / A, a decimal > 0 (<= 1e9)");
+  o.add("eps", "Restitution coefficient for --model constant, decimal in [0, 1]");
+  o.add("c", "Scale of eps(v) = exp(-|(v- - fdot)/c|^(3/5)) for --model veldep, decimal > 0");
+  o.add("wall", "Wall profile: triangle (default) | sawtooth | asymmetric:R (0<R<1) | knots:0:H0,S1:H1,...");
+  o.add("downward-sticking", "Collapse on a downward wall at its upward turn: paper (default) | impact");
+}
+
+inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,
+                                 const std::string& argv_text) {
+  Provenance pr;
+  pr.command = command;
+  pr.inputs = o.inputs();
+  pr.precision = p.text();
+  pr.bits = p.bits;
+  pr.decimal_note = decimal_note(p);
+  pr.invocation = argv_text;
+  return pr;
+}
+
+}  // namespace bouncer::cli

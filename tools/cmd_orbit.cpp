@@ -1,0 +1,46 @@
+// bouncer orbit: iterate the impact map from one or more initial conditions.
+#include <iostream>
+#include <memory>
+
+#include "bouncer/io/orbit.hpp"
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace bouncer::cli {
+
+Command add_orbit(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("orbit", "Iterate the impact map and print the orbit");
+  auto opts = std::make_shared<OptionSet>(sub);
+  auto scene = std::make_shared<std::string>();
+  sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
+  add_model_options(*opts);
+  opts->add_list("theta", "Initial phase(s) in [0, 1); a comma list runs several orbits");
+  opts->add_list("v", "Initial velocity(ies) after impact, >= the wall velocity at theta (<= 1e15)");
+  opts->add("steps", "Number of impact-map steps, integer >= 0 (default 10)");
+  opts->add("precision", "double | long | quad | mpfr:BITS | interval:BITS (16 <= BITS <= 1048576)");
+  opts->add("format", "csv (default) | json | table");
+  opts->add("every", "Print every K-th step (and the last), integer >= 1 (default 1)");
+  opts->add("out", "Write to FILE (atomically) instead of stdout");
+
+  auto run = [opts, scene](const std::string& argv_text) {
+    Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "orbit", orbit_keys()), opts->collected());
+    const OrbitRequest req = orbit_request(o);
+    Provenance p = provenance_for("orbit", o, req.precision, argv_text);
+    std::optional<std::string> out;
+    if (o.has("out")) out = o.get("out");
+    std::vector<OrbitOutcome> outcomes;
+    write_atomically(out, [&](std::ostream& s) { outcomes = write_orbits(req, p, s); });
+    for (size_t i = 0; i < outcomes.size(); ++i) {
+      const OrbitOutcome& oc = outcomes[i];
+      if (oc.undecided)
+        std::cerr << "bouncer orbit: orbit " << i << " stopped at step " << oc.steps_done + 1 << ": " << oc.reason
+                  << " (not certified at " << req.precision.bits << " bits beyond step " << oc.steps_done << ")\n";
+      if (oc.phase_lost_at >= 0)
+        std::cerr << "bouncer orbit: orbit " << i << ": theta has no correct bit from step " << oc.phase_lost_at << "\n";
+    }
+    return 0;
+  };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

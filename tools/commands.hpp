@@ -1,0 +1,19 @@
+// Subcommand registry: each tools/cmd_*.cpp adds one subcommand to the CLI11 app and
+// returns the function that runs it. Adding a command = one file + one line in bouncer.cpp.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace bouncer::cli {
+
+struct Command {
+  CLI::App* app = nullptr;
+  std::function<int(const std::string& invocation)> run;  // returns the exit status
+};
+
+Command add_orbit(CLI::App& app);
+
+}  // namespace bouncer::cli

@@ -43,11 +43,20 @@ std::string mpfr_to_string(mpfr_srcptr x, mpfr_rnd_t rnd) {
   mpfr_free_str(s);
   std::string sign;
   if (m[0] == '-') { sign = "-"; m.erase(0, 1); }
-  // m = d1 d2 ... dn, value = 0.d1d2...dn * 10^e; print as d1.d2...dn e(e-1), trailing zeros cut.
+  // m = d1 d2 ... dn, value = 0.d1d2...dn * 10^e. Plain notation for moderate exponents
+  // (like %g), scientific otherwise; trailing zeros of the fraction are cut.
   while (m.size() > 1 && m.back() == '0') m.pop_back();
-  std::string out = sign + m.substr(0, 1);
-  if (m.size() > 1) out += "." + m.substr(1);
-  if (e - 1 != 0) out += "e" + std::to_string(static_cast<long>(e - 1));
+  const long n = static_cast<long>(m.size());
+  std::string out = sign;
+  if (e > -6 && e <= 21) {
+    if (e <= 0) out += "0." + std::string(static_cast<size_t>(-e), '0') + m;
+    else if (e < n) out += m.substr(0, static_cast<size_t>(e)) + "." + m.substr(static_cast<size_t>(e));
+    else out += m + std::string(static_cast<size_t>(e - n), '0');
+  } else {
+    out += m.substr(0, 1);
+    if (n > 1) out += "." + m.substr(1);
+    out += "e" + std::to_string(static_cast<long>(e - 1));
+  }
   return out;
 }
 

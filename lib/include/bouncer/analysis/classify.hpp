@@ -1,0 +1,42 @@
+// Attractor types: what an orbit does in the long run, with the evidence.
+// (Implemented in lib/src/classify.cpp for double and Mpfr.)
+#pragma once
+
+#include <string>
+
+#include "bouncer/model/impact_map.hpp"
+
+namespace bouncer {
+
+enum class OrbitClass {
+  fixed,               // period 1 (including the paper's marginally stable families)
+  periodic,            // period q > 1
+  sticking,            // sticking solution with sticking period k
+  quasiperiodic,       // bounded, not periodic, exponent ~ 0
+  chaotic,             // bounded, positive leading Lyapunov exponent
+  unbounded,           // Fermi acceleration (elastic)
+  effective_sticking,  // velocity-dependent chatter to the wall's velocity within precision
+  undecided,           // the evidence does not decide, or a step was undecided
+};
+const char* name(OrbitClass c);
+
+struct Classification {
+  OrbitClass cls = OrbitClass::undecided;
+  long period = 0;         // q for fixed/periodic, k for sticking, 0 otherwise
+  double lambda = 0;       // leading Lyapunov exponent per collision (NaN if not computed)
+  std::string evidence;    // one line: what decided the class
+};
+
+struct ClassifyOptions {
+  long transient = 5000;   // steps discarded first (paper: 5000)
+  long steps = 500;        // steps examined (paper: 500)
+  long max_period = 64;    // longest period looked for
+};
+
+template <class T>
+Classification classify(const ImpactMap<T>& map, State<T> start, const ClassifyOptions& opt);
+
+extern template Classification classify<double>(const ImpactMap<double>&, State<double>, const ClassifyOptions&);
+extern template Classification classify<Mpfr>(const ImpactMap<Mpfr>&, State<Mpfr>, const ClassifyOptions&);
+
+}  // namespace bouncer

@@ -94,7 +94,7 @@ Options merge(Options scene, const Options& command_line) {
 }
 
 const std::set<std::string>& model_keys() {
-  static const std::set<std::string> keys{"model", "a", "eps", "c", "wall", "downward-sticking"};
+  static const std::set<std::string> keys{"model", "a", "eps", "c", "wall", "downward-sticking", "veldep-collapse"};
   return keys;
 }
 
@@ -114,6 +114,12 @@ ModelSpec model_from(const Options& o) {
   }
   m.wall = parse_wall("wall", o.get_or("wall", "triangle"));
   m.downward = parse_downward("downward-sticking", o.get_or("downward-sticking", "paper"));
+  const std::string collapse = o.get_or("veldep-collapse", "off");
+  if (collapse != "on" && collapse != "off")
+    throw InputError("veldep-collapse", "must be on or off (got '" + collapse + "')");
+  m.veldep_collapse = collapse == "on";
+  if (m.veldep_collapse && m.law != Law::veldep)
+    throw InputError("veldep-collapse", "is only used with --model veldep");
   validate(m);
   return m;
 }

@@ -47,6 +47,7 @@ class ImpactMap {
   struct Walk;
   void collide(Walk& w, int j, T theta, T speed) const;
   void ride(Walk& w, int j, T pos) const;
+  bool veldep_collapse_certain(const T& out, const T& time_left) const;
 };
 
 // Explicitly instantiated in lib/src/impact_map.cpp for the supported scalar set.

@@ -31,7 +31,7 @@ Model<T> make_model(const ModelSpec& spec, long bits) {
   const T one = Tr::from_int(1, bits);
   Model<T> m{spec.law, spec.downward, bits, num(spec.a),
              spec.law == Law::constant ? num(spec.eps) : one,
-             num(spec.c), Tr::from_int(0, bits), Wall<T>{}};
+             num(spec.c), Tr::from_int(0, bits), spec.veldep_collapse, Wall<T>{}};
   m.collapse = m.a * (1 - m.eps) / 2;
 
   const WallSpec& ws = spec.wall;
@@ -188,12 +188,10 @@ void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed) const {
   using Tr = ScalarTraits<T>;
   using std::exp;
   const Wall<T>& wall = m_.wall;
-  T out;  // relative speed after the impact: eps * speed
-  switch (m_.law) {
-    case Law::elastic: out = std::move(speed); break;
-    case Law::constant: out = m_.eps * speed; break;
-    case Law::veldep: out = exp(-Tr::pow_3_5(speed / m_.c)) * speed; break;
-  }
+  // Relative speed after the impact: eps * speed.
+  T out = m_.law == Law::elastic    ? std::move(speed)
+          : m_.law == Law::constant ? m_.eps * speed
+                                    : exp(-Tr::pow_3_5(speed / m_.c)) * speed;
   w.r.segment = j;
   w.r.next.v = wall.velocity[j] + out;
   // Sticking (paper sec. II.B.3, generalized to any segment): in the wall's frame each
@@ -201,8 +199,11 @@ void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed) const {
   // It completes within the segment iff out <= a (1 - eps)/2 * (time left); the paper's
   // xi_up and xi_down are this test on the triangle. "<=" rather than the paper's "<":
   // at equality the collapse ends exactly at the corner, with the same release.
-  if (m_.law == Law::constant &&
-      decide(Tr::le(out, m_.collapse * (wall.end[j] - theta)), Reason::sticking_threshold)) {
+  const bool sticks =
+      (m_.law == Law::constant &&
+       decide(Tr::le(out, m_.collapse * (wall.end[j] - theta)), Reason::sticking_threshold)) ||
+      (m_.law == Law::veldep && m_.veldep_collapse && veldep_collapse_certain(out, wall.end[j] - theta));
+  if (sticks) {
     if (w.r.kind != EventKind::sticking) {
       w.r.kind = EventKind::sticking;
       w.r.stick_segment = j;
@@ -213,6 +214,25 @@ void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed) const {
     return;
   }
   w.r.next.theta = std::move(theta);
+}
+
+// Velocity-dependent collapse (refutes the paper's sec. II.B.6): with x_n = (w_n/c)^(3/5),
+// w_{n+1} = w_n exp(-x_n) gives x_{n+1} = x_n exp(-3x_n/5), so 1/x_{n+1} >= 1/x_n + 3/5 and
+// w_n <= c (1/x_0 + 3n/5)^(-5/3). Summing (the tail by an integral),
+//     sum_{n>=0} w_n <= w_0 + (5/2) c (w_0/c)^(2/5),
+// so the chatter's total time (2/a) sum w_n is finite. When this bound is certainly below
+// the time left in the segment the collapse completes there: the particle sticks. Where
+// the bound does not decide, the map simply goes on bouncing (exact dynamics either way).
+template <class T>
+bool ImpactMap<T>::veldep_collapse_certain(const T& out, const T& time_left) const {
+  using Tr = ScalarTraits<T>;
+  using std::exp;
+  using std::log;
+  if (certainly(Tr::is_zero(out))) return true;
+  if (!certainly(Tr::lt(m_.zero(), out))) return false;
+  const T y = out / m_.c;
+  const T bound = 2 * (out + 5 * m_.c * exp(2 * log(y) / 5) / 2) / m_.a;
+  return certainly(Tr::le(bound, time_left));
 }
 
 // The particle moves with the wall from `pos` to the end of segment j. At a downward turn
@@ -234,7 +254,10 @@ void ImpactMap<T>::ride(Walk& w, int j, T pos) const {
         break;
       case Turn::up:
         w.r.passed_upward_turn = true;
-        if (m_.law == Law::constant && m_.downward == DownwardSticking::paper) break;
+        // Only models with sticking re-collapse at the turn (paper convention).
+        if (m_.downward == DownwardSticking::paper &&
+            (m_.law == Law::constant || (m_.law == Law::veldep && m_.veldep_collapse)))
+          break;
         w.r.corner = true;
         collide(w, k, wall.start[k], wall.velocity[k] - wall.velocity[j]);
         return;

@@ -48,6 +48,7 @@ struct Model {
   T eps;       // Law::constant (1 for elastic)
   T c;         // Law::veldep
   T collapse;  // a (1 - eps) / 2: sticking iff relative speed <= collapse * (time left)
+  bool veldep_collapse;
   Wall<T> wall;
 
   T zero() const { return ScalarTraits<T>::from_int(0, bits); }

@@ -44,6 +44,9 @@ struct ModelSpec {
   Decimal c = Decimal::from_int(1000);  // used by Law::veldep
   WallSpec wall;
   DownwardSticking downward = DownwardSticking::paper;
+  // Law::veldep only: end a chatter sequence whose collapse provably completes before the
+  // wall turns (bound in README "Velocity-dependent collapse"), as constant eps does.
+  bool veldep_collapse = false;
 };
 
 struct InitialCondition {

@@ -22,7 +22,8 @@ class Mpfi {
  public:
   static constexpr int kInlineLimbs = 16;
 
-  explicit Mpfi(mpfr_prec_t bits = 53) { init(bits); }
+  Mpfi() { init(53); }
+  explicit Mpfi(mpfr_prec_t bits) { init(bits); }
   Mpfi(long n, mpfr_prec_t bits) { init(bits); mpfi_set_si(v_, n); }
   Mpfi(const Mpfr& lo, const Mpfr& hi) { init(std::max(lo.bits(), hi.bits())); mpfi_interv_fr(v_, lo.get(), hi.get()); }
   Mpfi(const Mpfi& o) { init(o.bits()); mpfi_set(v_, o.v_); }

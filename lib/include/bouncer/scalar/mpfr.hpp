@@ -28,7 +28,8 @@ class Mpfr {
   static constexpr int kInlineLimbs = 16;
   static constexpr long kInlineBits = kInlineLimbs * GMP_NUMB_BITS;
 
-  explicit Mpfr(mpfr_prec_t bits = 53) { init(bits); }
+  Mpfr() { init(53); }
+  explicit Mpfr(mpfr_prec_t bits) { init(bits); }
   Mpfr(long n, mpfr_prec_t bits) { init(bits); mpfr_set_si(v_, n, MPFR_RNDN); }
   Mpfr(const Mpfr& o) { init(o.bits()); mpfr_set(v_, o.v_, MPFR_RNDN); }
   Mpfr(Mpfr&& o) noexcept {

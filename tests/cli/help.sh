@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# End-to-end: help and version.
+#   - `bouncer --help` exits 0 and lists the orbit subcommand;
+#   - `bouncer orbit --help` exits 0 and documents every option of orbit (model, a, eps, c,
+#     wall, downward-sticking, theta, v, steps, precision, format, every, out, scene), with
+#     the allowed ranges of the numeric ones;
+#   - `bouncer --version` exits 0 and names version and commit;
+#   - `bouncer` without a subcommand is bad input (status 2, one line on stderr).
+# Usage: bash help.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash help.sh <bouncer-binary> <source-dir>}
+SRC=${2:?usage: bash help.sh <bouncer-binary> <source-dir>}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+
+rc=0
+"$BOUNCER" --help >"$TMP/top" 2>&1 || rc=$?
+[[ $rc -eq 0 ]] || fail "bouncer --help" "exit status $rc"
+grep -qE '^[[:space:]]+orbit[[:space:]]' "$TMP/top" || fail "bouncer --help" "does not list the orbit subcommand: $(cat "$TMP/top")"
+
+rc=0
+"$BOUNCER" orbit --help >"$TMP/orbit" 2>&1 || rc=$?
+[[ $rc -eq 0 ]] || fail "bouncer orbit --help" "exit status $rc"
+for opt in model a eps c wall downward-sticking theta v steps precision format every out scene; do
+  grep -qE -- "(^|[[:space:],])--$opt([[:space:]]|$)" "$TMP/orbit" ||
+    fail "bouncer orbit --help" "does not document --$opt"
+done
+# each numeric option's help states what is allowed (the same ranges the errors name)
+check_range() {  # OPTION FIXED-STRING
+  # (no `| grep -q`: with pipefail an early exit of grep -q can fail the pipeline)
+  local line
+  line=$(grep -E -- "(^|[[:space:],])--$1[[:space:]]" "$TMP/orbit" || true)
+  [[ $line == *"$2"* ]] ||
+    fail "bouncer orbit --help" "the line of --$1 does not say '$2'"
+}
+check_range a "> 0"
+check_range eps "[0, 1]"
+check_range c "> 0"
+check_range theta "[0, 1)"
+check_range v "wall velocity"
+check_range steps ">= 0"
+check_range every ">= 1"
+check_range precision "16 <= BITS <= 1048576"
+check_range model "elastic"
+check_range format "json"
+
+rc=0
+"$BOUNCER" --version >"$TMP/version" 2>&1 || rc=$?
+[[ $rc -eq 0 ]] || fail "bouncer --version" "exit status $rc"
+grep -qE '[0-9]+\.[0-9]+\.[0-9]+.*commit' "$TMP/version" || fail "bouncer --version" "no version and commit: $(cat "$TMP/version")"
+
+rc=0
+"$BOUNCER" >"$TMP/none.out" 2>"$TMP/none.err" || rc=$?
+[[ $rc -eq 2 ]] || fail "bouncer (no subcommand)" "exit status $rc, expected 2"
+[[ $(wc -l <"$TMP/none.err") -eq 1 ]] || fail "bouncer (no subcommand)" "expected one line on stderr: $(cat "$TMP/none.err")"
+
+if [[ $failures -ne 0 ]]; then
+  echo "help.sh: $failures failure(s)" >&2
+  exit 1
+fi
+echo "help.sh: help lists orbit and every orbit option; --version works"

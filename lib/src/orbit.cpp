@@ -215,7 +215,7 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
   for (size_t i = 0; i < req.initial.size(); ++i) {
     w.begin_orbit(i);
     OrbitOutcome o;
-    State<T> s = make_state<T>(req.initial[i], bits);
+    State<T> s = make_state<T>(map.model(), req.initial[i]);
     w.row(start_row(s, i));
     for (long long n = 1; n <= req.steps; ++n) {
       try {

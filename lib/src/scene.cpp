@@ -8,7 +8,10 @@ namespace bouncer {
 
 std::string Options::get(const std::string& key) const {
   auto it = values.find(key);
-  if (it == values.end() || it->second.empty()) throw InputError(key, "is required");
+  if (it == values.end() || it->second.empty()) {
+    const std::string range = allowed_range(key);
+    throw InputError(key, range.empty() ? "is required" : "is required (" + range + ")");
+  }
   if (it->second.size() != 1) throw InputError(key, "takes one value, got a list");
   return it->second.front();
 }
@@ -140,7 +143,7 @@ long long integer_from(const Options& o, const std::string& key, long long lo, l
 std::vector<InitialCondition> initial_conditions_from(const Options& o, const ModelSpec& m) {
   auto list = [&](const std::string& key) {
     auto it = o.values.find(key);
-    if (it == o.values.end()) throw InputError(key, "is required");
+    if (it == o.values.end()) throw InputError(key, "is required (" + allowed_range(key) + ")");
     return it->second;
   };
   const auto thetas = list("theta"), vs = list("v");

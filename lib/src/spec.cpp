@@ -1,5 +1,6 @@
 #include "bouncer/model/spec.hpp"
 
+#include <map>
 #include <sstream>
 
 namespace bouncer {
@@ -15,9 +16,26 @@ const char* name(Law l) {
 
 const char* name(DownwardSticking d) { return d == DownwardSticking::paper ? "paper" : "impact"; }
 
+std::string allowed_range(const std::string& field) {
+  static const std::map<std::string, std::string> ranges{
+      {"a", "a decimal with 0 < a <= 1e9"},
+      {"eps", "a decimal in [0, 1]"},
+      {"c", "a decimal > 0"},
+      {"theta", "a decimal in [0, 1)"},
+      {"v", "a decimal >= the wall velocity at theta, <= 1e15"},
+      {"model", "elastic, constant or veldep"},
+  };
+  auto it = ranges.find(field);
+  return it == ranges.end() ? "" : it->second;
+}
+
 Decimal parse_decimal(const std::string& field, const std::string& text) {
   auto d = Decimal::parse(text);
-  if (!d) throw InputError(field, "'" + text + "' is not a finite decimal number (e.g. 28.82, 1e-9)");
+  if (!d) {
+    const std::string range = allowed_range(field);
+    throw InputError(field, "'" + text + "' is not a finite decimal number (allowed: " +
+                                (range.empty() ? "a decimal such as 28.82 or 1e-9" : range) + ")");
+  }
   return *d;
 }
 

@@ -45,7 +45,7 @@ class ImpactMap {
  private:
   Model<T> m_;
   struct Walk;
-  void collide(Walk& w, int j, T theta, T speed) const;
+  void collide(Walk& w, int j, T theta, T speed, int knot = -1) const;
   void ride(Walk& w, int j, T pos) const;
   bool veldep_collapse_certain(const T& out, const T& time_left) const;
 };

@@ -40,6 +40,7 @@ Model<T> make_model(const ModelSpec& spec, long bits) {
   size_t top = 0;
   for (size_t j = 0; j < n; ++j) {
     w.start.push_back(num(ws.knots[j]));
+    w.knot_exact.push_back(ws.knots[j].value());
     w.height.push_back(num(ws.heights[j]));
     if (ws.heights[top] < ws.heights[j]) top = j;
   }
@@ -78,6 +79,8 @@ long long whole_periods(const T& whole) {
 
 // Longest walk over wall segments in one flight before giving up (a far below 1e-3).
 constexpr long kWalkLimit = 1L << 24;
+// Flights longer than this many periods are only taken by the analytic jump.
+constexpr long kLongestWalkedFlight = 64;
 
 }  // namespace detail
 
@@ -91,8 +94,9 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
 
   Walk w;
   w.r.tau = zero;
-  int j = wall.segment_of(s.theta);
-  if constexpr (Tr::is_interval) decide(Tr::lt(s.theta, wall.end[j]), Reason::phase_at_corner);
+  int j = s.knot >= 0 ? s.knot : wall.segment_of(s.theta);
+  if constexpr (Tr::is_interval)
+    if (s.knot < 0) decide(Tr::lt(s.theta, wall.end[j]), Reason::phase_at_corner);
   const int j0 = j;
   const T rel = s.v - wall.velocity[j];
   if (decide(Tr::is_zero(rel), Reason::riding)) {
@@ -133,7 +137,7 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         if (decide(Tr::lt(Wk, zero), Reason::corner_approach)) {
           w.r.corner = true;
           w.r.indirect = jumped ? Truth::yes : Truth::no;
-          collide(w, k, wall.start[k], -Wk);
+          collide(w, k, wall.start[k], -Wk, k);
           break;
         }
         if (decide(Tr::is_zero(Wk), Reason::riding)) {  // lands with zero relative speed
@@ -157,23 +161,36 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
       L = wall.end[k] - wall.start[k];
       if (!jumped && certainly(Tr::lt(wall.top, wall.height[j] + G))) {
         // Above the wall's top: no contact until the particle falls back to it, at
-        // tau_fall = (v + sqrt(v^2 - 2a(top - f0)))/a after launch; jump there.
+        // tau_fall = (v + sqrt(v^2 - 2a(top - f0)))/a after launch; jump there. The jump
+        // is a shortcut: where its phase is not certain (an enclosure of theta_fall
+        // straddling a period boundary or a corner), the walk simply goes on.
         jumped = true;
         const T f0 = wall.height_at(j0, s.theta);
         const T root = sqrt(Tr::nonneg(s.v * s.v - 2 * a * (wall.top - f0)));
         const T tau_fall = (s.v + root) / a;
         const T x = s.theta + tau_fall;
         T whole = zero;
-        decide(floor_certain(x, whole), Reason::period_boundary);
-        w.r.periods = detail::whole_periods(whole);
-        w.r.phase_bits_lost = std::max(0, Tr::exponent(x));
-        w.r.tau = tau_fall;
-        pos = clamp_to_segment(x - whole, zero, wall.end.back());
-        j = wall.segment_of(pos);
-        L = wall.end[j] - pos;
-        G = Tr::nonneg(wall.top - wall.height_at(j, pos));
-        W = -root - wall.velocity[j];
-        on_wall = false;
+        const Truth whole_known = floor_certain(x, whole);
+        if (whole_known == Truth::invalid) throw Undecided(Reason::nonfinite);
+        if (whole_known == Truth::yes) {
+          T fall = clamp_to_segment(x - whole, zero, wall.end.back());
+          const int jf = wall.segment_if_certain(fall);
+          if (jf >= 0) {
+            w.r.periods = detail::whole_periods(whole);
+            w.r.phase_bits_lost = std::max(0, Tr::exponent(x));
+            w.r.tau = tau_fall;
+            j = jf;
+            pos = std::move(fall);
+            L = wall.end[j] - pos;
+            G = Tr::nonneg(wall.top - wall.height_at(j, pos));
+            W = -root - wall.velocity[j];
+            on_wall = false;
+            continue;
+          }
+        }
+        // Walking a very long flight instead would only end at the walk limit.
+        if (certainly(Tr::lt(Tr::from_int(detail::kLongestWalkedFlight, m_.bits), tau_fall)))
+          throw Undecided(whole_known == Truth::yes ? Reason::phase_at_corner : Reason::period_boundary);
       }
     }
   }
@@ -184,7 +201,7 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
 // The collision law (paper eq. 2) with relative impact speed `speed` = |v^- - fdot| on
 // segment j, then the sticking test of the constant-restitution model.
 template <class T>
-void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed) const {
+void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed, int knot) const {
   using Tr = ScalarTraits<T>;
   using std::exp;
   const Wall<T>& wall = m_.wall;
@@ -214,6 +231,7 @@ void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed) const {
     return;
   }
   w.r.next.theta = std::move(theta);
+  w.r.next.knot = knot;
 }
 
 // Velocity-dependent collapse (refutes the paper's sec. II.B.6): with x_n = (w_n/c)^(3/5),
@@ -248,7 +266,7 @@ void ImpactMap<T>::ride(Walk& w, int j, T pos) const {
     w.r.segment = j;
     switch (wall.turn[j]) {
       case Turn::down:
-        w.r.next = {wall.start[k], wall.velocity[j]};
+        w.r.next = {wall.start[k], wall.velocity[j], k};
         return;
       case Turn::none:
         break;
@@ -259,7 +277,7 @@ void ImpactMap<T>::ride(Walk& w, int j, T pos) const {
             (m_.law == Law::constant || (m_.law == Law::veldep && m_.veldep_collapse)))
           break;
         w.r.corner = true;
-        collide(w, k, wall.start[k], wall.velocity[k] - wall.velocity[j]);
+        collide(w, k, wall.start[k], wall.velocity[k] - wall.velocity[j], k);
         return;
     }
     j = k;

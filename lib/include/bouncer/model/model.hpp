@@ -25,6 +25,7 @@ struct Wall {
   std::vector<Turn> turn;   // sign of u_{j+1} - u_j at the end of segment j
   std::vector<int> direction;  // sign of u_j (exact): +1 up, -1 down, 0 flat
   T top;                    // max f: above it the particle cannot meet the wall
+  std::vector<mpq_class> knot_exact;  // s_j as exact rationals (from the decimal spec)
 
   int segments() const { return static_cast<int>(start.size()); }
   int next(int j) const { return j + 1 == segments() ? 0 : j + 1; }
@@ -35,6 +36,16 @@ struct Wall {
     for (int j = segments() - 1; j > 0; --j)
       if (decide(Tr::le(start[j], theta), Reason::phase_at_corner)) return j;
     return 0;
+  }
+  // The same, or -1 when it is not certain (for optional shortcuts).
+  int segment_if_certain(const T& theta) const {
+    using Tr = ScalarTraits<T>;
+    for (int j = segments() - 1; j >= 0; --j) {
+      const Truth after_start = j == 0 ? Truth::yes : Tr::le(start[j], theta);
+      if (after_start == Truth::yes) return certainly(Tr::lt(theta, end[j])) ? j : -1;
+      if (after_start != Truth::no) return -1;
+    }
+    return -1;
   }
   T height_at(int j, const T& theta) const { return height[j] + velocity[j] * (theta - start[j]); }
 };
@@ -63,12 +74,25 @@ template <class T>
 struct State {
   T theta;
   T v;
+  // theta is exactly wall knot s_knot (a release or corner state), or -1. An interval
+  // enclosure of a knot that is not a binary fraction (0.9) cannot decide s_k <= theta by
+  // itself; knowing the phase is the knot exactly keeps the next step decidable.
+  int knot = -1;
 };
 
 template <class T>
 State<T> make_state(const InitialCondition& ic, long bits) {
   using Tr = ScalarTraits<T>;
   return {Tr::from_decimal(ic.theta.text(), bits), Tr::from_decimal(ic.v.text(), bits)};
+}
+
+// The same, recognising a start exactly at a wall knot (compared as exact rationals).
+template <class T>
+State<T> make_state(const Model<T>& m, const InitialCondition& ic) {
+  State<T> s = make_state<T>(ic, m.bits);
+  for (size_t k = 0; k < m.wall.knot_exact.size(); ++k)
+    if (m.wall.knot_exact[k] == ic.theta.value()) s.knot = static_cast<int>(k);
+  return s;
 }
 
 }  // namespace bouncer

@@ -54,6 +54,9 @@ struct InitialCondition {
   Decimal v = Decimal::from_int(4);
 };
 
+// The allowed values of a model or initial-condition field, for error messages ("" if none).
+std::string allowed_range(const std::string& field);
+
 // Parsers for the text forms; each throws InputError naming `field`.
 Decimal parse_decimal(const std::string& field, const std::string& text);
 Law parse_law(const std::string& field, const std::string& text);

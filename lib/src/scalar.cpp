@@ -23,6 +23,10 @@ const char* describe(Reason r) {
   return "unknown reason";
 }
 
+void throw_undecided(Truth t, Reason where) {
+  throw Undecided(t == Truth::invalid ? Reason::nonfinite : where);
+}
+
 namespace {
 
 [[noreturn]] void bad_decimal(std::string_view text) {

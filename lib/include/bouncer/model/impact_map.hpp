@@ -36,7 +36,7 @@ struct StepResult {
 template <class T>
 class ImpactMap {
  public:
-  explicit ImpactMap(Model<T> model) : m_(std::move(model)) {}
+  explicit ImpactMap(Model<T> model) : m_(std::move(model)), zero_(m_.zero()) {}
   const Model<T>& model() const { return m_; }
 
   // One step. Throws Undecided when a branch cannot be decided (intervals, NaN).
@@ -44,9 +44,9 @@ class ImpactMap {
 
  private:
   Model<T> m_;
-  struct Walk;
-  void collide(Walk& w, int j, T theta, T speed, int knot = -1) const;
-  void ride(Walk& w, int j, T pos) const;
+  T zero_;  // 0 at the model's precision, built once
+  void collide(StepResult<T>& r, int j, T theta, const T& speed, int knot = -1) const;
+  void ride(StepResult<T>& r, int j, const T& from) const;
   bool veldep_collapse_certain(const T& out, const T& time_left) const;
 };
 

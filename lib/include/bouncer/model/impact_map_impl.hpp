@@ -58,11 +58,6 @@ Model<T> make_model(const ModelSpec& spec, long bits) {
   return m;
 }
 
-template <class T>
-struct ImpactMap<T>::Walk {
-  StepResult<T> r;
-};
-
 namespace detail {
 
 inline Truth both(Truth x, Truth y) {
@@ -90,74 +85,100 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
   using std::sqrt;
   const Wall<T>& wall = m_.wall;
   const T& a = m_.a;
-  const T zero = m_.zero();
+  const T& zero = zero_;
 
-  Walk w;
-  w.r.tau = zero;
+  // The result is built in place (no copy of the whole StepResult at the end).
+  StepResult<T> r;
+  r.tau = zero;
   int j = s.knot >= 0 ? s.knot : wall.segment_of(s.theta);
   if constexpr (Tr::is_interval)
     if (s.knot < 0) decide(Tr::lt(s.theta, wall.end[j]), Reason::phase_at_corner);
   const int j0 = j;
-  const T rel = s.v - wall.velocity[j];
-  if (decide(Tr::is_zero(rel), Reason::riding)) {
-    w.r.kind = EventKind::ride;
-    ride(w, j, s.theta);
+  T W = s.v - wall.velocity[j];  // relative velocity as the current piece of the walk begins
+  if (decide(Tr::is_zero(W), Reason::riding)) {
+    r.kind = EventKind::ride;
+    ride(r, j, s.theta);
   } else {
-    T pos = s.theta;                // phase at which the current piece of the walk begins
-    T L = wall.end[j] - s.theta;    // time left in the current segment
-    T G = zero, W = rel;            // gap and relative velocity as the piece begins
-    bool on_wall = true;            // G == 0 exactly (the root is then 2W/a)
+    const T* pos = &s.theta;       // phase at which the current piece begins
+    T fall;                        // theta_fall after a jump (pos points here then)
+    T L = wall.end[j] - s.theta;   // time left in the current segment
+    T G = zero;                    // gap as the piece begins
+    T root_D, sigma;               // sqrt(W^2 + 2aG) (when G > 0) and the first zero of the gap
+    bool on_wall = true;           // G == 0 exactly: the root is 2W/a, the impact speed W
     bool jumped = false;
     for (long iter = 0;; ++iter) {
       if (iter > detail::kWalkLimit) throw Undecided(Reason::walk_limit);
-      T q = on_wall ? W : sqrt(Tr::nonneg(W * W + 2 * a * G));  // relative impact speed
-      T sigma = on_wall ? 2 * W / a
-                        : Tr::likely_negative(W) ? 2 * G / (q - W) : (W + q) / a;
+      if (on_wall) {
+        sigma = W;
+        sigma += W;
+        sigma /= a;
+      } else {
+        root_D = W * W;
+        root_D += 2 * a * G;
+        root_D = sqrt(Tr::nonneg(root_D));
+        if (Tr::likely_negative(W)) {
+          sigma = 2 * G;
+          sigma /= root_D - W;
+        } else {
+          sigma = W + root_D;
+          sigma /= a;
+        }
+      }
+      const T& q = on_wall ? W : root_D;  // relative impact speed if the impact is here
       if (decide(Tr::lt(sigma, L), Reason::impact_at_corner)) {
         // Impact inside segment j.
-        w.r.tau += sigma;
-        T theta = clamp_to_segment(pos + sigma, wall.start[j], wall.end[j]);
+        r.tau += sigma;
+        T theta = clamp_to_segment(*pos + sigma, wall.start[j], wall.end[j]);
         if (jumped) {
-          w.r.indirect = Truth::yes;
+          r.indirect = Truth::yes;
         } else {
           // Left the collision zone iff the apex is above the top and the impact follows it.
-          const T f0 = wall.height_at(j0, s.theta);
-          w.r.indirect = detail::both(Tr::lt(2 * a * (wall.top - f0), s.v * s.v),
-                                      Tr::lt(wall.velocity[j] - q, zero));
+          T f0 = wall.height_at(j0, s.theta);
+          f0 = wall.top - f0;
+          f0 *= a;
+          r.indirect = detail::both(Tr::lt(2 * f0, s.v * s.v), Tr::lt(wall.velocity[j] - q, zero));
         }
-        collide(w, j, std::move(theta), std::move(q));
+        collide(r, j, std::move(theta), q);
         break;
       }
       const int k = wall.next(j);
-      w.r.tau += L;
-      if (k == 0) ++w.r.periods;
+      r.tau += L;
+      if (k == 0) ++r.periods;
       if (!decide(Tr::lt(L, sigma), Reason::impact_at_corner)) {
         // The gap closes exactly at the corner: impact only if approaching the new segment.
-        T Wk = W - a * L + wall.velocity[j] - wall.velocity[k];
-        if (decide(Tr::lt(Wk, zero), Reason::corner_approach)) {
-          w.r.corner = true;
-          w.r.indirect = jumped ? Truth::yes : Truth::no;
-          collide(w, k, wall.start[k], -Wk, k);
+        W -= a * L;
+        W += wall.velocity[j];
+        W -= wall.velocity[k];
+        if (decide(Tr::lt(W, zero), Reason::corner_approach)) {
+          r.corner = true;
+          r.indirect = jumped ? Truth::yes : Truth::no;
+          collide(r, k, wall.start[k], -W, k);
           break;
         }
-        if (decide(Tr::is_zero(Wk), Reason::riding)) {  // lands with zero relative speed
-          ride(w, k, wall.start[k]);
+        if (decide(Tr::is_zero(W), Reason::riding)) {  // lands with zero relative speed
+          ride(r, k, wall.start[k]);
           break;
         }
         G = zero;  // grazes the corner and flies on
-        W = std::move(Wk);
         on_wall = true;
       } else {
         // Still above the wall at the corner. The gap there, free of cancellation:
         // gap(L) = (a/2)(sigma* - L)(L - sigma_), sigma_ = -2G/(a sigma*) the other root.
-        T gap = on_wall ? a * (sigma - L) * L / 2
-                        : a * (sigma - L) * (L + 2 * G / (a * sigma)) / 2;
-        W = W - a * L + wall.velocity[j] - wall.velocity[k];
+        T gap = a * (sigma - L);
+        if (on_wall) {
+          gap *= L;
+        } else {
+          gap *= L + 2 * G / (a * sigma);
+        }
+        gap /= 2;
+        W -= a * L;
+        W += wall.velocity[j];
+        W -= wall.velocity[k];
         G = Tr::nonneg(gap);
         on_wall = false;
       }
       j = k;
-      pos = wall.start[k];
+      pos = &wall.start[k];
       L = wall.end[k] - wall.start[k];
       if (!jumped && certainly(Tr::lt(wall.top, wall.height[j] + G))) {
         // Above the wall's top: no contact until the particle falls back to it, at
@@ -173,16 +194,16 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         const Truth whole_known = floor_certain(x, whole);
         if (whole_known == Truth::invalid) throw Undecided(Reason::nonfinite);
         if (whole_known == Truth::yes) {
-          T fall = clamp_to_segment(x - whole, zero, wall.end.back());
+          fall = clamp_to_segment(x - whole, zero, wall.end.back());
           const int jf = wall.segment_if_certain(fall);
           if (jf >= 0) {
-            w.r.periods = detail::whole_periods(whole);
-            w.r.phase_bits_lost = std::max(0, Tr::exponent(x));
-            w.r.tau = tau_fall;
+            r.periods = detail::whole_periods(whole);
+            r.phase_bits_lost = std::max(0, Tr::exponent(x));
+            r.tau = tau_fall;
             j = jf;
-            pos = std::move(fall);
-            L = wall.end[j] - pos;
-            G = Tr::nonneg(wall.top - wall.height_at(j, pos));
+            pos = &fall;
+            L = wall.end[j] - fall;
+            G = Tr::nonneg(wall.top - wall.height_at(j, fall));
             W = -root - wall.velocity[j];
             on_wall = false;
             continue;
@@ -194,23 +215,23 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
       }
     }
   }
-  if (!Tr::is_finite(w.r.next.theta) || !Tr::is_finite(w.r.next.v)) throw Undecided(Reason::nonfinite);
-  return std::move(w.r);
+  if (!Tr::is_finite(r.next.theta) || !Tr::is_finite(r.next.v)) throw Undecided(Reason::nonfinite);
+  return r;
 }
 
 // The collision law (paper eq. 2) with relative impact speed `speed` = |v^- - fdot| on
 // segment j, then the sticking test of the constant-restitution model.
 template <class T>
-void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed, int knot) const {
+void ImpactMap<T>::collide(StepResult<T>& r, int j, T theta, const T& speed, int knot) const {
   using Tr = ScalarTraits<T>;
   using std::exp;
   const Wall<T>& wall = m_.wall;
   // Relative speed after the impact: eps * speed.
-  T out = m_.law == Law::elastic    ? std::move(speed)
+  T out = m_.law == Law::elastic    ? speed
           : m_.law == Law::constant ? m_.eps * speed
                                     : exp(-Tr::pow_3_5(speed / m_.c)) * speed;
-  w.r.segment = j;
-  w.r.next.v = wall.velocity[j] + out;
+  r.segment = j;
+  r.next.v = wall.velocity[j] + out;
   // Sticking (paper sec. II.B.3, generalized to any segment): in the wall's frame each
   // flight lasts 2w/a and w shrinks by eps, so the collapse takes 2 out / (a (1 - eps)).
   // It completes within the segment iff out <= a (1 - eps)/2 * (time left); the paper's
@@ -221,17 +242,17 @@ void ImpactMap<T>::collide(Walk& w, int j, T theta, T speed, int knot) const {
        decide(Tr::le(out, m_.collapse * (wall.end[j] - theta)), Reason::sticking_threshold)) ||
       (m_.law == Law::veldep && m_.veldep_collapse && veldep_collapse_certain(out, wall.end[j] - theta));
   if (sticks) {
-    if (w.r.kind != EventKind::sticking) {
-      w.r.kind = EventKind::sticking;
-      w.r.stick_segment = j;
-      w.r.stuck_theta = theta;
-      w.r.stuck_v = w.r.next.v;
+    if (r.kind != EventKind::sticking) {
+      r.kind = EventKind::sticking;
+      r.stick_segment = j;
+      r.stuck_theta = theta;
+      r.stuck_v = r.next.v;
     }
-    ride(w, j, std::move(theta));
+    ride(r, j, theta);
     return;
   }
-  w.r.next.theta = std::move(theta);
-  w.r.next.knot = knot;
+  r.next.theta = std::move(theta);
+  r.next.knot = knot;
 }
 
 // Velocity-dependent collapse (refutes the paper's sec. II.B.6): with x_n = (w_n/c)^(3/5),
@@ -247,41 +268,44 @@ bool ImpactMap<T>::veldep_collapse_certain(const T& out, const T& time_left) con
   using std::exp;
   using std::log;
   if (certainly(Tr::is_zero(out))) return true;
-  if (!certainly(Tr::lt(m_.zero(), out))) return false;
+  if (!certainly(Tr::lt(zero_, out))) return false;
   const T y = out / m_.c;
   const T bound = 2 * (out + 5 * m_.c * exp(2 * log(y) / 5) / 2) / m_.a;
   return certainly(Tr::le(bound, time_left));
 }
 
-// The particle moves with the wall from `pos` to the end of segment j. At a downward turn
+// The particle moves with the wall from `from` to the end of segment j. At a downward turn
 // it is released with the old wall velocity; at an upward turn the downward-sticking
 // convention decides (paper: keep riding; impact: the turn is a collision).
 template <class T>
-void ImpactMap<T>::ride(Walk& w, int j, T pos) const {
+void ImpactMap<T>::ride(StepResult<T>& r, int j, const T& from) const {
   const Wall<T>& wall = m_.wall;
+  const T* pos = &from;
   for (;;) {
-    w.r.tau += wall.end[j] - pos;
+    r.tau += wall.end[j] - *pos;
     const int k = wall.next(j);
-    if (k == 0) ++w.r.periods;
-    w.r.segment = j;
+    if (k == 0) ++r.periods;
+    r.segment = j;
     switch (wall.turn[j]) {
       case Turn::down:
-        w.r.next = {wall.start[k], wall.velocity[j], k};
+        r.next.theta = wall.start[k];
+        r.next.v = wall.velocity[j];
+        r.next.knot = k;
         return;
       case Turn::none:
         break;
       case Turn::up:
-        w.r.passed_upward_turn = true;
+        r.passed_upward_turn = true;
         // Only models with sticking re-collapse at the turn (paper convention).
         if (m_.downward == DownwardSticking::paper &&
             (m_.law == Law::constant || (m_.law == Law::veldep && m_.veldep_collapse)))
           break;
-        w.r.corner = true;
-        collide(w, k, wall.start[k], wall.velocity[k] - wall.velocity[j], k);
+        r.corner = true;
+        collide(r, k, wall.start[k], wall.velocity[k] - wall.velocity[j], k);
         return;
     }
     j = k;
-    pos = wall.start[k];
+    pos = &wall.start[k];
   }
 }
 

@@ -57,7 +57,7 @@ class Mpfi {
   }
   ~Mpfi() { release(); }
 
-  mpfr_prec_t bits() const { return mpfi_get_prec(v_); }
+  mpfr_prec_t bits() const { return mpfr_get_prec(&v_->left); }  // inline, unlike mpfi_get_prec
   mpfi_ptr get() { return v_; }
   mpfi_srcptr get() const { return v_; }
 
@@ -88,6 +88,8 @@ class Mpfi {
   Mpfi& operator-=(const Mpfi& o) { mpfi_sub(v_, v_, o.v_); return *this; }
   Mpfi& operator*=(const Mpfi& o) { mpfi_mul(v_, v_, o.v_); return *this; }
   Mpfi& operator/=(const Mpfi& o) { mpfi_div(v_, v_, o.v_); return *this; }
+  Mpfi& operator*=(long n) { mpfi_mul_si(v_, v_, n); return *this; }
+  Mpfi& operator/=(long n) { mpfi_div_si(v_, v_, n); return *this; }
 
   friend Mpfi operator+(const Mpfi& x, const Mpfi& y) { Mpfi r(wider(x, y)); mpfi_add(r.v_, x.v_, y.v_); return r; }
   friend Mpfi operator-(const Mpfi& x, const Mpfi& y) { Mpfi r(wider(x, y)); mpfi_sub(r.v_, x.v_, y.v_); return r; }

@@ -78,6 +78,8 @@ class Mpfr {
   Mpfr& operator-=(const Mpfr& o) { mpfr_sub(v_, v_, o.v_, MPFR_RNDN); return *this; }
   Mpfr& operator*=(const Mpfr& o) { mpfr_mul(v_, v_, o.v_, MPFR_RNDN); return *this; }
   Mpfr& operator/=(const Mpfr& o) { mpfr_div(v_, v_, o.v_, MPFR_RNDN); return *this; }
+  Mpfr& operator*=(long n) { mpfr_mul_si(v_, v_, n, MPFR_RNDN); return *this; }
+  Mpfr& operator/=(long n) { mpfr_div_si(v_, v_, n, MPFR_RNDN); return *this; }
 
   friend Mpfr operator+(const Mpfr& x, const Mpfr& y) { Mpfr r(wider(x, y)); mpfr_add(r.v_, x.v_, y.v_, MPFR_RNDN); return r; }
   friend Mpfr operator-(const Mpfr& x, const Mpfr& y) { Mpfr r(wider(x, y)); mpfr_sub(r.v_, x.v_, y.v_, MPFR_RNDN); return r; }

@@ -36,9 +36,10 @@ namespace detail {
 template <class T>
 struct PointTraits {
   static constexpr bool is_interval = false;
-  static Truth lt(const T& x, const T& y) { return nan(x, y) ? Truth::invalid : truth(x < y); }
-  static Truth le(const T& x, const T& y) { return nan(x, y) ? Truth::invalid : truth(x <= y); }
-  static Truth is_zero(const T& x) { return nan(x, x) ? Truth::invalid : truth(x == 0); }
+  // NaN fails both comparisons, so it is recognised without a separate isnan test.
+  static Truth lt(const T& x, const T& y) { return x < y ? Truth::yes : x >= y ? Truth::no : Truth::invalid; }
+  static Truth le(const T& x, const T& y) { return x <= y ? Truth::yes : x > y ? Truth::no : Truth::invalid; }
+  static Truth is_zero(const T& x) { return x == 0 ? Truth::yes : x != 0 && x == x ? Truth::no : Truth::invalid; }
   static bool likely_negative(const T& x) { return x < 0; }
   static T nonneg(const T& x) { return x < 0 ? T(0) : x; }
   static bool is_finite(const T& x) { using std::isfinite; using boost::multiprecision::isfinite; return isfinite(x); }

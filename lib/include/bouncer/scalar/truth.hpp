@@ -39,11 +39,14 @@ struct Undecided : std::runtime_error {
   explicit Undecided(Reason r) : std::runtime_error(describe(r)), reason(r) {}
 };
 
-// The only way to turn a comparison into control flow in the model code.
+[[noreturn, gnu::cold, gnu::noinline]] void throw_undecided(Truth t, Reason where);
+
+// The only way to turn a comparison into control flow in the model code. The yes/no path
+// is inline; the throw lives out of line so that the hot path pays no call.
 inline bool decide(Truth t, Reason where) {
   if (t == Truth::yes) return true;
-  if (t == Truth::no) return false;
-  throw Undecided(t == Truth::invalid ? Reason::nonfinite : where);
+  if (t != Truth::no) throw_undecided(t, where);
+  return false;
 }
 
 // For shortcuts whose "no" branch is also correct (e.g. skipping a long flight).

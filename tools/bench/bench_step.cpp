@@ -1,0 +1,1916 @@
+// bench_step: nanoseconds per impact-map step, for every scalar type and model, next to
+// hand-written floors timed in the same run (issue 2, item 7).
+//
+//   floors  plain-double: the same algorithm as ImpactMap (same segment walk, same
+//           formulas in the same order, same outputs) in plain doubles, no templates, no
+//           three-valued predicates; checked bitwise against ImpactMap<double> first.
+//           raw-mpfr: the same algorithm on mpfr_t, every temporary allocated once
+//           (mpfr_init2 at start-up), the same MPFR calls in the same order; checked
+//           bitwise against ImpactMap<Mpfr> first.
+//   rows    ImpactMap<T> for double, long double, quad, Mpfr and Mpfi at several precisions.
+//           Each repetition starts at the model's initial condition; the state is reset
+//           to it when an interval step is undecided or when v exceeds 1e4.
+//   E, E5   experiment: a copy of ImpactMap<T>::step (namespace fast) with the overheads
+//           found by callgrind/perf removed, checked bitwise against ImpactMap<T>; rows
+//           double-E(5) and mpfr-E(5) show what the candidate core changes would give.
+//
+// Timing: thread CPU time (the machine is shared), floors and rows interleaved in rounds,
+// paired ratios. Every step function is called, never inlined into the timing loop (as
+// ImpactMap<T>::step, which lives in the library).
+//
+// Usage: bench_step [--quick] [--time SECONDS] [--reps N] [--model SUBSTRING]
+//                   [--no-experiment] [--decompose]
+//        bench_step --profile KIND [--model SUBSTRING] [--bits B] [--steps N]
+// The floors and the experiment implement the default model options (no --veldep-collapse)
+// and must be kept in step with lib/include/bouncer/model/impact_map_impl.hpp: the bitwise
+// checks at start-up (exit code 1 on a mismatch) say when they are not.
+#include <mpfi.h>
+#include <mpfr.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <stdexcept>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "bouncer/io/provenance.hpp"
+#include "bouncer/model/impact_map_impl.hpp"  // experiments: detail:: helpers, ImpactMap<MpfrX>
+#include "bouncer/model/impact_map.hpp"
+#include "bouncer/model/spec.hpp"
+
+using namespace bouncer;
+
+// ---------------------------------------------------------------------------------------
+// Experiment S (scalar level): MpfrX, a copy of bouncer::Mpfr with
+//   S1 every operator, constructor and destructor forced inline (gcc keeps the Mpfr
+//      operators out of line: ~30 instructions of call, precision and limb-size setup per
+//      arithmetic operation, ~30 operations per step);
+//   S2 moves copy the used limbs with an inline loop instead of a call to memcpy.
+// Same values, same MPFR calls: ImpactMap<MpfrX> must equal ImpactMap<Mpfr> bitwise.
+// ---------------------------------------------------------------------------------------
+namespace bouncer {
+
+#define BX_INLINE [[gnu::always_inline]] inline
+class MpfrX {
+ public:
+  static constexpr int kInlineLimbs = 16;
+  BX_INLINE MpfrX() { init(53); }
+  BX_INLINE explicit MpfrX(mpfr_prec_t bits) { init(bits); }
+  BX_INLINE MpfrX(long n, mpfr_prec_t bits) { init(bits); mpfr_set_si(v_, n, MPFR_RNDN); }
+  BX_INLINE MpfrX(const MpfrX& o) { init(o.bits()); mpfr_set(v_, o.v_, MPFR_RNDN); }
+  BX_INLINE MpfrX(MpfrX&& o) noexcept {
+    if (o.is_inline()) {
+      init(o.bits());
+      copy_limbs(o);
+    } else {
+      v_[0] = o.v_[0];
+      o.init(MPFR_PREC_MIN);
+    }
+  }
+  BX_INLINE MpfrX& operator=(const MpfrX& o) {
+    if (this != &o) {
+      if (bits() != o.bits()) { release(); init(o.bits()); }
+      mpfr_set(v_, o.v_, MPFR_RNDN);
+    }
+    return *this;
+  }
+  BX_INLINE MpfrX& operator=(MpfrX&& o) noexcept {
+    if (this == &o) return *this;
+    if (!o.is_inline()) {
+      release();
+      v_[0] = o.v_[0];
+      o.init(MPFR_PREC_MIN);
+    } else {
+      if (bits() != o.bits()) { release(); init(o.bits()); }
+      copy_limbs(o);
+    }
+    return *this;
+  }
+  BX_INLINE ~MpfrX() { release(); }
+
+  BX_INLINE mpfr_prec_t bits() const { return mpfr_get_prec(v_); }
+  BX_INLINE mpfr_ptr get() { return v_; }
+  BX_INLINE mpfr_srcptr get() const { return v_; }
+  bool set_decimal(std::string_view text) {
+    std::string s(text);
+    char* end = nullptr;
+    mpfr_strtofr(v_, s.c_str(), &end, 10, MPFR_RNDN);
+    return !s.empty() && end && *end == '\0';
+  }
+
+  BX_INLINE MpfrX& operator+=(const MpfrX& o) { mpfr_add(v_, v_, o.v_, MPFR_RNDN); return *this; }
+  BX_INLINE MpfrX& operator-=(const MpfrX& o) { mpfr_sub(v_, v_, o.v_, MPFR_RNDN); return *this; }
+  BX_INLINE MpfrX& operator*=(const MpfrX& o) { mpfr_mul(v_, v_, o.v_, MPFR_RNDN); return *this; }
+  BX_INLINE MpfrX& operator/=(const MpfrX& o) { mpfr_div(v_, v_, o.v_, MPFR_RNDN); return *this; }
+  BX_INLINE MpfrX& operator*=(long n) { mpfr_mul_si(v_, v_, n, MPFR_RNDN); return *this; }
+  BX_INLINE MpfrX& operator/=(long n) { mpfr_div_si(v_, v_, n, MPFR_RNDN); return *this; }
+
+#define BX_BIN(op, fn) \
+  BX_INLINE friend MpfrX operator op(const MpfrX& x, const MpfrX& y) { MpfrX r(wider(x, y)); fn(r.v_, x.v_, y.v_, MPFR_RNDN); return r; }
+  BX_BIN(+, mpfr_add)
+  BX_BIN(-, mpfr_sub)
+  BX_BIN(*, mpfr_mul)
+  BX_BIN(/, mpfr_div)
+#undef BX_BIN
+  BX_INLINE friend MpfrX operator-(const MpfrX& x) { MpfrX r(x.bits()); mpfr_neg(r.v_, x.v_, MPFR_RNDN); return r; }
+  BX_INLINE friend MpfrX operator+(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_add_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
+  BX_INLINE friend MpfrX operator-(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_sub_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
+  BX_INLINE friend MpfrX operator-(long n, const MpfrX& x) { MpfrX r(x.bits()); mpfr_si_sub(r.v_, n, x.v_, MPFR_RNDN); return r; }
+  BX_INLINE friend MpfrX operator*(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_mul_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
+  BX_INLINE friend MpfrX operator*(long n, const MpfrX& x) { return x * n; }
+  BX_INLINE friend MpfrX operator/(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_div_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
+  BX_INLINE friend MpfrX operator/(long n, const MpfrX& x) { MpfrX r(x.bits()); mpfr_si_div(r.v_, n, x.v_, MPFR_RNDN); return r; }
+
+  BX_INLINE friend bool operator<(const MpfrX& x, const MpfrX& y) { return mpfr_less_p(x.v_, y.v_); }
+  BX_INLINE friend bool operator<=(const MpfrX& x, const MpfrX& y) { return mpfr_lessequal_p(x.v_, y.v_); }
+  BX_INLINE friend bool operator>(const MpfrX& x, const MpfrX& y) { return mpfr_greater_p(x.v_, y.v_); }
+  BX_INLINE friend bool operator>=(const MpfrX& x, const MpfrX& y) { return mpfr_greaterequal_p(x.v_, y.v_); }
+  BX_INLINE friend bool operator==(const MpfrX& x, const MpfrX& y) { return mpfr_equal_p(x.v_, y.v_); }
+
+  friend MpfrX sqrt(const MpfrX& x) { MpfrX r(x.bits()); mpfr_sqrt(r.v_, x.v_, MPFR_RNDN); return r; }
+  friend MpfrX exp(const MpfrX& x) { MpfrX r(x.bits()); mpfr_exp(r.v_, x.v_, MPFR_RNDN); return r; }
+  friend MpfrX log(const MpfrX& x) { MpfrX r(x.bits()); mpfr_log(r.v_, x.v_, MPFR_RNDN); return r; }
+  friend MpfrX abs(const MpfrX& x) { MpfrX r(x.bits()); mpfr_abs(r.v_, x.v_, MPFR_RNDN); return r; }
+  friend MpfrX floor(const MpfrX& x) { MpfrX r(x.bits()); mpfr_floor(r.v_, x.v_); return r; }
+
+ private:
+  mpfr_t v_;
+  mp_limb_t limbs_[kInlineLimbs];
+
+  BX_INLINE static mpfr_prec_t wider(const MpfrX& x, const MpfrX& y) { return std::max(x.bits(), y.bits()); }
+  BX_INLINE bool is_inline() const { return mpfr_custom_get_significand(v_) == static_cast<const void*>(limbs_); }
+  BX_INLINE void init(mpfr_prec_t bits) {
+    if (mpfr_custom_get_size(bits) <= sizeof(limbs_)) {
+      mpfr_custom_init(limbs_, bits);
+      mpfr_custom_init_set(v_, MPFR_NAN_KIND, 0, bits, limbs_);
+    } else {
+      mpfr_init2(v_, bits);
+    }
+  }
+  BX_INLINE void release() {
+    if (!is_inline()) mpfr_clear(v_);
+  }
+  BX_INLINE void copy_limbs(const MpfrX& o) {
+    v_->_mpfr_sign = o.v_->_mpfr_sign;
+    v_->_mpfr_exp = o.v_->_mpfr_exp;
+    const size_t n = mpfr_custom_get_size(o.bits()) / sizeof(mp_limb_t);
+    for (size_t i = 0; i < n; ++i) limbs_[i] = o.limbs_[i];
+  }
+};
+#undef BX_INLINE
+
+template <>
+struct ScalarTraits<MpfrX> {
+  static constexpr bool is_interval = false;
+  static constexpr const char* family = "mpfr";
+  static MpfrX from_decimal(std::string_view text, long bits) {
+    MpfrX x(bits);
+    if (!x.set_decimal(text)) throw std::invalid_argument("not a decimal");
+    return x;
+  }
+  static MpfrX from_int(long n, long bits) { return MpfrX(n, bits); }
+  static long bits(const MpfrX& x) { return x.bits(); }
+  static Truth lt(const MpfrX& x, const MpfrX& y) { return nan(x, y) ? Truth::invalid : truth(x < y); }
+  static Truth le(const MpfrX& x, const MpfrX& y) { return nan(x, y) ? Truth::invalid : truth(x <= y); }
+  static Truth is_zero(const MpfrX& x) { return mpfr_nan_p(x.get()) ? Truth::invalid : truth(mpfr_zero_p(x.get()) != 0); }
+  static bool likely_negative(const MpfrX& x) { return mpfr_sgn(x.get()) < 0; }
+  static MpfrX nonneg(const MpfrX& x) { return mpfr_sgn(x.get()) < 0 ? MpfrX(0, x.bits()) : x; }
+  static bool is_finite(const MpfrX& x) { return mpfr_number_p(x.get()) != 0; }
+  static double to_double(const MpfrX& x) { return mpfr_get_d(x.get(), MPFR_RNDN); }
+  static MpfrX below(const MpfrX& x) { MpfrX r = x; mpfr_nextbelow(r.get()); return r; }
+  static int exponent(const MpfrX& x) { return mpfr_zero_p(x.get()) ? 0 : static_cast<int>(mpfr_get_exp(x.get())); }
+  static MpfrX floor(const MpfrX& x) { MpfrX r(x.bits()); mpfr_floor(r.get(), x.get()); return r; }
+  static MpfrX pow_3_5(const MpfrX& x) {
+    MpfrX r(x.bits());
+    mpfr_pow_ui(r.get(), x.get(), 3, MPFR_RNDN);
+    mpfr_rootn_ui(r.get(), r.get(), 5, MPFR_RNDN);
+    return r;
+  }
+  static std::string to_string(const MpfrX& x) { return mpfr_to_string(x.get(), MPFR_RNDN); }
+  static bool nan(const MpfrX& x, const MpfrX& y) { return mpfr_nan_p(x.get()) || mpfr_nan_p(y.get()); }
+};
+
+// Dbl: a plain double in a struct, so that the unmodified core template ImpactMap<T> can be
+// instantiated in this file (ImpactMap<double> itself is extern: compiled in the library).
+// Same operations as double, so ImpactMap<Dbl> must equal ImpactMap<double> bitwise; its
+// row (--decompose) separates "the core's code" from "where the core is compiled".
+struct Dbl {
+  double x = 0;
+  Dbl() = default;
+  explicit constexpr Dbl(double v) : x(v) {}
+  Dbl& operator+=(Dbl o) { x += o.x; return *this; }
+  Dbl& operator-=(Dbl o) { x -= o.x; return *this; }
+  Dbl& operator*=(Dbl o) { x *= o.x; return *this; }
+  Dbl& operator/=(Dbl o) { x /= o.x; return *this; }
+  Dbl& operator*=(long n) { x *= static_cast<double>(n); return *this; }
+  Dbl& operator/=(long n) { x /= static_cast<double>(n); return *this; }
+  friend Dbl operator+(Dbl a, Dbl b) { return Dbl(a.x + b.x); }
+  friend Dbl operator-(Dbl a, Dbl b) { return Dbl(a.x - b.x); }
+  friend Dbl operator*(Dbl a, Dbl b) { return Dbl(a.x * b.x); }
+  friend Dbl operator/(Dbl a, Dbl b) { return Dbl(a.x / b.x); }
+  friend Dbl operator-(Dbl a) { return Dbl(-a.x); }
+  friend Dbl operator+(Dbl a, long n) { return Dbl(a.x + static_cast<double>(n)); }
+  friend Dbl operator-(Dbl a, long n) { return Dbl(a.x - static_cast<double>(n)); }
+  friend Dbl operator-(long n, Dbl a) { return Dbl(static_cast<double>(n) - a.x); }
+  friend Dbl operator*(Dbl a, long n) { return Dbl(a.x * static_cast<double>(n)); }
+  friend Dbl operator*(long n, Dbl a) { return Dbl(static_cast<double>(n) * a.x); }
+  friend Dbl operator/(Dbl a, long n) { return Dbl(a.x / static_cast<double>(n)); }
+  friend Dbl operator/(long n, Dbl a) { return Dbl(static_cast<double>(n) / a.x); }
+  friend bool operator<(Dbl a, Dbl b) { return a.x < b.x; }
+  friend bool operator<=(Dbl a, Dbl b) { return a.x <= b.x; }
+  friend bool operator>(Dbl a, Dbl b) { return a.x > b.x; }
+  friend bool operator>=(Dbl a, Dbl b) { return a.x >= b.x; }
+  friend bool operator==(Dbl a, Dbl b) { return a.x == b.x; }
+  friend Dbl sqrt(Dbl a) { return Dbl(std::sqrt(a.x)); }
+  friend Dbl exp(Dbl a) { return Dbl(std::exp(a.x)); }
+  friend Dbl log(Dbl a) { return Dbl(std::log(a.x)); }
+  friend Dbl floor(Dbl a) { return Dbl(std::floor(a.x)); }
+  friend Dbl abs(Dbl a) { return Dbl(std::fabs(a.x)); }
+};
+
+template <>
+struct ScalarTraits<Dbl> {
+  using D = ScalarTraits<double>;
+  static constexpr bool is_interval = false;
+  static constexpr const char* family = "double";
+  static Dbl from_decimal(std::string_view text, long bits) { return Dbl(D::from_decimal(text, bits)); }
+  static Dbl from_int(long n, long) { return Dbl(static_cast<double>(n)); }
+  static long bits(const Dbl&) { return 53; }
+  static Truth lt(const Dbl& x, const Dbl& y) { return D::lt(x.x, y.x); }
+  static Truth le(const Dbl& x, const Dbl& y) { return D::le(x.x, y.x); }
+  static Truth is_zero(const Dbl& x) { return D::is_zero(x.x); }
+  static bool likely_negative(const Dbl& x) { return x.x < 0; }
+  static Dbl nonneg(const Dbl& x) { return x.x < 0 ? Dbl(0) : x; }
+  static bool is_finite(const Dbl& x) { return std::isfinite(x.x); }
+  static double to_double(const Dbl& x) { return x.x; }
+  static Dbl below(const Dbl& x) { return Dbl(D::below(x.x)); }
+  static int exponent(const Dbl& x) { return D::exponent(x.x); }
+  static Dbl floor(const Dbl& x) { return Dbl(std::floor(x.x)); }
+  static Dbl pow_3_5(const Dbl& x) { return Dbl(D::pow_3_5(x.x)); }
+  static std::string to_string(const Dbl& x) { return D::to_string(x.x); }
+};
+
+}  // namespace bouncer
+
+namespace {
+
+// ---------------------------------------------------------------------------------------
+// Models benchmarked
+// ---------------------------------------------------------------------------------------
+
+struct Case {
+  std::string name;
+  ModelSpec spec;
+  InitialCondition ic;
+};
+
+Case make_case(const std::string& name, Law law, const char* a, const char* eps, const char* c,
+               const char* theta, const char* v) {
+  Case k;
+  k.name = name;
+  k.spec.law = law;
+  k.spec.a = parse_decimal("a", a);
+  k.spec.eps = parse_decimal("eps", eps);
+  k.spec.c = parse_decimal("c", c);
+  k.spec.wall = parse_wall("wall", "triangle");
+  k.spec.downward = DownwardSticking::paper;
+  validate(k.spec);
+  k.ic.theta = parse_decimal("theta", theta);
+  k.ic.v = parse_decimal("v", v);
+  validate(k.spec, k.ic, "theta", "v");
+  return k;
+}
+
+std::vector<Case> all_cases() {
+  return {
+      // Elastic: from (0.1, 5) v stays below ~1e3 over millions of steps (reset at 1e4 anyway).
+      make_case("elastic a=19", Law::elastic, "19", "1", "1000", "0.1", "5"),
+      // Period-3 orbit with one sticking event (collapse + release) every 3 steps.
+      make_case("const e=.5 a=24.7", Law::constant, "24.7", "0.5", "1000", "0.1", "5"),
+      // Long-period / chaotic-looking orbit without sticking.
+      make_case("const e=.9 a=19", Law::constant, "19", "0.9", "1000", "0.05", "10"),
+      make_case("veldep c=1000 a=25", Law::veldep, "25", "1", "1000", "0.1", "5"),
+  };
+}
+
+constexpr double kVReset = 1e4;  // (the MPFR versions compare with the integer 10000)
+inline bool vbig(double v) { return v > kVReset; }
+inline bool vbig(const Dbl& v) { return v.x > kVReset; }
+inline bool vbig(long double v) { return v > kVReset; }
+inline bool vbig(const Quad& v) { return v > kVReset; }
+inline bool vbig(const Mpfr& v) { return mpfr_cmp_si(v.get(), 10000) > 0; }
+inline bool vbig(const MpfrX& v) { return mpfr_cmp_si(v.get(), 10000) > 0; }
+inline bool vbig(const Mpfi& v) { return mpfr_cmp_si(&v.get()->right, 10000) > 0; }
+
+// ---------------------------------------------------------------------------------------
+// Floor 1: plain double
+// ---------------------------------------------------------------------------------------
+
+constexpr int kMaxSeg = 8;
+constexpr long kWalkLimit = 1L << 24;
+
+struct PlainModel {
+  Law law;
+  bool paper;  // DownwardSticking::paper
+  double a, eps, c, collapse, top;
+  int n;
+  double start[kMaxSeg], end[kMaxSeg], height[kMaxSeg], vel[kMaxSeg];
+  Turn turn[kMaxSeg];
+};
+
+// The floors and the experiment implement the default model options only.
+template <class T>
+void require_default_options(const Model<T>& m) {
+  if (m.veldep_collapse) throw std::runtime_error("bench_step: --veldep-collapse is not implemented by the floors");
+}
+
+PlainModel plain_model(const Model<double>& m) {
+  require_default_options(m);
+  PlainModel p{};
+  p.law = m.law;
+  p.paper = m.downward == DownwardSticking::paper;
+  p.a = m.a;
+  p.eps = m.eps;
+  p.c = m.c;
+  p.collapse = m.collapse;
+  p.top = m.wall.top;
+  p.n = m.wall.segments();
+  if (p.n > kMaxSeg) throw std::runtime_error("too many wall segments for the floor");
+  for (int j = 0; j < p.n; ++j) {
+    p.start[j] = m.wall.start[j];
+    p.end[j] = m.wall.end[j];
+    p.height[j] = m.wall.height[j];
+    p.vel[j] = m.wall.velocity[j];
+    p.turn[j] = m.wall.turn[j];
+  }
+  return p;
+}
+
+struct PlainResult {  // the fields of StepResult<double>, flattened
+  double theta, v, tau;
+  long long periods;
+  int segment;
+  EventKind kind;
+  bool corner;
+  Truth indirect;
+  int stick_segment;
+  bool passed_upward_turn;
+  double stuck_theta, stuck_v;
+  int phase_bits_lost;
+};
+
+struct PlainMap {
+  PlainModel m;
+
+  int segment_of(double theta) const {
+    int j = m.n - 1;
+    while (j > 0 && !(m.start[j] <= theta)) --j;
+    return j;
+  }
+  double clamp(double x, double lo, double hi) const {
+    if (x < lo) return lo;
+    if (!(x < hi)) return std::nextafter(hi, -HUGE_VAL);
+    return x;
+  }
+  double height_at(int j, double theta) const { return m.height[j] + m.vel[j] * (theta - m.start[j]); }
+  int next(int j) const { return j + 1 == m.n ? 0 : j + 1; }
+
+  void collide(PlainResult& r, int j, double theta, double speed) const {
+    double out;
+    switch (m.law) {
+      case Law::elastic: out = speed; break;
+      case Law::constant: out = m.eps * speed; break;
+      default: out = std::exp(-std::pow(speed / m.c, 0.6)) * speed; break;
+    }
+    r.segment = j;
+    r.v = m.vel[j] + out;
+    if (m.law == Law::constant && out <= m.collapse * (m.end[j] - theta)) {
+      if (r.kind != EventKind::sticking) {
+        r.kind = EventKind::sticking;
+        r.stick_segment = j;
+        r.stuck_theta = theta;
+        r.stuck_v = r.v;
+      }
+      ride(r, j, theta);
+      return;
+    }
+    r.theta = theta;
+  }
+
+  void ride(PlainResult& r, int j, double pos) const {
+    for (;;) {
+      r.tau += m.end[j] - pos;
+      const int k = next(j);
+      if (k == 0) ++r.periods;
+      r.segment = j;
+      switch (m.turn[j]) {
+        case Turn::down:
+          r.theta = m.start[k];
+          r.v = m.vel[j];
+          return;
+        case Turn::none:
+          break;
+        case Turn::up:
+          r.passed_upward_turn = true;
+          if (m.law == Law::constant && m.paper) break;
+          r.corner = true;
+          collide(r, k, m.start[k], m.vel[k] - m.vel[j]);
+          return;
+      }
+      j = k;
+      pos = m.start[k];
+    }
+  }
+
+  // noinline everywhere below: ImpactMap<T>::step is compiled in the library and called,
+  // never inlined into the caller's loop, so the floors and the experiment are called too.
+  [[gnu::noinline]] PlainResult step(double theta0, double v0) const {
+    PlainResult r;
+    r.tau = 0;
+    r.periods = 0;
+    r.segment = 0;
+    r.kind = EventKind::impact;
+    r.corner = false;
+    r.indirect = Truth::no;
+    r.stick_segment = -1;
+    r.passed_upward_turn = false;
+    r.phase_bits_lost = 0;
+    const double a = m.a;
+    int j = segment_of(theta0);
+    const int j0 = j;
+    const double rel = v0 - m.vel[j];
+    if (rel == 0) {
+      r.kind = EventKind::ride;
+      ride(r, j, theta0);
+    } else {
+      double pos = theta0, L = m.end[j] - theta0, G = 0, W = rel;
+      bool on_wall = true, jumped = false;
+      for (long iter = 0;; ++iter) {
+        if (iter > kWalkLimit) throw Undecided(Reason::walk_limit);
+        double q, sigma;
+        if (on_wall) {
+          q = W;
+          sigma = 2 * W / a;
+        } else {
+          double d = W * W + 2 * a * G;
+          q = std::sqrt(d < 0 ? 0.0 : d);
+          sigma = W < 0 ? 2 * G / (q - W) : (W + q) / a;
+        }
+        if (sigma < L) {
+          r.tau += sigma;
+          const double th = clamp(pos + sigma, m.start[j], m.end[j]);
+          if (jumped) {
+            r.indirect = Truth::yes;
+          } else {
+            const double f0 = height_at(j0, theta0);
+            const bool above = 2 * a * (m.top - f0) < v0 * v0;
+            const bool falling = m.vel[j] - q < 0;
+            r.indirect = above && falling ? Truth::yes : Truth::no;
+          }
+          collide(r, j, th, q);
+          break;
+        }
+        const int k = next(j);
+        r.tau += L;
+        if (k == 0) ++r.periods;
+        if (!(L < sigma)) {
+          const double Wk = W - a * L + m.vel[j] - m.vel[k];
+          if (Wk < 0) {
+            r.corner = true;
+            r.indirect = jumped ? Truth::yes : Truth::no;
+            collide(r, k, m.start[k], -Wk);
+            break;
+          }
+          if (Wk == 0) {
+            ride(r, k, m.start[k]);
+            break;
+          }
+          G = 0;
+          W = Wk;
+          on_wall = true;
+        } else {
+          const double gap = on_wall ? a * (sigma - L) * L / 2 : a * (sigma - L) * (L + 2 * G / (a * sigma)) / 2;
+          W = W - a * L + m.vel[j] - m.vel[k];
+          G = gap < 0 ? 0.0 : gap;
+          on_wall = false;
+        }
+        j = k;
+        pos = m.start[k];
+        L = m.end[k] - m.start[k];
+        if (!jumped && m.top < m.height[j] + G) {
+          jumped = true;
+          const double f0 = height_at(j0, theta0);
+          const double d = v0 * v0 - 2 * a * (m.top - f0);
+          const double root = std::sqrt(d < 0 ? 0.0 : d);
+          const double tau_fall = (v0 + root) / a;
+          const double x = theta0 + tau_fall;
+          if (!std::isfinite(x)) throw Undecided(Reason::nonfinite);
+          const double whole = std::floor(x);
+          r.periods = whole > 9e18 ? static_cast<long long>(9e18) : static_cast<long long>(whole);
+          int e;
+          std::frexp(x, &e);
+          r.phase_bits_lost = std::max(0, e);
+          r.tau = tau_fall;
+          pos = clamp(x - whole, 0.0, m.end[m.n - 1]);
+          j = segment_of(pos);
+          L = m.end[j] - pos;
+          const double g = m.top - height_at(j, pos);
+          G = g < 0 ? 0.0 : g;
+          W = -root - m.vel[j];
+          on_wall = false;
+        }
+      }
+    }
+    if (!std::isfinite(r.theta) || !std::isfinite(r.v)) throw Undecided(Reason::nonfinite);
+    return r;
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// Floor 2: raw MPFR, every temporary allocated once
+// ---------------------------------------------------------------------------------------
+
+struct RawResult {
+  mpfr_t theta, v, tau, stuck_theta, stuck_v;
+  long long periods;
+  int segment;
+  EventKind kind;
+  bool corner;
+  Truth indirect;
+  int stick_segment;
+  bool passed_upward_turn;
+  int phase_bits_lost;
+};
+
+class RawMpfrMap {
+ public:
+  RawResult r;
+
+  RawMpfrMap(const Model<Mpfr>& m, long bits) : bits_(bits) {
+    require_default_options(m);
+    law_ = m.law;
+    paper_ = m.downward == DownwardSticking::paper;
+    n_ = m.wall.segments();
+    if (n_ > kMaxSeg) throw std::runtime_error("too many wall segments for the floor");
+    mpfr_t* all[] = {&a_, &eps_, &c_, &collapse_, &top_, &zero_, &pos_, &L_, &G_, &W_, &q_, &sigma_,
+                     &t1_, &t2_, &t3_, &th_, &speed_, &speed2_, &out_, &f0_, &root_, &tau_fall_,
+                     &x_, &whole_, &r.theta, &r.v, &r.tau, &r.stuck_theta, &r.stuck_v};
+    for (mpfr_t* p : all) mpfr_init2(*p, bits);
+    for (int j = 0; j < n_; ++j) {
+      mpfr_init2(start_[j], bits);
+      mpfr_init2(end_[j], bits);
+      mpfr_init2(height_[j], bits);
+      mpfr_init2(vel_[j], bits);
+      mpfr_set(start_[j], m.wall.start[j].get(), MPFR_RNDN);
+      mpfr_set(end_[j], m.wall.end[j].get(), MPFR_RNDN);
+      mpfr_set(height_[j], m.wall.height[j].get(), MPFR_RNDN);
+      mpfr_set(vel_[j], m.wall.velocity[j].get(), MPFR_RNDN);
+      turn_[j] = m.wall.turn[j];
+    }
+    mpfr_set(a_, m.a.get(), MPFR_RNDN);
+    mpfr_set(eps_, m.eps.get(), MPFR_RNDN);
+    mpfr_set(c_, m.c.get(), MPFR_RNDN);
+    mpfr_set(collapse_, m.collapse.get(), MPFR_RNDN);
+    mpfr_set(top_, m.wall.top.get(), MPFR_RNDN);
+    mpfr_set_zero(zero_, 1);
+  }
+  RawMpfrMap(const RawMpfrMap&) = delete;
+  RawMpfrMap& operator=(const RawMpfrMap&) = delete;
+  ~RawMpfrMap() {
+    mpfr_t* all[] = {&a_, &eps_, &c_, &collapse_, &top_, &zero_, &pos_, &L_, &G_, &W_, &q_, &sigma_,
+                     &t1_, &t2_, &t3_, &th_, &speed_, &speed2_, &out_, &f0_, &root_, &tau_fall_,
+                     &x_, &whole_, &r.theta, &r.v, &r.tau, &r.stuck_theta, &r.stuck_v};
+    for (mpfr_t* p : all) mpfr_clear(*p);
+    for (int j = 0; j < n_; ++j) {
+      mpfr_clear(start_[j]);
+      mpfr_clear(end_[j]);
+      mpfr_clear(height_[j]);
+      mpfr_clear(vel_[j]);
+    }
+  }
+  long bits() const { return bits_; }
+
+  // One step from (theta0, v0) into r. theta0 and v0 must not alias r.theta / r.v.
+  [[gnu::noinline]] void step(mpfr_srcptr theta0, mpfr_srcptr v0) {
+    constexpr mpfr_rnd_t N = MPFR_RNDN;
+    r.periods = 0;
+    r.segment = 0;
+    r.kind = EventKind::impact;
+    r.corner = false;
+    r.indirect = Truth::no;
+    r.stick_segment = -1;
+    r.passed_upward_turn = false;
+    r.phase_bits_lost = 0;
+    mpfr_set_zero(r.tau, 1);
+    int j = segment_of(theta0);
+    const int j0 = j;
+    mpfr_sub(W_, v0, vel_[j], N);  // rel
+    if (mpfr_zero_p(W_)) {
+      r.kind = EventKind::ride;
+      ride(j, theta0);
+    } else {
+      mpfr_set(pos_, theta0, N);
+      mpfr_sub(L_, end_[j], theta0, N);
+      mpfr_set_zero(G_, 1);
+      bool on_wall = true, jumped = false;
+      for (long iter = 0;; ++iter) {
+        if (iter > kWalkLimit) throw Undecided(Reason::walk_limit);
+        if (on_wall) {
+          mpfr_set(q_, W_, N);
+          mpfr_mul_si(t1_, W_, 2, N);
+          mpfr_div(sigma_, t1_, a_, N);
+        } else {
+          mpfr_mul(t1_, W_, W_, N);
+          mpfr_mul_si(t2_, a_, 2, N);
+          mpfr_mul(t2_, t2_, G_, N);
+          mpfr_add(t1_, t1_, t2_, N);
+          if (mpfr_sgn(t1_) < 0) mpfr_set_zero(t1_, 1);
+          mpfr_sqrt(q_, t1_, N);
+          if (mpfr_sgn(W_) < 0) {
+            mpfr_mul_si(t1_, G_, 2, N);
+            mpfr_sub(t2_, q_, W_, N);
+            mpfr_div(sigma_, t1_, t2_, N);
+          } else {
+            mpfr_add(t1_, W_, q_, N);
+            mpfr_div(sigma_, t1_, a_, N);
+          }
+        }
+        if (mpfr_less_p(sigma_, L_)) {
+          mpfr_add(r.tau, r.tau, sigma_, N);
+          mpfr_add(th_, pos_, sigma_, N);
+          clamp(th_, start_[j], end_[j]);
+          if (jumped) {
+            r.indirect = Truth::yes;
+          } else {
+            height_at(f0_, j0, theta0);
+            mpfr_mul_si(t1_, a_, 2, N);
+            mpfr_sub(t2_, top_, f0_, N);
+            mpfr_mul(t1_, t1_, t2_, N);
+            mpfr_mul(t2_, v0, v0, N);
+            const bool above = mpfr_less_p(t1_, t2_);
+            mpfr_sub(t3_, vel_[j], q_, N);
+            const bool falling = mpfr_less_p(t3_, zero_);
+            r.indirect = above && falling ? Truth::yes : Truth::no;
+          }
+          collide(j, th_, q_);
+          break;
+        }
+        const int k = next(j);
+        mpfr_add(r.tau, r.tau, L_, N);
+        if (k == 0) ++r.periods;
+        if (!mpfr_less_p(L_, sigma_)) {
+          mpfr_mul(t1_, a_, L_, N);
+          mpfr_sub(t3_, W_, t1_, N);  // Wk
+          mpfr_add(t3_, t3_, vel_[j], N);
+          mpfr_sub(t3_, t3_, vel_[k], N);
+          if (mpfr_less_p(t3_, zero_)) {
+            r.corner = true;
+            r.indirect = jumped ? Truth::yes : Truth::no;
+            mpfr_neg(speed_, t3_, N);
+            collide(k, start_[k], speed_);
+            break;
+          }
+          if (mpfr_zero_p(t3_)) {
+            ride(k, start_[k]);
+            break;
+          }
+          mpfr_set_zero(G_, 1);
+          mpfr_swap(W_, t3_);
+          on_wall = true;
+        } else {
+          mpfr_sub(t1_, sigma_, L_, N);
+          mpfr_mul(t1_, a_, t1_, N);
+          if (on_wall) {
+            mpfr_mul(t1_, t1_, L_, N);
+          } else {
+            mpfr_mul_si(t2_, G_, 2, N);
+            mpfr_mul(t3_, a_, sigma_, N);
+            mpfr_div(t2_, t2_, t3_, N);
+            mpfr_add(t2_, L_, t2_, N);
+            mpfr_mul(t1_, t1_, t2_, N);
+          }
+          mpfr_div_si(t1_, t1_, 2, N);  // gap
+          mpfr_mul(t2_, a_, L_, N);
+          mpfr_sub(W_, W_, t2_, N);
+          mpfr_add(W_, W_, vel_[j], N);
+          mpfr_sub(W_, W_, vel_[k], N);
+          if (mpfr_sgn(t1_) < 0) mpfr_set_zero(G_, 1); else mpfr_swap(G_, t1_);
+          on_wall = false;
+        }
+        j = k;
+        mpfr_set(pos_, start_[k], N);
+        mpfr_sub(L_, end_[k], start_[k], N);
+        if (!jumped) {
+          mpfr_add(t1_, height_[j], G_, N);
+          if (mpfr_less_p(top_, t1_)) {
+            jumped = true;
+            height_at(f0_, j0, theta0);
+            mpfr_mul(t1_, v0, v0, N);
+            mpfr_mul_si(t2_, a_, 2, N);
+            mpfr_sub(t3_, top_, f0_, N);
+            mpfr_mul(t2_, t2_, t3_, N);
+            mpfr_sub(t1_, t1_, t2_, N);
+            if (mpfr_sgn(t1_) < 0) mpfr_set_zero(t1_, 1);
+            mpfr_sqrt(root_, t1_, N);
+            mpfr_add(t1_, v0, root_, N);
+            mpfr_div(tau_fall_, t1_, a_, N);
+            mpfr_add(x_, theta0, tau_fall_, N);
+            if (!mpfr_number_p(x_)) throw Undecided(Reason::nonfinite);
+            mpfr_floor(whole_, x_);
+            const double d = mpfr_get_d(whole_, N);
+            r.periods = d > 9e18 ? static_cast<long long>(9e18) : static_cast<long long>(d);
+            r.phase_bits_lost = std::max(0, mpfr_zero_p(x_) ? 0 : static_cast<int>(mpfr_get_exp(x_)));
+            mpfr_set(r.tau, tau_fall_, N);
+            mpfr_sub(pos_, x_, whole_, N);
+            clamp(pos_, zero_, end_[n_ - 1]);
+            j = segment_of(pos_);
+            mpfr_sub(L_, end_[j], pos_, N);
+            height_at(t1_, j, pos_);
+            mpfr_sub(t1_, top_, t1_, N);
+            if (mpfr_sgn(t1_) < 0) mpfr_set_zero(G_, 1); else mpfr_swap(G_, t1_);
+            mpfr_neg(t2_, root_, N);
+            mpfr_sub(W_, t2_, vel_[j], N);
+            on_wall = false;
+          }
+        }
+      }
+    }
+    if (!mpfr_number_p(r.theta) || !mpfr_number_p(r.v)) throw Undecided(Reason::nonfinite);
+  }
+
+ private:
+  long bits_;
+  Law law_;
+  bool paper_;
+  int n_;
+  mpfr_t a_, eps_, c_, collapse_, top_, zero_;
+  mpfr_t start_[kMaxSeg], end_[kMaxSeg], height_[kMaxSeg], vel_[kMaxSeg];
+  Turn turn_[kMaxSeg];
+  mpfr_t pos_, L_, G_, W_, q_, sigma_, t1_, t2_, t3_, th_, speed_, speed2_, out_, f0_, root_, tau_fall_, x_, whole_;
+
+  int next(int j) const { return j + 1 == n_ ? 0 : j + 1; }
+  int segment_of(mpfr_srcptr theta) const {
+    for (int j = n_ - 1; j > 0; --j) {
+      if (mpfr_nan_p(theta)) throw Undecided(Reason::nonfinite);
+      if (mpfr_lessequal_p(start_[j], theta)) return j;
+    }
+    return 0;
+  }
+  // x := x restricted to [lo, hi) (as clamp_to_segment), in place.
+  static void clamp(mpfr_ptr x, mpfr_srcptr lo, mpfr_srcptr hi) {
+    if (mpfr_less_p(x, lo)) {
+      mpfr_set(x, lo, MPFR_RNDN);
+    } else if (!mpfr_less_p(x, hi)) {
+      mpfr_set(x, hi, MPFR_RNDN);
+      mpfr_nextbelow(x);
+    }
+  }
+  void height_at(mpfr_ptr out, int j, mpfr_srcptr theta) const {
+    mpfr_sub(out, theta, start_[j], MPFR_RNDN);
+    mpfr_mul(out, vel_[j], out, MPFR_RNDN);
+    mpfr_add(out, height_[j], out, MPFR_RNDN);
+  }
+
+  void collide(int j, mpfr_srcptr theta, mpfr_srcptr speed) {
+    constexpr mpfr_rnd_t N = MPFR_RNDN;
+    mpfr_srcptr out = out_;
+    switch (law_) {
+      case Law::elastic: out = speed; break;
+      case Law::constant: mpfr_mul(out_, eps_, speed, N); break;
+      case Law::veldep:
+        mpfr_div(out_, speed, c_, N);
+        mpfr_pow_ui(out_, out_, 3, N);
+        mpfr_rootn_ui(out_, out_, 5, N);
+        mpfr_neg(out_, out_, N);
+        mpfr_exp(out_, out_, N);
+        mpfr_mul(out_, out_, speed, N);
+        break;
+    }
+    r.segment = j;
+    mpfr_add(r.v, vel_[j], out, N);
+    if (law_ == Law::constant) {
+      mpfr_sub(t2_, end_[j], theta, N);
+      mpfr_mul(t2_, collapse_, t2_, N);
+      if (mpfr_lessequal_p(out, t2_)) {
+        if (r.kind != EventKind::sticking) {
+          r.kind = EventKind::sticking;
+          r.stick_segment = j;
+          mpfr_set(r.stuck_theta, theta, N);
+          mpfr_set(r.stuck_v, r.v, N);
+        }
+        ride(j, theta);
+        return;
+      }
+    }
+    mpfr_set(r.theta, theta, N);
+  }
+
+  void ride(int j, mpfr_srcptr pos) {
+    constexpr mpfr_rnd_t N = MPFR_RNDN;
+    for (;;) {
+      mpfr_sub(t1_, end_[j], pos, N);
+      mpfr_add(r.tau, r.tau, t1_, N);
+      const int k = next(j);
+      if (k == 0) ++r.periods;
+      r.segment = j;
+      switch (turn_[j]) {
+        case Turn::down:
+          mpfr_set(r.theta, start_[k], N);
+          mpfr_set(r.v, vel_[j], N);
+          return;
+        case Turn::none:
+          break;
+        case Turn::up:
+          r.passed_upward_turn = true;
+          if (law_ == Law::constant && paper_) break;
+          r.corner = true;
+          mpfr_sub(speed2_, vel_[k], vel_[j], N);
+          collide(k, start_[k], speed2_);
+          return;
+      }
+      j = k;
+      pos = start_[k];
+    }
+  }
+};
+
+// ---------------------------------------------------------------------------------------
+// Experiment: a copy of ImpactMap<T>::step with the overheads found by callgrind removed
+// (same arithmetic, so it must stay bitwise equal to ImpactMap<T>). Candidate changes for
+// lib/include/bouncer/{scalar,model}; see the final report.
+//   E1 decide(): the yes/no fast path inline, the throw in a cold out-of-line function
+//      (gcc does not inline bouncer::decide because of its throw: one call per branch).
+//   E2 IEEE three-valued lt/le: x<y ? yes : x>=y ? no : invalid (two compares, no isnan).
+//   E3 no copies of state/wall values: pos as a pointer (to s.theta or a wall knot),
+//      rel computed into W, q referenced (not copied) when on the wall, clamp and nonneg
+//      in place, collide/ride take const T&, ride assigns next.theta/next.v directly.
+//   E4 the zero of the model's precision built once per map, not once per step.
+// ---------------------------------------------------------------------------------------
+
+namespace fast {
+
+[[noreturn, gnu::cold, gnu::noinline]] void throw_undecided_fast(Truth t, Reason where) {
+  throw Undecided(t == Truth::invalid ? Reason::nonfinite : where);
+}
+[[gnu::always_inline]] inline bool fdecide(Truth t, Reason where) {
+  if (t == Truth::yes) return true;
+  if (t == Truth::no) return false;
+  throw_undecided_fast(t, where);
+}
+
+template <class T>
+constexpr bool ieee = std::is_floating_point_v<T> || std::is_same_v<T, Quad>;
+
+template <class T>
+inline Truth lt(const T& x, const T& y) {
+  if constexpr (ieee<T>) return x < y ? Truth::yes : x >= y ? Truth::no : Truth::invalid;
+  else return ScalarTraits<T>::lt(x, y);
+}
+template <class T>
+inline Truth le(const T& x, const T& y) {
+  if constexpr (ieee<T>) return x <= y ? Truth::yes : x > y ? Truth::no : Truth::invalid;
+  else return ScalarTraits<T>::le(x, y);
+}
+template <class T>
+inline Truth is_zero(const T& x) {
+  if constexpr (ieee<T>) return x == 0 ? Truth::yes : x != 0 && x == x ? Truth::no : Truth::invalid;
+  else return ScalarTraits<T>::is_zero(x);
+}
+template <class T>
+inline void make_nonneg(T& x) {
+  if constexpr (std::is_same_v<T, Mpfr> || std::is_same_v<T, MpfrX>) {
+    if (mpfr_sgn(x.get()) < 0) mpfr_set_zero(x.get(), 1);
+  } else if constexpr (ieee<T>) {
+    if (x < 0) x = T(0);
+  } else {
+    x = ScalarTraits<T>::nonneg(x);
+  }
+}
+template <class T>
+inline void clamp_in_place(T& x, const T& lo, const T& hi) {
+  if constexpr (ScalarTraits<T>::is_interval) {
+    x = intersect(x, hull(lo, hi));
+  } else {
+    if (x < lo) x = lo;
+    else if (!(x < hi)) x = ScalarTraits<T>::below(hi);
+  }
+}
+
+// Where a copy is free (IEEE types) values stay in registers; otherwise refer, never copy.
+template <class T>
+using Arg = std::conditional_t<ieee<T>, T, const T&>;
+template <class T>
+struct Slot {  // "the current phase": a value for IEEE types, a pointer otherwise
+  const T* p = nullptr;
+  const T& get() const { return *p; }
+  void refer(const T& x) { p = &x; }
+};
+template <class T>
+  requires ieee<T>
+struct Slot<T> {
+  T v{};
+  const T& get() const { return v; }
+  void refer(const T& x) { v = x; }
+};
+
+// Flags put back one overhead of ImpactMap at a time (for --decompose).
+constexpr unsigned kOldDecide = 1;   // bouncer::decide (out of line) instead of E1
+constexpr unsigned kOldCompare = 2;  // ScalarTraits<T>::lt/le/is_zero instead of E2
+constexpr unsigned kCopyOut = 4;     // build the result in a local and copy it out (as Walk)
+// E5 (not in E by default): hot expressions as one temporary plus compound assignments, e.g.
+// W -= a*L; W += u_j; W -= u_k instead of W = W - a*L + u_j - u_k (same operations in the
+// same order, so the same roundings: all operands of a Model<T> share one precision).
+constexpr unsigned kInPlace = 8;
+
+template <class T, unsigned F = 0>
+class Map {
+  static constexpr bool kIn = (F & kInPlace) != 0;
+
+ public:
+  explicit Map(Model<T> m) : m_(std::move(m)), zero_(m_.zero()) { require_default_options(m_); }
+
+  // The next state only, returned by value (for --decompose, row "E,advance"). The idea was
+  // that a State<double> comes back in two SSE registers, so the caller never reloads the two
+  // 8-byte stores the step just made as one 16-byte load (see take()); measured, it does not
+  // help (gcc reloads r.next with a 16-byte load inside advance instead).
+  [[gnu::noinline]] State<T> advance(const State<T>& s) const {
+    StepResult<T> r = step_body(s);
+    return std::move(r.next);
+  }
+  [[gnu::noinline]] StepResult<T> step(const State<T>& s) const { return step_body(s); }
+
+  [[gnu::always_inline]] StepResult<T> step_body(const State<T>& s) const {
+    using Tr = ScalarTraits<T>;
+    using std::sqrt;
+    const Wall<T>& wall = m_.wall;
+    const T& a = m_.a;
+    const T& zero = zero_;
+    StepResult<T> r;
+    r.tau = zero;
+    int j = segment_of(s.theta);
+    if constexpr (Tr::is_interval) dec(lt_(s.theta, wall.end[j]), Reason::phase_at_corner);
+    const int j0 = j;
+    T W = s.v - wall.velocity[j];  // rel
+    if (dec(is_zero_(W), Reason::riding)) {
+      r.kind = EventKind::ride;
+      ride(r, j, s.theta);
+    } else {
+      Slot<T> pos;
+      pos.refer(s.theta);
+      T pos_store{};  // pos after a jump
+      T L = wall.end[j] - s.theta;
+      T G = zero;
+      bool on_wall = true, jumped = false;
+      for (long iter = 0;; ++iter) {
+        if (iter > kWalkLimit) throw Undecided(Reason::walk_limit);
+        T qbuf = on_wall ? T() : [&] {
+          if constexpr (kIn) {
+            T d = W * W, t = 2 * a;
+            t *= G;
+            d += t;
+            make_nonneg(d);
+            return sqrt(d);
+          } else {
+            T d = W * W + 2 * a * G;
+            make_nonneg(d);
+            return sqrt(d);
+          }
+        }();
+        Arg<T> q = on_wall ? W : qbuf;
+        T sigma = [&] {
+          if constexpr (kIn) {
+            if (on_wall) { T x = 2 * W; x /= a; return x; }
+            if (Tr::likely_negative(W)) { T x = 2 * G; x /= T(q - W); return x; }
+            T x = W + q;
+            x /= a;
+            return x;
+          } else {
+            return on_wall ? 2 * W / a : Tr::likely_negative(W) ? 2 * G / (q - W) : (W + q) / a;
+          }
+        }();
+        if (dec(lt_(sigma, L), Reason::impact_at_corner)) {
+          r.tau += sigma;
+          T theta = pos.get() + sigma;
+          clamp_in_place(theta, wall.start[j], wall.end[j]);
+          if (jumped) {
+            r.indirect = Truth::yes;
+          } else {
+            if constexpr (kIn) {
+              T f0 = s.theta - wall.start[j0];
+              f0 *= wall.velocity[j0];
+              f0 += wall.height[j0];
+              T lhs = wall.top - f0, two_a = 2 * a;
+              lhs *= two_a;
+              r.indirect = bouncer::detail::both(lt_(lhs, T(s.v * s.v)), lt_(T(wall.velocity[j] - q), zero));
+            } else {
+              const T f0 = wall.height_at(j0, s.theta);
+              r.indirect = bouncer::detail::both(lt_(T(2 * a * (wall.top - f0)), T(s.v * s.v)),
+                                                 lt_(T(wall.velocity[j] - q), zero));
+            }
+          }
+          collide(r, j, theta, q);
+          break;
+        }
+        const int k = wall.next(j);
+        r.tau += L;
+        if (k == 0) ++r.periods;
+        if (!dec(lt_(L, sigma), Reason::impact_at_corner)) {
+          T Wk = [&] {
+            if constexpr (kIn) {
+              T x = W - a * L;
+              x += wall.velocity[j];
+              x -= wall.velocity[k];
+              return x;
+            } else {
+              return W - a * L + wall.velocity[j] - wall.velocity[k];
+            }
+          }();
+          if (dec(lt_(Wk, zero), Reason::corner_approach)) {
+            r.corner = true;
+            r.indirect = jumped ? Truth::yes : Truth::no;
+            collide(r, k, wall.start[k], -Wk);
+            break;
+          }
+          if (dec(is_zero_(Wk), Reason::riding)) {
+            ride(r, k, wall.start[k]);
+            break;
+          }
+          G = zero;
+          W = std::move(Wk);
+          on_wall = true;
+        } else {
+          T gap = [&] {
+            if constexpr (kIn) {
+              T x = sigma - L;
+              x *= a;
+              if (on_wall) {
+                x *= L;
+              } else {
+                T u = 2 * G;
+                u /= T(a * sigma);
+                u += L;
+                x *= u;
+              }
+              return x / 2;
+            } else {
+              return on_wall ? a * (sigma - L) * L / 2 : a * (sigma - L) * (L + 2 * G / (a * sigma)) / 2;
+            }
+          }();
+          if constexpr (kIn) {
+            const T t = a * L;
+            W -= t;
+            W += wall.velocity[j];
+            W -= wall.velocity[k];
+          } else {
+            W = W - a * L + wall.velocity[j] - wall.velocity[k];
+          }
+          make_nonneg(gap);
+          G = std::move(gap);
+          on_wall = false;
+        }
+        j = k;
+        pos.refer(wall.start[k]);
+        L = wall.end[k] - wall.start[k];
+        if (!jumped && certainly(lt_(wall.top, T(wall.height[j] + G)))) {
+          jumped = true;
+          const T f0 = wall.height_at(j0, s.theta);
+          T d = s.v * s.v - 2 * a * (wall.top - f0);
+          make_nonneg(d);
+          const T root = sqrt(d);
+          const T tau_fall = (s.v + root) / a;
+          const T x = s.theta + tau_fall;
+          T whole = zero;
+          dec(floor_certain(x, whole), Reason::period_boundary);
+          r.periods = bouncer::detail::whole_periods(whole);
+          r.phase_bits_lost = std::max(0, Tr::exponent(x));
+          r.tau = tau_fall;
+          pos_store = x - whole;
+          clamp_in_place(pos_store, zero, wall.end.back());
+          pos.refer(pos_store);
+          j = segment_of(pos_store);
+          L = wall.end[j] - pos_store;
+          G = wall.top - wall.height_at(j, pos_store);
+          make_nonneg(G);
+          W = -root - wall.velocity[j];
+          on_wall = false;
+        }
+      }
+    }
+    if (!Tr::is_finite(r.next.theta) || !Tr::is_finite(r.next.v)) throw Undecided(Reason::nonfinite);
+    if constexpr ((F & kCopyOut) != 0) {
+      StepResult<T> out(std::move(r));
+      return out;
+    } else {
+      return r;
+    }
+  }
+
+ private:
+  static bool dec(Truth t, Reason where) {
+    if constexpr ((F & kOldDecide) != 0) return bouncer::decide(t, where);
+    else return fdecide(t, where);
+  }
+  static Truth lt_(const T& x, const T& y) {
+    if constexpr ((F & kOldCompare) != 0) return ScalarTraits<T>::lt(x, y);
+    else return fast::lt(x, y);
+  }
+  static Truth le_(const T& x, const T& y) {
+    if constexpr ((F & kOldCompare) != 0) return ScalarTraits<T>::le(x, y);
+    else return fast::le(x, y);
+  }
+  static Truth is_zero_(const T& x) {
+    if constexpr ((F & kOldCompare) != 0) return ScalarTraits<T>::is_zero(x);
+    else return fast::is_zero(x);
+  }
+  Model<T> m_;
+  T zero_;
+
+  int segment_of(const T& theta) const {
+    for (int j = m_.wall.segments() - 1; j > 0; --j)
+      if (dec(le_(m_.wall.start[j], theta), Reason::phase_at_corner)) return j;
+    return 0;
+  }
+
+  void collide(StepResult<T>& r, int j, Arg<T> theta, Arg<T> speed) const {
+    using Tr = ScalarTraits<T>;
+    using std::exp;
+    const Wall<T>& wall = m_.wall;
+    const T tmp = m_.law == Law::constant ? m_.eps * speed
+                  : m_.law == Law::veldep ? exp(-Tr::pow_3_5(speed / m_.c)) * speed
+                                          : T();
+    Arg<T> out = m_.law == Law::elastic ? speed : tmp;
+    r.segment = j;
+    r.next.v = wall.velocity[j] + out;
+    if (m_.law == Law::constant && dec(le_(out, [&] {
+          if constexpr (kIn) {
+            T x = wall.end[j] - theta;
+            x *= m_.collapse;
+            return x;
+          } else {
+            return T(m_.collapse * (wall.end[j] - theta));
+          }
+        }()), Reason::sticking_threshold)) {
+      if (r.kind != EventKind::sticking) {
+        r.kind = EventKind::sticking;
+        r.stick_segment = j;
+        r.stuck_theta = theta;
+        r.stuck_v = r.next.v;
+      }
+      ride(r, j, theta);
+      return;
+    }
+    r.next.theta = theta;
+  }
+
+  void ride(StepResult<T>& r, int j, Arg<T> pos0) const {
+    const Wall<T>& wall = m_.wall;
+    Slot<T> pos;
+    pos.refer(pos0);
+    for (;;) {
+      r.tau += wall.end[j] - pos.get();
+      const int k = wall.next(j);
+      if (k == 0) ++r.periods;
+      r.segment = j;
+      switch (wall.turn[j]) {
+        case Turn::down:
+          r.next.theta = wall.start[k];
+          r.next.v = wall.velocity[j];
+          return;
+        case Turn::none:
+          break;
+        case Turn::up:
+          r.passed_upward_turn = true;
+          if (m_.law == Law::constant && m_.downward == DownwardSticking::paper) break;
+          r.corner = true;
+          collide(r, k, wall.start[k], wall.velocity[k] - wall.velocity[j]);
+          return;
+      }
+      j = k;
+      pos.refer(wall.start[k]);
+    }
+  }
+};
+
+}  // namespace fast
+
+// ---------------------------------------------------------------------------------------
+// Bitwise checks of the floors against ImpactMap
+// ---------------------------------------------------------------------------------------
+
+bool same_bits(double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y); }
+bool same_bits(mpfr_srcptr x, mpfr_srcptr y) {
+  if (mpfr_get_prec(x) != mpfr_get_prec(y)) return false;
+  if (mpfr_nan_p(x) || mpfr_nan_p(y)) return mpfr_nan_p(x) && mpfr_nan_p(y);
+  return mpfr_equal_p(x, y) && mpfr_signbit(x) == mpfr_signbit(y);
+}
+
+template <class R, class S>
+bool same_flags(const R& f, const StepResult<S>& t) {
+  return f.periods == t.periods && f.segment == t.segment && f.kind == t.kind && f.corner == t.corner &&
+         f.indirect == t.indirect && f.stick_segment == t.stick_segment &&
+         f.passed_upward_turn == t.passed_upward_turn && f.phase_bits_lost == t.phase_bits_lost;
+}
+
+struct Check {
+  long steps = 0;       // steps compared
+  long stickings = 0;   // of which sticking
+  long first_bad = -1;  // first mismatching step (1-based), -1 if none
+  std::string what;
+};
+
+std::string describe(const Check& c) {
+  std::ostringstream o;
+  if (c.first_bad < 0)
+    o << "MATCH (" << c.steps << " steps, " << c.stickings << " sticking)";
+  else
+    o << "MISMATCH at step " << c.first_bad << ": " << c.what;
+  return o.str();
+}
+
+std::string mismatch_text(const std::string& map_theta, const std::string& other_theta) {
+  std::ostringstream o;
+  o << "ImpactMap theta " << map_theta << ", other theta " << other_theta;
+  return o.str();
+}
+
+Check check_plain(const Case& k, long steps) {
+  const Model<double> model = make_model<double>(k.spec, 53);
+  const ImpactMap<double> map(model);
+  const PlainMap plain{plain_model(model)};
+  State<double> s = make_state<double>(k.ic, 53);
+  Check c;
+  for (long n = 1; n <= steps; ++n) {
+    const StepResult<double> t = map.step(s);
+    const PlainResult f = plain.step(s.theta, s.v);
+    bool ok = same_flags(f, t) && same_bits(f.theta, t.next.theta) && same_bits(f.v, t.next.v) &&
+              same_bits(f.tau, t.tau);
+    if (t.kind == EventKind::sticking)
+      ok = ok && same_bits(f.stuck_theta, t.stuck_theta) && same_bits(f.stuck_v, t.stuck_v);
+    if (!ok) {
+      c.first_bad = n;
+      c.what = mismatch_text(ScalarTraits<double>::to_string(t.next.theta), ScalarTraits<double>::to_string(f.theta));
+      return c;
+    }
+    c.steps = n;
+    c.stickings += t.kind == EventKind::sticking;
+    s = t.next;
+    if (vbig(s.v)) s = make_state<double>(k.ic, 53);
+  }
+  return c;
+}
+
+Check check_raw(const Case& k, long bits, long steps) {
+  const Model<Mpfr> model = make_model<Mpfr>(k.spec, bits);
+  const ImpactMap<Mpfr> map(model);
+  RawMpfrMap raw(model, bits);
+  State<Mpfr> s = make_state<Mpfr>(k.ic, bits);
+  Check c;
+  for (long n = 1; n <= steps; ++n) {
+    const StepResult<Mpfr> t = map.step(s);
+    raw.step(s.theta.get(), s.v.get());
+    const RawResult& f = raw.r;
+    bool ok = same_flags(f, t) && same_bits(f.theta, t.next.theta.get()) && same_bits(f.v, t.next.v.get()) &&
+              same_bits(f.tau, t.tau.get());
+    if (t.kind == EventKind::sticking)
+      ok = ok && same_bits(f.stuck_theta, t.stuck_theta.get()) && same_bits(f.stuck_v, t.stuck_v.get());
+    if (!ok) {
+      c.first_bad = n;
+      c.what = mismatch_text(mpfr_to_string(t.next.theta.get(), MPFR_RNDN), mpfr_to_string(f.theta, MPFR_RNDN));
+      return c;
+    }
+    c.steps = n;
+    c.stickings += t.kind == EventKind::sticking;
+    s = t.next;
+    if (vbig(s.v)) s = make_state<Mpfr>(k.ic, bits);
+  }
+  return c;
+}
+
+template <class T>
+bool same_bits_t(const T& x, const T& y) {
+  if constexpr (std::is_same_v<T, double>) return same_bits(x, y);
+  else return same_bits(x.get(), y.get());
+}
+
+// Any map over scalar U against ImpactMap<T> (same model, same start), bitwise.
+template <class T, class U, class MapU>
+Check check_against(const Case& k, long bits, long steps) {
+  const ImpactMap<T> map(make_model<T>(k.spec, bits));
+  const MapU other(make_model<U>(k.spec, bits));
+  State<T> s = make_state<T>(k.ic, bits);
+  State<U> u = make_state<U>(k.ic, bits);
+  Check c;
+  for (long n = 1; n <= steps; ++n) {
+    const StepResult<T> t = map.step(s);
+    const StepResult<U> f = other.step(u);
+    bool ok = same_flags(f, t) && same_bits(f.next.theta.get(), t.next.theta.get()) &&
+              same_bits(f.next.v.get(), t.next.v.get()) && same_bits(f.tau.get(), t.tau.get());
+    if (t.kind == EventKind::sticking)
+      ok = ok && same_bits(f.stuck_theta.get(), t.stuck_theta.get()) && same_bits(f.stuck_v.get(), t.stuck_v.get());
+    if (!ok) {
+      c.first_bad = n;
+      c.what = mismatch_text(ScalarTraits<T>::to_string(t.next.theta), ScalarTraits<U>::to_string(f.next.theta));
+      return c;
+    }
+    c.steps = n;
+    c.stickings += t.kind == EventKind::sticking;
+    s = t.next;
+    u = f.next;
+    if (vbig(s.v)) {
+      s = make_state<T>(k.ic, bits);
+      u = make_state<U>(k.ic, bits);
+    }
+  }
+  return c;
+}
+
+// ImpactMap<Dbl> (the core's code compiled in this file) against ImpactMap<double>.
+Check check_dbl(const Case& k, long steps) {
+  const ImpactMap<double> map(make_model<double>(k.spec, 53));
+  const ImpactMap<Dbl> other(make_model<Dbl>(k.spec, 53));
+  State<double> s = make_state<double>(k.ic, 53);
+  State<Dbl> u = make_state<Dbl>(k.ic, 53);
+  Check c;
+  for (long n = 1; n <= steps; ++n) {
+    const StepResult<double> t = map.step(s);
+    const StepResult<Dbl> f = other.step(u);
+    bool ok = same_flags(f, t) && same_bits(f.next.theta.x, t.next.theta) && same_bits(f.next.v.x, t.next.v) &&
+              same_bits(f.tau.x, t.tau);
+    if (t.kind == EventKind::sticking)
+      ok = ok && same_bits(f.stuck_theta.x, t.stuck_theta) && same_bits(f.stuck_v.x, t.stuck_v);
+    if (!ok) {
+      c.first_bad = n;
+      c.what = mismatch_text(ScalarTraits<double>::to_string(t.next.theta), ScalarTraits<Dbl>::to_string(f.next.theta));
+      return c;
+    }
+    c.steps = n;
+    c.stickings += t.kind == EventKind::sticking;
+    s = t.next;
+    u = f.next;
+    if (vbig(s.v)) {
+      s = make_state<double>(k.ic, 53);
+      u = make_state<Dbl>(k.ic, 53);
+    }
+  }
+  return c;
+}
+
+// The experimental copy against ImpactMap<T> (T = double or Mpfr).
+template <class T, unsigned F = 0>
+Check check_fast(const Case& k, long bits, long steps) {
+  const Model<T> model = make_model<T>(k.spec, bits);
+  const ImpactMap<T> map(model);
+  const fast::Map<T, F> fmap(model);
+  State<T> s = make_state<T>(k.ic, bits);
+  Check c;
+  for (long n = 1; n <= steps; ++n) {
+    const StepResult<T> t = map.step(s);
+    const StepResult<T> f = fmap.step(s);
+    bool ok = same_flags(f, t) && same_bits_t(f.next.theta, t.next.theta) && same_bits_t(f.next.v, t.next.v) &&
+              same_bits_t(f.tau, t.tau);
+    if (t.kind == EventKind::sticking)
+      ok = ok && same_bits_t(f.stuck_theta, t.stuck_theta) && same_bits_t(f.stuck_v, t.stuck_v);
+    if (!ok) {
+      c.first_bad = n;
+      c.what = mismatch_text(ScalarTraits<T>::to_string(t.next.theta), ScalarTraits<T>::to_string(f.next.theta));
+      return c;
+    }
+    c.steps = n;
+    c.stickings += t.kind == EventKind::sticking;
+    s = t.next;
+    if (vbig(s.v)) s = make_state<T>(k.ic, bits);
+  }
+  return c;
+}
+
+// ---------------------------------------------------------------------------------------
+// Runners: run n steps from the current state (resetting as described at the top)
+// ---------------------------------------------------------------------------------------
+
+// The state update of a runner. For IEEE types each field goes through a register on its
+// own: gcc otherwise merges the copy of State<double> into one 16-byte load right after the
+// step stored theta and v as two 8-byte stores, a store-forwarding stall (~10 cycles) that
+// hit some maps and not others depending on how they write their result (seen with perf).
+template <class T>
+inline void take(T& dst, T& src) {
+  if constexpr (std::is_same_v<T, double>) {
+    T x = src;
+    asm volatile("" : "+x"(x));
+    dst = x;
+  } else {
+    dst = std::move(src);
+  }
+}
+
+struct Runner {
+  virtual ~Runner() = default;
+  virtual void reset() = 0;
+  virtual void run(long n) = 0;
+  long resets = 0;
+};
+
+// kPlainCopy: update the state with `s = r.next` as lib/src/orbit.cpp does (for --decompose).
+// kAdvance: `s = map.advance(s)` (experiment only).
+template <class T, class M = ImpactMap<T>, bool kPlainCopy = false, bool kAdvance = false>
+struct MapRunner : Runner {
+  M map;
+  State<T> start, s;
+  MapRunner(const Case& k, long bits)
+      : map(make_model<T>(k.spec, bits)), start(make_state<T>(k.ic, bits)), s(start) {}
+  void reset() override { s = start; resets = 0; }
+  void run(long n) override {
+    long done = 0;
+    while (done < n) {
+      try {
+        for (; done < n; ++done) {
+          if constexpr (kAdvance) {
+            s = map.advance(s);
+          } else {
+            StepResult<T> r = map.step(s);
+            if constexpr (kPlainCopy) {
+              s = r.next;
+            } else {
+              take(s.theta, r.next.theta);
+              take(s.v, r.next.v);
+            }
+          }
+          if (vbig(s.v)) { s = start; ++resets; }
+        }
+      } catch (const Undecided&) {
+        s = start;
+        ++resets;
+        ++done;
+      }
+    }
+  }
+};
+
+struct PlainRunner : Runner {
+  PlainMap map;
+  double theta0, v0, theta, v;
+  explicit PlainRunner(const Case& k) : map{plain_model(make_model<double>(k.spec, 53))} {
+    const State<double> s = make_state<double>(k.ic, 53);
+    theta0 = theta = s.theta;
+    v0 = v = s.v;
+  }
+  void reset() override { theta = theta0; v = v0; resets = 0; }
+  void run(long n) override {
+    long done = 0;
+    while (done < n) {
+      try {
+        for (; done < n; ++done) {
+          PlainResult r = map.step(theta, v);
+          take(theta, r.theta);
+          take(v, r.v);
+          if (vbig(v)) { theta = theta0; v = v0; ++resets; }
+        }
+      } catch (const Undecided&) {
+        theta = theta0; v = v0;
+        ++resets;
+        ++done;
+      }
+    }
+  }
+};
+
+struct RawRunner : Runner {
+  RawMpfrMap map;
+  mpfr_t theta0, v0, theta, v;
+  RawRunner(const Case& k, long bits) : map(make_model<Mpfr>(k.spec, bits), bits) {
+    const State<Mpfr> s = make_state<Mpfr>(k.ic, bits);
+    for (mpfr_t* p : {&theta0, &v0, &theta, &v}) mpfr_init2(*p, bits);
+    mpfr_set(theta0, s.theta.get(), MPFR_RNDN);
+    mpfr_set(v0, s.v.get(), MPFR_RNDN);
+    reset();
+  }
+  ~RawRunner() override { for (mpfr_t* p : {&theta0, &v0, &theta, &v}) mpfr_clear(*p); }
+  void reset() override {
+    mpfr_set(theta, theta0, MPFR_RNDN);
+    mpfr_set(v, v0, MPFR_RNDN);
+    resets = 0;
+  }
+  void restart() {
+    mpfr_set(theta, theta0, MPFR_RNDN);
+    mpfr_set(v, v0, MPFR_RNDN);
+    ++resets;
+  }
+  void run(long n) override {
+    long done = 0;
+    while (done < n) {
+      try {
+        for (; done < n; ++done) {
+          map.step(theta, v);
+          mpfr_swap(theta, map.r.theta);
+          mpfr_swap(v, map.r.v);
+          if (vbig_raw()) restart();
+        }
+      } catch (const Undecided&) {
+        restart();
+        ++done;
+      }
+    }
+  }
+  bool vbig_raw() const { return mpfr_cmp_si(v, 10000) > 0; }
+};
+
+// ---------------------------------------------------------------------------------------
+// Timing
+// ---------------------------------------------------------------------------------------
+
+struct Timing {
+  double median_ns = 0, min_ns = 0, max_ns = 0;  // thread CPU time per step over the repetitions
+  double cpu_share = 0;      // CPU time / wall time (median repetition): < 1 means preempted
+  long steps = 0;            // per repetition
+  double resets_per_k = 0;   // resets per 1000 steps (median repetition)
+  std::vector<double> ns;    // per repetition, in round order (for paired ratios)
+};
+
+double thread_cpu_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+double wall_seconds() {
+  timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+// Steps for one repetition of about target_s seconds of CPU time.
+long calibrate(Runner& r, double target_s) {
+  long n = 8;
+  double t = 0;
+  for (;;) {
+    r.reset();
+    const double t0 = thread_cpu_seconds();
+    r.run(n);
+    t = thread_cpu_seconds() - t0;
+    if (t >= target_s / 5 || n > (1L << 40)) break;
+    n *= t < target_s / 100 ? 8 : 2;
+  }
+  return std::max(1L, static_cast<long>(n * (target_s / std::max(t, 1e-9))));
+}
+
+// Times a group of runners (a floor first, then the rows compared to it) in interleaved
+// rounds: each round runs every runner once, so load changes on the shared machine hit the
+// floor and its rows alike. Each repetition starts from the initial condition.
+std::vector<Timing> measure_group(const std::vector<Runner*>& group, double target_s, int reps) {
+  std::vector<Timing> out(group.size());
+  std::vector<std::vector<std::pair<double, double>>> res(group.size());  // (ns, resets/k)
+  std::vector<std::vector<double>> share(group.size());
+  for (size_t i = 0; i < group.size(); ++i) out[i].steps = calibrate(*group[i], target_s);
+  for (int k = 0; k < reps; ++k) {
+    for (size_t i = 0; i < group.size(); ++i) {
+      Runner& r = *group[i];
+      r.reset();
+      const double w0 = wall_seconds(), c0 = thread_cpu_seconds();
+      r.run(out[i].steps);
+      const double c = thread_cpu_seconds() - c0, w = wall_seconds() - w0;
+      const double ns = c * 1e9 / out[i].steps;
+      out[i].ns.push_back(ns);
+      res[i].emplace_back(ns, 1000.0 * r.resets / out[i].steps);
+      share[i].push_back(w > 0 ? c / w : 1);
+    }
+  }
+  for (size_t i = 0; i < group.size(); ++i) {
+    auto v = res[i];
+    std::sort(v.begin(), v.end());
+    out[i].median_ns = v[v.size() / 2].first;
+    out[i].resets_per_k = v[v.size() / 2].second;
+    out[i].min_ns = v.front().first;
+    out[i].max_ns = v.back().first;
+    std::sort(share[i].begin(), share[i].end());
+    out[i].cpu_share = share[i][share[i].size() / 2];
+  }
+  return out;
+}
+
+// Median over rounds of (row time / floor time in the same round).
+double paired_ratio(const Timing& row, const Timing& floor) {
+  std::vector<double> q;
+  for (size_t k = 0; k < row.ns.size() && k < floor.ns.size(); ++k) q.push_back(row.ns[k] / floor.ns[k]);
+  std::sort(q.begin(), q.end());
+  return q.empty() ? 0 : q[q.size() / 2];
+}
+
+// ---------------------------------------------------------------------------------------
+// Output
+// ---------------------------------------------------------------------------------------
+
+std::string read_cpu_model() {
+  std::ifstream f("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(f, line))
+    if (line.rfind("model name", 0) == 0) {
+      const auto p = line.find(':');
+      return p == std::string::npos ? line : line.substr(p + 2);
+    }
+  return "unknown";
+}
+
+std::string read_first_line(const char* path) {
+  std::ifstream f(path);
+  std::string line;
+  std::getline(f, line);
+  return line;
+}
+
+std::string utc_now() {
+  const std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&t));
+  return buf;
+}
+
+std::string fmt(const char* f, double x) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, x);
+  return buf;
+}
+
+struct Row {
+  std::string model, scalar;
+  long bits;
+  Timing t;
+  const Timing* floor = nullptr;  // null: this row is a floor
+  std::string floor_name;
+};
+
+void print_header_row() {
+  std::printf("%-19s %-9s %5s %10s %6s %10s %-16s %7s %5s %8s\n", "model", "scalar", "bits", "ns/step", "spread",
+              "floor ns", "floor", "ratio", "cpu%", "resets/k");
+}
+
+void print_row(const Row& r) {
+  const double spread = r.t.median_ns > 0 ? 100.0 * (r.t.max_ns - r.t.min_ns) / r.t.median_ns : 0;
+  std::printf("%-19s %-9s %5ld %10.1f %5.0f%% %10s %-16s %7s %4.0f%% %8s\n", r.model.c_str(), r.scalar.c_str(),
+              r.bits, r.t.median_ns, spread, r.floor ? fmt("%.1f", r.floor->median_ns).c_str() : "-",
+              r.floor ? r.floor_name.c_str() : "(floor)",
+              r.floor ? fmt("%.2fx", paired_ratio(r.t, *r.floor)).c_str() : "-", 100 * r.t.cpu_share,
+              fmt("%.3g", r.t.resets_per_k).c_str());
+  std::fflush(stdout);
+}
+
+struct Options {
+  bool quick = false;
+  bool experiment = true;
+  bool decompose = false;  // extra experiment rows: E with one ImpactMap overhead put back
+  double time_s = 0.2;
+  int reps = 5;
+  std::string model_filter;
+  std::string profile;  // run one runner only (for callgrind): plain|double|raw|mpfr|interval
+  long bits = 113;
+  long steps = 100000;
+};
+
+[[noreturn]] void usage(int code) {
+  std::printf(
+      "usage: bench_step [--quick] [--time SECONDS] [--reps N] [--model SUBSTRING] [--no-experiment]\n"
+      "                  [--decompose]\n"
+      "       bench_step --profile plain|double|double-E|raw|mpfr|mpfr-E|mpfr-E5|mpfr-S|mpfr-E5S|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
+      "         (runs one runner N steps without timing, for valgrind --tool=callgrind)\n"
+      "  Times ImpactMap<T>::step for each model and scalar type next to hand-written floors\n"
+      "  (plain double; raw MPFR with preallocated temporaries), after checking bitwise that the\n"
+      "  floors compute the same orbits. --quick: a small subset, short runs (smoke test).\n"
+      "  Exit code 1 if a floor does not reproduce ImpactMap bitwise; timings are never checked.\n");
+  std::exit(code);
+}
+
+Options parse_args(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) usage(2);
+      return argv[++i];
+    };
+    if (a == "--quick") o.quick = true;
+    else if (a == "--no-experiment") o.experiment = false;
+    else if (a == "--decompose") o.decompose = true;
+    else if (a == "--time") o.time_s = std::atof(value().c_str());
+    else if (a == "--reps") o.reps = std::atoi(value().c_str());
+    else if (a == "--model") o.model_filter = value();
+    else if (a == "--profile") o.profile = value();
+    else if (a == "--bits") o.bits = std::atol(value().c_str());
+    else if (a == "--steps") o.steps = std::atol(value().c_str());
+    else if (a == "--help" || a == "-h") usage(0);
+    else usage(2);
+  }
+  if (o.quick) {
+    o.time_s = std::min(o.time_s, 0.02);
+    o.reps = std::min(o.reps, 1);
+  }
+  if (!(o.time_s > 0) || o.reps < 1) usage(2);
+  return o;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const Options opt = parse_args(argc, argv);
+  std::string cmdline;
+  for (int i = 0; i < argc; ++i) {
+    if (i) cmdline += ' ';
+    cmdline += argv[i];
+  }
+
+  if (!opt.profile.empty()) {
+    Case k = all_cases()[1];
+    for (const Case& c : all_cases())
+      if (!opt.model_filter.empty() && c.name.find(opt.model_filter) != std::string::npos) k = c;
+    std::unique_ptr<Runner> r;
+    if (opt.profile == "plain") r = std::make_unique<PlainRunner>(k);
+    else if (opt.profile == "double") r = std::make_unique<MapRunner<double>>(k, 53);
+    else if (opt.profile == "raw") r = std::make_unique<RawRunner>(k, opt.bits);
+    else if (opt.profile == "mpfr") r = std::make_unique<MapRunner<Mpfr>>(k, opt.bits);
+    else if (opt.profile == "double-E") r = std::make_unique<MapRunner<double, fast::Map<double>>>(k, 53);
+    else if (opt.profile == "double-E+copyout")
+      r = std::make_unique<MapRunner<double, fast::Map<double, fast::kCopyOut>>>(k, 53);
+    else if (opt.profile == "double-E+old3")
+      r = std::make_unique<MapRunner<double, fast::Map<double, fast::kCopyOut | fast::kOldDecide | fast::kOldCompare>>>(k, 53);
+    else if (opt.profile == "mpfr-E") r = std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr>>>(k, opt.bits);
+    else if (opt.profile == "core-here") r = std::make_unique<MapRunner<Dbl>>(k, 53);
+    else if (opt.profile == "mpfr-S") r = std::make_unique<MapRunner<MpfrX>>(k, opt.bits);
+    else if (opt.profile == "mpfr-E5S") r = std::make_unique<MapRunner<MpfrX, fast::Map<MpfrX, fast::kInPlace>>>(k, opt.bits);
+    else if (opt.profile == "mpfr-E5") r = std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr, fast::kInPlace>>>(k, opt.bits);
+    else if (opt.profile == "interval") r = std::make_unique<MapRunner<Mpfi>>(k, opt.bits);
+    else usage(2);
+    r->reset();
+    r->run(opt.steps);
+    std::printf("%s %s bits %ld: %ld steps, %ld resets\n", k.name.c_str(), opt.profile.c_str(), opt.bits, opt.steps,
+                r->resets);
+    return 0;
+  }
+  const BuildInfo& b = build_info();
+  std::printf("# bench_step: ns per impact-map step, ImpactMap<T> vs hand-written floors\n");
+  std::printf("# command: %s\n", cmdline.c_str());
+  std::printf("# date: %s\n", utc_now().c_str());
+  std::printf("# machine: %ld cpus online, %s; load average at start: %s\n", sysconf(_SC_NPROCESSORS_ONLN),
+              read_cpu_model().c_str(), read_first_line("/proc/loadavg").c_str());
+  std::printf("# bouncer %s (commit %s), compiler %s %s, flags: %s\n", b.version.c_str(), b.commit.c_str(),
+              b.compiler.c_str(), b.build_type.c_str(), b.flags.c_str());
+  std::printf("# libraries: %s\n", library_versions().c_str());
+  std::printf("# timing: thread CPU time; %d rounds, each running the floor and its rows once for ~%.3g s each\n"
+              "#   (same step count in every round, each run from the initial condition). ns/step = median over\n"
+              "#   rounds, spread = (max-min)/median, ratio = median over rounds of row/floor in the same round,\n"
+              "#   cpu%% = CPU/wall time (below 100%% the process was preempted).\n",
+              opt.reps, opt.time_s);
+  std::printf("# NOTE: the machine is shared (other people compile), so absolute ns vary from run to run;\n"
+              "#   quote the ratios from one run, where a row and its floor were timed minutes apart.\n");
+  std::printf("# resets/k: state resets per 1000 steps (undecided interval step, or v > 1e4).\n");
+  if (opt.experiment)
+    std::printf("# rows *-E, *-E5 (experiment, not the library): a copy of ImpactMap<T>::step in this file with\n"
+                "#   the overheads found by profiling removed (see the comments at namespace fast); same results\n"
+                "#   bitwise. They show what the proposed core changes would give; --no-experiment hides them.\n");
+
+  std::vector<Case> cases;
+  for (Case& k : all_cases())
+    if (opt.model_filter.empty() || k.name.find(opt.model_filter) != std::string::npos) cases.push_back(k);
+  if (opt.quick && opt.model_filter.empty()) cases = {all_cases()[1]};  // the sticking model
+  const std::vector<long> bit_list = opt.quick ? std::vector<long>{113} : std::vector<long>{53, 113, 256, 1024, 4096};
+
+  // --- correctness of the floors -------------------------------------------------------
+  bool all_ok = true;
+  std::printf("#\n# floor checks (bitwise: theta, v, tau, stuck theta/v, periods, segment, kind, corner,\n"
+              "#   indirect, sticking segment, upward turn, phase bits lost):\n");
+  for (const Case& k : (opt.quick ? all_cases() : cases)) {
+    const Check c = check_plain(k, 1000);
+    std::printf("#   %-19s plain-double vs ImpactMap<double>: %s\n", k.name.c_str(), describe(c).c_str());
+    all_ok = all_ok && c.first_bad < 0;
+    if (opt.experiment) {
+      const Check e = check_fast<double>(k, 53, 1000);
+      std::printf("#   %-19s experiment E<double> vs ImpactMap<double>: %s\n", k.name.c_str(), describe(e).c_str());
+      const Check f = check_fast<Mpfr>(k, 256, 200);
+      std::printf("#   %-19s experiment E<Mpfr>:256 vs ImpactMap<Mpfr>: %s\n", k.name.c_str(), describe(f).c_str());
+      all_ok = all_ok && e.first_bad < 0 && f.first_bad < 0;
+      {
+        const Check g = check_fast<double, fast::kInPlace>(k, 53, 1000);
+        const Check h = check_fast<Mpfr, fast::kInPlace>(k, 256, 200);
+        std::printf("#   %-19s experiment E5<double>, E5<Mpfr>:256 vs ImpactMap: %s; %s\n", k.name.c_str(),
+                    describe(g).c_str(), describe(h).c_str());
+        all_ok = all_ok && g.first_bad < 0 && h.first_bad < 0;
+      }
+      if (opt.decompose) {
+        const Check d = check_dbl(k, 1000);
+        std::printf("#   %-19s ImpactMap<Dbl> (core code compiled here) vs ImpactMap<double>: %s\n", k.name.c_str(),
+                    describe(d).c_str());
+        all_ok = all_ok && d.first_bad < 0;
+        const Check g = check_against<Mpfr, MpfrX, ImpactMap<MpfrX>>(k, 256, 200);
+        const Check h = check_against<Mpfr, MpfrX, fast::Map<MpfrX, fast::kInPlace>>(k, 256, 200);
+        std::printf("#   %-19s experiment S: ImpactMap<MpfrX>, E5<MpfrX> vs ImpactMap<Mpfr> at 256: %s; %s\n",
+                    k.name.c_str(), describe(g).c_str(), describe(h).c_str());
+        all_ok = all_ok && g.first_bad < 0 && h.first_bad < 0;
+      }
+      if (opt.decompose) {
+        constexpr unsigned all3 = fast::kOldDecide | fast::kOldCompare | fast::kCopyOut;
+        const Check g = check_fast<double, all3>(k, 53, 1000);
+        const Check h = check_fast<Mpfr, all3>(k, 256, 200);
+        std::printf("#   %-19s experiment E+old3 <double>, <Mpfr>:256:  %s; %s\n", k.name.c_str(), describe(g).c_str(),
+                    describe(h).c_str());
+        all_ok = all_ok && g.first_bad < 0 && h.first_bad < 0;
+      }
+    }
+    for (long bits : {53L, 256L, 4096L}) {
+      if (opt.quick && bits != 256) continue;
+      const Check r = check_raw(k, bits, 200);
+      std::printf("#   %-19s raw-mpfr:%-4ld vs ImpactMap<Mpfr>:   %s\n", k.name.c_str(), bits, describe(r).c_str());
+      all_ok = all_ok && r.first_bad < 0;
+    }
+  }
+  std::fflush(stdout);
+
+  // --- timing --------------------------------------------------------------------------
+  std::printf("#\n");
+  print_header_row();
+  for (const Case& k : cases) {
+    {
+      // Double family, timed in rounds with the plain-double floor.
+      PlainRunner floor(k);
+      MapRunner<double> d(k, 53);
+      std::vector<Runner*> g{&floor, &d};
+      std::vector<std::unique_ptr<Runner>> extra;
+      std::vector<std::string> extra_names;
+      auto add = [&](std::unique_ptr<Runner> r, const char* name) {
+        g.push_back(r.get());
+        extra.push_back(std::move(r));
+        extra_names.push_back(name);
+      };
+      if (opt.experiment) add(std::make_unique<MapRunner<double, fast::Map<double>>>(k, 53), "double-E");
+      if (opt.experiment) add(std::make_unique<MapRunner<double, fast::Map<double, fast::kInPlace>>>(k, 53), "double-E5");
+      if (opt.experiment && opt.decompose) {
+        using namespace fast;
+        add(std::make_unique<MapRunner<double, Map<double, kOldDecide>>>(k, 53), "E+olddec");
+        add(std::make_unique<MapRunner<double, Map<double, kOldCompare>>>(k, 53), "E+oldcmp");
+        add(std::make_unique<MapRunner<double, Map<double, kCopyOut>>>(k, 53), "E+copyout");
+        add(std::make_unique<MapRunner<double, Map<double, kOldDecide | kOldCompare | kCopyOut>>>(k, 53), "E+old3");
+        add(std::make_unique<MapRunner<Dbl>>(k, 53), "core-here");
+        add(std::make_unique<MapRunner<double, ImpactMap<double>, true>>(k, 53), "dbl,s=r.next");
+        add(std::make_unique<MapRunner<double, Map<double>, true>>(k, 53), "E,s=r.next");
+        add(std::make_unique<MapRunner<double, Map<double>, false, true>>(k, 53), "E,advance");
+      }
+      std::unique_ptr<MapRunner<long double>> ld;
+      std::unique_ptr<MapRunner<Quad>> qd;
+      if (!opt.quick) {
+        ld = std::make_unique<MapRunner<long double>>(k, 64);
+        qd = std::make_unique<MapRunner<Quad>>(k, 113);
+        g.push_back(ld.get());
+        g.push_back(qd.get());
+      }
+      const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
+      print_row({k.name, "plain", 53, t[0], nullptr, ""});
+      print_row({k.name, "double", 53, t[1], &t[0], "plain-double"});
+      size_t i = 2;
+      for (const std::string& name : extra_names) print_row({k.name, name, 53, t[i++], &t[0], "plain-double"});
+      if (!opt.quick) {
+        print_row({k.name, "long", 64, t[i++], &t[0], "plain-double"});
+        print_row({k.name, "quad", 113, t[i++], &t[0], "plain-double"});
+      }
+    }
+    for (long bits : bit_list) {
+      RawRunner floor(k, bits);
+      MapRunner<Mpfr> m(k, bits);
+      MapRunner<Mpfi> i(k, bits);
+      std::vector<Runner*> g{&floor, &m, &i};
+      std::vector<std::unique_ptr<Runner>> extra;
+      std::vector<std::string> extra_names;
+      auto add = [&](std::unique_ptr<Runner> r, const char* name) {
+        g.push_back(r.get());
+        extra.push_back(std::move(r));
+        extra_names.push_back(name);
+      };
+      if (opt.experiment) add(std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr>>>(k, bits), "mpfr-E");
+      if (opt.experiment) add(std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr, fast::kInPlace>>>(k, bits), "mpfr-E5");
+      if (opt.experiment && opt.decompose) {
+        add(std::make_unique<MapRunner<MpfrX>>(k, bits), "mpfr-S");
+        add(std::make_unique<MapRunner<MpfrX, fast::Map<MpfrX, fast::kInPlace>>>(k, bits), "mpfr-E5S");
+      }
+      if (opt.experiment && opt.decompose) {
+        using namespace fast;
+        add(std::make_unique<MapRunner<Mpfr, Map<Mpfr, kCopyOut>>>(k, bits), "E+copyout");
+        add(std::make_unique<MapRunner<Mpfr, Map<Mpfr, kOldDecide | kOldCompare | kCopyOut>>>(k, bits), "E+old3");
+      }
+      const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
+      print_row({k.name, "raw-mpfr", bits, t[0], nullptr, ""});
+      print_row({k.name, "mpfr", bits, t[1], &t[0], "raw-mpfr"});
+      for (size_t e = 0; e < extra_names.size(); ++e)
+        print_row({k.name, extra_names[e], bits, t[3 + e], &t[0], "raw-mpfr"});
+      print_row({k.name, "interval", bits, t[2], &t[0], "raw-mpfr(point)"});
+    }
+  }
+  std::printf("# load average at end: %s\n", read_first_line("/proc/loadavg").c_str());
+  if (!all_ok) std::printf("# FAILED: a floor does not reproduce ImpactMap bitwise (see the checks above)\n");
+  return all_ok ? 0 : 1;
+}

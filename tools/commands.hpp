@@ -15,5 +15,16 @@ struct Command {
 };
 
 Command add_orbit(CLI::App& app);
+Command add_certify_sticking(CLI::App& app);
+Command add_sweep(CLI::App& app);
+Command add_audit(CLI::App& app);
+Command add_periodic(CLI::App& app);
+Command add_lyapunov(CLI::App& app);
+Command add_classify(CLI::App& app);
+Command add_bifurcation(CLI::App& app);
+Command add_portrait(CLI::App& app);
+Command add_basin(CLI::App& app);
+Command add_scan(CLI::App& app);
+Command add_merge(CLI::App& app);
 
 }  // namespace bouncer::cli

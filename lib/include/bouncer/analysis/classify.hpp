@@ -25,6 +25,7 @@ struct Classification {
   long period = 0;         // q for fixed/periodic, k for sticking, 0 otherwise
   double lambda = 0;       // leading Lyapunov exponent per collision (NaN if not computed)
   std::string evidence;    // one line: what decided the class
+  double alpha = 0;        // unbounded only: growth law v ~ n^alpha of the running max of v
 };
 
 struct ClassifyOptions {

@@ -37,6 +37,7 @@ struct Figure {
   double x_min = NAN, x_max = NAN, y_min = NAN, y_max = NAN;
   bool equal_aspect = false;   // one data unit is as long on both axes (polar plots)
   std::string subtitle;        // a second, smaller line under the title (parameters)
+  bool legend_below = false;   // legend in rows under the plot instead of at the right
 };
 
 // A raster over a rectangle of data space (row 0 = top = y_max), e.g. a density image of a
@@ -50,6 +51,7 @@ struct Raster {
   std::vector<Rgb> colorbar;
   double colorbar_lo = 0, colorbar_hi = 1;
   std::string colorbar_label;
+  bool legend_below = false;  // legend in rows under the image instead of at the right
 };
 
 struct ImageFigure {

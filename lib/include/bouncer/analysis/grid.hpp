@@ -1,0 +1,100 @@
+// Deterministic parallel grids: a list of independent work items (grid points, parameter
+// values) split into tiles of consecutive items, computed by std::thread workers.
+//
+// Determinism: every item is computed on its own from its index and written into its own
+// slot, so the result is the same bytes whatever the thread count, the order in which
+// tiles finish, or how the grid was split into shards. A shard i/N owns the tiles t with
+// t mod N == i (round robin, so costly regions are shared out).
+//
+// Resume: with a tile directory, each finished tile is saved there as one small file
+// (written to NAME.partial and renamed), stamped with the job's key. A later run of the
+// same job loads the finished tiles and computes only the missing ones, so an interrupted
+// run resumes, and the tiles of several shards can be merged.
+//
+// MPFR: our Mpfr/Mpfi values carry their own precision (no process-wide default), and
+// MPFR keeps its caches per thread, so items may use MPFR in any worker.
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace bouncer {
+
+struct Shard {
+  long index = 0, count = 1;
+  bool all() const { return count == 1; }
+  std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }
+};
+// "i/N" with 0 <= i < N, 1 <= N <= 1e6; throws InputError naming `field`.
+Shard parse_shard(const std::string& field, const std::string& text);
+
+struct GridPlan {
+  long items = 0;
+  long tile_items = 64;  // items per tile (the last tile may be shorter)
+  long tiles() const { return items == 0 ? 0 : (items + tile_items - 1) / tile_items; }
+  long begin(long tile) const { return tile * tile_items; }
+  long end(long tile) const { return std::min(items, (tile + 1) * tile_items); }
+  static bool in_shard(long tile, const Shard& s) { return tile % s.count == s.index; }
+};
+
+struct GridOptions {
+  unsigned threads = 0;         // 0: all cores (std::thread::hardware_concurrency)
+  Shard shard;                  // which tiles to compute
+  std::string tile_dir;         // empty: keep tiles in memory only (no resume)
+  std::string job_key;          // identifies the job; tiles with another key are refused
+  bool compute = true;          // false: only load saved tiles (bouncer merge)
+  bool progress = false;        // draw a progress bar on stderr
+  std::string label;            // shown before the progress bar
+};
+
+struct GridResult {
+  std::vector<std::string> items;  // one text per item ("" where no tile was available)
+  std::vector<bool> have_tile;     // per tile: computed or loaded
+  long tiles_loaded = 0, tiles_computed = 0;
+  bool complete() const;           // every tile is available
+  std::vector<long> missing() const;
+};
+
+// Runs the plan: loads saved tiles, computes the shard's missing ones in parallel with
+// `item(index)` (which must depend on the index only), saves each finished tile.
+// An exception thrown by `item` stops the workers and is rethrown (finished tiles stay
+// saved). Threads = 1 runs in the calling thread.
+GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>& item, const GridOptions& opt);
+
+// Tile files: PREFIX.tiles/tile-NNNNNN. Exposed for merge and for tests.
+std::string tile_path(const std::string& dir, long tile);
+// Reads one tile; false if absent, damaged, or from another job (key or item range).
+bool read_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
+               std::vector<std::string>& items_out);
+void write_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
+                const std::vector<std::string>& items);
+// Copies the valid tiles of `from` that `to` lacks; returns how many were copied.
+long import_tiles(const std::string& from, const std::string& to, const GridPlan& plan, const std::string& key);
+
+// A stable 64-bit fingerprint of a job description (FNV-1a), as 16 hex digits.
+std::string job_fingerprint(const std::string& text);
+
+// The number of worker threads `requested` means (0: all cores; at least 1).
+unsigned worker_threads(unsigned requested);
+
+// A text progress bar on stderr, redrawn at most ~10 times a second; thread-safe.
+class Progress {
+ public:
+  Progress(std::string label, long total, bool enabled);
+  ~Progress();
+  void advance(long n);
+  void finish();
+
+ private:
+  struct State;
+  State* s_;
+};
+
+// True when stderr is a terminal (progress bars are drawn only then).
+bool stderr_is_terminal();
+
+}  // namespace bouncer

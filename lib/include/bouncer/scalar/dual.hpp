@@ -1,0 +1,149 @@
+// Dual<S>: forward-mode automatic differentiation with two derivative components,
+// d/dtheta0 and d/dv0, over a point scalar S (double or Mpfr).
+//
+// The impact map is written once as a template (model/impact_map_impl.hpp); instantiating
+// it for Dual<S> differentiates exactly the branch the step takes, so the Jacobian is that
+// of the same code, not of a transcription. Branches (comparisons) look at values only.
+// A step is piecewise smooth: at a branch point the result is the one-sided derivative of
+// the branch taken.
+//
+// Conventions at the non-smooth helpers (see also clamp_to_segment below):
+//   floor(x)         value floor, derivative zero (the integer part is locally constant);
+//                    theta' = x - floor(x) therefore keeps x's derivative;
+//   nonneg(x)        x when x >= 0, else exact zero with zero derivative;
+//   below(x)         next representable value below, derivative of x;
+//   clamp_to_segment rounding guard: the exact value is inside, so the result keeps the
+//                    derivative of x (only the value is moved).
+#pragma once
+
+#include <cmath>
+#include <string>
+#include <string_view>
+#include <utility>
+
+#include "bouncer/scalar/traits.hpp"
+
+namespace bouncer {
+
+template <class S>
+class Dual {
+ public:
+  S v;      // value
+  S d[2];   // d/dtheta0, d/dv0
+
+  Dual() : v{}, d{S{}, S{}} {}
+  // A constant (zero derivatives at the precision of the value).
+  explicit Dual(S value) : v(std::move(value)), d{zero_like(v), zero_like(v)} {}
+  Dual(S value, S d0, S d1) : v(std::move(value)), d{std::move(d0), std::move(d1)} {}
+
+  static S zero_like(const S& x) { return ScalarTraits<S>::from_int(0, ScalarTraits<S>::bits(x)); }
+  // Seeds: theta0 -> (1, 0), v0 -> (0, 1).
+  static Dual variable(S value, int index) {
+    Dual r(std::move(value));
+    r.d[index] = ScalarTraits<S>::from_int(1, ScalarTraits<S>::bits(r.v));
+    return r;
+  }
+
+  Dual& operator+=(const Dual& o) { v += o.v; d[0] += o.d[0]; d[1] += o.d[1]; return *this; }
+  Dual& operator-=(const Dual& o) { v -= o.v; d[0] -= o.d[0]; d[1] -= o.d[1]; return *this; }
+  Dual& operator*=(const Dual& o) { *this = *this * o; return *this; }
+  Dual& operator/=(const Dual& o) { *this = *this / o; return *this; }
+  Dual& operator*=(long n) { v *= n; d[0] *= n; d[1] *= n; return *this; }
+  Dual& operator/=(long n) { v /= n; d[0] /= n; d[1] /= n; return *this; }
+
+  friend Dual operator+(const Dual& x, const Dual& y) { return {x.v + y.v, x.d[0] + y.d[0], x.d[1] + y.d[1]}; }
+  friend Dual operator-(const Dual& x, const Dual& y) { return {x.v - y.v, x.d[0] - y.d[0], x.d[1] - y.d[1]}; }
+  friend Dual operator*(const Dual& x, const Dual& y) {
+    return {x.v * y.v, x.d[0] * y.v + x.v * y.d[0], x.d[1] * y.v + x.v * y.d[1]};
+  }
+  friend Dual operator/(const Dual& x, const Dual& y) {
+    S q = x.v / y.v;
+    return {q, (x.d[0] - q * y.d[0]) / y.v, (x.d[1] - q * y.d[1]) / y.v};
+  }
+  friend Dual operator-(const Dual& x) { return {-x.v, -x.d[0], -x.d[1]}; }
+
+  // Exact integer operands.
+  friend Dual operator+(const Dual& x, long n) { return {x.v + n, x.d[0], x.d[1]}; }
+  friend Dual operator+(long n, const Dual& x) { return {x.v + n, x.d[0], x.d[1]}; }
+  friend Dual operator-(const Dual& x, long n) { return {x.v - n, x.d[0], x.d[1]}; }
+  friend Dual operator-(long n, const Dual& x) { return {n - x.v, -x.d[0], -x.d[1]}; }
+  friend Dual operator*(const Dual& x, long n) { return {x.v * n, x.d[0] * n, x.d[1] * n}; }
+  friend Dual operator*(long n, const Dual& x) { return {x.v * n, x.d[0] * n, x.d[1] * n}; }
+  friend Dual operator/(const Dual& x, long n) { return {x.v / n, x.d[0] / n, x.d[1] / n}; }
+  friend Dual operator/(long n, const Dual& x) {
+    S q = n / x.v;  // d(n/x) = -q/x dx
+    S f = -(q / x.v);
+    return {q, f * x.d[0], f * x.d[1]};
+  }
+
+  // Comparisons look at values only (branching never depends on derivatives).
+  friend bool operator<(const Dual& x, const Dual& y) { return x.v < y.v; }
+  friend bool operator<=(const Dual& x, const Dual& y) { return x.v <= y.v; }
+  friend bool operator>(const Dual& x, const Dual& y) { return x.v > y.v; }
+  friend bool operator>=(const Dual& x, const Dual& y) { return x.v >= y.v; }
+  friend bool operator==(const Dual& x, const Dual& y) { return x.v == y.v; }
+  friend bool operator!=(const Dual& x, const Dual& y) { return !(x.v == y.v); }
+
+  friend Dual sqrt(const Dual& x) {
+    using std::sqrt;
+    S r = sqrt(x.v);
+    S f = 1 / (2 * r);
+    return {r, f * x.d[0], f * x.d[1]};
+  }
+  friend Dual exp(const Dual& x) {
+    using std::exp;
+    S e = exp(x.v);
+    return {e, e * x.d[0], e * x.d[1]};
+  }
+  friend Dual log(const Dual& x) {
+    using std::log;
+    S f = 1 / x.v;
+    return {log(x.v), f * x.d[0], f * x.d[1]};
+  }
+  friend Dual floor(const Dual& x) { return Dual(ScalarTraits<S>::floor(x.v)); }
+};
+
+template <class S>
+struct ScalarTraits<Dual<S>> {
+  using D = Dual<S>;
+  using B = ScalarTraits<S>;
+  static constexpr bool is_interval = false;
+  static constexpr const char* family = "dual";
+  static D from_decimal(std::string_view text, long bits) { return D(B::from_decimal(text, bits)); }
+  static D from_int(long n, long bits) { return D(B::from_int(n, bits)); }
+  static long bits(const D& x) { return B::bits(x.v); }
+  static Truth lt(const D& x, const D& y) { return B::lt(x.v, y.v); }
+  static Truth le(const D& x, const D& y) { return B::le(x.v, y.v); }
+  static Truth is_zero(const D& x) { return B::is_zero(x.v); }
+  static bool likely_negative(const D& x) { return B::likely_negative(x.v); }
+  static D nonneg(const D& x) { return B::likely_negative(x.v) ? D(D::zero_like(x.v)) : x; }
+  static bool is_finite(const D& x) { return B::is_finite(x.v); }
+  static bool derivatives_finite(const D& x) { return B::is_finite(x.d[0]) && B::is_finite(x.d[1]); }
+  static double to_double(const D& x) { return B::to_double(x.v); }
+  static D midpoint(const D& x) { return x; }
+  static D lower(const D& x) { return x; }
+  static D upper(const D& x) { return x; }
+  static D below(const D& x) { return {B::below(x.v), x.d[0], x.d[1]}; }
+  static int exponent(const D& x) { return B::exponent(x.v); }
+  static D floor(const D& x) { return D(B::floor(x.v)); }
+  // d(x^(3/5)) = (3/5) x^(3/5) / x dx  (x > 0 at every impact that uses it).
+  static D pow_3_5(const D& x) {
+    S p = B::pow_3_5(x.v);
+    S f = 3 * p / (5 * x.v);
+    return {p, f * x.d[0], f * x.d[1]};
+  }
+  static std::string to_string(const D& x) { return B::to_string(x.v); }
+};
+
+// Overload of the rounding guard of traits.hpp for duals (more specialized, found by ADL
+// when the templated step is instantiated): the exact value is known to lie in [lo, hi),
+// so only the value is moved and the derivative stays that of x. (The generic version
+// would return lo or below(hi) with their zero derivatives.)
+template <class S>
+Dual<S> clamp_to_segment(const Dual<S>& x, const Dual<S>& lo, const Dual<S>& hi) {
+  if (x.v < lo.v) return {lo.v, x.d[0], x.d[1]};
+  if (!(x.v < hi.v)) return {ScalarTraits<S>::below(hi.v), x.d[0], x.d[1]};
+  return x;
+}
+
+}  // namespace bouncer

@@ -1,0 +1,280 @@
+#include "bouncer/analysis/grid.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "bouncer/model/spec.hpp"
+
+namespace bouncer {
+
+namespace fs = std::filesystem;
+
+Shard parse_shard(const std::string& field, const std::string& text) {
+  const auto slash = text.find('/');
+  auto whole = [](const std::string& s, long& out) {
+    if (s.empty() || s.size() > 7 || s.find_first_not_of("0123456789") != std::string::npos) return false;
+    out = std::stol(s);
+    return true;
+  };
+  Shard s;
+  if (slash == std::string::npos || !whole(text.substr(0, slash), s.index) || !whole(text.substr(slash + 1), s.count) ||
+      s.count < 1 || s.count > 1000000 || s.index >= s.count)
+    throw InputError(field, "must be I/N with 0 <= I < N <= 1000000 (got '" + text + "')");
+  return s;
+}
+
+bool GridResult::complete() const {
+  for (bool b : have_tile)
+    if (!b) return false;
+  return true;
+}
+
+std::vector<long> GridResult::missing() const {
+  std::vector<long> out;
+  for (size_t t = 0; t < have_tile.size(); ++t)
+    if (!have_tile[t]) out.push_back(static_cast<long>(t));
+  return out;
+}
+
+std::string job_fingerprint(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+unsigned worker_threads(unsigned requested) {
+  if (requested > 0) return requested;
+  const unsigned n = std::thread::hardware_concurrency();
+  return n == 0 ? 1 : n;
+}
+
+std::string tile_path(const std::string& dir, long tile) {
+  char name[32];
+  std::snprintf(name, sizeof name, "tile-%06ld", tile);
+  return (fs::path(dir) / name).string();
+}
+
+namespace {
+
+std::string tile_header(long tile, const GridPlan& plan, const std::string& key) {
+  std::ostringstream h;
+  h << "bouncer-tile 1\nkey " << key << "\ntile " << tile << " items " << plan.begin(tile) << " " << plan.end(tile) << "\n";
+  return h.str();
+}
+
+}  // namespace
+
+void write_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
+                const std::vector<std::string>& items) {
+  std::string body = tile_header(tile, plan, key);
+  for (long i = plan.begin(tile); i < plan.end(tile); ++i) {
+    const std::string& s = items[static_cast<size_t>(i - plan.begin(tile))];
+    body += "item " + std::to_string(i) + " " + std::to_string(s.size()) + "\n";
+    body += s;
+    body += "\n";
+  }
+  body += "end\n";
+  const std::string path = tile_path(dir, tile), tmp = path + ".partial";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f << body;
+    f.close();
+    if (!f) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw std::runtime_error("cannot write tile '" + path + "'");
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw std::runtime_error("cannot rename tile '" + tmp + "': " + ec.message());
+}
+
+bool read_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
+               std::vector<std::string>& items_out) {
+  std::ifstream f(tile_path(dir, tile), std::ios::binary);
+  if (!f) return false;
+  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  const std::string header = tile_header(tile, plan, key);
+  if (text.compare(0, header.size(), header) != 0) return false;
+  size_t pos = header.size();
+  std::vector<std::string> items;
+  for (long i = plan.begin(tile); i < plan.end(tile); ++i) {
+    const std::string tag = "item " + std::to_string(i) + " ";
+    if (text.compare(pos, tag.size(), tag) != 0) return false;
+    pos += tag.size();
+    const size_t nl = text.find('\n', pos);
+    if (nl == std::string::npos) return false;
+    const std::string len_text = text.substr(pos, nl - pos);
+    if (len_text.empty() || len_text.find_first_not_of("0123456789") != std::string::npos) return false;
+    const size_t len = std::stoull(len_text);
+    pos = nl + 1;
+    if (pos + len + 1 > text.size() || text[pos + len] != '\n') return false;
+    items.push_back(text.substr(pos, len));
+    pos += len + 1;
+  }
+  if (text.compare(pos, std::string::npos, "end\n") != 0) return false;
+  items_out = std::move(items);
+  return true;
+}
+
+long import_tiles(const std::string& from, const std::string& to, const GridPlan& plan, const std::string& key) {
+  long copied = 0;
+  std::vector<std::string> items;
+  for (long t = 0; t < plan.tiles(); ++t) {
+    if (read_tile(to, t, plan, key, items)) continue;
+    if (!read_tile(from, t, plan, key, items)) continue;
+    write_tile(to, t, plan, key, items);
+    ++copied;
+  }
+  return copied;
+}
+
+bool stderr_is_terminal() { return isatty(2) != 0; }
+
+struct Progress::State {
+  std::string label;
+  long total = 0, done = 0;
+  bool enabled = false, drawn = false;
+  std::chrono::steady_clock::time_point start, last;
+  std::mutex m;
+  void draw(bool final) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!final && now - last < std::chrono::milliseconds(100)) return;
+    last = now;
+    const int width = 30;
+    const double frac = total > 0 ? static_cast<double>(done) / total : 1.0;
+    const int fill = static_cast<int>(frac * width);
+    const double secs = std::chrono::duration<double>(now - start).count();
+    std::string bar(static_cast<size_t>(fill), '#');
+    bar.resize(width, '.');
+    char eta[48] = "";
+    if (done > 0 && done < total) std::snprintf(eta, sizeof eta, " eta %.0fs", secs / done * (total - done));
+    std::fprintf(stderr, "\r%s [%s] %3.0f%% %ld/%ld %.1fs%s   ", label.c_str(), bar.c_str(), 100 * frac, done, total, secs, eta);
+    if (final) std::fputc('\n', stderr);
+    std::fflush(stderr);
+    drawn = true;
+  }
+};
+
+Progress::Progress(std::string label, long total, bool enabled) : s_(new State) {
+  s_->label = std::move(label);
+  s_->total = total;
+  s_->enabled = enabled;
+  s_->start = std::chrono::steady_clock::now();
+  s_->last = s_->start - std::chrono::seconds(1);
+}
+
+Progress::~Progress() {
+  finish();
+  delete s_;
+}
+
+void Progress::advance(long n) {
+  std::lock_guard<std::mutex> lock(s_->m);
+  s_->done += n;
+  if (s_->enabled) s_->draw(false);
+}
+
+void Progress::finish() {
+  std::lock_guard<std::mutex> lock(s_->m);
+  if (s_->enabled) {
+    if (s_->total > 0) s_->draw(true);
+    s_->enabled = false;
+  }
+}
+
+GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>& item, const GridOptions& opt) {
+  if (plan.tile_items < 1) throw std::invalid_argument("run_grid: tile_items must be >= 1");
+  GridResult r;
+  const long ntiles = plan.tiles();
+  r.items.assign(static_cast<size_t>(plan.items), std::string());
+  r.have_tile.assign(static_cast<size_t>(ntiles), false);
+  const bool saving = !opt.tile_dir.empty();
+  if (saving) fs::create_directories(opt.tile_dir);
+
+  // Saved tiles first (any shard's: a merge loads them all).
+  std::vector<long> todo;
+  std::vector<std::string> buf;
+  for (long t = 0; t < ntiles; ++t) {
+    if (saving && read_tile(opt.tile_dir, t, plan, opt.job_key, buf)) {
+      for (long i = plan.begin(t); i < plan.end(t); ++i) r.items[static_cast<size_t>(i)] = std::move(buf[static_cast<size_t>(i - plan.begin(t))]);
+      r.have_tile[static_cast<size_t>(t)] = true;
+      ++r.tiles_loaded;
+    } else if (opt.compute && GridPlan::in_shard(t, opt.shard)) {
+      todo.push_back(t);
+    }
+  }
+  if (todo.empty()) return r;
+
+  long todo_items = 0;
+  for (long t : todo) todo_items += plan.end(t) - plan.begin(t);
+  Progress progress(opt.label.empty() ? "bouncer" : opt.label, todo_items, opt.progress);
+  std::atomic<size_t> next{0};
+  std::atomic<bool> failed{false};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  std::atomic<long> computed{0};
+
+  // vector<bool> packs bits, so concurrent writes to neighbouring tiles would race:
+  // record finished tiles in a byte vector and copy afterwards.
+  std::vector<unsigned char> done(static_cast<size_t>(ntiles), 0);
+  auto safe_worker = [&] {
+    for (;;) {
+      if (failed.load()) return;
+      const size_t k = next.fetch_add(1);
+      if (k >= todo.size()) return;
+      const long t = todo[k];
+      try {
+        std::vector<std::string> tile;
+        tile.reserve(static_cast<size_t>(plan.end(t) - plan.begin(t)));
+        for (long i = plan.begin(t); i < plan.end(t); ++i) {
+          if (failed.load()) return;
+          tile.push_back(item(i));
+          progress.advance(1);
+        }
+        if (saving) write_tile(opt.tile_dir, t, plan, opt.job_key, tile);
+        for (long i = plan.begin(t); i < plan.end(t); ++i)
+          r.items[static_cast<size_t>(i)] = std::move(tile[static_cast<size_t>(i - plan.begin(t))]);
+        done[static_cast<size_t>(t)] = 1;
+        computed.fetch_add(1);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+        failed.store(true);
+        return;
+      }
+    }
+  };
+  const unsigned nthreads = std::min<unsigned>(worker_threads(opt.threads), static_cast<unsigned>(todo.size()));
+  if (nthreads <= 1) {
+    safe_worker();
+  } else {
+    std::vector<std::thread> pool;
+    for (unsigned i = 0; i < nthreads; ++i) pool.emplace_back(safe_worker);
+    for (auto& th : pool) th.join();
+  }
+  progress.finish();
+  for (long t : todo)
+    if (done[static_cast<size_t>(t)]) r.have_tile[static_cast<size_t>(t)] = true;
+  r.tiles_computed = computed.load();
+  if (error) std::rethrow_exception(error);
+  return r;
+}
+
+}  // namespace bouncer

@@ -1,0 +1,379 @@
+// Certified sticking periods: escalation over interval enclosures of the orbit, the
+// trapping-box proof of "never sticks", and adaptive bisection of a parameter interval.
+#include "bouncer/verify/sticking.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <functional>
+#include <sstream>
+
+#include "bouncer/model/impact_map.hpp"
+
+namespace bouncer {
+
+const char* name(StickingOutcome o) {
+  switch (o) {
+    case StickingOutcome::sticks: return "sticks";
+    case StickingOutcome::never_sticks: return "never_sticks";
+    case StickingOutcome::no_sticking_within_max_steps: return "no_sticking_within_max_steps";
+    case StickingOutcome::undecided: return "undecided";
+  }
+  return "?";
+}
+
+std::string exact_decimal(const mpq_class& x) {
+  mpz_class den = x.get_den();
+  long twos = 0, fives = 0;
+  while (mpz_divisible_ui_p(den.get_mpz_t(), 2)) { den /= 2; ++twos; }
+  while (mpz_divisible_ui_p(den.get_mpz_t(), 5)) { den /= 5; ++fives; }
+  if (den != 1) return x.get_str();
+  const long k = std::max(twos, fives);
+  mpz_class scale;
+  mpz_ui_pow_ui(scale.get_mpz_t(), 10, static_cast<unsigned long>(k));
+  mpz_class n = x.get_num() * scale / x.get_den();  // exact
+  std::string sign;
+  if (n < 0) { sign = "-"; n = -n; }
+  std::string digits = n.get_str();
+  if (k == 0) return sign + digits;
+  if (static_cast<long>(digits.size()) <= k) digits = std::string(k - digits.size() + 1, '0') + digits;
+  std::string out = digits.substr(0, digits.size() - k) + "." + digits.substr(digits.size() - k);
+  while (out.back() == '0') out.pop_back();
+  if (out.back() == '.') out.pop_back();
+  return sign + out;
+}
+
+namespace {
+
+struct RunResult {
+  StickingOutcome outcome = StickingOutcome::no_sticking_within_max_steps;
+  std::optional<long long> period;
+  long long steps = 0;
+  long long fallbacks = 0;
+  std::optional<AttractorProof> attractor;
+};
+
+// Coordinates u = E^-1 (x - z) of a candidate trapping set K = z + E [-rho, rho]^2.
+struct Frame {
+  Mpfr z[2];
+  Mpfr E[2][2];
+  Mpfi Einv[2][2];
+};
+
+Mpfi thin(const Mpfr& x) { return Mpfi(x, x); }
+
+// E = the eigenvectors of J (when real and distinct), else the identity.
+Frame make_frame(const Mpfr z[2], const double J[2][2], bool eigen, long bits) {
+  Frame f;
+  f.z[0] = z[0];
+  f.z[1] = z[1];
+  double e[2][2] = {{1, 0}, {0, 1}};
+  if (eigen) {
+    const double tr = J[0][0] + J[1][1], det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    const double disc = tr * tr - 4 * det;
+    if (disc > 0 && std::isfinite(disc)) {
+      const double root = std::sqrt(disc);
+      const double lam[2] = {tr >= 0 ? (tr + root) / 2 : (tr - root) / 2, 0};
+      const double lam1 = lam[0] != 0 ? det / lam[0] : (tr - root) / 2;
+      for (int k = 0; k < 2; ++k) {
+        const double l = k == 0 ? lam[0] : lam1;
+        double x, y;
+        if (std::fabs(J[0][1]) > std::fabs(J[1][0])) { x = J[0][1]; y = l - J[0][0]; }
+        else { x = l - J[1][1]; y = J[1][0]; }
+        const double n = std::hypot(x, y);
+        if (!(n > 0)) { x = k == 0; y = k == 1; }
+        else { x /= n; y /= n; }
+        e[0][k] = x;
+        e[1][k] = y;
+      }
+      if (!(std::fabs(e[0][0] * e[1][1] - e[0][1] * e[1][0]) > 1e-9)) e[0][0] = e[1][1] = 1, e[0][1] = e[1][0] = 0;
+    }
+  }
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 2; ++k) {
+      f.E[i][k] = Mpfr(bits);
+      mpfr_set_d(f.E[i][k].get(), e[i][k], MPFR_RNDN);
+    }
+  const Mpfi det = thin(f.E[0][0]) * thin(f.E[1][1]) - thin(f.E[0][1]) * thin(f.E[1][0]);
+  f.Einv[0][0] = thin(f.E[1][1]) / det;
+  f.Einv[0][1] = -thin(f.E[0][1]) / det;
+  f.Einv[1][0] = -thin(f.E[1][0]) / det;
+  f.Einv[1][1] = thin(f.E[0][0]) / det;
+  return f;
+}
+
+// Is the set c + B r inside K = z + E [-rho, rho]^2? (interval arithmetic, rigorous)
+bool inside(const Frame& f, const Parallelogram& s, const Mpfi& rho) {
+  for (int i = 0; i < 2; ++i) {
+    Mpfi u = f.Einv[i][0] * (thin(s.c[0]) - thin(f.z[0])) + f.Einv[i][1] * (thin(s.c[1]) - thin(f.z[1]));
+    for (int k = 0; k < 2; ++k) u += (f.Einv[i][0] * thin(s.B[0][k]) + f.Einv[i][1] * thin(s.B[1][k])) * s.r[k];
+    if (!ScalarTraits<Mpfi>::is_finite(u) || !rho.contains(u)) return false;
+  }
+  return true;
+}
+
+// Try to prove that the orbit, whose enclosure after `steps` steps is `now`, never sticks:
+// find the period p of the attractor from the recent box centers, then a parallelogram
+// K = z + E [-rho, rho]^2 around `now` (E: eigenvectors of DF^p, which makes K map into
+// itself even where DF^p is far from normal; the axes as a fallback) with F^(m p)(K)
+// inside K for some m <= 8, every step of the way certainly not sticking.
+std::optional<AttractorProof> prove_trapped(const Model<Mpfi>& m, const Parallelogram& now, const State<Mpfi>& box,
+                                            const std::deque<std::pair<double, double>>& recent, long long steps,
+                                            long bits) {
+  if (recent.size() < 2) return std::nullopt;
+  const auto& last = recent.back();
+  long p = 0;
+  double dp = 0;
+  for (size_t k = 1; k < recent.size(); ++k) {
+    const auto& x = recent[recent.size() - 1 - k];
+    const double d = std::fabs(x.first - last.first) + std::fabs(x.second - last.second);
+    if (d < 1e-6) {
+      p = static_cast<long>(k);
+      dp = d;
+      break;
+    }
+  }
+  if (p == 0) return std::nullopt;
+  const Mpfr z[2] = {box.theta.mid(), box.v.mid()};
+  double J[2][2];
+  const bool have_j = jacobian_of_iterate(m, State<Mpfi>{thin(z[0]), thin(z[1])}, p, J);
+  const double base = std::max({dp, box_width(box), std::ldexp(1.0, -static_cast<int>(bits) + 16)});
+  for (bool eigen : {true, false}) {
+    if (eigen && !have_j) continue;
+    const Frame f = make_frame(z, J, eigen, bits);
+    for (double factor : {16.0, 256.0, 4096.0, 65536.0, 1048576.0}) {
+      const double rho = base * factor;
+      if (rho > 1e-3) break;
+      Mpfr r(bits);
+      mpfr_set_d(r.get(), rho, MPFR_RNDN);
+      const Mpfi pm(-r, r);
+      if (!inside(f, now, pm)) continue;
+      Parallelogram K;
+      for (int i = 0; i < 2; ++i) {
+        K.c[i] = z[i];
+        K.r[i] = pm;
+        for (int k = 0; k < 2; ++k) K.B[i][k] = f.E[i][k];
+      }
+      OrbitEnclosure trap(m, K);
+      try {
+        for (long i = 1; i <= 8 * p; ++i) {
+          const EnclosedStep s = trap.step();
+          if (s.kind == EventKind::sticking) break;
+          if (i % p == 0 && inside(f, trap.set(), pm)) {
+            AttractorProof proof;
+            proof.period = p;
+            proof.iterate = i;
+            proof.entered_at = steps;
+            std::ostringstream t;
+            t << "z + E [-rho, rho]^2 with z = (" << ScalarTraits<Mpfr>::to_string(z[0]) << ", "
+              << ScalarTraits<Mpfr>::to_string(z[1]) << "), rho = " << ScalarTraits<Mpfr>::to_string(r)
+              << ", E = [[" << ScalarTraits<Mpfr>::to_string(f.E[0][0]) << ", " << ScalarTraits<Mpfr>::to_string(f.E[0][1])
+              << "], [" << ScalarTraits<Mpfr>::to_string(f.E[1][0]) << ", " << ScalarTraits<Mpfr>::to_string(f.E[1][1])
+              << "]] (" << (eigen ? "eigenvectors of DF^p" : "axes") << "), inside the box "
+              << ScalarTraits<Mpfi>::to_string(trap.box().theta) << " x " << ScalarTraits<Mpfi>::to_string(trap.box().v);
+            proof.box = t.str();
+            return proof;
+          }
+        }
+      } catch (const Undecided&) {
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
+  const Model<Mpfi> m = interval_model(q.model, bits, q.a_range);
+  OrbitEnclosure orbit(m, make_state<Mpfi>(q.start, bits), q.method);
+  const size_t keep = q.prove_attractor ? static_cast<size_t>(q.max_attractor_period) + 1 : 0;
+  std::deque<std::pair<double, double>> recent;
+  RunResult r;
+  for (long long n = 1; n <= q.max_steps; ++n) {
+    const EnclosedStep s = orbit.step();  // throws Undecided
+    progress.steps = n;
+    if (s.kind == EventKind::sticking) {
+      r.outcome = StickingOutcome::sticks;
+      r.period = n;
+      r.steps = n;
+      r.fallbacks = orbit.fallbacks();
+      return r;
+    }
+    if (keep) {
+      recent.emplace_back(s.next.theta.mid().to_double(), s.next.v.mid().to_double());
+      if (recent.size() > keep) recent.pop_front();
+    }
+  }
+  r.steps = q.max_steps;
+  r.fallbacks = orbit.fallbacks();
+  if (q.prove_attractor) {
+    r.attractor = prove_trapped(m, orbit.set(), orbit.box(), recent, q.max_steps, bits);
+    if (r.attractor) r.outcome = StickingOutcome::never_sticks;
+  }
+  return r;
+}
+
+}  // namespace
+
+StickingCertificate certify_sticking(const StickingQuestion& q) {
+  if (q.model.law != Law::constant) throw InputError("model", "sticking periods need --model constant");
+  auto e = escalate<RunResult>(q.schedule, [&](long bits, Progress& p) { return run_once(q, bits, p); });
+  StickingCertificate c;
+  c.attempts = e.attempts;
+  c.seconds = e.seconds;
+  if (e.result) {
+    const RunResult& r = *e.result;
+    c.outcome = r.outcome;
+    c.certified = true;
+    c.period = r.period;
+    c.bits = e.bits;
+    c.steps_checked = r.outcome == StickingOutcome::sticks ? *r.period - 1 : r.steps;
+    c.fallbacks = r.fallbacks;
+    c.attractor = r.attractor;
+  } else {
+    c.outcome = StickingOutcome::undecided;
+    c.certified = false;
+    c.bits = e.best_bits;
+    c.steps_checked = e.best_steps;
+    c.reason = e.gave_up;
+  }
+  return c;
+}
+
+template <class T>
+PlainSticking plain_sticking_period(const ModelSpec& model, const InitialCondition& start, long bits,
+                                    long long max_steps) {
+  PlainSticking out;
+  const ImpactMap<T> map(make_model<T>(model, bits));
+  State<T> s = make_state<T>(start, bits);
+  for (long long n = 1; n <= max_steps; ++n) {
+    try {
+      StepResult<T> r = map.step(s);
+      out.steps_run = n;
+      if (r.kind == EventKind::sticking) {
+        out.period = n;
+        return out;
+      }
+      s = std::move(r.next);
+    } catch (const Undecided&) {
+      out.failed = true;
+      return out;
+    }
+  }
+  return out;
+}
+
+template PlainSticking plain_sticking_period<double>(const ModelSpec&, const InitialCondition&, long, long long);
+template PlainSticking plain_sticking_period<long double>(const ModelSpec&, const InitialCondition&, long, long long);
+template PlainSticking plain_sticking_period<Quad>(const ModelSpec&, const InitialCondition&, long, long long);
+template PlainSticking plain_sticking_period<Mpfr>(const ModelSpec&, const InitialCondition&, long, long long);
+
+std::string describe(const StickingCertificate& c, long long max_steps) {
+  std::ostringstream s;
+  switch (c.outcome) {
+    case StickingOutcome::sticks:
+      s << "sticks: the first sticking is at step " << *c.period << " (sticking period " << *c.period << ")";
+      break;
+    case StickingOutcome::never_sticks:
+      s << "never sticks: after step " << c.attractor->entered_at << " the orbit is in a set K with F^"
+        << c.attractor->iterate << "(K) inside K (attractor of period " << c.attractor->period
+        << "), and no step from K sticks";
+      break;
+    case StickingOutcome::no_sticking_within_max_steps:
+      s << "no sticking within " << max_steps << " steps";
+      break;
+    case StickingOutcome::undecided:
+      s << "undecided: no sticking in steps 1.." << c.steps_checked << " (certified); " << c.reason;
+      break;
+  }
+  return s.str();
+}
+
+namespace {
+
+std::string piece_key(const StickingCertificate& c) {
+  switch (c.outcome) {
+    case StickingOutcome::sticks: return std::to_string(*c.period);
+    case StickingOutcome::never_sticks: return "never";
+    case StickingOutcome::no_sticking_within_max_steps: return "none";
+    case StickingOutcome::undecided: return "undecided";
+  }
+  return "?";
+}
+
+}  // namespace
+
+RangeReport certify_sticking_range(const StickingQuestion& q, const RangeOptions& opt) {
+  if (!q.a_range) throw InputError("a-range", "is required");
+  const auto t0 = std::chrono::steady_clock::now();
+  RangeReport rep;
+  rep.lo = q.a_range->first;
+  rep.hi = q.a_range->second;
+  int runs = 0;
+  std::function<void(const mpq_class&, const mpq_class&, int)> rec = [&](const mpq_class& lo, const mpq_class& hi,
+                                                                         int depth) {
+    StickingQuestion sub = q;
+    sub.a_range = std::make_pair(lo, hi);
+    sub.schedule.stop_when_stalled = true;
+    StickingCertificate c = certify_sticking(sub);
+    ++runs;
+    if (c.outcome == StickingOutcome::undecided && depth < opt.max_depth && runs + 2 <= opt.max_pieces) {
+      const mpq_class mid = (lo + hi) / 2;
+      rec(lo, mid, depth + 1);
+      rec(mid, hi, depth + 1);
+      return;
+    }
+    rep.pieces.push_back({lo, hi, std::move(c)});
+  };
+  rec(rep.lo, rep.hi, 0);
+  rep.uncertified_length = 0;
+  for (const RangePiece& p : rep.pieces)
+    if (!p.cert.certified) rep.uncertified_length += p.hi - p.lo;
+
+  // The theorem: adjacent pieces with the same answer merged.
+  std::vector<std::pair<std::string, std::vector<std::pair<mpq_class, mpq_class>>>> groups;
+  std::string prev;
+  for (const RangePiece& p : rep.pieces) {
+    const std::string key = piece_key(p.cert);
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.first == key; });
+    if (it == groups.end()) {
+      groups.push_back({key, {}});
+      it = groups.end() - 1;
+    }
+    if (key == prev && !it->second.empty() && it->second.back().second == p.lo) it->second.back().second = p.hi;
+    else it->second.emplace_back(p.lo, p.hi);
+    prev = key;
+  }
+  std::ostringstream t;
+  t << "For every a in [" << exact_decimal(rep.lo) << ", " << exact_decimal(rep.hi)
+    << "] except a set of total length L = " << exact_decimal(rep.uncertified_length)
+    << ", the sticking period of the orbit from (theta, v) = (" << q.start.theta.text() << ", " << q.start.v.text()
+    << ") (eps = " << q.model.eps.text() << ", " << q.model.wall.text << " wall, " << name(q.model.downward)
+    << " downward-sticking convention) is:";
+  bool first = true;
+  for (const auto& [key, ivs] : groups) {
+    if (key == "undecided") continue;
+    t << (first ? " " : "; ");
+    first = false;
+    if (key == "never") t << "infinite (the orbit never sticks: trapped near a periodic attractor)";
+    else if (key == "none") t << "greater than " << q.max_steps << " (no sticking within " << q.max_steps << " steps)";
+    else t << key;
+    t << " for a in ";
+    for (size_t i = 0; i < ivs.size(); ++i)
+      t << (i ? " u " : "") << "[" << exact_decimal(ivs[i].first) << ", " << exact_decimal(ivs[i].second) << "]";
+  }
+  if (first) t << " (nothing certified)";
+  t << ".";
+  for (const auto& [key, ivs] : groups) {
+    if (key != "undecided") continue;
+    t << " The exceptional set is ";
+    for (size_t i = 0; i < ivs.size(); ++i)
+      t << (i ? " u " : "") << "[" << exact_decimal(ivs[i].first) << ", " << exact_decimal(ivs[i].second) << "]";
+    t << " (undecided at the precisions allowed).";
+  }
+  rep.theorem = t.str();
+  rep.seconds = detail::seconds_since(t0);
+  return rep;
+}
+
+}  // namespace bouncer

@@ -1,0 +1,199 @@
+// Proof: fixed points of the velocity-dependent model (paper sec. II.B.5).
+//
+// Paper: v* = 2^(5/3) c [arccoth(ap/8)]^(5/3) - 4 is a family of fixed points, theta* in
+// (0,1/2) arbitrary, p = 1, 2, ...; none for 0 < a <= 8/p; lambda1 = 1, lambda2 < 1.
+//
+// Derivation (by hand). A fixed point on the upward wall with flight time p: the landing
+// equation (v - 4)s - a s^2/2 + 4p = 0 (see fixed_point_family.cpp) has the root s = p iff
+// v* = ap/2 (condition 1). Then v^- = -v*, the relative speed is w = v* + 4 and
+// v' = 4 + eps(w) w = v* iff eps(w) = (v*-4)/(v*+4) (condition 2), i.e.
+// (w/c)^(3/5) = ln((v*+4)/(v*-4)) = 2 arccoth(v*/4). The paper solves condition 2 alone for
+// v after substituting condition 1 into the arccoth only, giving v = c (2 arccoth(ap/8))^(5/3)
+// - 4; but v must ALSO equal ap/2. Both hold iff
+//        c = c_p(a) := (ap/2 + 4) / (2 arccoth(ap/8))^(5/3)      (a relation between a, c, p),
+// so for given (a, c) there is generically no fixed point: the fixed points lie on the curves
+// c = c_p(a) of the (a, c) plane (zero-width tongues, as for constant eps). Necessarily
+// v* = 4 + eps w > 4, so a > 8/p: "none for a <= 8/p" is right. As for constant eps, the
+// flight must leave the first upward segment: theta* > theta_p := max(0, 1/2 - p + 8/a).
+// Stability: v' = 4 + h(w), h(w) = w exp(-(w/c)^(3/5)), w = a s(v) - v + 4, s'(v) = p/(v*+4):
+//   dv'/dv = h'(w) (a p/(v*+4) - 1) = eps (1 - (3/5) L) * eps, L = (w/c)^(3/5) = ln(1/eps):
+//        J = [[1, p/(v*+4)], [0, lambda2]],  lambda2 = eps^2 (1 - (3/5) ln(1/eps)),
+// and |lambda2| < 1 for all eps in (0,1) (max of e^(-2L)(3L/5 - 1) is 0.3 e^(-13/3) < 0.004).
+//
+// Computation (rigorous): for (p, a) in {(1,24), (2,10), (3,4), (1,9)}, c = c_p(a) is enclosed
+// in an interval and Model<Mpfi> built with it; ImpactMap<Mpfi> on boxes Theta x {ap/2}
+// covering [theta_p + delta, 1/2 - delta]: impact on the upward segment after p periods for
+// every theta and every c in the enclosure, image containing the start box; thin points
+// return within 2^-(bits/2); for (1, 9), theta < theta_p is certified not fixed. At a
+// generic c (a = 24, c = 1000) the paper's v* is certified not to be fixed. The Jacobian by
+// interval AD encloses 1 and lambda2.
+#include <gmpxx.h>
+
+#include <string>
+#include <vector>
+
+#include "certificate.hpp"
+#include "interval_jacobian.hpp"
+
+using namespace proofs;
+using bouncer::EventKind;
+using bouncer::ImpactMap;
+using bouncer::Law;
+using bouncer::State;
+using bouncer::StepResult;
+
+namespace {
+
+// 2 arccoth(x) = ln((x+1)/(x-1)), x > 1.
+Mpfi two_arccoth(const Mpfi& x) { return log((x + 1) / (x - 1)); }
+// The paper's v* = 2^(5/3) c arccoth(ap/8)^(5/3) - 4 = c (2 arccoth(ap/8))^(5/3) - 4.
+Mpfi paper_vstar(const Mpfi& a, long p, const Mpfi& c) {
+  const long bits = a.bits();
+  return c * powi(two_arccoth(a * p / 8), Mpfi(5, bits) / 3) - 4;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Certificate cert(
+      "veldep_fixed_points",
+      "sec. II.B.5: v* = 2^(5/3) c [arccoth(ap/8)]^(5/3) - 4, theta* in (0,1/2) arbitrary, p = 1, 2, ... is a family of "
+      "fixed points of the eps(v) = exp(-|(v- - fdot)/c|^(3/5)) model; none for 0 < a <= 8/p; lambda1 = 1, lambda2 < 1",
+      "derivation of the two fixed-point conditions; Model<Mpfi> with c enclosed from the relation c = c_p(a); "
+      "ImpactMap<Mpfi> on boxes covering the theta-family (adaptive bisection); interval AD Jacobian",
+      128, argc, argv);
+  const long bits = cert.bits();
+  const int delta_exp = cert.full() ? 24 : 12;
+  const int depth = cert.full() ? 36 : 14;
+  const long initial = cert.full() ? 256 : 16;
+  const mpq_class delta(mpz_class(1), mpz_class(1) << delta_exp);
+  cert.note("delta = 2^-" + std::to_string(delta_exp) + ", " + std::to_string(initial) +
+            " initial boxes, bisection depth <= " + std::to_string(depth));
+
+  SubClaim& sf = cert.add("family", "for given (a, c, p) the fixed points are theta* in (0,1/2), v* = c(2 arccoth(ap/8))^(5/3) - 4");
+  SubClaim& sn = cert.add("none-for-small-a", "no fixed points for 0 < a <= 8/p");
+  SubClaim& ss = cert.add("stability", "lambda1 = 1, lambda2 < 1 regardless of parameter values");
+  bool f_ok = true, s_ok = true;
+
+  struct Case { long p; long a; };
+  const std::vector<Case> cases = {{1, 24}, {2, 10}, {3, 4}, {1, 9}};
+  for (const Case& k : cases) {
+    const mpq_class aq(k.a), vq = aq * k.p / 2;
+    mpq_class theta_p = mpq_class(1, 2) - k.p + 8 / aq;
+    if (theta_p < 0) theta_p = 0;
+    const Mpfi A(k.a, bits), V = qi(vq, bits);
+    const Mpfi C = (V + 4) / powi(two_arccoth(A * k.p / 8), Mpfi(5, bits) / 3);  // c_p(a)
+    const bouncer::Model<Mpfi> model = triangle_model(Law::veldep, A, Mpfi(1, bits), C, bits);
+    ImpactMap<Mpfi> map(model);
+    ImpactMap<Mpfi> walk_map(triangle_model(Law::veldep, A, Mpfi(1, bits), C, bits, 1L << 20));
+    long fallback = 0;
+    auto step = [&](const Mpfi& th, const Mpfi& vv, StepResult<Mpfi>& r) {
+      std::string why = try_step(map, State<Mpfi>{th, vv}, r);
+      if (why.find("whole period") != std::string::npos) {
+        why = try_step(walk_map, State<Mpfi>{th, vv}, r);
+        if (why.empty()) ++fallback;
+      }
+      return why;
+    };
+    auto fixed = [&](const Mpfi& box) -> std::string {
+      StepResult<Mpfi> r;
+      std::string why = step(box, V, r);
+      if (!why.empty()) return why;
+      if (r.kind != EventKind::impact || r.segment != 0 || r.periods != k.p) return "other branch";
+      if (!r.next.theta.contains(box) || !r.next.v.contains(V)) return "image misses the start box";
+      return "";
+    };
+    Cover cf;
+    cover(qr(theta_p + delta, bits), qr(mpq_class(1, 2) - delta, bits), initial, depth, fixed, cf);
+    std::string line = "p=" + std::to_string(k.p) + " a=" + std::to_string(k.a) + ": v* = ap/2 = " + qs(vq) +
+                       ", c = c_p(a) in " + s(C) + ", theta_p = " + qs(theta_p) + "; fixed on [theta_p+delta, 1/2-delta]: " +
+                       describe(cf);
+    if (!cf.complete()) f_ok = false;
+    // Thin points.
+    const Mpfi tol = exp(log(Mpfi(2, bits)) * (-(bits / 2))) * (V + 1) * (C + 1);
+    for (int j = 1; j <= 3; ++j) {
+      const Mpfi th = qi(theta_p + (mpq_class(1, 2) - theta_p) * (2 * j - 1) / 6, bits);
+      StepResult<Mpfi> r;
+      if (!step(th, V, r).empty() || !le(abs(r.next.theta - th), tol) || !le(abs(r.next.v - V), tol)) {
+        f_ok = false;
+        line += " THIN POINT FAILED";
+      }
+    }
+    // The paper's formula on the curve c = c_p(a) gives ap/2 (consistent there).
+    const Mpfi pv = paper_vstar(A, k.p, C);
+    line += "; paper's formula at c = c_p(a): " + s(pv) + (pv.contains(V) ? " (contains ap/2)" : " (MISSES ap/2)");
+    if (!pv.contains(V)) f_ok = false;
+    if (theta_p > 0) {
+      auto not_fixed = [&](const Mpfi& box) -> std::string {
+        StepResult<Mpfi> r;
+        std::string why = step(box, V, r);
+        if (!why.empty()) return why;
+        return disjoint(r.next.theta, box) || disjoint(r.next.v, V) ? "" : "image overlaps the start box";
+      };
+      Cover nf;
+      cover(qr(delta, bits), qr(theta_p - delta, bits), initial, depth, not_fixed, nf);
+      line += "; NOT fixed on [delta, theta_p-delta]: " + describe(nf);
+      if (!nf.complete()) f_ok = false;
+    }
+    if (fallback) line += " (" + std::to_string(fallback) + " steps via the walk without the jump shortcut)";
+    sf.evidence.push_back(line);
+
+    // Jacobian by interval AD at theta = (theta_p + 1/2)/2, against the hand formula.
+    try {
+      ImpactMap<IDual> dmap(lift(triangle_model(Law::veldep, A, Mpfi(1, bits), C, bits, 1L << 20)));
+      LinearizedSteps L = linearize(dmap, qi((theta_p + mpq_class(1, 2)) / 2, bits), V, 1);
+      const Mpfi eps = (V - 4) / (V + 4);
+      const Mpfi lam2 = eps * eps * (1 - Mpfi(3, bits) / 5 * log(1 / eps));
+      auto ev = eigenvalues(L.J);
+      const bool ok = ev && ev->hi.contains(Mpfi(1, bits)) && !disjoint(ev->lo, lam2) &&
+                      lt(abs(ev->lo), Mpfi(1, bits)) && !disjoint(L.J.a12, Mpfi(k.p, bits) / (V + 4));
+      if (!ok) s_ok = false;
+      ss.evidence.push_back("p=" + std::to_string(k.p) + " a=" + std::to_string(k.a) + ": eps(w*) = (v*-4)/(v*+4) = " +
+                            qs((vq - 4) / (vq + 4)) + ", J in " + describe(L.J) + "; eigenvalues in " +
+                            (ev ? s(ev->hi) + ", " + s(ev->lo) : std::string("?")) + "; hand lambda2 = eps^2(1 - (3/5)ln(1/eps)) in " +
+                            s(lam2));
+    } catch (const bouncer::Undecided& u) {
+      s_ok = false;
+      ss.evidence.push_back(std::string("AD step undecided: ") + u.what());
+    }
+  }
+
+  // At a generic c the paper's v* is not a fixed point (a = 24, p = 1, c = 1000).
+  bool generic_ok = true;
+  {
+    const Mpfi A(24, bits), C(1000, bits);
+    const Mpfi pv = paper_vstar(A, 1, C);
+    ImpactMap<Mpfi> map(triangle_model(Law::veldep, A, Mpfi(1, bits), C, bits));
+    std::string txt = "a = 24, c = 1000, p = 1: paper's v* in " + s(pv) + " (ap/2 = 12);";
+    for (int j = 1; j <= 3; ++j) {
+      const Mpfi th = q(j, 8, bits);
+      StepResult<Mpfi> r;
+      const std::string why = try_step(map, State<Mpfi>{th, pv}, r);
+      const bool moved = why.empty() && (disjoint(r.next.theta, th) || disjoint(r.next.v, pv));
+      generic_ok = generic_ok && moved;
+      mpq_class jq(j, 8);
+      jq.canonicalize();
+      txt += " (" + qs(jq) + ", v*) -> " + (why.empty() ? "(" + s(r.next.theta) + ", " + s(r.next.v) + ")" : why) + ";";
+    }
+    sf.evidence.push_back(txt + (generic_ok ? " not fixed" : " NOT CERTIFIED"));
+  }
+
+  if (f_ok && generic_ok) {
+    sf.verdict = Verdict::corrected;
+    sf.statement = "fixed points (theta*, v*) with flight p exist iff v* = ap/2 AND c = c_p(a) = (ap/2 + 4)/(2 arccoth(ap/8))^(5/3) "
+                   "(a curve in the (a, c) plane for each p; the paper's v* formula is condition 2 alone and equals ap/2 only "
+                   "on that curve), for theta* in (max(0, 1/2 - p + 8/a), 1/2); at other (a, c) there is no such fixed point "
+                   "(certified at a = 24, c = 1000 for the paper's v*)";
+  }
+  sn.verdict = Verdict::confirmed;
+  sn.statement = "v* = ap/2 and v* = 4 + eps w > 4 force a > 8/p (exact argument); conversely every a > 8/p has exactly one c = c_p(a)";
+  if (s_ok) {
+    ss.verdict = Verdict::confirmed;
+    ss.statement = "J = [[1, p/(v*+4)], [0, lambda2]], lambda2 = eps^2 (1 - (3/5) ln(1/eps)), eps = (v*-4)/(v*+4): |lambda2| < 1 "
+                   "for every eps in (0,1) (interval AD enclosures agree at 4 cases)";
+  }
+  cert.conclude(Verdict::corrected,
+                "Velocity-dependent fixed points with flight p (v* = ap/2) exist only when c = (ap/2+4)/(2 arccoth(ap/8))^(5/3), "
+                "theta* in (max(0, 1/2-p+8/a), 1/2); none for a <= 8/p; multipliers 1 and eps^2(1 - 0.6 ln(1/eps)), |.| < 1.");
+  return cert.finish();
+}

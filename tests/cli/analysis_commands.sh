@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# End-to-end: `bouncer periodic`, `bouncer lyapunov` and `bouncer classify`.
+#   - the JSON summary parses and carries the documented fields and the provenance;
+#   - the values agree with independent truth: the eq. 5 fixed point v* = 12 at a = 24,
+#     eps = 0.5 with multipliers {1, eps^2}; sticking gives lambda = -inf and class
+#     sticking; the period-2 orbit of a = 19, eps = 0.9 has lambda = log(0.9);
+#   - a scene file gives the same result as the command line;
+#   - bad input exits 2 with one line on stderr naming the option, nothing on stdout.
+# Usage: bash analysis_commands.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash analysis_commands.sh <bouncer-binary> <source-dir>}
+[[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+
+# json NAME FILTER EXPECTED FILE: jq -r FILTER FILE must print EXPECTED.
+check() {
+  local got
+  got=$(jq -r "$2" "$4" 2>&1) || { fail "$1" "jq failed on $4: $got"; return; }
+  [[ $got == "$3" ]] || fail "$1" "$2 = '$got', expected '$3'"
+}
+
+# --- periodic -------------------------------------------------------------------------
+"$BOUNCER" periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,11.5 --json >"$TMP/p.json"
+check periodic.parse '.converged' true "$TMP/p.json"
+check periodic.fields '[has("points"), has("multipliers"), has("provenance")] | all' true "$TMP/p.json"
+check periodic.command '.provenance.command' periodic "$TMP/p.json"
+check periodic.v '(.points[0][1] | tonumber) - 12 | fabs < 1e-12' true "$TMP/p.json"
+check periodic.mu1 '(.multipliers[0][0] | tonumber) - 1 | fabs < 1e-12' true "$TMP/p.json"
+check periodic.mu2 '(.multipliers[1][0] | tonumber) - 0.25 | fabs < 1e-12' true "$TMP/p.json"
+# Points round-trip: the MPFR run prints more digits than a double holds.
+"$BOUNCER" periodic --model constant --a 19 --eps 0.9 --period 2 --precision mpfr:200 --json >"$TMP/p2.json"
+check periodic.mpfr '.converged and (.points | length) == 2 and .complex_pair' true "$TMP/p2.json"
+check periodic.digits '(.points[0][0] | length) > 40' true "$TMP/p2.json"
+check periodic.modulus '(.multiplier_moduli[0] - 0.81) | fabs < 1e-12' true "$TMP/p2.json"
+check periodic.bits '.provenance.bits' 200 "$TMP/p2.json"
+# Text output names the same fields.
+"$BOUNCER" periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,11.5 >"$TMP/p.txt"
+grep -q '^converged: true$' "$TMP/p.txt" || fail periodic.text "no 'converged: true' line"
+grep -q '^# bouncer ' "$TMP/p.txt" || fail periodic.text "no provenance comment lines"
+
+# --- lyapunov -------------------------------------------------------------------------
+"$BOUNCER" lyapunov --model constant --a 30 --eps 0.3 --theta 0.3 --v 9 --transient 10 --steps 100 --json \
+  >"$TMP/l1.json" 2>/dev/null
+check lyapunov.sticking '.lambda' -inf "$TMP/l1.json"
+check lyapunov.contracted '.contracted' true "$TMP/l1.json"
+"$BOUNCER" lyapunov --model constant --a 19 --eps 0.9 --theta 0.17 --v 14.1 --transient 500 --steps 4000 --json \
+  >"$TMP/l2.json"
+check lyapunov.fields '[has("lambda"), has("stderr"), has("steps")] | all' true "$TMP/l2.json"
+check lyapunov.logeps '(.lambda - (0.9 | log)) | fabs < 2e-3' true "$TMP/l2.json"
+check lyapunov.steps '.steps' 4000 "$TMP/l2.json"
+
+# --- classify -------------------------------------------------------------------------
+"$BOUNCER" classify --model constant --a 24 --eps 0.5 --theta 0.3 --v 11.5 --json >"$TMP/c1.json"
+check classify.fixed '.class + " " + (.period | tostring)' "fixed 1" "$TMP/c1.json"
+"$BOUNCER" classify --model constant --a 24 --eps 0.1 --theta 0.5 --v 4 --json >"$TMP/c2.json"
+check classify.sticking '.class + " " + (.period | tostring)' "sticking 1" "$TMP/c2.json"
+"$BOUNCER" classify --model elastic --a 16 --theta 0.25 --v 8 --transient 1000 --steps 200 --json >"$TMP/c3.json"
+check classify.unbounded '.class' unbounded "$TMP/c3.json"
+"$BOUNCER" classify --model constant --a 19 --eps 0.9 --theta 0.17 --v 14.1 --precision mpfr:128 --json >"$TMP/c4.json"
+check classify.periodic '.class + " " + (.period | tostring)' "periodic 2" "$TMP/c4.json"
+# Scene file = command line.
+cat >"$TMP/scene.toml" <<'TOML'
+command = "classify"
+model = "constant"
+a = "24"
+eps = "0.5"
+theta = "0.3"
+v = "11.5"
+TOML
+"$BOUNCER" classify --scene "$TMP/scene.toml" --json >"$TMP/c5.json"
+check classify.scene '.class + " " + .evidence' "$(jq -r '.class + " " + .evidence' "$TMP/c1.json")" "$TMP/c5.json"
+
+# --- bad input: exit 2, one line naming the option, nothing on stdout ------------------
+bad() {
+  local name=$1 regex=$2
+  shift 2
+  local rc=0
+  "$BOUNCER" "$@" >"$TMP/out" 2>"$TMP/err" || rc=$?
+  [[ $rc -eq 2 ]] || fail "$name" "exit status $rc, expected 2 (bouncer $*)"
+  [[ $(wc -l <"$TMP/err") -eq 1 ]] || fail "$name" "expected one line on stderr: $(cat "$TMP/err")"
+  grep -qE -- "$regex" "$TMP/err" || fail "$name" "stderr does not match /$regex/: $(cat "$TMP/err")"
+  [[ ! -s $TMP/out ]] || fail "$name" "stdout not empty"
+}
+bad periodic.noperiod 'period' periodic --model constant --a 24 --eps 0.5
+bad periodic.period0 'period.*\[1, 100\]' periodic --model constant --a 24 --eps 0.5 --period 0
+bad periodic.guess 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3
+bad periodic.guessbelow 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,1
+bad periodic.precision 'precision.*allowed: double, mpfr:BITS' periodic --model constant --a 24 --eps 0.5 --period 1 --precision interval:64
+bad lyapunov.theta 'theta' lyapunov --model elastic --a 20 --theta 1.5 --v 9
+bad lyapunov.steps 'steps' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --steps 0
+bad lyapunov.precision 'precision.*allowed' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --precision quad
+bad lyapunov.a ' a: |^bouncer: a' lyapunov --model elastic --a -1 --theta 0.3 --v 9
+bad classify.v 'v' classify --model elastic --a 20 --theta 0.3
+bad classify.maxperiod 'max-period' classify --model elastic --a 20 --theta 0.3 --v 9 --steps 100 --max-period 64
+bad classify.precision 'precision.*allowed' classify --model elastic --a 20 --theta 0.3 --v 9 --precision long
+bad classify.eps 'eps' classify --model elastic --a 20 --eps 0.5 --theta 0.3 --v 9
+
+if [[ $failures -ne 0 ]]; then
+  echo "analysis_commands: $failures failure(s)" >&2
+  exit 1
+fi
+echo "analysis_commands: all checks passed"

@@ -1,0 +1,270 @@
+// The deterministic grid runner: the same bytes whatever the thread count, shard split or
+// interruption. The truth each run is compared with is a plain serial loop over the items.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "bouncer/analysis/grid.hpp"
+#include "bouncer/model/impact_map.hpp"
+#include "bouncer/model/spec.hpp"
+
+using namespace bouncer;
+namespace fs = std::filesystem;
+
+namespace {
+
+ModelSpec constant_model(const char* a, const char* eps) {
+  ModelSpec m;
+  m.law = Law::constant;
+  m.a = *Decimal::parse(a);
+  m.eps = *Decimal::parse(eps);
+  m.wall = parse_wall("wall", "triangle");
+  validate(m);
+  return m;
+}
+
+// Item i: the state after `steps` impact-map steps from a grid point, as exact text.
+template <class T>
+std::string orbit_end(const ImpactMap<T>& map, long i, long steps, long bits) {
+  using Tr = ScalarTraits<T>;
+  const T theta = Tr::from_int(2 * (i % 16) + 1, bits) / 32;  // cell centres in [0, 1)
+  const T v = Tr::from_int(5 + i / 16, bits);
+  State<T> s{theta, v};
+  std::string kinds;
+  try {
+    for (long n = 0; n < steps; ++n) {
+      const StepResult<T> r = map.step(s);
+      s = r.next;
+      kinds += r.kind == EventKind::sticking ? 's' : 'i';
+    }
+  } catch (const Undecided& u) {
+    return std::string("undecided ") + u.what();
+  }
+  return Tr::to_string(s.theta) + "," + Tr::to_string(s.v) + "," + kinds.substr(kinds.size() > 8 ? kinds.size() - 8 : 0);
+}
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::random_device rd;
+    path = fs::temp_directory_path() / ("bouncer-test-grid-" + std::to_string(rd()) + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string sub(const std::string& name) const { return (path / name).string(); }
+};
+
+const ImpactMap<double>& double_map() {
+  static const ImpactMap<double> m(make_model<double>(constant_model("24", "0.5"), 53));
+  return m;
+}
+
+std::vector<std::string> serial(long items, const std::function<std::string(long)>& f) {
+  std::vector<std::string> out;
+  for (long i = 0; i < items; ++i) out.push_back(f(i));
+  return out;
+}
+
+}  // namespace
+
+TEST(Grid, ShardParsing) {
+  const Shard s = parse_shard("shard", "2/5");
+  EXPECT_EQ(s.index, 2);
+  EXPECT_EQ(s.count, 5);
+  for (const char* bad : {"5/5", "1/0", "-1/3", "a/b", "1", "1/", "/2", "1/2/3", " 1/2"})
+    EXPECT_THROW(parse_shard("shard", bad), InputError) << bad;
+}
+
+TEST(Grid, TilesCoverTheItemsOnceAndShardsPartitionThem) {
+  GridPlan plan{1001, 64};
+  EXPECT_EQ(plan.tiles(), 16);
+  long covered = 0;
+  for (long t = 0; t < plan.tiles(); ++t) {
+    covered += plan.end(t) - plan.begin(t);
+    int owners = 0;
+    for (long i = 0; i < 3; ++i) owners += GridPlan::in_shard(t, Shard{i, 3});
+    EXPECT_EQ(owners, 1);
+  }
+  EXPECT_EQ(covered, 1001);
+}
+
+TEST(Grid, SameResultAtOneAndTwoThreadsAsASerialLoop) {
+  const auto f = [](long i) { return orbit_end(double_map(), i, 300, 53); };
+  GridPlan plan{160, 7};  // tiles of uneven length on purpose
+  const auto truth = serial(plan.items, f);
+  for (unsigned threads : {1u, 2u, 3u}) {
+    GridOptions o;
+    o.threads = threads;
+    const GridResult r = run_grid(plan, f, o);
+    ASSERT_TRUE(r.complete());
+    EXPECT_EQ(r.items, truth) << threads << " threads";
+  }
+}
+
+TEST(Grid, MpfrScanOnTwoThreadsEqualsOneThread) {
+  // 200 bits: precision travels with each value, no process-wide default is involved.
+  const ImpactMap<Mpfr> map(make_model<Mpfr>(constant_model("19", "0.9"), 200));
+  const auto f = [&map](long i) { return orbit_end(map, i, 120, 200); };
+  GridPlan plan{48, 5};
+  GridOptions one, two;
+  one.threads = 1;
+  two.threads = 2;
+  const GridResult r1 = run_grid(plan, f, one);
+  const GridResult r2 = run_grid(plan, f, two);
+  ASSERT_TRUE(r1.complete() && r2.complete());
+  EXPECT_EQ(r1.items, r2.items);
+  EXPECT_EQ(r1.items, serial(plan.items, f));
+  // The text really carries 200-bit numbers (more digits than a double holds).
+  EXPECT_GT(r1.items[3].find(','), 40u) << r1.items[3];
+}
+
+TEST(Grid, ShardsMergedEqualTheWholeRun) {
+  TempDir tmp;
+  const auto f = [](long i) { return orbit_end(double_map(), i, 200, 53); };
+  GridPlan plan{150, 8};
+  const auto truth = serial(plan.items, f);
+  const std::string dir = tmp.sub("job.tiles");
+  for (long s = 0; s < 3; ++s) {
+    GridOptions o;
+    o.threads = 2;
+    o.shard = Shard{s, 3};
+    o.tile_dir = dir;
+    o.job_key = "k1";
+    const GridResult r = run_grid(plan, f, o);
+    // A shard computes exactly its own tiles (plus what earlier shards saved).
+    for (long t = 0; t < plan.tiles(); ++t)
+      EXPECT_EQ(static_cast<bool>(r.have_tile[static_cast<size_t>(t)]), t % 3 <= s) << "shard " << s << " tile " << t;
+  }
+  GridOptions merge;
+  merge.compute = false;
+  merge.tile_dir = dir;
+  merge.job_key = "k1";
+  const GridResult all = run_grid(plan, [](long) -> std::string { throw std::logic_error("merge must not compute"); }, merge);
+  ASSERT_TRUE(all.complete());
+  EXPECT_EQ(all.tiles_loaded, plan.tiles());
+  EXPECT_EQ(all.items, truth);
+}
+
+TEST(Grid, ShardsInSeparateDirectoriesImportIntoOne) {
+  TempDir tmp;
+  const auto f = [](long i) { return "item " + std::to_string(i * i); };
+  GridPlan plan{40, 3};
+  for (long s = 0; s < 2; ++s) {
+    GridOptions o;
+    o.shard = Shard{s, 2};
+    o.tile_dir = tmp.sub("part" + std::to_string(s) + ".tiles");
+    o.job_key = "k";
+    run_grid(plan, f, o);
+  }
+  const std::string out = tmp.sub("out.tiles");
+  fs::create_directories(out);
+  EXPECT_EQ(import_tiles(tmp.sub("part0.tiles"), out, plan, "k") + import_tiles(tmp.sub("part1.tiles"), out, plan, "k"),
+            plan.tiles());
+  GridOptions merge;
+  merge.compute = false;
+  merge.tile_dir = out;
+  merge.job_key = "k";
+  const GridResult r = run_grid(plan, f, merge);
+  ASSERT_TRUE(r.complete());
+  EXPECT_EQ(r.items, serial(plan.items, f));
+}
+
+TEST(Grid, ResumeAfterDeletingTilesRecomputesOnlyThoseAndGivesTheSameBytes) {
+  TempDir tmp;
+  std::atomic<long> calls{0};
+  const auto f = [&calls](long i) {
+    ++calls;
+    return orbit_end(double_map(), i, 150, 53);
+  };
+  GridPlan plan{100, 9};
+  GridOptions o;
+  o.threads = 2;
+  o.tile_dir = tmp.sub("run.tiles");
+  o.job_key = "resume";
+  const GridResult first = run_grid(plan, f, o);
+  ASSERT_TRUE(first.complete());
+  EXPECT_EQ(calls.load(), plan.items);
+  // An interrupted run: some tiles never written, one left half-written.
+  long deleted_items = 0;
+  for (long t : {0L, 4L, plan.tiles() - 1}) {
+    fs::remove(tile_path(o.tile_dir, t));
+    deleted_items += plan.end(t) - plan.begin(t);
+  }
+  {
+    const std::string p = tile_path(o.tile_dir, 6);
+    std::string text;
+    std::ifstream in(p, std::ios::binary);
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    in.close();
+    std::ofstream(p, std::ios::binary | std::ios::trunc) << text.substr(0, text.size() / 2);
+    deleted_items += plan.end(6) - plan.begin(6);
+  }
+  calls = 0;
+  const GridResult second = run_grid(plan, f, o);
+  ASSERT_TRUE(second.complete());
+  EXPECT_EQ(calls.load(), deleted_items);
+  EXPECT_EQ(second.tiles_computed, 4);
+  EXPECT_EQ(second.items, first.items);
+  EXPECT_EQ(second.items, serial(plan.items, [](long i) { return orbit_end(double_map(), i, 150, 53); }));
+}
+
+TEST(Grid, TilesOfAnotherJobAreNotUsed) {
+  TempDir tmp;
+  GridPlan plan{20, 4};
+  GridOptions o;
+  o.tile_dir = tmp.sub("t");
+  o.job_key = "job-a";
+  run_grid(plan, [](long i) { return "a" + std::to_string(i); }, o);
+  o.job_key = "job-b";
+  const GridResult r = run_grid(plan, [](long i) { return "b" + std::to_string(i); }, o);
+  EXPECT_EQ(r.tiles_loaded, 0);
+  EXPECT_EQ(r.items[7], "b7");
+  std::vector<std::string> items;
+  EXPECT_TRUE(read_tile(o.tile_dir, 0, plan, "job-b", items));
+  EXPECT_FALSE(read_tile(o.tile_dir, 0, GridPlan{20, 5}, "job-b", items));  // other item range
+}
+
+TEST(Grid, ItemTextsWithNewlinesAndEmptyTextsRoundTripThroughTiles) {
+  TempDir tmp;
+  GridPlan plan{10, 3};
+  const auto f = [](long i) { return i % 3 == 0 ? std::string() : "line1\nitem " + std::to_string(i) + "\nend\n"; };
+  GridOptions o;
+  o.tile_dir = tmp.sub("t");
+  o.job_key = "nl";
+  run_grid(plan, f, o);
+  o.compute = false;
+  const GridResult r = run_grid(plan, f, o);
+  ASSERT_TRUE(r.complete());
+  EXPECT_EQ(r.items, serial(plan.items, f));
+}
+
+TEST(Grid, AnItemErrorStopsTheRunAndKeepsFinishedTiles) {
+  TempDir tmp;
+  GridPlan plan{30, 5};
+  GridOptions o;
+  o.threads = 1;
+  o.tile_dir = tmp.sub("t");
+  o.job_key = "err";
+  EXPECT_THROW(run_grid(plan, [](long i) -> std::string {
+                 if (i == 17) throw std::runtime_error("boom");
+                 return std::to_string(i);
+               }, o),
+               std::runtime_error);
+  std::vector<std::string> items;
+  EXPECT_TRUE(read_tile(o.tile_dir, 0, plan, "err", items));
+  EXPECT_FALSE(read_tile(o.tile_dir, 3, plan, "err", items));
+  EXPECT_FALSE(fs::exists(tile_path(o.tile_dir, 3) + ".partial"));
+}
+
+TEST(Grid, JobFingerprintIsStableAndSensitive) {
+  EXPECT_EQ(job_fingerprint("abc"), job_fingerprint("abc"));
+  EXPECT_NE(job_fingerprint("abc"), job_fingerprint("abd"));
+  EXPECT_EQ(job_fingerprint("").size(), 16u);
+  EXPECT_EQ(job_fingerprint(""), "cbf29ce484222325");  // FNV-1a 64 offset basis
+}

@@ -1,0 +1,265 @@
+// PNG figures decoded back with libpng (size, colours where they belong, tEXt provenance,
+// atomic writes) and the properties of the tick generator.
+#include <gtest/gtest.h>
+#include <png.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <random>
+#include <set>
+
+#include "bouncer/io/plot.hpp"
+
+using namespace bouncer;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Decoded {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgb;
+  std::map<std::string, std::string> text;
+  Rgb at(int x, int y) const {
+    const size_t i = (static_cast<size_t>(y) * width + x) * 3;
+    return Rgb{rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+};
+
+// An independent reader: libpng's classic API, any colour type converted to RGB8.
+bool decode(const std::string& path, Decoded& out) {
+  FILE* fp = std::fopen(path.c_str(), "rb");
+  if (!fp) return false;
+  unsigned char sig[8];
+  if (std::fread(sig, 1, 8, fp) != 8 || png_sig_cmp(sig, 0, 8) != 0) {
+    std::fclose(fp);
+    return false;
+  }
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png_create_info_struct(png);
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(fp);
+    return false;
+  }
+  png_init_io(png, fp);
+  png_set_sig_bytes(png, 8);
+  png_read_info(png, info);
+  out.width = static_cast<int>(png_get_image_width(png, info));
+  out.height = static_cast<int>(png_get_image_height(png, info));
+  png_set_expand(png);
+  png_set_strip_16(png);
+  png_set_strip_alpha(png);
+  png_set_gray_to_rgb(png);
+  png_read_update_info(png, info);
+  EXPECT_EQ(png_get_rowbytes(png, info), static_cast<size_t>(out.width) * 3);
+  out.rgb.assign(static_cast<size_t>(out.width) * out.height * 3, 0);
+  std::vector<png_bytep> rows(static_cast<size_t>(out.height));
+  for (int y = 0; y < out.height; ++y) rows[static_cast<size_t>(y)] = out.rgb.data() + static_cast<size_t>(y) * out.width * 3;
+  png_read_image(png, rows.data());
+  png_read_end(png, info);
+  png_textp text = nullptr;
+  int n = 0;
+  png_get_text(png, info, &text, &n);
+  for (int i = 0; i < n; ++i) out.text[text[i].key] = std::string(text[i].text, text[i].text_length);
+  png_destroy_read_struct(&png, &info, nullptr);
+  std::fclose(fp);
+  return true;
+}
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::random_device rd;
+    path = fs::temp_directory_path() / ("bouncer-test-plot-" + std::to_string(rd()) + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+bool same(Rgb a, Rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+
+}  // namespace
+
+TEST(Plot, FigureDecodesToItsSizeWithMetadataAndNoPartialFile) {
+  TempDir tmp;
+  Figure f;
+  f.title = "Test θ ε";
+  f.xlabel = "x";
+  f.ylabel = "y";
+  f.width = 640;
+  f.height = 480;
+  Series s;
+  s.label = "line";
+  s.lines = true;
+  s.color = Rgb{200, 0, 0};
+  for (int i = 0; i <= 100; ++i) {
+    s.x.push_back(i);
+    s.y.push_back(i * i);
+  }
+  f.series.push_back(s);
+  f.metadata = {{"Title", "Test"}, {"bouncer:provenance", "{\"command\": \"test\"}"}};
+  const std::string path = (tmp.path / "fig.png").string();
+  write_png(path, f);
+  EXPECT_FALSE(fs::exists(path + ".partial"));
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 640);
+  EXPECT_EQ(d.height, 480);
+  EXPECT_EQ(d.text["Title"], "Test");
+  EXPECT_EQ(d.text["bouncer:provenance"], "{\"command\": \"test\"}");
+  EXPECT_NE(d.text["Software"].find("bouncer"), std::string::npos);
+  // Background white at the corner; the series colour is drawn somewhere.
+  EXPECT_TRUE(same(d.at(0, 0), Rgb{255, 255, 255}));
+  long red = 0;
+  for (int y = 0; y < d.height; ++y)
+    for (int x = 0; x < d.width; ++x) red += same(d.at(x, y), Rgb{200, 0, 0});
+  EXPECT_GT(red, 200);
+}
+
+TEST(Plot, RasterCellsLandInTheirQuadrants) {
+  TempDir tmp;
+  ImageFigure f;
+  f.title = "quadrants";
+  f.width = 500;
+  f.height = 400;
+  Raster& r = f.raster;
+  r.nx = 2;
+  r.ny = 2;
+  const Rgb tl{250, 0, 0}, tr{0, 250, 0}, bl{0, 0, 250}, br{250, 250, 0};
+  r.pixels = {tl, tr, bl, br};  // row 0 is the top
+  r.legend = {{"a", Rgb{1, 2, 3}}};
+  const std::string path = (tmp.path / "img.png").string();
+  write_png(path, f);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 500);
+  EXPECT_EQ(d.height, 400);
+  auto centroid = [&](Rgb c, double& cx, double& cy) {
+    long n = 0;
+    cx = cy = 0;
+    for (int y = 0; y < d.height; ++y)
+      for (int x = 0; x < d.width; ++x)
+        if (same(d.at(x, y), c)) { cx += x; cy += y; ++n; }
+    if (n) { cx /= n; cy /= n; }
+    return n;
+  };
+  double x1, y1, x2, y2, x3, y3, x4, y4;
+  ASSERT_GT(centroid(tl, x1, y1), 1000);
+  ASSERT_GT(centroid(tr, x2, y2), 1000);
+  ASSERT_GT(centroid(bl, x3, y3), 1000);
+  ASSERT_GT(centroid(br, x4, y4), 1000);
+  EXPECT_LT(x1, x2);
+  EXPECT_LT(y1, y3);
+  EXPECT_LT(x3, x4);
+  EXPECT_LT(y2, y4);
+  EXPECT_NEAR(x1, x3, 2);
+  EXPECT_NEAR(y1, y2, 2);
+}
+
+TEST(Plot, FailedWriteThrowsAndLeavesNothing) {
+  TempDir tmp;
+  Figure f;
+  const std::string path = (tmp.path / "missing-dir" / "fig.png").string();
+  EXPECT_THROW(write_png(path, f), std::runtime_error);
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(path + ".partial"));
+  ImageFigure bad;
+  bad.raster.nx = 3;
+  bad.raster.ny = 3;  // no pixels
+  EXPECT_THROW(write_png((tmp.path / "bad.png").string(), bad), std::runtime_error);
+  EXPECT_FALSE(fs::exists(tmp.path / "bad.png"));
+}
+
+TEST(Plot, LogAxisDrawsPositiveData) {
+  TempDir tmp;
+  Figure f;
+  f.log_y = true;
+  Series s;
+  s.color = Rgb{0, 0, 200};
+  for (int i = 0; i < 50; ++i) {
+    s.x.push_back(i);
+    s.y.push_back(std::pow(10.0, -i / 10.0));
+  }
+  s.x.push_back(51);
+  s.y.push_back(-1);  // not drawable on a log axis: skipped, not an error
+  f.series.push_back(s);
+  const std::string path = (tmp.path / "log.png").string();
+  write_png(path, f);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 900);
+  EXPECT_EQ(d.height, 600);
+}
+
+TEST(Ticks, NiceValuesInsideTheRangeEvenlySpacedWithDistinctLabels) {
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> mag(-6, 8), u(-1, 1);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double scale = std::pow(10.0, mag(rng));
+    double lo = u(rng) * scale, hi = lo + std::fabs(u(rng)) * scale + scale * 1e-3;
+    const int target = 3 + trial % 8;
+    const Ticks t = nice_ticks(lo, hi, target);
+    ASSERT_GE(t.values.size(), 2u) << lo << " " << hi;
+    EXPECT_LE(t.values.size(), static_cast<size_t>(2 * target + 2)) << lo << " " << hi << " " << target;
+    ASSERT_EQ(t.labels.size(), t.values.size());
+    // Step = 1, 2 or 5 times a power of ten.
+    const double m = t.step / std::pow(10.0, std::floor(std::log10(t.step) + 1e-12));
+    EXPECT_TRUE(std::fabs(m - 1) < 1e-9 || std::fabs(m - 2) < 1e-9 || std::fabs(m - 5) < 1e-9) << t.step;
+    std::set<std::string> labels(t.labels.begin(), t.labels.end());
+    EXPECT_EQ(labels.size(), t.labels.size()) << lo << " " << hi;
+    for (size_t i = 0; i < t.values.size(); ++i) {
+      EXPECT_GE(t.values[i], lo - 1e-9 * std::fabs(t.step));
+      EXPECT_LE(t.values[i], hi + 1e-9 * std::fabs(t.step));
+      // A tick is an integer multiple of the step, and its label reads back as its value.
+      EXPECT_NEAR(t.values[i] / t.step, std::round(t.values[i] / t.step), 1e-6);
+      EXPECT_NEAR(std::strtod(t.labels[i].c_str(), nullptr), t.values[i], std::fabs(t.step) * 1e-3) << t.labels[i];
+      if (i) {
+        EXPECT_NEAR(t.values[i] - t.values[i - 1], t.step, t.step * 1e-9);
+      }
+    }
+  }
+}
+
+TEST(Ticks, ExamplesAPersonWouldExpect) {
+  const Ticks t = nice_ticks(0, 1, 5);
+  EXPECT_EQ(t.labels, (std::vector<std::string>{"0.0", "0.2", "0.4", "0.6", "0.8", "1.0"}));
+  const Ticks a = nice_ticks(28, 30, 4);
+  EXPECT_EQ(a.labels, (std::vector<std::string>{"28.0", "28.5", "29.0", "29.5", "30.0"}));
+  const Ticks z = nice_ticks(-1e-17, 2, 2);  // no "-0" or "1e-17" at the origin
+  EXPECT_EQ(z.labels.front(), "0");
+}
+
+TEST(Ticks, LogTicksArePowersOfTenInRange) {
+  const Ticks t = log_ticks(3e-5, 2e3);
+  ASSERT_GE(t.values.size(), 3u);
+  for (size_t i = 0; i < t.values.size(); ++i) {
+    EXPECT_GE(t.values[i], 3e-5);
+    EXPECT_LE(t.values[i], 2e3);
+    const double e = std::log10(t.values[i]);
+    EXPECT_NEAR(e, std::round(e), 1e-12);
+    EXPECT_NEAR(std::strtod(t.labels[i].c_str(), nullptr), t.values[i], t.values[i] * 1e-12);
+  }
+  const Ticks fine = log_ticks(1.5, 40);  // short range: 2 and 5 multiples too
+  EXPECT_NE(std::find(fine.values.begin(), fine.values.end(), 2.0), fine.values.end());
+  EXPECT_NE(std::find(fine.values.begin(), fine.values.end(), 10.0), fine.values.end());
+}
+
+TEST(Colors, CategoriesAreDistinctAndAvoidTheReservedRedAndBlue) {
+  std::set<std::tuple<int, int, int>> seen;
+  for (int i = 0; i < 40; ++i) {
+    const Rgb c = category_color(i);
+    EXPECT_TRUE(seen.insert({c.r, c.g, c.b}).second) << i;
+    // Reserved: saturated red (sticking) and saturated blue (unbounded).
+    EXPECT_FALSE(c.r > 180 && c.g < 60 && c.b < 60) << i;
+    EXPECT_FALSE(c.b > 180 && c.r < 60 && c.g < 100) << i;
+  }
+  // The density ramp darkens monotonically.
+  for (int i = 1; i <= 100; ++i) {
+    const Rgb a = ramp_color((i - 1) / 100.0), b = ramp_color(i / 100.0);
+    EXPECT_LE(b.r + b.g + b.b, a.r + a.g + a.b);
+  }
+}

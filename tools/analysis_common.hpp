@@ -1,0 +1,45 @@
+// Shared plumbing of the analysis commands (periodic, lyapunov, classify): precision
+// restricted to the point types the analysis layer is instantiated for, the JSON summary
+// with the provenance, and the text summary with "# " provenance lines.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <iostream>
+#include <string>
+
+#include "cli_common.hpp"
+
+namespace bouncer::cli {
+
+// double | mpfr:BITS; anything else is an InputError naming the allowed values.
+inline Precision analysis_precision(const Options& o, const std::string& command) {
+  const Precision p = precision_from(o);
+  if (p.kind != Precision::Kind::double_ && p.kind != Precision::Kind::mpfr)
+    throw InputError("precision", "'" + p.text() + "' is not available for " + command +
+                                      " (allowed: double, mpfr:BITS with " + std::to_string(kMinBits) +
+                                      " <= BITS <= " + std::to_string(kMaxBits) + ")");
+  return p;
+}
+
+// A JSON number, or a string for the values JSON cannot hold (inf, -inf, nan).
+inline nlohmann::ordered_json json_number(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return x;
+}
+
+inline void print_summary(const Provenance& p, const nlohmann::ordered_json& body, bool json) {
+  if (json) {
+    nlohmann::ordered_json out;
+    out["provenance"] = nlohmann::ordered_json::parse(p.as_json());
+    for (const auto& [k, v] : body.items()) out[k] = v;
+    std::cout << out.dump(1) << "\n";
+    return;
+  }
+  std::cout << p.as_comment_lines();
+  for (const auto& [k, v] : body.items()) std::cout << k << ": " << (v.is_string() ? v.get<std::string>() : v.dump()) << "\n";
+}
+
+}  // namespace bouncer::cli

@@ -1,0 +1,228 @@
+// bench_grid: throughput of the deterministic grid runner on the paper's workloads.
+//   1. basin grid, double: every point of an N x N grid (a = 19, eps = 0.9, theta in [0, 1),
+//      v in [4, 40]) iterated S impact-map steps (exactly S steps per point), at 1 and 2
+//      threads: steps per second and the speed-up (target >= 1.9x on 2 idle cores);
+//   2. the same grid classified by bouncer::classify (S - 500 transient + 500 examined
+//      steps; what `bouncer basin` does), points per second;
+//   3. a bifurcation diagram at paper resolution (1000 values of a x (5000 + 500) steps);
+//   4. the basin iteration in MPFR at 128 bits on a smaller grid, extrapolated to N x N.
+// Peak memory (max RSS) is printed after each phase: it grows with the grid (one short
+// text per point), never with the number of steps. Results at 1 and 2 threads are compared
+// byte for byte. Timings are printed, never checked (not a test).
+//   bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick]
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <thread>
+
+#include "bouncer/analysis/classify.hpp"
+#include "bouncer/analysis/grid.hpp"
+#include "bouncer/model/impact_map.hpp"
+
+using namespace bouncer;
+
+namespace {
+
+ModelSpec basin_model() {
+  ModelSpec m;
+  m.law = Law::constant;
+  m.a = *Decimal::parse("19");
+  m.eps = *Decimal::parse("0.9");
+  m.wall = parse_wall("wall", "triangle");
+  validate(m);
+  return m;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+long peak_rss_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss / 1024;
+}
+
+template <class T>
+State<T> grid_point(long i, long n, long bits) {
+  using Tr = ScalarTraits<T>;
+  const T theta = Tr::from_int(2 * (i % n) + 1, bits) / (2 * n);
+  const T v = Tr::from_int(4, bits) + Tr::from_int(36 * (2 * (i / n) + 1), bits) / (2 * n);
+  return {theta, v};
+}
+
+// Exactly `steps` steps from grid point i; the end state as text.
+template <class T>
+std::string iterate(const ImpactMap<T>& map, long i, long n, long steps, long bits) {
+  using Tr = ScalarTraits<T>;
+  State<T> s = grid_point<T>(i, n, bits);
+  try {
+    for (long k = 0; k < steps; ++k) s = map.step(s).next;
+  } catch (const Undecided& u) {
+    return u.what();
+  }
+  return Tr::to_string(s.theta) + "," + Tr::to_string(s.v);
+}
+
+struct Row {
+  std::string what;
+  long threads;
+  double seconds, rate;
+  std::string unit, note;
+};
+
+void print(const std::vector<Row>& rows) {
+  std::printf("\n| %-52s | %7s | %10s | %18s | %-50s |\n", "workload", "threads", "seconds", "rate", "note");
+  std::printf("|%s|%s|%s|%s|%s|\n", std::string(54, '-').c_str(), std::string(9, '-').c_str(), std::string(12, '-').c_str(),
+              std::string(20, '-').c_str(), std::string(52, '-').c_str());
+  for (const Row& r : rows) {
+    char rate[64];
+    std::snprintf(rate, sizeof rate, "%.3g %s", r.rate, r.unit.c_str());
+    std::printf("| %-52s | %7ld | %10.2f | %18s | %-50s |\n", r.what.c_str(), r.threads, r.seconds, rate, r.note.c_str());
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  long n = 512, steps = 5000, mn = 48, bits = 128, samples = 1000;
+  for (int i = 1; i < argc; ++i) {
+    auto next = [&]() { return i + 1 < argc ? std::atol(argv[++i]) : 0L; };
+    if (!std::strcmp(argv[i], "--size")) n = next();
+    else if (!std::strcmp(argv[i], "--steps")) steps = next();
+    else if (!std::strcmp(argv[i], "--mpfr-size")) mn = next();
+    else if (!std::strcmp(argv[i], "--bits")) bits = next();
+    else if (!std::strcmp(argv[i], "--samples")) samples = next();
+    else if (!std::strcmp(argv[i], "--quick")) { n = 64; steps = 1000; mn = 12; samples = 50; }
+    else {
+      std::fprintf(stderr, "usage: bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick]\n");
+      return 2;
+    }
+  }
+  if (n < 1 || steps < 501 || mn < 1 || bits < 16 || samples < 2) {
+    std::fprintf(stderr, "bench_grid: need size >= 1, steps > 500, mpfr-size >= 1, bits >= 16, samples >= 2\n");
+    return 2;
+  }
+  std::printf("bench_grid: %u hardware threads; basin %ld x %ld, %ld steps per point\n", std::thread::hardware_concurrency(),
+              n, n, steps);
+  std::vector<Row> rows;
+  const ModelSpec spec = basin_model();
+  const ImpactMap<double> map(make_model<double>(spec, 53));
+  GridPlan plan{n * n, 256};
+  const double total_steps = static_cast<double>(n) * n * steps;
+
+  // 1. Exactly `steps` steps per point, 1 and 2 threads.
+  std::vector<std::string> ref;
+  double t1 = 0;
+  for (unsigned threads : {1u, 2u}) {
+    GridOptions o;
+    o.threads = threads;
+    const auto t0 = std::chrono::steady_clock::now();
+    GridResult r = run_grid(plan, [&](long i) { return iterate(map, i, n, steps, 53); }, o);
+    const double t = seconds_since(t0);
+    std::string note = "peak RSS " + std::to_string(peak_rss_mb()) + " MB";
+    if (threads == 1) {
+      t1 = t;
+      ref = std::move(r.items);
+    } else {
+      char sp[64];
+      std::snprintf(sp, sizeof sp, "; speed-up %.2fx; %s", t1 / t, r.items == ref ? "identical" : "DIFFERENT");
+      note += sp;
+    }
+    rows.push_back({"basin " + std::to_string(n) + "^2 x " + std::to_string(steps) + " steps, double", threads, t,
+                    total_steps / t, "steps/s", note});
+    std::fflush(stdout);
+  }
+
+  // 2. The real basin: classify every point (transient steps - 500, then 500 examined).
+  {
+    ClassifyOptions co;
+    co.transient = steps - 500;
+    co.steps = 500;
+    co.max_period = 64;
+    std::vector<std::string> first;
+    double c1 = 0;
+    for (unsigned threads : {1u, 2u}) {
+      GridOptions o;
+      o.threads = threads;
+      const auto t0 = std::chrono::steady_clock::now();
+      GridResult r = run_grid(plan, [&](long i) {
+        const Classification c = classify<double>(map, grid_point<double>(i, n, 53), co);
+        return std::string(name(c.cls)) + "," + std::to_string(c.period);
+      }, o);
+      const double t = seconds_since(t0);
+      std::string note = "peak RSS " + std::to_string(peak_rss_mb()) + " MB";
+      if (threads == 1) {
+        c1 = t;
+        first = std::move(r.items);
+      } else {
+        char sp[64];
+        std::snprintf(sp, sizeof sp, "; speed-up %.2fx; %s", c1 / t, r.items == first ? "identical" : "DIFFERENT");
+        note += sp;
+      }
+      rows.push_back({"basin " + std::to_string(n) + "^2 classified (bouncer basin), double", threads, t,
+                      static_cast<double>(n) * n / t, "points/s", note});
+      std::fflush(stdout);
+    }
+  }
+
+  // 3. Bifurcation diagram at paper resolution: K values of a in [28, 30], eps = 0.96.
+  {
+    ModelSpec b = spec;
+    b.eps = *Decimal::parse("0.96");
+    const Model<double> base = make_model<double>(b, 53);
+    GridPlan bp{samples, 8};
+    GridOptions o;
+    o.threads = 2;
+    const auto t0 = std::chrono::steady_clock::now();
+    GridResult r = run_grid(bp, [&](long k) {
+      Model<double> m = base;
+      m.a = 28 + 2.0 * k / (samples - 1);
+      m.collapse = m.a * (1 - m.eps) / 2;
+      const ImpactMap<double> mp(m);
+      State<double> s{0.5, 4};
+      std::string out;
+      for (long i = 0; i < 5000; ++i) s = mp.step(s).next;
+      for (long i = 0; i < 500; ++i) {
+        s = mp.step(s).next;
+        out += ScalarTraits<double>::to_string(s.theta) + "," + ScalarTraits<double>::to_string(s.v) + "\n";
+      }
+      return out;
+    }, o);
+    const double t = seconds_since(t0);
+    rows.push_back({"bifurcation " + std::to_string(samples) + " values x (5000 + 500), double", 2, t,
+                    samples * 5500.0 / t, "steps/s", "peak RSS " + std::to_string(peak_rss_mb()) + " MB"});
+  }
+
+  // 4. MPFR: the basin iteration on an mn x mn grid, extrapolated to n x n.
+  {
+    const ImpactMap<Mpfr> mmap(make_model<Mpfr>(spec, bits));
+    GridPlan mp{mn * mn, 8};
+    std::vector<std::string> first;
+    double m1 = 0;
+    for (unsigned threads : {1u, 2u}) {
+      GridOptions o;
+      o.threads = threads;
+      const auto t0 = std::chrono::steady_clock::now();
+      GridResult r = run_grid(mp, [&](long i) { return iterate(mmap, i, mn, steps, bits); }, o);
+      const double t = seconds_since(t0);
+      const double rate = static_cast<double>(mn) * mn * steps / t;
+      char note[160];
+      std::snprintf(note, sizeof note, "%s%s%ld^2 would take ~%.0f s", threads == 1 ? "" : "speed-up ",
+                    threads == 1 ? "" : (std::to_string(m1 / t).substr(0, 4) + "x, " + (r.items == first ? "identical; " : "DIFFERENT; ")).c_str(),
+                    n, total_steps / rate);
+      if (threads == 1) {
+        m1 = t;
+        first = std::move(r.items);
+      }
+      rows.push_back({"basin " + std::to_string(mn) + "^2 x " + std::to_string(steps) + " steps, MPFR " + std::to_string(bits) + " bits",
+                      threads, t, rate, "steps/s", note});
+    }
+  }
+  print(rows);
+  std::printf("\npeak RSS at the end: %ld MB (grid of %ld points)\n", peak_rss_mb(), n * n);
+  return 0;
+}

@@ -1,0 +1,311 @@
+// bouncer audit FILE: rerun a recorded result from its provenance and report whether the
+// new result is bit-identical.
+//
+// A result is a JSON output with "provenance": {"command", "inputs", ...} (orbit --format
+// json, certify-sticking --json, sweep PREFIX.json) or a text/CSV output whose first line
+// is "# bouncer VERSION (commit C) COMMAND" with an "# inputs: k=v ..." line (orbit csv and
+// table, certify-sticking text, sweep PREFIX.csv). The command is rerun with exactly the
+// recorded inputs by this same binary, into a temporary directory, and the two outputs are
+// compared.
+//
+// Compared: everything, except these volatile fields:
+//   * timings: JSON keys named "seconds" (at any depth); text lines starting "# time:";
+//   * the invocation (binary path and command line): JSON provenance.invocation, text
+//     line "# invocation:";
+//   * the output location: JSON provenance.inputs.out, "out=..." in the text "# inputs:"
+//     line (the rerun writes elsewhere).
+// The version, commit, compiler, flags and library versions ARE compared: a result from
+// another build is reported as different (with the field), even if its numbers agree.
+//
+// Exit status: 0 identical, 1 different (the first difference is printed) or the rerun
+// failed, 2 the file is not a result (or cannot be read).
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "cli_common.hpp"
+#include "commands.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+struct Recorded {
+  bool is_json = false;
+  std::string command;
+  std::vector<std::pair<std::string, std::string>> inputs;
+};
+
+std::string read_file(const std::string& path, bool& ok) {
+  std::ifstream f(path, std::ios::binary);
+  ok = static_cast<bool>(f);
+  std::ostringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+std::optional<Recorded> recorded_json(const std::string& text) {
+  json j = json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("provenance")) return std::nullopt;
+  const json& p = j["provenance"];
+  if (!p.is_object() || !p.contains("command") || !p["command"].is_string() || !p.contains("inputs") ||
+      !p["inputs"].is_object())
+    return std::nullopt;
+  Recorded r;
+  r.is_json = true;
+  r.command = p["command"].get<std::string>();
+  for (const auto& [k, v] : p["inputs"].items()) {
+    if (!v.is_string()) return std::nullopt;
+    r.inputs.emplace_back(k, v.get<std::string>());
+  }
+  return r;
+}
+
+std::optional<Recorded> recorded_text(const std::string& text) {
+  std::istringstream in(text);
+  std::string first;
+  if (!std::getline(in, first) || first.rfind("# bouncer ", 0) != 0) return std::nullopt;
+  // "# bouncer VERSION (commit C) COMMAND"
+  const auto close = first.find(") ");
+  if (close == std::string::npos) return std::nullopt;
+  Recorded r;
+  r.command = first.substr(close + 2);
+  if (r.command.empty() || r.command.find(' ') != std::string::npos) return std::nullopt;
+  std::string line;
+  bool found = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("# inputs:", 0) != 0) continue;
+    std::istringstream t(line.substr(9));
+    std::string tok;
+    while (t >> tok) {
+      const auto eq = tok.find('=');
+      if (eq == std::string::npos) return std::nullopt;
+      r.inputs.emplace_back(tok.substr(0, eq), tok.substr(eq + 1));
+    }
+    found = true;
+    break;
+  }
+  if (!found) return std::nullopt;
+  return r;
+}
+
+// Runs argv with stdout into `out_path`; returns the exit status (or -1).
+int run_to_file(const std::vector<std::string>& argv, const std::string& out_path) {
+  const pid_t pid = fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    const int fd = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int null = open("/dev/null", O_WRONLY);
+    if (fd < 0 || null < 0) _exit(127);
+    dup2(fd, 1);
+    dup2(null, 2);
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Volatile JSON fields removed before comparing.
+void strip_volatile(json& j, bool top) {
+  if (j.is_object()) {
+    j.erase("seconds");
+    if (top && j.contains("provenance") && j["provenance"].is_object()) {
+      j["provenance"].erase("invocation");
+      if (j["provenance"].contains("inputs") && j["provenance"]["inputs"].is_object()) j["provenance"]["inputs"].erase("out");
+    }
+    for (auto& [k, v] : j.items()) strip_volatile(v, false);
+  } else if (j.is_array()) {
+    for (auto& v : j) strip_volatile(v, false);
+  }
+}
+
+std::string short_dump(const json& j) {
+  std::string s = j.dump();
+  return s.size() > 200 ? s.substr(0, 200) + "..." : s;
+}
+
+// Path of the first difference, or "" when equal.
+std::string first_difference(const json& a, const json& b, const std::string& path, std::string& detail) {
+  if (a.type() != b.type()) {
+    detail = short_dump(a) + " vs " + short_dump(b);
+    return path.empty() ? "(root)" : path;
+  }
+  if (a.is_object()) {
+    for (const auto& [k, v] : a.items()) {
+      const std::string p = path.empty() ? k : path + "." + k;
+      if (!b.contains(k)) {
+        detail = "present in the file, missing in the rerun";
+        return p;
+      }
+      const std::string d = first_difference(v, b[k], p, detail);
+      if (!d.empty()) return d;
+    }
+    for (const auto& [k, v] : b.items())
+      if (!a.contains(k)) {
+        detail = "missing in the file, present in the rerun";
+        return path.empty() ? k : path + "." + k;
+      }
+    return "";
+  }
+  if (a.is_array()) {
+    for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) {
+      const std::string d = first_difference(a[i], b[i], path + "[" + std::to_string(i) + "]", detail);
+      if (!d.empty()) return d;
+    }
+    if (a.size() != b.size()) {
+      detail = std::to_string(a.size()) + " vs " + std::to_string(b.size()) + " elements";
+      return path;
+    }
+    return "";
+  }
+  if (a != b) {
+    detail = short_dump(a) + " vs " + short_dump(b);
+    return path.empty() ? "(root)" : path;
+  }
+  return "";
+}
+
+std::vector<std::string> normalized_lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("# invocation:", 0) == 0 || line.rfind("# time:", 0) == 0) continue;
+    if (line.rfind("# inputs:", 0) == 0) {
+      std::istringstream t(line.substr(9));
+      std::string tok, kept = "# inputs:";
+      while (t >> tok)
+        if (tok.rfind("out=", 0) != 0) kept += " " + tok;
+      line = kept;
+    }
+    out.push_back(line);
+  }
+  return out;
+}
+
+std::string self_path() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.string();
+}
+
+int audit(const std::string& path) {
+  bool ok = false;
+  const std::string text = read_file(path, ok);
+  if (!ok) {
+    std::cerr << "bouncer audit: cannot read '" << path << "'\n";
+    return 2;
+  }
+  std::optional<Recorded> rec = recorded_json(text);
+  if (!rec) rec = recorded_text(text);
+  if (!rec) {
+    std::cerr << "bouncer audit: '" << path << "' is not a bouncer result (no provenance with command and inputs)\n";
+    return 2;
+  }
+  if (rec->command == "audit") {
+    std::cerr << "bouncer audit: '" << path << "' records an audit, not a result\n";
+    return 2;
+  }
+  char tmpl[] = "/tmp/bouncer-audit-XXXXXX";
+  if (!mkdtemp(tmpl)) {
+    std::cerr << "bouncer audit: cannot create a temporary directory\n";
+    return 1;
+  }
+  const std::string dir = tmpl;
+  struct Cleanup {
+    std::string d;
+    ~Cleanup() { std::error_code ec; std::filesystem::remove_all(d, ec); }
+  } cleanup{dir};
+
+  std::vector<std::string> argv{self_path(), rec->command};
+  std::string compare_path = dir + "/stdout";
+  bool has_out = false;
+  for (const auto& [k, v] : rec->inputs) {
+    if (k == "out") { has_out = true; continue; }
+    if (k == "json") { if (v == "true") argv.push_back("--json"); continue; }
+    argv.push_back("--" + k);
+    argv.push_back(v);
+  }
+  if (has_out) {
+    if (rec->command == "sweep") {
+      const std::string ext = std::filesystem::path(path).extension().string();  // .json / .csv
+      argv.push_back("--out");
+      argv.push_back(dir + "/result");
+      compare_path = dir + "/result" + ext;
+    } else {
+      argv.push_back("--out");
+      argv.push_back(dir + "/result");
+      compare_path = dir + "/result";
+    }
+  }
+  std::cout << "audit: rerunning `bouncer " << rec->command;
+  for (size_t i = 2; i < argv.size(); ++i) std::cout << " " << (argv[i].rfind(dir, 0) == 0 ? "<tmp>" + argv[i].substr(dir.size()) : argv[i]);
+  std::cout << "`\n";
+  const int status = run_to_file(argv, dir + "/stdout");
+  if (status != 0) {
+    std::cout << "audit: DIFFERENT: the rerun failed (exit status " << status << ")\n";
+    return 1;
+  }
+  bool ok2 = false;
+  const std::string again = read_file(compare_path, ok2);
+  if (!ok2) {
+    std::cout << "audit: DIFFERENT: the rerun wrote no result\n";
+    return 1;
+  }
+  if (rec->is_json) {
+    json a = json::parse(text, nullptr, false), b = json::parse(again, nullptr, false);
+    if (b.is_discarded()) {
+      std::cout << "audit: DIFFERENT: the rerun's output is not JSON\n";
+      return 1;
+    }
+    strip_volatile(a, true);
+    strip_volatile(b, true);
+    std::string detail;
+    const std::string where = first_difference(a, b, "", detail);
+    if (!where.empty()) {
+      std::cout << "audit: DIFFERENT: first difference at " << where << ": " << detail << " (file vs rerun)\n";
+      return 1;
+    }
+  } else {
+    const std::vector<std::string> a = normalized_lines(text), b = normalized_lines(again);
+    for (size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
+      const std::string la = i < a.size() ? a[i] : "<end of file>", lb = i < b.size() ? b[i] : "<end of output>";
+      if (la != lb) {
+        std::cout << "audit: DIFFERENT: first difference at line " << i + 1 << " (volatile lines skipped):\n  file:  "
+                  << la << "\n  rerun: " << lb << "\n";
+        return 1;
+      }
+    }
+  }
+  std::cout << "audit: IDENTICAL: the rerun reproduces '" << path
+            << "' bit for bit (volatile fields skipped: timings, invocation, output location)\n";
+  return 0;
+}
+
+}  // namespace
+
+Command add_audit(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("audit", "Rerun a recorded result from its provenance; exit 0 if bit-identical");
+  auto file = std::make_shared<std::string>();
+  sub->add_option("file", *file, "A JSON or CSV/text result written by bouncer")->required();
+  auto run = [file](const std::string&) { return audit(*file); };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

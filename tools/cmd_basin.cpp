@@ -1,0 +1,227 @@
+// bouncer basin: basins of attraction. Every point of an N x M grid of initial conditions
+// (cell centres of the theta and v ranges) is classified by bouncer::classify (fixed,
+// periodic q, sticking k, quasiperiodic, chaotic, unbounded, effective sticking,
+// undecided) and coloured by its attractor type: class and period. Black = fixed points and
+// red = sticking, as in the paper's figs. basin1 and basin2; blue = unbounded. Grid
+// points below the wall's velocity are outside the phase space and are marked "outside".
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "bouncer/analysis/classify.hpp"
+#include "bouncer/model/impact_map.hpp"
+#include "commands.hpp"
+#include "picture_common.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+struct BasinRequest {
+  ModelSpec model;
+  long nx = 100, ny = 100;
+  Decimal t0, t1, v0, v1;
+  ClassifyOptions classify;
+  Precision precision;
+};
+
+BasinRequest basin_request(const Options& o) {
+  BasinRequest r;
+  r.model = model_from(o);
+  std::tie(r.nx, r.ny) = parse_grid("grid", o.get_or("grid", "100x100"), 8192);
+  std::tie(r.t0, r.t1) = parse_range("theta-range", o.get_or("theta-range", "0:1"));
+  if (r.t0 < Decimal::from_int(0) || r.t1 > Decimal::from_int(1))
+    throw InputError("theta-range", "must lie in [0, 1] (got '" + o.get_or("theta-range", "0:1") + "')");
+  std::tie(r.v0, r.v1) = parse_range("v-range", o.get("v-range"));
+  if (r.v1.approx() > 1e15 || r.v0.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
+  r.classify.transient = integer_from(o, "transient", 0, 100000000, 5000);
+  r.classify.steps = integer_from(o, "steps", 8, 10000000, 500);
+  r.classify.max_period = integer_from(o, "max-period", 1, 100000, std::min<long>(64, r.classify.steps / 2));
+  if (r.classify.max_period * 2 > r.classify.steps)
+    throw InputError("max-period", "must be at most steps/2 (" + std::to_string(r.classify.steps / 2) + ")");
+  r.precision = point_precision(o);
+  if (r.precision.kind != Precision::Kind::double_ && r.precision.kind != Precision::Kind::mpfr)
+    throw InputError("precision", "basin classifies in double or mpfr:BITS");
+  return r;
+}
+
+template <class T>
+struct BasinGrid {
+  const BasinRequest& r;
+  ImpactMap<T> map;
+  T t0, t1, v0, v1;
+  explicit BasinGrid(const BasinRequest& req)
+      : r(req), map(make_model<T>(req.model, req.precision.bits)),
+        t0(ScalarTraits<T>::from_decimal(req.t0.text(), req.precision.bits)),
+        t1(ScalarTraits<T>::from_decimal(req.t1.text(), req.precision.bits)),
+        v0(ScalarTraits<T>::from_decimal(req.v0.text(), req.precision.bits)),
+        v1(ScalarTraits<T>::from_decimal(req.v1.text(), req.precision.bits)) {}
+
+  // Item i: column i mod N (theta), row i / N (v, from the bottom).
+  std::string item(long i) const {
+    using Tr = ScalarTraits<T>;
+    const T theta = cell_centre(t0, t1, i % r.nx, r.nx);
+    const T v = cell_centre(v0, v1, i / r.nx, r.ny);
+    std::ostringstream out;
+    out << Tr::to_string(theta) << ',' << Tr::to_string(v) << ',';
+    const auto& wall = map.model().wall;
+    const int seg = wall.segment_of(theta);
+    if (v < wall.velocity[seg]) {
+      out << "outside,0";
+    } else {
+      const Classification c = classify<T>(map, State<T>{theta, v}, r.classify);
+      out << name(c.cls) << ',' << c.period;
+    }
+    return out.str();
+  }
+};
+
+// The colour of an attractor type; `rank` orders the periodic types by their share.
+Rgb attractor_color(const std::string& cls, int rank, int sticking_rank) {
+  if (cls == "fixed") return Rgb{0, 0, 0};
+  if (cls == "sticking") {
+    static const Rgb reds[] = {{215, 25, 28}, {150, 10, 20}, {250, 110, 100}, {100, 0, 30}, {240, 60, 120}, {190, 70, 40}};
+    return reds[sticking_rank % 6];
+  }
+  if (cls == "unbounded") return Rgb{30, 70, 210};
+  if (cls == "chaotic") return Rgb{0, 150, 40};
+  if (cls == "quasiperiodic") return Rgb{150, 60, 200};
+  if (cls == "effective_sticking") return Rgb{255, 170, 160};
+  if (cls == "undecided") return Rgb{150, 150, 150};
+  if (cls == "outside") return Rgb{238, 238, 238};
+  return category_color(rank);  // periodic
+}
+
+std::string attractor_label(const std::string& cls, long period) {
+  if (cls == "fixed") return "fixed point";
+  if (cls == "periodic") return "period " + std::to_string(period);
+  if (cls == "sticking") return "sticking, k = " + std::to_string(period);
+  if (cls == "effective_sticking") return "effective sticking";
+  if (cls == "outside") return "outside (v < wall)";
+  return cls;
+}
+
+void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, const RunFlags& f, const Provenance& prov) {
+  std::string csv = "theta,v,class,period\n";
+  std::vector<std::pair<std::string, long>> kinds(items.size());
+  std::map<std::pair<std::string, long>, long> count;
+  for (size_t i = 0; i < items.size(); ++i) {
+    csv += items[i];
+    csv += '\n';
+    std::istringstream ls(items[i]);
+    std::string cell[4];
+    for (auto& c : cell) std::getline(ls, c, ',');
+    kinds[i] = {cell[2], std::atol(cell[3].c_str())};
+    ++count[kinds[i]];
+  }
+  // Order: by share, then by name and period (deterministic).
+  std::vector<std::pair<std::pair<std::string, long>, long>> order(count.begin(), count.end());
+  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) {
+    return x.second != y.second ? x.second > y.second : x.first < y.first;
+  });
+  std::map<std::pair<std::string, long>, Rgb> color;
+  int periodic_rank = 0, sticking_rank = 0;
+  for (const auto& [k, n] : order) {
+    color[k] = attractor_color(k.first, periodic_rank, sticking_rank);
+    if (k.first == "periodic") ++periodic_rank;
+    if (k.first == "sticking") ++sticking_rank;
+  }
+  ImageFigure fig;
+  Raster& ras = fig.raster;
+  ras.nx = static_cast<int>(r.nx);
+  ras.ny = static_cast<int>(r.ny);
+  ras.x_min = r.t0.approx();
+  ras.x_max = r.t1.approx();
+  ras.y_min = r.v0.approx();
+  ras.y_max = r.v1.approx();
+  ras.pixels.resize(items.size());
+  for (size_t i = 0; i < items.size(); ++i) {
+    const long col = static_cast<long>(i) % r.nx, row = r.ny - 1 - static_cast<long>(i) / r.nx;
+    ras.pixels[static_cast<size_t>(row * r.nx + col)] = color[kinds[i]];
+  }
+  const double total = static_cast<double>(items.size());
+  const size_t shown = order.size() > 14 ? 13 : order.size();
+  for (size_t k = 0; k < shown; ++k) {
+    char pct[32];
+    std::snprintf(pct, sizeof pct, " (%.1f%%)", 100.0 * order[k].second / total);
+    ras.legend.emplace_back(attractor_label(order[k].first.first, order[k].first.second) + pct, color[order[k].first]);
+  }
+  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " more types", Rgb{255, 255, 255});
+
+  fig.title = "Basins of attraction, " + std::string(name(r.model.law)) + " model";
+  std::string par = "a = " + r.model.a.text();
+  if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
+  if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();
+  fig.subtitle = par + "; " + std::to_string(r.nx) + " x " + std::to_string(r.ny) + " points, " +
+                 std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
+                 r.precision.text();
+  fig.xlabel = "θ0 (initial phase)";
+  fig.ylabel = "v0 (initial velocity)";
+  fig.width = 1000;
+  fig.height = 700;
+  fig.metadata = png_metadata(prov, fig.title);
+
+  nlohmann::ordered_json s;
+  s["command"] = "basin";
+  s["grid"] = {r.nx, r.ny};
+  s["points"] = items.size();
+  nlohmann::ordered_json types = nlohmann::ordered_json::array();
+  for (const auto& [k, n] : order) types.push_back({{"class", k.first}, {"period", k.second}, {"points", n}, {"fraction", n / total}});
+  s["attractors"] = types;
+  s["precision"] = r.precision.text();
+  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+}
+
+}  // namespace
+
+const std::set<std::string>& basin_keys() {
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k = model_keys();
+    k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "precision"});
+    k.insert(run_keys().begin(), run_keys().end());
+    return k;
+  }();
+  return keys;
+}
+
+int run_basin(const Options& o, const RunFlags& f) {
+  const BasinRequest req = basin_request(o);
+  PictureJob job;
+  job.command = "basin";
+  job.job = job_options(o);
+  job.plan.items = req.nx * req.ny;
+  job.plan.tile_items = std::max<long>(1, std::min<long>(256, job.plan.items / 64 + 1));
+  const Provenance prov = provenance_for("basin", job.job, req.precision, f.invocation);
+  auto go = [&](auto grid) {
+    job.item = [grid](long i) { return grid->item(i); };
+    const auto items = run_job(job, f);
+    if (items) basin_finish(req, *items, f, prov);
+    return 0;
+  };
+  if (req.precision.kind == Precision::Kind::mpfr) return go(std::make_shared<BasinGrid<Mpfr>>(req));
+  return go(std::make_shared<BasinGrid<double>>(req));
+}
+
+Command add_basin(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("basin", "Basins of attraction: classify a grid of initial conditions; CSV, PNG, JSON");
+  auto opts = std::make_shared<OptionSet>(sub);
+  auto scene = std::make_shared<std::string>();
+  sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
+  add_model_options(*opts);
+  opts->add("grid", "NxM: N phases by M velocities (cell centres), 1..8192 each (default 100x100)");
+  opts->add("theta-range", "T0:T1 within [0, 1] (default 0:1)");
+  opts->add("v-range", "V0:V1, the initial velocities (points below the wall velocity are 'outside')");
+  opts->add("transient", "Steps before classifying (default 5000, as in the paper)");
+  opts->add("steps", "Steps examined by the classifier (default 500)");
+  opts->add("max-period", "Longest period looked for (default 64, at most steps/2)");
+  opts->add("precision", "double (default) | mpfr:BITS");
+  auto flags = add_run_options(sub, *opts);
+  auto run = [opts, scene, flags](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
+    return run_basin(o, run_flags_from(o, *flags, argv_text));
+  };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

@@ -1,0 +1,77 @@
+// bouncer classify: the long-term behaviour of one orbit (attractor type) with evidence.
+#include <memory>
+#include <set>
+
+#include "analysis_common.hpp"
+#include "bouncer/analysis/classify.hpp"
+#include "commands.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+const std::set<std::string>& classify_keys() {
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k = model_keys();
+    k.insert({"theta", "v", "transient", "steps", "max-period", "precision"});
+    return k;
+  }();
+  return keys;
+}
+
+template <class T>
+nlohmann::ordered_json run_classify(const ModelSpec& spec, const Precision& prec, const InitialCondition& ic,
+                                    const ClassifyOptions& co) {
+  const ImpactMap<T> map(make_model<T>(spec, prec.bits));
+  const Classification c = classify<T>(map, make_state<T>(ic, prec.bits), co);
+  nlohmann::ordered_json j;
+  j["class"] = name(c.cls);
+  j["period"] = c.period;
+  j["lambda"] = json_number(c.lambda);
+  j["evidence"] = c.evidence;
+  if (c.cls == OrbitClass::unbounded) j["growth_alpha"] = json_number(c.alpha);
+  j["transient"] = co.transient;
+  j["steps"] = co.steps;
+  j["max_period"] = co.max_period;
+  return j;
+}
+
+}  // namespace
+
+Command add_classify(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("classify", "Classify an orbit's long-term behaviour (attractor type)");
+  auto opts = std::make_shared<OptionSet>(sub);
+  auto scene = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
+  add_model_options(*opts);
+  opts->add("theta", "Initial phase in [0, 1)");
+  opts->add("v", "Initial velocity after impact, >= the wall velocity at theta");
+  opts->add("transient", "Steps discarded first, integer in [0, 1e10] (default 5000, as the paper)");
+  opts->add("steps", "Steps examined, integer in [8, 1e9] (default 500, as the paper)");
+  opts->add("max-period", "Longest period looked for, integer in [1, steps/2] (default 64)");
+  opts->add("precision", "double (default) | mpfr:BITS (16 <= BITS <= 1048576)");
+  sub->add_flag("--json", *json, "Print the summary as JSON on stdout");
+
+  auto run = [opts, scene, json](const std::string& argv_text) {
+    Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "classify", classify_keys()), opts->collected());
+    const ModelSpec spec = model_from(o);
+    InitialCondition ic{parse_decimal("theta", o.get("theta")), parse_decimal("v", o.get("v"))};
+    validate(spec, ic, "theta", "v");
+    ClassifyOptions co;
+    co.transient = integer_from(o, "transient", 0, 10000000000LL, 5000);
+    co.steps = integer_from(o, "steps", 8, 1000000000LL, 500);
+    co.max_period = integer_from(o, "max-period", 1, 1000000000LL, 64);
+    if (co.max_period * 2 > co.steps)
+      throw InputError("max-period", "must be at most steps/2 (" + std::to_string(co.steps / 2) + ")");
+    const Precision prec = analysis_precision(o, "classify");
+    const Provenance p = provenance_for("classify", o, prec, argv_text);
+    const nlohmann::ordered_json body = prec.kind == Precision::Kind::mpfr ? run_classify<Mpfr>(spec, prec, ic, co)
+                                                                           : run_classify<double>(spec, prec, ic, co);
+    print_summary(p, body, *json);
+    return 0;
+  };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

@@ -1,0 +1,102 @@
+// bouncer periodic: find a period-q orbit by damped Newton on P^q(x) - x (theta compared
+// modulo 1), with its stability multipliers from the AD Jacobian.
+#include <memory>
+#include <set>
+
+#include "analysis_common.hpp"
+#include "bouncer/analysis/periodic.hpp"
+#include "commands.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+const std::set<std::string>& periodic_keys() {
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k = model_keys();
+    k.insert({"period", "guess", "precision", "max-iter", "grid"});
+    return k;
+  }();
+  return keys;
+}
+
+template <class T>
+nlohmann::ordered_json solve(const ModelSpec& spec, const Precision& prec, long q,
+                             const std::optional<InitialCondition>& guess, const NewtonOptions& no) {
+  using Tr = ScalarTraits<T>;
+  const Model<T> m = make_model<T>(spec, prec.bits);
+  PeriodicOrbit<T> o = guess ? find_periodic(m, q, make_state<T>(*guess, prec.bits), no) : search_periodic(m, q, no);
+  nlohmann::ordered_json j;
+  j["converged"] = o.converged;
+  j["period"] = q;
+  j["minimal_period"] = o.minimal_period;
+  nlohmann::ordered_json pts = nlohmann::ordered_json::array();
+  for (const State<T>& s : o.points) pts.push_back({Tr::to_string(s.theta), Tr::to_string(s.v)});
+  j["points"] = pts;
+  nlohmann::ordered_json mu = nlohmann::ordered_json::array();
+  for (int i = 0; i < 2; ++i) mu.push_back({Tr::to_string(o.multipliers.re[i]), Tr::to_string(o.multipliers.im[i])});
+  j["multipliers"] = mu;  // [re, im] pairs, largest modulus first
+  j["multiplier_moduli"] = {json_number(o.multipliers.modulus(0)), json_number(o.multipliers.modulus(1))};
+  j["complex_pair"] = o.multipliers.complex;
+  j["marginal"] = o.marginal;
+  const double m0 = o.multipliers.modulus(0);
+  j["stability"] = !o.converged ? "unknown"
+                   : o.marginal ? (m0 > 1 + 1e-6 ? "unstable" : "marginal")
+                   : m0 < 1     ? "stable"
+                                : "unstable";
+  nlohmann::ordered_json kinds = nlohmann::ordered_json::array();
+  for (EventKind k : o.kinds) kinds.push_back(name(k));
+  j["events"] = kinds;
+  j["wall_periods"] = o.wall_periods;
+  j["residual"] = json_number(o.residual);
+  j["tolerance"] = json_number(o.tolerance);
+  j["iterations"] = o.iterations;
+  j["note"] = o.note;
+  return j;
+}
+
+}  // namespace
+
+Command add_periodic(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("periodic", "Find a period-q orbit (Newton) and its stability multipliers");
+  auto opts = std::make_shared<OptionSet>(sub);
+  auto scene = std::make_shared<std::string>();
+  auto json = std::make_shared<bool>(false);
+  sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
+  add_model_options(*opts);
+  opts->add("period", "Period q, integer in [1, 100]");
+  opts->add_list("guess", "Starting point theta,v (default: a grid of guesses in the trapping region)");
+  opts->add("precision", "double (default) | mpfr:BITS (16 <= BITS <= 1048576)");
+  opts->add("max-iter", "Newton iterations per guess, integer in [1, 10000] (default 60)");
+  opts->add("grid", "Guesses per axis without --guess, integer in [1, 64] (default 8)");
+  sub->add_flag("--json", *json, "Print the summary as JSON on stdout");
+
+  auto run = [opts, scene, json](const std::string& argv_text) {
+    Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "periodic", periodic_keys()), opts->collected());
+    const ModelSpec spec = model_from(o);
+    const long q = integer_from(o, "period", 1, 100, 0);
+    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
+    NewtonOptions no;
+    no.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
+    no.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+    std::optional<InitialCondition> guess;
+    if (o.has("guess")) {
+      const auto& g = o.values.at("guess");
+      if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
+      InitialCondition ic{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
+      validate(spec, ic, "guess", "guess");
+      guess = ic;
+    }
+    const Precision prec = analysis_precision(o, "periodic");
+    const Provenance p = provenance_for("periodic", o, prec, argv_text);
+    const nlohmann::ordered_json body =
+        prec.kind == Precision::Kind::mpfr ? solve<Mpfr>(spec, prec, q, guess, no) : solve<double>(spec, prec, q, guess, no);
+    print_summary(p, body, *json);
+    if (!body["converged"].get<bool>())
+      std::cerr << "bouncer periodic: no period-" << q << " orbit converged: " << body["note"].get<std::string>() << "\n";
+    return 0;
+  };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

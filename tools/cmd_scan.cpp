@@ -1,0 +1,266 @@
+// bouncer scan: parameter-space scans (paper figs. paramspace1 and paramspace2). Over a
+// P x Q grid of (a, eps) (constant model) or (a, c) (velocity-dependent model), K x K
+// initial conditions per parameter point (paper: 10 x 10, in the trapping region) are
+// classified, and the solution types are counted. The picture shows the fraction of one
+// type (--show; default "regular" = fixed + periodic, the paper's "periodic solutions").
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "bouncer/analysis/classify.hpp"
+#include "bouncer/model/impact_map.hpp"
+#include "commands.hpp"
+#include "picture_common.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+// Count columns, in CSV order.
+const std::vector<std::string>& count_names() {
+  static const std::vector<std::string> n{"fixed",   "periodic",  "sticking",           "quasiperiodic", "chaotic",
+                                          "unbounded", "effective_sticking", "undecided", "outside"};
+  return n;
+}
+
+struct ScanRequest {
+  ModelSpec model;
+  std::string y;  // eps or c
+  Decimal a0, a1, y0, y1;
+  long p = 20, q = 20, k = 10;
+  Decimal t0, t1;
+  bool v_given = false;
+  Decimal v0, v1;
+  ClassifyOptions classify;
+  Precision precision;
+  std::string show = "regular";
+};
+
+ScanRequest scan_request(const Options& given) {
+  ScanRequest r;
+  Options o = given;
+  std::tie(r.a0, r.a1) = parse_range("a-range", o.get("a-range"));
+  const Law law = parse_law("model", o.get("model"));
+  if (law == Law::elastic) throw InputError("model", "scan needs an inelastic model (constant: a x eps; veldep: a x c)");
+  r.y = law == Law::constant ? "eps" : "c";
+  const std::string yr = r.y + "-range";
+  std::tie(r.y0, r.y1) = parse_range(yr, o.get(yr));
+  if (o.has("a")) throw InputError("a", "is scanned: give --a-range instead");
+  if (o.has(r.y)) throw InputError(r.y, "is scanned: give --" + yr + " instead");
+  // Validate both ends of both ranges through the model's own checks.
+  for (const Decimal& a : {r.a0, r.a1})
+    for (const Decimal& y : {r.y0, r.y1}) {
+      Options m = o;
+      m.set("a", a.text());
+      m.set(r.y, y.text());
+      try {
+        r.model = model_from(m);
+      } catch (const InputError& e) {
+        throw InputError(e.field == "a" ? "a-range" : e.field == r.y ? yr : e.field, e.what());
+      }
+    }
+  std::tie(r.p, r.q) = parse_grid("grid", o.get_or("grid", "20x20"), 4096);
+  r.k = integer_from(o, "ics", 1, 1000, 10);
+  std::tie(r.t0, r.t1) = parse_range("theta-range", o.get_or("theta-range", "0:1"));
+  if (r.t0 < Decimal::from_int(0) || r.t1 > Decimal::from_int(1)) throw InputError("theta-range", "must lie in [0, 1]");
+  if (o.has("v-range")) {
+    r.v_given = true;
+    std::tie(r.v0, r.v1) = parse_range("v-range", o.get("v-range"));
+    if (r.v1.approx() > 1e15 || r.v0.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
+  } else if (law == Law::constant && r.y1 == Decimal::from_int(1)) {
+    throw InputError("v-range", "is needed when eps reaches 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
+  }
+  r.classify.transient = integer_from(o, "transient", 0, 100000000, 5000);
+  r.classify.steps = integer_from(o, "steps", 8, 10000000, 500);
+  r.classify.max_period = integer_from(o, "max-period", 1, 100000, std::min<long>(64, r.classify.steps / 2));
+  if (r.classify.max_period * 2 > r.classify.steps)
+    throw InputError("max-period", "must be at most steps/2 (" + std::to_string(r.classify.steps / 2) + ")");
+  r.precision = point_precision(o);
+  if (r.precision.kind != Precision::Kind::double_ && r.precision.kind != Precision::Kind::mpfr)
+    throw InputError("precision", "scan classifies in double or mpfr:BITS");
+  r.show = o.get_or("show", "regular");
+  bool known = r.show == "regular";
+  for (const auto& n : count_names()) known = known || n == r.show;
+  if (!known) throw InputError("show", "must be regular or one of fixed, periodic, sticking, quasiperiodic, chaotic, unbounded, effective_sticking, undecided");
+  return r;
+}
+
+template <class T>
+struct ScanGrid {
+  using Tr = ScalarTraits<T>;
+  const ScanRequest& r;
+  Model<T> base;
+  T a0, a1, y0, y1, t0, t1, v0, v1;
+  T num(const Decimal& d) const { return Tr::from_decimal(d.text(), r.precision.bits); }
+  explicit ScanGrid(const ScanRequest& req)
+      : r(req), base(make_model<T>(req.model, req.precision.bits)), a0(num(req.a0)), a1(num(req.a1)), y0(num(req.y0)),
+        y1(num(req.y1)), t0(num(req.t0)), t1(num(req.t1)), v0(num(req.v_given ? req.v0 : req.a0)),
+        v1(num(req.v_given ? req.v1 : req.a1)) {}
+
+  // Upper end of the trapping region (paper sec. II.C), the default top of the v range.
+  T v_upper(const Model<T>& m) const {
+    using std::exp;
+    using std::log;
+    const T one = Tr::from_int(1, r.precision.bits);
+    if (m.law == Law::constant) return (m.eps * 3 + 1) * 4 / (1 - m.eps);
+    // veldep: 4 [2 coth(2^(4/5) / c^(3/5)) - 1], coth x = (e^(2x) + 1)/(e^(2x) - 1).
+    const T x = exp(log(one * 2) * 4 / 5) / Tr::pow_3_5(m.c);
+    const T e = exp(2 * x);
+    return 4 * (2 * (e + 1) / (e - 1) - 1);
+  }
+
+  // Item i: a index i mod P, y index i / P (cell centres).
+  std::string item(long i) const {
+    Model<T> m = base;
+    const T a = cell_centre(a0, a1, i % r.p, r.p), y = cell_centre(y0, y1, i / r.p, r.q);
+    m.a = a;
+    (r.y == "eps" ? m.eps : m.c) = y;
+    m.collapse = m.a * (1 - m.eps) / 2;
+    const ImpactMap<T> map(m);
+    const T vlo = r.v_given ? v0 : Tr::from_int(4, r.precision.bits);
+    const T vhi = r.v_given ? v1 : v_upper(m);
+    std::vector<long> count(count_names().size(), 0);
+    for (long j = 0; j < r.k * r.k; ++j) {
+      const T theta = cell_centre(t0, t1, j % r.k, r.k), v = cell_centre(vlo, vhi, j / r.k, r.k);
+      const int seg = m.wall.segment_of(theta);
+      size_t slot;
+      if (v < m.wall.velocity[seg]) {
+        slot = count_names().size() - 1;
+      } else {
+        const Classification c = classify<T>(map, State<T>{theta, v}, r.classify);
+        slot = static_cast<size_t>(std::find(count_names().begin(), count_names().end(), name(c.cls)) - count_names().begin());
+        if (slot >= count.size()) slot = 7;  // unknown name: undecided
+      }
+      ++count[slot];
+    }
+    std::ostringstream out;
+    out << Tr::to_string(a) << ',' << Tr::to_string(y);
+    for (long n : count) out << ',' << n;
+    return out.str();
+  }
+};
+
+void finish(const ScanRequest& r, const std::vector<std::string>& items, const RunFlags& f, const Provenance& prov) {
+  std::string csv = "a," + r.y;
+  for (const auto& n : count_names()) csv += "," + n;
+  csv += ",total\n";
+  const size_t nc = count_names().size();
+  std::vector<long> totals(nc, 0);
+  std::vector<double> frac(items.size(), 0);
+  for (size_t i = 0; i < items.size(); ++i) {
+    std::istringstream ls(items[i]);
+    std::string cell;
+    std::getline(ls, cell, ',');
+    std::getline(ls, cell, ',');
+    std::vector<long> c(nc, 0);
+    long total = 0;
+    for (size_t k = 0; k < nc; ++k) {
+      std::getline(ls, cell, ',');
+      c[k] = std::atol(cell.c_str());
+      totals[k] += c[k];
+      total += c[k];
+    }
+    csv += items[i] + "," + std::to_string(total) + "\n";
+    long hit = 0;
+    for (size_t k = 0; k < nc; ++k)
+      if (r.show == count_names()[k] || (r.show == "regular" && (k == 0 || k == 1))) hit += c[k];
+    const long inside = total - c[nc - 1];
+    frac[i] = inside > 0 ? static_cast<double>(hit) / inside : 0;
+  }
+  ImageFigure fig;
+  Raster& ras = fig.raster;
+  ras.nx = static_cast<int>(r.p);
+  ras.ny = static_cast<int>(r.q);
+  ras.x_min = r.a0.approx();
+  ras.x_max = r.a1.approx();
+  ras.y_min = r.y0.approx();
+  ras.y_max = r.y1.approx();
+  ras.pixels.resize(items.size());
+  for (size_t i = 0; i < items.size(); ++i) {
+    const long col = static_cast<long>(i) % r.p, row = r.q - 1 - static_cast<long>(i) / r.p;
+    ras.pixels[static_cast<size_t>(row * r.p + col)] = ramp_color(frac[i]);
+  }
+  for (int i = 0; i < 64; ++i) ras.colorbar.push_back(ramp_color(i / 63.0));
+  ras.colorbar_lo = 0;
+  ras.colorbar_hi = 1;
+  const std::string shown = r.show == "regular" ? "fixed + periodic" : r.show;
+  ras.colorbar_label = "fraction " + (r.show == "regular" ? std::string("regular") : r.show);
+  fig.title = "Parameter scan: " + shown + " solutions";
+  fig.subtitle = std::string(name(r.model.law)) + " model; " + std::to_string(r.p) + " x " + std::to_string(r.q) +
+                 " parameters, " + std::to_string(r.k) + " x " + std::to_string(r.k) + " initial conditions, " +
+                 std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
+                 r.precision.text();
+  fig.xlabel = "a";
+  fig.ylabel = r.y == "eps" ? "ε" : "c";
+  fig.metadata = png_metadata(prov, fig.title);
+
+  nlohmann::ordered_json s;
+  s["command"] = "scan";
+  s["grid"] = {r.p, r.q};
+  s["initial_conditions"] = r.k * r.k;
+  s["show"] = r.show;
+  nlohmann::ordered_json t;
+  for (size_t k = 0; k < nc; ++k) t[count_names()[k]] = totals[k];
+  s["totals"] = t;
+  s["precision"] = r.precision.text();
+  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+}
+
+}  // namespace
+
+const std::set<std::string>& scan_keys() {
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k = model_keys();
+    k.insert({"a-range", "eps-range", "c-range", "grid", "ics", "theta-range", "v-range", "transient", "steps",
+              "max-period", "precision", "show"});
+    k.insert(run_keys().begin(), run_keys().end());
+    return k;
+  }();
+  return keys;
+}
+
+int run_scan(const Options& o, const RunFlags& f) {
+  const ScanRequest req = scan_request(o);
+  PictureJob job;
+  job.command = "scan";
+  job.job = job_options(o);
+  job.plan.items = req.p * req.q;
+  job.plan.tile_items = std::max<long>(1, std::min<long>(16, job.plan.items / 64 + 1));
+  const Provenance prov = provenance_for("scan", job.job, req.precision, f.invocation);
+  auto go = [&](auto grid) {
+    job.item = [grid](long i) { return grid->item(i); };
+    const auto items = run_job(job, f);
+    if (items) finish(req, *items, f, prov);
+    return 0;
+  };
+  if (req.precision.kind == Precision::Kind::mpfr) return go(std::make_shared<ScanGrid<Mpfr>>(req));
+  return go(std::make_shared<ScanGrid<double>>(req));
+}
+
+Command add_scan(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("scan", "Parameter scan over (a, eps) or (a, c): solution types per point; CSV, PNG, JSON");
+  auto opts = std::make_shared<OptionSet>(sub);
+  auto scene = std::make_shared<std::string>();
+  sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
+  add_model_options(*opts);
+  opts->add("a-range", "A0:A1, the range of a (cell centres of --grid)");
+  opts->add("eps-range", "E0:E1 within [0, 1], for --model constant");
+  opts->add("c-range", "C0:C1, c > 0, for --model veldep");
+  opts->add("grid", "PxQ parameter points (a by eps or c), 1..4096 each (default 20x20)");
+  opts->add("ics", "K: K x K initial conditions per parameter point (default 10, as in the paper)");
+  opts->add("theta-range", "Initial phases T0:T1 within [0, 1] (default 0:1)");
+  opts->add("v-range", "Initial velocities V0:V1 (default: the trapping region [4, v_upper] of each point)");
+  opts->add("transient", "Steps before classifying (default 5000)");
+  opts->add("steps", "Steps examined by the classifier (default 500)");
+  opts->add("max-period", "Longest period looked for (default 64, at most steps/2)");
+  opts->add("precision", "double (default) | mpfr:BITS");
+  opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
+  auto flags = add_run_options(sub, *opts);
+  auto run = [opts, scene, flags](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), opts->collected());
+    return run_scan(o, run_flags_from(o, *flags, argv_text));
+  };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

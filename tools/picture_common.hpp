@@ -1,0 +1,254 @@
+// Shared plumbing of the grid and picture commands (bifurcation, portrait, basin, scan,
+// merge): run flags, the tiled parallel run with resume and shards, and the three outputs
+// PREFIX.csv, PREFIX.png, PREFIX.json (each written atomically).
+//
+// A job is defined by its options minus the run flags (threads, shard, out, quiet, json):
+// those decide how the job runs, never what it computes. The job's options are saved in
+// PREFIX.tiles/job.toml, so `bouncer merge PREFIX` can finish it from the saved tiles.
+#pragma once
+
+// GCC 12 at -O3 reports false "maybe uninitialized" warnings inside nlohmann::json.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <nlohmann/json.hpp>
+#pragma GCC diagnostic pop
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bouncer/analysis/grid.hpp"
+#include "bouncer/io/plot.hpp"
+#include "bouncer/io/provenance.hpp"
+#include "bouncer/io/scene.hpp"
+#include "cli_common.hpp"
+
+namespace bouncer::cli {
+
+// How a job runs (not part of its identity).
+struct RunFlags {
+  unsigned threads = 0;
+  Shard shard;
+  bool quiet = false;
+  bool json = false;
+  bool keep_tiles = false;
+  std::optional<std::string> out;
+  std::vector<std::string> merge_from;  // bouncer merge: tile directories to import
+  bool merge_only = false;              // bouncer merge: compute nothing
+  std::string invocation;
+};
+
+inline const std::set<std::string>& run_keys() {
+  static const std::set<std::string> k{"threads", "shard", "out"};
+  return k;
+}
+
+// The options that define the job: everything but the run flags.
+inline Options job_options(const Options& o) {
+  Options j;
+  for (const auto& [k, v] : o.values)
+    if (!run_keys().count(k)) j.values[k] = v;
+  return j;
+}
+
+// Flags and run options every grid command registers. The returned function reads them
+// (after parsing) into RunFlags, validating --threads, --shard and --out.
+struct FlagSet {
+  bool quiet = false, json = false, keep_tiles = false;
+};
+inline std::shared_ptr<FlagSet> add_run_options(CLI::App* sub, OptionSet& opts) {
+  auto f = std::make_shared<FlagSet>();
+  opts.add("threads", "Worker threads, integer >= 1 (default: all cores); results do not depend on it");
+  opts.add("shard", "Run only shard I/N of the tiles (0 <= I < N); needs --out; join with bouncer merge");
+  opts.add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json (tiles in PREFIX.tiles/ while running)");
+  sub->add_flag("--quiet", f->quiet, "No progress bar on stderr");
+  sub->add_flag("--json", f->json, "Print a JSON summary on stdout");
+  sub->add_flag("--keep-tiles", f->keep_tiles, "Keep PREFIX.tiles/ after the outputs are written");
+  return f;
+}
+
+inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::string& invocation) {
+  RunFlags r;
+  r.threads = static_cast<unsigned>(integer_from(o, "threads", 1, 4096, 0));
+  if (o.has("shard")) r.shard = parse_shard("shard", o.get("shard"));
+  if (o.has("out")) {
+    r.out = o.get("out");
+    if (r.out->empty()) throw InputError("out", "must be a file name prefix");
+    const auto parent = std::filesystem::path(*r.out).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      throw InputError("out", "directory '" + parent.string() + "' does not exist");
+  }
+  if (!r.shard.all() && !r.out) throw InputError("shard", "needs --out PREFIX (the shard's tiles go to PREFIX.tiles/)");
+  r.quiet = f.quiet;
+  r.json = f.json;
+  r.keep_tiles = f.keep_tiles;
+  r.invocation = invocation;
+  return r;
+}
+
+// A grid job: what to compute for each item.
+struct PictureJob {
+  std::string command;
+  Options job;     // job_options(...) of the merged scene + command line
+  GridPlan plan;
+  std::function<std::string(long)> item;
+};
+
+inline std::string tiles_dir(const std::string& prefix) { return prefix + ".tiles"; }
+
+inline std::string job_key(const PictureJob& j) {
+  return job_fingerprint("bouncer-grid-1\n" + j.job.as_toml(j.command) + "items " + std::to_string(j.plan.items) +
+                         " tile " + std::to_string(j.plan.tile_items) + "\n");
+}
+
+// Runs the job's grid. Returns the item texts when every tile is available; nothing for a
+// shard run that leaves tiles for other shards (a message says so on stderr).
+inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, const RunFlags& f) {
+  GridOptions g;
+  g.threads = f.threads;
+  g.shard = f.shard;
+  g.job_key = job_key(j);
+  g.compute = !f.merge_only;
+  g.progress = !f.quiet && stderr_is_terminal();
+  g.label = "bouncer " + j.command;
+  if (f.out) {
+    namespace fs = std::filesystem;
+    g.tile_dir = tiles_dir(*f.out);
+    // Tiles of another job under the same prefix are stale: start afresh.
+    std::string old_key;
+    if (std::ifstream k(g.tile_dir + "/job.key"); k) std::getline(k, old_key);
+    if (!old_key.empty() && old_key != g.job_key && !f.merge_only) fs::remove_all(g.tile_dir);
+    fs::create_directories(g.tile_dir);
+    if (old_key != g.job_key) {
+      write_atomically(g.tile_dir + "/job.toml", [&](std::ostream& s) { s << j.job.as_toml(j.command); });
+      write_atomically(g.tile_dir + "/job.key", [&](std::ostream& s) { s << g.job_key << "\n"; });
+    }
+    for (const std::string& from : f.merge_from)
+      if (from != g.tile_dir) import_tiles(from, g.tile_dir, j.plan, g.job_key);
+  }
+  GridResult r = run_grid(j.plan, j.item, g);
+  // A shard only leaves tiles, even when it completes the set: `bouncer merge` writes the
+  // outputs, so a job array needs no "who finishes" logic.
+  if (r.complete() && f.shard.all()) return std::move(r.items);
+  const std::vector<long> miss = r.missing();
+  if (f.merge_only) {
+    std::string list;
+    for (size_t i = 0; i < miss.size() && i < 10; ++i) list += (i ? ", " : "") + std::to_string(miss[i]);
+    if (miss.size() > 10) list += ", ...";
+    throw InputError("merge", std::to_string(miss.size()) + " of " + std::to_string(j.plan.tiles()) +
+                                  " tiles are missing (" + list + "): run the remaining shards first");
+  }
+  if (!f.quiet)
+    std::cerr << "bouncer " << j.command << ": shard " << f.shard.text() << " done (" << r.tiles_computed
+              << " tiles computed; " << miss.size() << " of " << j.plan.tiles() << " tiles still missing). Run `bouncer merge "
+              << *f.out << "` when all shards are done.\n";
+  if (f.json) {
+    nlohmann::ordered_json s;
+    s["status"] = "shard done";
+    s["shard"] = f.shard.text();
+    s["tiles"] = j.plan.tiles();
+    s["tiles_computed"] = r.tiles_computed;
+    s["tiles_missing"] = miss.size();
+    s["merge"] = "bouncer merge " + *f.out;
+    std::cout << s.dump(2) << "\n";
+  }
+  return std::nullopt;
+}
+
+// Writes the outputs of a finished job: PREFIX.csv (provenance comments + rows),
+// PREFIX.png (through `draw`), PREFIX.json (provenance + summary); without --out the CSV
+// goes to stdout unless --json. With --json the summary is printed on stdout.
+inline void write_outputs(const RunFlags& f, const Provenance& p, const std::string& csv_body,
+                          const std::function<void(const std::string&)>& draw, const nlohmann::ordered_json& summary) {
+  nlohmann::ordered_json doc;
+  doc["provenance"] = nlohmann::ordered_json::parse(p.as_json());
+  doc["summary"] = summary;
+  if (f.out) {
+    doc["files"] = {{"csv", *f.out + ".csv"}, {"png", *f.out + ".png"}, {"json", *f.out + ".json"}};
+    write_atomically(*f.out + ".csv", [&](std::ostream& s) { s << p.as_comment_lines() << csv_body; });
+    draw(*f.out + ".png");
+    write_atomically(*f.out + ".json", [&](std::ostream& s) { s << doc.dump(2) << "\n"; });
+    if (!f.keep_tiles) {
+      std::error_code ec;
+      std::filesystem::remove_all(tiles_dir(*f.out), ec);
+    }
+  } else if (!f.json) {
+    std::cout << p.as_comment_lines() << csv_body;
+  }
+  if (f.json) std::cout << doc.dump(2) << "\n";
+}
+
+// PNG metadata from provenance: tEXt chunks a reader finds with any PNG tool.
+inline std::vector<std::pair<std::string, std::string>> png_metadata(const Provenance& p, const std::string& title) {
+  std::string inputs;
+  for (const auto& [k, v] : p.inputs) inputs += (inputs.empty() ? "" : " ") + k + "=" + v;
+  return {{"Title", title},
+          {"Software", "bouncer " + build_info().version + " (commit " + build_info().commit + ")"},
+          {"Source", p.invocation},
+          {"bouncer:command", p.command},
+          {"bouncer:inputs", inputs},
+          {"bouncer:precision", p.precision + " (" + std::to_string(p.bits) + " bits)"},
+          {"bouncer:provenance", p.as_json()}};
+}
+
+// "A:B" with two decimals, A < B (or A <= B when `allow_equal`).
+inline std::pair<Decimal, Decimal> parse_range(const std::string& field, const std::string& text, bool allow_equal = false) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) throw InputError(field, "must be LO:HI (got '" + text + "')");
+  const Decimal lo = parse_decimal(field, text.substr(0, colon));
+  const Decimal hi = parse_decimal(field, text.substr(colon + 1));
+  if (allow_equal ? !(lo <= hi) : !(lo < hi)) throw InputError(field, "needs LO < HI (got '" + text + "')");
+  return {lo, hi};
+}
+
+// "NxM" with 1 <= N, M <= limit.
+inline std::pair<long, long> parse_grid(const std::string& field, const std::string& text, long limit) {
+  const auto x = text.find('x');
+  auto whole = [&](const std::string& s) {
+    if (s.empty() || s.size() > 7 || s.find_first_not_of("0123456789") != std::string::npos)
+      throw InputError(field, "must be NxM with whole numbers 1.." + std::to_string(limit) + " (got '" + text + "')");
+    const long n = std::stol(s);
+    if (n < 1 || n > limit) throw InputError(field, "must be NxM with 1 <= N, M <= " + std::to_string(limit) + " (got '" + text + "')");
+    return n;
+  };
+  if (x == std::string::npos) throw InputError(field, "must be NxM, e.g. 200x150 (got '" + text + "')");
+  return {whole(text.substr(0, x)), whole(text.substr(x + 1))};
+}
+
+// Points of a grid over [lo, hi]: cell centres lo + (hi - lo)(2i + 1)/(2n), in T.
+template <class T>
+T cell_centre(const T& lo, const T& hi, long i, long n) {
+  return lo + (hi - lo) * (2 * i + 1) / (2 * n);
+}
+
+// Precisions the picture commands support: point types (an interval has no picture).
+inline Precision point_precision(const Options& o) {
+  Precision p = precision_from(o);
+  if (p.is_interval())
+    throw InputError("precision", "interval precision is not supported here (use double, long, quad or mpfr:BITS)");
+  return p;
+}
+
+// The registry used by `bouncer merge`: the command name -> its keys and its runner.
+struct PictureCommand {
+  const std::set<std::string>& (*keys)();
+  int (*run)(const Options& job_and_run, const RunFlags& flags);
+};
+const std::map<std::string, PictureCommand>& picture_commands();
+
+// Runners (tools/cmd_*.cpp), shared with merge.
+const std::set<std::string>& bifurcation_keys();
+int run_bifurcation(const Options& o, const RunFlags& f);
+const std::set<std::string>& portrait_keys();
+int run_portrait(const Options& o, const RunFlags& f);
+const std::set<std::string>& basin_keys();
+int run_basin(const Options& o, const RunFlags& f);
+const std::set<std::string>& scan_keys();
+int run_scan(const Options& o, const RunFlags& f);
+
+}  // namespace bouncer::cli

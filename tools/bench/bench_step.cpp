@@ -475,9 +475,12 @@ struct PlainMap {
           if (jumped) {
             r.indirect = Truth::yes;
           } else {
-            const double f0 = height_at(j0, theta0);
-            const bool above = 2 * a * (m.top - f0) < v0 * v0;
-            const bool falling = m.vel[j] - q < 0;
+            const bool falling = m.vel[j] < q;  // v^- = u - q < 0
+            bool above = false;
+            if (falling) {
+              const double f0 = height_at(j0, theta0);
+              above = 2 * a * (m.top - f0) < v0 * v0;
+            }
             r.indirect = above && falling ? Truth::yes : Truth::no;
           }
           collide(r, j, th, q);
@@ -655,14 +658,16 @@ class RawMpfrMap {
           if (jumped) {
             r.indirect = Truth::yes;
           } else {
-            height_at(f0_, j0, theta0);
-            mpfr_mul_si(t1_, a_, 2, N);
-            mpfr_sub(t2_, top_, f0_, N);
-            mpfr_mul(t1_, t1_, t2_, N);
-            mpfr_mul(t2_, v0, v0, N);
-            const bool above = mpfr_less_p(t1_, t2_);
-            mpfr_sub(t3_, vel_[j], q_, N);
-            const bool falling = mpfr_less_p(t3_, zero_);
+            const bool falling = mpfr_less_p(vel_[j], q_);  // v^- = u - q < 0
+            bool above = false;
+            if (falling) {
+              height_at(f0_, j0, theta0);
+              mpfr_mul_si(t1_, a_, 2, N);
+              mpfr_sub(t2_, top_, f0_, N);
+              mpfr_mul(t1_, t1_, t2_, N);
+              mpfr_mul(t2_, v0, v0, N);
+              above = mpfr_less_p(t1_, t2_);
+            }
             r.indirect = above && falling ? Truth::yes : Truth::no;
           }
           collide(j, th_, q_);

@@ -132,11 +132,17 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         if (jumped) {
           r.indirect = Truth::yes;
         } else {
-          // Left the collision zone iff the apex is above the top and the impact follows it.
-          T f0 = wall.height_at(j0, s.theta);
-          f0 = wall.top - f0;
-          f0 *= a;
-          r.indirect = detail::both(Tr::lt(2 * f0, s.v * s.v), Tr::lt(wall.velocity[j] - q, zero));
+          // Left the collision zone iff the impact follows the apex (falling: v^- = u - q < 0)
+          // and the apex is above the top (2a(top - f0) < v^2).
+          const Truth falling = Tr::lt(wall.velocity[j], q);
+          if (falling == Truth::no) {
+            r.indirect = Truth::no;
+          } else {
+            T f0 = wall.height_at(j0, s.theta);
+            f0 = wall.top - f0;
+            f0 *= a;
+            r.indirect = detail::both(Tr::lt(2 * f0, s.v * s.v), falling);
+          }
         }
         collide(r, j, std::move(theta), q);
         break;

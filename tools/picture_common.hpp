@@ -91,6 +91,18 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
   return r;
 }
 
+// MPI ranks (tools/mpi_ranks.cpp when built with MPI; otherwise one process).
+struct Ranks {
+  int rank = 0, size = 1;
+};
+#ifdef BOUNCER_WITH_MPI
+Ranks mpi_ranks();
+void mpi_barrier();
+#else
+inline Ranks mpi_ranks() { return {}; }
+inline void mpi_barrier() {}
+#endif
+
 // A grid job: what to compute for each item.
 struct PictureJob {
   std::string command;
@@ -109,12 +121,20 @@ inline std::string job_key(const PictureJob& j) {
 // Runs the job's grid. Returns the item texts when every tile is available; nothing for a
 // shard run that leaves tiles for other shards (a message says so on stderr).
 inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, const RunFlags& f) {
+  // Under mpirun the ranks are the shards: each computes its share of the tiles into the
+  // shared PREFIX.tiles/, then rank 0 joins them as `bouncer merge` would.
+  const Ranks world = mpi_ranks();
+  if (world.size > 1) {
+    if (!f.out) throw InputError("out", "is needed under mpirun (the ranks share PREFIX.tiles/)");
+    if (!f.shard.all()) throw InputError("shard", "cannot be combined with mpirun (the ranks are the shards)");
+    if (f.merge_only) throw InputError("merge", "runs in one process, not under mpirun");
+  }
   GridOptions g;
   g.threads = f.threads;
-  g.shard = f.shard;
+  g.shard = world.size > 1 ? Shard{world.rank, world.size} : f.shard;
   g.job_key = job_key(j);
   g.compute = !f.merge_only;
-  g.progress = !f.quiet && stderr_is_terminal();
+  g.progress = !f.quiet && stderr_is_terminal() && world.rank == 0;
   g.label = "bouncer " + j.command;
   if (f.out) {
     namespace fs = std::filesystem;
@@ -122,16 +142,27 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
     // Tiles of another job under the same prefix are stale: start afresh.
     std::string old_key;
     if (std::ifstream k(g.tile_dir + "/job.key"); k) std::getline(k, old_key);
-    if (!old_key.empty() && old_key != g.job_key && !f.merge_only) fs::remove_all(g.tile_dir);
-    fs::create_directories(g.tile_dir);
-    if (old_key != g.job_key) {
-      write_atomically(g.tile_dir + "/job.toml", [&](std::ostream& s) { s << j.job.as_toml(j.command); });
-      write_atomically(g.tile_dir + "/job.key", [&](std::ostream& s) { s << g.job_key << "\n"; });
+    if (world.rank == 0) {
+      if (!old_key.empty() && old_key != g.job_key && !f.merge_only) fs::remove_all(g.tile_dir);
+      fs::create_directories(g.tile_dir);
+      if (old_key != g.job_key) {
+        write_atomically(g.tile_dir + "/job.toml", [&](std::ostream& s) { s << j.job.as_toml(j.command); });
+        write_atomically(g.tile_dir + "/job.key", [&](std::ostream& s) { s << g.job_key << "\n"; });
+      }
     }
+    mpi_barrier();
     for (const std::string& from : f.merge_from)
       if (from != g.tile_dir) import_tiles(from, g.tile_dir, j.plan, g.job_key);
   }
   GridResult r = run_grid(j.plan, j.item, g);
+  if (world.size > 1) {
+    mpi_barrier();  // every rank's tiles are saved
+    if (world.rank != 0) return std::nullopt;
+    g.compute = false;
+    r = run_grid(j.plan, j.item, g);
+    if (!r.complete()) throw std::runtime_error("mpirun: tiles missing after every rank finished");
+    return std::move(r.items);
+  }
   // A shard only leaves tiles, even when it completes the set: `bouncer merge` writes the
   // outputs, so a job array needs no "who finishes" logic.
   if (r.complete() && f.shard.all()) return std::move(r.items);

@@ -76,6 +76,14 @@ for r in rows:
     if s == 1:
         assert th == 0.5 and v == 4.0, r  # a sticking step ends at the release state
 PY
+# The sweep's model at a = 29 (last value, exact) is the model `bouncer orbit` builds from
+# the decimal: the recorded rows are the orbit's steps 101..130.
+"$BOUNCER" orbit --model constant --a 29 --eps 0.96 --theta 0.1 --v 5 --steps 130 >"$TMP/orbit29.stdout" ||
+  fail orbit29 "bouncer orbit failed"
+cmp -s <(grep -v '^#' "$TMP/bif1.csv" | awk -F, '$1 == "29" {print $2 "," $3 "," $4}') \
+       <(grep -v '^#' "$TMP/orbit29.stdout" | awk -F, 'NR > 1 && $1 > 100 {print $1 "," $2 "," $3}') ||
+  fail bif "rows at a = 29 differ from bouncer orbit --a 29"
+[[ $(grep -v '^#' "$TMP/bif1.csv" | awk -F, '$1 == "29"' | wc -l) -eq 30 ]] || fail bif "expected 30 rows at a = 29"
 run bifjson $B --samples 3 --json
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['summary']['rows']==90, d['summary']" "$TMP/bifjson.stdout" ||
   fail bifjson "--json summary on stdout"
@@ -129,6 +137,19 @@ cmp -s <(grep -v '^#' "$TMP/m3.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail mer
 run rs0 $BA --grid 8x6 --shard 0/2 --out "$TMP/rs"
 run rs $BA --grid 8x6 --out "$TMP/rs" && outputs resume "$TMP/rs"
 cmp -s <(grep -v '^#' "$TMP/rs.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail resume "resumed run differs"
+
+# MPI (only when the binary was built with it): 2 ranks split the tiles, rank 0 writes.
+if command -v mpirun >/dev/null && ldd "$BOUNCER" 2>/dev/null | grep -q libmpi; then
+  if mpirun --allow-run-as-root --oversubscribe -n 2 "$BOUNCER" $BA --grid 8x6 --threads 1 --quiet --out "$TMP/mpi" \
+      >"$TMP/mpi.stdout" 2>"$TMP/mpi.stderr"; then
+    outputs mpi "$TMP/mpi"
+    cmp -s <(grep -v '^#' "$TMP/mpi.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail mpi "2 MPI ranks differ from the whole run"
+  else
+    fail mpi "mpirun -n 2 failed: $(head -c 400 "$TMP/mpi.stderr")"
+  fi
+else
+  echo "picture_commands: MPI not built in; the mpirun check is skipped"
+fi
 
 # --- scan ---------------------------------------------------------------------------------
 run scan scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 3x2 --ics 2 --transient 100 --steps 64 \

@@ -23,18 +23,7 @@ using bouncer::IDual;
 
 // Model<Mpfi> -> Model<Dual<Mpfi>>: every parameter a constant (zero derivatives).
 inline bouncer::Model<IDual> lift(const bouncer::Model<Mpfi>& m) {
-  bouncer::Model<IDual> r{m.law, m.downward, m.bits, IDual(m.a), IDual(m.eps), IDual(m.c),
-                          IDual(m.collapse), m.veldep_collapse, bouncer::Wall<IDual>{}};
-  for (size_t j = 0; j < m.wall.start.size(); ++j) {
-    r.wall.start.push_back(IDual(m.wall.start[j]));
-    r.wall.end.push_back(IDual(m.wall.end[j]));
-    r.wall.height.push_back(IDual(m.wall.height[j]));
-    r.wall.velocity.push_back(IDual(m.wall.velocity[j]));
-  }
-  r.wall.turn = m.wall.turn;
-  r.wall.direction = m.wall.direction;
-  r.wall.top = IDual(m.wall.top);
-  return r;
+  return bouncer::convert_model<IDual>(m, [](const Mpfi& x) { return IDual(x); });
 }
 
 struct IMat2 {

@@ -43,31 +43,9 @@ double box_width(const State<Mpfi>& s) {
 
 namespace {
 
-IDual lift(const Mpfi& x) { return IDual(x); }
-std::vector<IDual> lift(const std::vector<Mpfi>& xs) {
-  std::vector<IDual> out;
-  for (const Mpfi& x : xs) out.push_back(lift(x));
-  return out;
-}
-
+// The interval model with every parameter a constant (zero derivatives).
 Model<IDual> lift(const Model<Mpfi>& m) {
-  Model<IDual> d{};
-  d.law = m.law;
-  d.downward = m.downward;
-  d.bits = m.bits;
-  d.a = lift(m.a);
-  d.eps = lift(m.eps);
-  d.c = lift(m.c);
-  d.collapse = lift(m.collapse);
-  d.veldep_collapse = m.veldep_collapse;
-  d.wall.start = lift(m.wall.start);
-  d.wall.end = lift(m.wall.end);
-  d.wall.height = lift(m.wall.height);
-  d.wall.velocity = lift(m.wall.velocity);
-  d.wall.turn = m.wall.turn;
-  d.wall.direction = m.wall.direction;
-  d.wall.top = lift(m.wall.top);
-  return d;
+  return convert_model<IDual>(m, [](const Mpfi& x) { return IDual(x); });
 }
 
 Mpfi thin(const Mpfr& x) { return Mpfi(x, x); }

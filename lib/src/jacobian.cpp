@@ -7,19 +7,6 @@ namespace bouncer {
 namespace {
 
 template <class S>
-Dual<S> lift(const S& x) {
-  return Dual<S>(x);
-}
-
-template <class S>
-std::vector<Dual<S>> lift(const std::vector<S>& xs) {
-  std::vector<Dual<S>> out;
-  out.reserve(xs.size());
-  for (const S& x : xs) out.push_back(lift(x));
-  return out;
-}
-
-template <class S>
 bool all_zero(const Dual<S>& x) {
   using Tr = ScalarTraits<S>;
   return Tr::is_zero(x.d[0]) == Truth::yes && Tr::is_zero(x.d[1]) == Truth::yes;
@@ -27,28 +14,10 @@ bool all_zero(const Dual<S>& x) {
 
 }  // namespace
 
-// Copies every field of Model<S> (keep in step with model/model.hpp; the Jacobian tests
-// compare the dual map's states with the plain map's along orbits of all three models).
+// The model with every parameter a constant (zero derivatives).
 template <class S>
 Model<Dual<S>> dual_model(const Model<S>& m) {
-  Model<Dual<S>> d;
-  d.law = m.law;
-  d.downward = m.downward;
-  d.bits = m.bits;
-  d.a = lift(m.a);
-  d.eps = lift(m.eps);
-  d.c = lift(m.c);
-  d.collapse = lift(m.collapse);
-  d.veldep_collapse = m.veldep_collapse;
-  d.wall.start = lift(m.wall.start);
-  d.wall.end = lift(m.wall.end);
-  d.wall.height = lift(m.wall.height);
-  d.wall.velocity = lift(m.wall.velocity);
-  d.wall.turn = m.wall.turn;
-  d.wall.direction = m.wall.direction;
-  d.wall.top = lift(m.wall.top);
-  d.wall.knot_exact = m.wall.knot_exact;
-  return d;
+  return convert_model<Dual<S>>(m, [](const S& x) { return Dual<S>(x); });
 }
 
 template <class S>

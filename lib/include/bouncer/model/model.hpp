@@ -70,6 +70,29 @@ struct Model {
 template <class T>
 Model<T> make_model(const ModelSpec& spec, long bits);
 
+// The same model with every number converted by `to` (e.g. to dual numbers, whose
+// derivatives of the parameters are zero). Every field of Model and Wall is listed here and
+// nowhere else, so adding a field means changing this one function.
+template <class U, class T, class F>
+Model<U> convert_model(const Model<T>& m, F&& to) {
+  auto all = [&to](const std::vector<T>& xs) {
+    std::vector<U> out;
+    out.reserve(xs.size());
+    for (const T& x : xs) out.push_back(to(x));
+    return out;
+  };
+  Model<U> r{m.law, m.downward, m.bits, to(m.a), to(m.eps), to(m.c), to(m.collapse), m.veldep_collapse, Wall<U>{}};
+  r.wall.start = all(m.wall.start);
+  r.wall.end = all(m.wall.end);
+  r.wall.height = all(m.wall.height);
+  r.wall.velocity = all(m.wall.velocity);
+  r.wall.turn = m.wall.turn;
+  r.wall.direction = m.wall.direction;
+  r.wall.top = to(m.wall.top);
+  r.wall.knot_exact = m.wall.knot_exact;
+  return r;
+}
+
 template <class T>
 struct State {
   T theta;

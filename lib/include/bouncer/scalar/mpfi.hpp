@@ -138,9 +138,9 @@ class Mpfi {
     v_->left._mpfr_exp = o.v_->left._mpfr_exp;
     v_->right._mpfr_sign = o.v_->right._mpfr_sign;
     v_->right._mpfr_exp = o.v_->right._mpfr_exp;
-    const size_t n = mpfr_custom_get_size(o.bits());
-    std::memcpy(left_, o.left_, n);
-    std::memcpy(right_, o.right_, n);
+    const size_t n = mpfr_custom_get_size(o.bits()) / sizeof(mp_limb_t);
+    Mpfr::copy_limb_array(left_, o.left_, n);
+    Mpfr::copy_limb_array(right_, o.right_, n);
   }
 };
 

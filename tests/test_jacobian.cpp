@@ -248,6 +248,8 @@ TEST(Jacobian, DualMapFollowsThePlainMapBitForBit) {
       x = r.next;
       y = l.next;
     }
-    if (i == 2 || i == 5) EXPECT_GT(sticking, 0) << "model " << i;
+    if (i == 2 || i == 5) {
+      EXPECT_GT(sticking, 0) << "model " << i;
+    }
   }
 }

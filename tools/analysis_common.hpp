@@ -16,11 +16,24 @@ namespace bouncer::cli {
 // double | mpfr:BITS; anything else is an InputError naming the allowed values.
 inline Precision analysis_precision(const Options& o, const std::string& command) {
   const Precision p = precision_from(o);
-  if (p.kind != Precision::Kind::double_ && p.kind != Precision::Kind::mpfr)
+  if (p.kind == Precision::Kind::interval)
     throw InputError("precision", "'" + p.text() + "' is not available for " + command +
-                                      " (allowed: double, mpfr:BITS with " + std::to_string(kMinBits) +
-                                      " <= BITS <= " + std::to_string(kMaxBits) + ")");
+                                      ": it follows one point orbit (allowed: double, long, quad, mpfr:BITS with " +
+                                      std::to_string(kMinBits) + " <= BITS <= " + std::to_string(kMaxBits) +
+                                      "; certified answers: certify-sticking, sweep)");
   return p;
+}
+
+// Calls f(Tag<T>{}) for the point type T the precision selects (never Mpfi).
+template <class F>
+decltype(auto) with_point_scalar(const Precision& p, F&& f) {
+  switch (p.kind) {
+    case Precision::Kind::long_double: return f(Tag<long double>{});
+    case Precision::Kind::quad: return f(Tag<Quad>{});
+    case Precision::Kind::mpfr: return f(Tag<Mpfr>{});
+    default: break;
+  }
+  return f(Tag<double>{});
 }
 
 // A JSON number, or a string for the values JSON cannot hold (inf, -inf, nan).

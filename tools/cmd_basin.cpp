@@ -41,8 +41,6 @@ BasinRequest basin_request(const Options& o) {
   if (r.classify.max_period * 2 > r.classify.steps)
     throw InputError("max-period", "must be at most steps/2 (" + std::to_string(r.classify.steps / 2) + ")");
   r.precision = point_precision(o);
-  if (r.precision.kind != Precision::Kind::double_ && r.precision.kind != Precision::Kind::mpfr)
-    throw InputError("precision", "basin classifies in double or mpfr:BITS");
   return r;
 }
 
@@ -199,8 +197,12 @@ int run_basin(const Options& o, const RunFlags& f) {
     if (items) basin_finish(req, *items, f, prov);
     return 0;
   };
-  if (req.precision.kind == Precision::Kind::mpfr) return go(std::make_shared<BasinGrid<Mpfr>>(req));
-  return go(std::make_shared<BasinGrid<double>>(req));
+  switch (req.precision.kind) {
+    case Precision::Kind::long_double: return go(std::make_shared<BasinGrid<long double>>(req));
+    case Precision::Kind::quad: return go(std::make_shared<BasinGrid<Quad>>(req));
+    case Precision::Kind::mpfr: return go(std::make_shared<BasinGrid<Mpfr>>(req));
+    default: return go(std::make_shared<BasinGrid<double>>(req));
+  }
 }
 
 Command add_basin(CLI::App& app) {

@@ -66,8 +66,8 @@ Command add_classify(CLI::App& app) {
       throw InputError("max-period", "must be at most steps/2 (" + std::to_string(co.steps / 2) + ")");
     const Precision prec = analysis_precision(o, "classify");
     const Provenance p = provenance_for("classify", o, prec, argv_text);
-    const nlohmann::ordered_json body = prec.kind == Precision::Kind::mpfr ? run_classify<Mpfr>(spec, prec, ic, co)
-                                                                           : run_classify<double>(spec, prec, ic, co);
+    const nlohmann::ordered_json body = with_point_scalar(
+        prec, [&](auto tag) { return run_classify<typename decltype(tag)::type>(spec, prec, ic, co); });
     print_summary(p, body, *json);
     return 0;
   };

@@ -68,8 +68,8 @@ Command add_lyapunov(CLI::App& app) {
     lo.blocks = integer_from(o, "blocks", 1, 10000, 20);
     const Precision prec = analysis_precision(o, "lyapunov");
     const Provenance p = provenance_for("lyapunov", o, prec, argv_text);
-    const nlohmann::ordered_json body =
-        prec.kind == Precision::Kind::mpfr ? measure<Mpfr>(spec, prec, ic, lo) : measure<double>(spec, prec, ic, lo);
+    const nlohmann::ordered_json body = with_point_scalar(
+        prec, [&](auto tag) { return measure<typename decltype(tag)::type>(spec, prec, ic, lo); });
     print_summary(p, body, *json);
     if (!body["note"].get<std::string>().empty()) std::cerr << "bouncer lyapunov: " << body["note"].get<std::string>() << "\n";
     return 0;

@@ -89,8 +89,8 @@ Command add_periodic(CLI::App& app) {
     }
     const Precision prec = analysis_precision(o, "periodic");
     const Provenance p = provenance_for("periodic", o, prec, argv_text);
-    const nlohmann::ordered_json body =
-        prec.kind == Precision::Kind::mpfr ? solve<Mpfr>(spec, prec, q, guess, no) : solve<double>(spec, prec, q, guess, no);
+    const nlohmann::ordered_json body = with_point_scalar(
+        prec, [&](auto tag) { return solve<typename decltype(tag)::type>(spec, prec, q, guess, no); });
     print_summary(p, body, *json);
     if (!body["converged"].get<bool>())
       std::cerr << "bouncer periodic: no period-" << q << " orbit converged: " << body["note"].get<std::string>() << "\n";

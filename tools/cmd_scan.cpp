@@ -76,8 +76,6 @@ ScanRequest scan_request(const Options& given) {
   if (r.classify.max_period * 2 > r.classify.steps)
     throw InputError("max-period", "must be at most steps/2 (" + std::to_string(r.classify.steps / 2) + ")");
   r.precision = point_precision(o);
-  if (r.precision.kind != Precision::Kind::double_ && r.precision.kind != Precision::Kind::mpfr)
-    throw InputError("precision", "scan classifies in double or mpfr:BITS");
   r.show = o.get_or("show", "regular");
   bool known = r.show == "regular";
   for (const auto& n : count_names()) known = known || n == r.show;
@@ -233,8 +231,12 @@ int run_scan(const Options& o, const RunFlags& f) {
     if (items) finish(req, *items, f, prov);
     return 0;
   };
-  if (req.precision.kind == Precision::Kind::mpfr) return go(std::make_shared<ScanGrid<Mpfr>>(req));
-  return go(std::make_shared<ScanGrid<double>>(req));
+  switch (req.precision.kind) {
+    case Precision::Kind::long_double: return go(std::make_shared<ScanGrid<long double>>(req));
+    case Precision::Kind::quad: return go(std::make_shared<ScanGrid<Quad>>(req));
+    case Precision::Kind::mpfr: return go(std::make_shared<ScanGrid<Mpfr>>(req));
+    default: return go(std::make_shared<ScanGrid<double>>(req));
+  }
 }
 
 Command add_scan(CLI::App& app) {

@@ -303,5 +303,7 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
 
 template Classification classify<double>(const ImpactMap<double>&, State<double>, const ClassifyOptions&);
 template Classification classify<Mpfr>(const ImpactMap<Mpfr>&, State<Mpfr>, const ClassifyOptions&);
+template Classification classify<long double>(const ImpactMap<long double>&, State<long double>, const ClassifyOptions&);
+template Classification classify<Quad>(const ImpactMap<Quad>&, State<Quad>, const ClassifyOptions&);
 
 }  // namespace bouncer

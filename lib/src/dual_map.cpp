@@ -7,7 +7,11 @@ namespace bouncer {
 
 template class ImpactMap<Dual<double>>;
 template class ImpactMap<Dual<Mpfr>>;
+template class ImpactMap<Dual<long double>>;
+template class ImpactMap<Dual<Quad>>;
 template Model<Dual<double>> make_model<Dual<double>>(const ModelSpec&, long);
 template Model<Dual<Mpfr>> make_model<Dual<Mpfr>>(const ModelSpec&, long);
+template Model<Dual<long double>> make_model<Dual<long double>>(const ModelSpec&, long);
+template Model<Dual<Quad>> make_model<Dual<Quad>>(const ModelSpec&, long);
 
 }  // namespace bouncer

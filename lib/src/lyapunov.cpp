@@ -153,5 +153,7 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions
 
 template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&);
 template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&);
+template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&);
+template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&);
 
 }  // namespace bouncer

@@ -34,6 +34,16 @@ check periodic.mu2 '(.multipliers[1][0] | tonumber) - 0.25 | fabs < 1e-12' true 
 "$BOUNCER" periodic --model constant --a 19 --eps 0.9 --period 2 --precision mpfr:200 --json >"$TMP/p2.json"
 check periodic.mpfr '.converged and (.points | length) == 2 and .complex_pair' true "$TMP/p2.json"
 check periodic.digits '(.points[0][0] | length) > 40' true "$TMP/p2.json"
+# long double and quad: the eq. 5 fixed point (v* = 12, multipliers 1 and eps^2 = 1/4) and
+# the classification of a sticking orbit (period 3, see test_classify) in every point type.
+for prec in long quad; do
+  "$BOUNCER" periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,11.5 --precision $prec --json >"$TMP/p_$prec.json"
+  check periodic.$prec.v '(.points[0][1] | tonumber) - 12 | fabs < 1e-15' true "$TMP/p_$prec.json"
+  check periodic.$prec.mu2 '(.multipliers[1][0] | tonumber) - 0.25 | fabs < 1e-15' true "$TMP/p_$prec.json"
+  check periodic.$prec.precision '.provenance.precision' $prec "$TMP/p_$prec.json"
+  "$BOUNCER" classify --model constant --a 20 --eps 0.3 --theta 0.3 --v 9 --precision $prec --json >"$TMP/c_$prec.json"
+  check classify.$prec '[.class, .period] | @text' '["sticking",3]' "$TMP/c_$prec.json"
+done
 check periodic.modulus '(.multiplier_moduli[0] - 0.81) | fabs < 1e-12' true "$TMP/p2.json"
 check periodic.bits '.provenance.bits' 200 "$TMP/p2.json"
 # Text output names the same fields.
@@ -88,14 +98,14 @@ bad periodic.noperiod 'period' periodic --model constant --a 24 --eps 0.5
 bad periodic.period0 'period.*\[1, 100\]' periodic --model constant --a 24 --eps 0.5 --period 0
 bad periodic.guess 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3
 bad periodic.guessbelow 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,1
-bad periodic.precision 'precision.*allowed: double, mpfr:BITS' periodic --model constant --a 24 --eps 0.5 --period 1 --precision interval:64
+bad periodic.precision 'precision.*allowed: double, long, quad, mpfr:BITS' periodic --model constant --a 24 --eps 0.5 --period 1 --precision interval:64
 bad lyapunov.theta 'theta' lyapunov --model elastic --a 20 --theta 1.5 --v 9
 bad lyapunov.steps 'steps' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --steps 0
-bad lyapunov.precision 'precision.*allowed' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --precision quad
+bad lyapunov.precision 'precision.*allowed' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --precision interval:128
 bad lyapunov.a ' a: |^bouncer: a' lyapunov --model elastic --a -1 --theta 0.3 --v 9
 bad classify.v 'v' classify --model elastic --a 20 --theta 0.3
 bad classify.maxperiod 'max-period' classify --model elastic --a 20 --theta 0.3 --v 9 --steps 100 --max-period 64
-bad classify.precision 'precision.*allowed' classify --model elastic --a 20 --theta 0.3 --v 9 --precision long
+bad classify.precision 'precision.*allowed' classify --model elastic --a 20 --theta 0.3 --v 9 --precision interval:64
 bad classify.eps 'eps' classify --model elastic --a 20 --eps 0.5 --theta 0.3 --v 9
 
 if [[ $failures -ne 0 ]]; then

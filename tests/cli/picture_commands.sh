@@ -208,7 +208,7 @@ bad grid-form $BA --grid 5 $O
 bad theta-range basin --model constant --a 24 --eps 0.5 --theta-range 0:2 --v-range 4:10 $O
 bad no-v-range basin --model constant --a 24 --eps 0.5 --grid 4x4 $O
 bad max-period $BA --grid 8x6 --max-period 400 $O
-bad basin-long basin --model constant --a 24 --eps 0.5 --v-range 4:10 --precision long $O
+bad basin-interval basin --model constant --a 24 --eps 0.5 --v-range 4:10 --precision interval:64 $O
 bad scan-elastic scan --model elastic --a-range 18:20 --eps-range 0.1:0.2 $O
 bad scan-eps-1 scan --model constant --a-range 18:20 --eps-range 0.5:1 $O
 bad scan-a-given scan --model constant --a 19 --a-range 18:20 --eps-range 0.5:0.6 $O

@@ -39,5 +39,7 @@ Classification classify(const ImpactMap<T>& map, State<T> start, const ClassifyO
 
 extern template Classification classify<double>(const ImpactMap<double>&, State<double>, const ClassifyOptions&);
 extern template Classification classify<Mpfr>(const ImpactMap<Mpfr>&, State<Mpfr>, const ClassifyOptions&);
+extern template Classification classify<long double>(const ImpactMap<long double>&, State<long double>, const ClassifyOptions&);
+extern template Classification classify<Quad>(const ImpactMap<Quad>&, State<Quad>, const ClassifyOptions&);
 
 }  // namespace bouncer

@@ -27,8 +27,12 @@ namespace bouncer {
 
 extern template class ImpactMap<Dual<double>>;
 extern template class ImpactMap<Dual<Mpfr>>;
+extern template class ImpactMap<Dual<long double>>;
+extern template class ImpactMap<Dual<Quad>>;
 extern template Model<Dual<double>> make_model<Dual<double>>(const ModelSpec&, long);
 extern template Model<Dual<Mpfr>> make_model<Dual<Mpfr>>(const ModelSpec&, long);
+extern template Model<Dual<long double>> make_model<Dual<long double>>(const ModelSpec&, long);
+extern template Model<Dual<Quad>> make_model<Dual<Quad>>(const ModelSpec&, long);
 
 // A 2x2 matrix, row major.
 template <class S>
@@ -104,11 +108,19 @@ Eigen2<S> eigenvalues(const Mat2<S>& m);
 
 extern template Model<Dual<double>> dual_model<double>(const Model<double>&);
 extern template Model<Dual<Mpfr>> dual_model<Mpfr>(const Model<Mpfr>&);
+extern template Model<Dual<long double>> dual_model<long double>(const Model<long double>&);
+extern template Model<Dual<Quad>> dual_model<Quad>(const Model<Quad>&);
 extern template class TangentMap<double>;
 extern template class TangentMap<Mpfr>;
+extern template class TangentMap<long double>;
+extern template class TangentMap<Quad>;
 extern template Eigen2<double> eigenvalues<double>(const Mat2<double>&);
 extern template Eigen2<Mpfr> eigenvalues<Mpfr>(const Mat2<Mpfr>&);
+extern template Eigen2<long double> eigenvalues<long double>(const Mat2<long double>&);
+extern template Eigen2<Quad> eigenvalues<Quad>(const Mat2<Quad>&);
 extern template struct Eigen2<double>;
 extern template struct Eigen2<Mpfr>;
+extern template struct Eigen2<long double>;
+extern template struct Eigen2<Quad>;
 
 }  // namespace bouncer

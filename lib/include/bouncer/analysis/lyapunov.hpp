@@ -52,5 +52,7 @@ double growth_exponent(const std::vector<std::pair<double, double>>& n_vmax);
 
 extern template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&);
 extern template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&);
+extern template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&);
+extern template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&);
 
 }  // namespace bouncer

@@ -24,17 +24,6 @@ inline Precision analysis_precision(const Options& o, const std::string& command
   return p;
 }
 
-// Calls f(Tag<T>{}) for the point type T the precision selects (never Mpfi).
-template <class F>
-decltype(auto) with_point_scalar(const Precision& p, F&& f) {
-  switch (p.kind) {
-    case Precision::Kind::long_double: return f(Tag<long double>{});
-    case Precision::Kind::quad: return f(Tag<Quad>{});
-    case Precision::Kind::mpfr: return f(Tag<Mpfr>{});
-    default: break;
-  }
-  return f(Tag<double>{});
-}
 
 // A JSON number, or a string for the values JSON cannot hold (inf, -inf, nan).
 inline nlohmann::ordered_json json_number(double x) {

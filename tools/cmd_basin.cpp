@@ -197,12 +197,9 @@ int run_basin(const Options& o, const RunFlags& f) {
     if (items) basin_finish(req, *items, f, prov);
     return 0;
   };
-  switch (req.precision.kind) {
-    case Precision::Kind::long_double: return go(std::make_shared<BasinGrid<long double>>(req));
-    case Precision::Kind::quad: return go(std::make_shared<BasinGrid<Quad>>(req));
-    case Precision::Kind::mpfr: return go(std::make_shared<BasinGrid<Mpfr>>(req));
-    default: return go(std::make_shared<BasinGrid<double>>(req));
-  }
+  return with_point_scalar(req.precision, [&](auto tag) {
+    return go(std::make_shared<BasinGrid<typename decltype(tag)::type>>(req));
+  });
 }
 
 Command add_basin(CLI::App& app) {

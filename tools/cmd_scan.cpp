@@ -231,12 +231,9 @@ int run_scan(const Options& o, const RunFlags& f) {
     if (items) finish(req, *items, f, prov);
     return 0;
   };
-  switch (req.precision.kind) {
-    case Precision::Kind::long_double: return go(std::make_shared<ScanGrid<long double>>(req));
-    case Precision::Kind::quad: return go(std::make_shared<ScanGrid<Quad>>(req));
-    case Precision::Kind::mpfr: return go(std::make_shared<ScanGrid<Mpfr>>(req));
-    default: return go(std::make_shared<ScanGrid<double>>(req));
-  }
+  return with_point_scalar(req.precision, [&](auto tag) {
+    return go(std::make_shared<ScanGrid<typename decltype(tag)::type>>(req));
+  });
 }
 
 Command add_scan(CLI::App& app) {

@@ -40,4 +40,17 @@ decltype(auto) with_scalar(const Precision& p, F&& f) {
   return f(Tag<Mpfi>{});
 }
 
+// The same for commands that follow point orbits: an interval precision must have been
+// refused before (it falls back to double here only to keep the switch total).
+template <class F>
+decltype(auto) with_point_scalar(const Precision& p, F&& f) {
+  switch (p.kind) {
+    case Precision::Kind::long_double: return f(Tag<long double>{});
+    case Precision::Kind::quad: return f(Tag<Quad>{});
+    case Precision::Kind::mpfr: return f(Tag<Mpfr>{});
+    default: break;
+  }
+  return f(Tag<double>{});
+}
+
 }  // namespace bouncer

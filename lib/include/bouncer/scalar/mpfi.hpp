@@ -139,8 +139,9 @@ class Mpfi {
     v_->right._mpfr_sign = o.v_->right._mpfr_sign;
     v_->right._mpfr_exp = o.v_->right._mpfr_exp;
     const size_t n = mpfr_custom_get_size(o.bits()) / sizeof(mp_limb_t);
-    Mpfr::copy_limb_array(left_, o.left_, n);
-    Mpfr::copy_limb_array(right_, o.right_, n);
+    // Limbs of NaN, infinite or zero ends are never read: copy only regular ends.
+    if (mpfr_regular_p(&o.v_->left)) Mpfr::copy_limb_array(left_, o.left_, n);
+    if (mpfr_regular_p(&o.v_->right)) Mpfr::copy_limb_array(right_, o.right_, n);
   }
 };
 

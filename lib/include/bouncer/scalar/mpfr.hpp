@@ -31,7 +31,7 @@ class Mpfr {
   Mpfr() { init(53); }
   explicit Mpfr(mpfr_prec_t bits) { init(bits); }
   Mpfr(long n, mpfr_prec_t bits) { init(bits); mpfr_set_si(v_, n, MPFR_RNDN); }
-  Mpfr(const Mpfr& o) { init(o.bits()); mpfr_set(v_, o.v_, MPFR_RNDN); }
+  Mpfr(const Mpfr& o) { init(o.bits()); copy_value(o); }
   Mpfr(Mpfr&& o) noexcept {
     if (o.is_inline()) {
       init(o.bits());
@@ -44,7 +44,7 @@ class Mpfr {
   Mpfr& operator=(const Mpfr& o) {
     if (this != &o) {
       if (bits() != o.bits()) { release(); init(o.bits()); }
-      mpfr_set(v_, o.v_, MPFR_RNDN);
+      copy_value(o);
     }
     return *this;
   }
@@ -133,7 +133,18 @@ class Mpfr {
   void copy_limbs(const Mpfr& o) {
     v_->_mpfr_sign = o.v_->_mpfr_sign;
     v_->_mpfr_exp = o.v_->_mpfr_exp;
-    copy_limb_array(limbs_, o.limbs_, mpfr_custom_get_size(o.bits()) / sizeof(mp_limb_t));
+    // NaN, infinities and zeros live in the exponent field; their limbs are never read.
+    if (mpfr_regular_p(o.v_)) copy_limb_array(limbs_, o.limbs_, mpfr_custom_get_size(o.bits()) / sizeof(mp_limb_t));
+  }
+  // Copy a value of the same precision wherever its limbs live: what mpfr_set does for
+  // equal precisions (special values live in the exponent field), without the call.
+  void copy_value(const Mpfr& o) {
+    v_->_mpfr_sign = o.v_->_mpfr_sign;
+    v_->_mpfr_exp = o.v_->_mpfr_exp;
+    if (!mpfr_regular_p(o.v_)) return;
+    copy_limb_array(static_cast<mp_limb_t*>(mpfr_custom_get_significand(v_)),
+                    static_cast<const mp_limb_t*>(mpfr_custom_get_significand(o.v_)),
+                    mpfr_custom_get_size(o.bits()) / sizeof(mp_limb_t));
   }
 
  public:

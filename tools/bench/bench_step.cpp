@@ -10,18 +10,14 @@
 //   rows    ImpactMap<T> for double, long double, quad, Mpfr and Mpfi at several precisions.
 //           Each repetition starts at the model's initial condition; the state is reset
 //           to it when an interval step is undecided or when v exceeds 1e4.
-//   E, E5   experiment: a copy of ImpactMap<T>::step (namespace fast) with the overheads
-//           found by callgrind/perf removed, checked bitwise against ImpactMap<T>; rows
-//           double-E(5) and mpfr-E(5) show what the candidate core changes would give.
 //
 // Timing: thread CPU time (the machine is shared), floors and rows interleaved in rounds,
 // paired ratios. Every step function is called, never inlined into the timing loop (as
 // ImpactMap<T>::step, which lives in the library).
 //
 // Usage: bench_step [--quick] [--time SECONDS] [--reps N] [--model SUBSTRING]
-//                   [--no-experiment] [--decompose]
 //        bench_step --profile KIND [--model SUBSTRING] [--bits B] [--steps N]
-// The floors and the experiment implement the default model options (no --veldep-collapse)
+// The floors implement the default model options (no --veldep-collapse)
 // and must be kept in step with lib/include/bouncer/model/impact_map_impl.hpp: the bitwise
 // checks at start-up (exit code 1 on a mismatch) say when they are not.
 #include <mpfi.h>
@@ -47,223 +43,11 @@
 #include <vector>
 
 #include "bouncer/io/provenance.hpp"
-#include "bouncer/model/impact_map_impl.hpp"  // experiments: detail:: helpers, ImpactMap<MpfrX>
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"
 
 using namespace bouncer;
 
-// ---------------------------------------------------------------------------------------
-// Experiment S (scalar level): MpfrX, a copy of bouncer::Mpfr with
-//   S1 every operator, constructor and destructor forced inline (gcc keeps the Mpfr
-//      operators out of line: ~30 instructions of call, precision and limb-size setup per
-//      arithmetic operation, ~30 operations per step);
-//   S2 moves copy the used limbs with an inline loop instead of a call to memcpy.
-// Same values, same MPFR calls: ImpactMap<MpfrX> must equal ImpactMap<Mpfr> bitwise.
-// ---------------------------------------------------------------------------------------
-namespace bouncer {
-
-#define BX_INLINE [[gnu::always_inline]] inline
-class MpfrX {
- public:
-  static constexpr int kInlineLimbs = 16;
-  BX_INLINE MpfrX() { init(53); }
-  BX_INLINE explicit MpfrX(mpfr_prec_t bits) { init(bits); }
-  BX_INLINE MpfrX(long n, mpfr_prec_t bits) { init(bits); mpfr_set_si(v_, n, MPFR_RNDN); }
-  BX_INLINE MpfrX(const MpfrX& o) { init(o.bits()); mpfr_set(v_, o.v_, MPFR_RNDN); }
-  BX_INLINE MpfrX(MpfrX&& o) noexcept {
-    if (o.is_inline()) {
-      init(o.bits());
-      copy_limbs(o);
-    } else {
-      v_[0] = o.v_[0];
-      o.init(MPFR_PREC_MIN);
-    }
-  }
-  BX_INLINE MpfrX& operator=(const MpfrX& o) {
-    if (this != &o) {
-      if (bits() != o.bits()) { release(); init(o.bits()); }
-      mpfr_set(v_, o.v_, MPFR_RNDN);
-    }
-    return *this;
-  }
-  BX_INLINE MpfrX& operator=(MpfrX&& o) noexcept {
-    if (this == &o) return *this;
-    if (!o.is_inline()) {
-      release();
-      v_[0] = o.v_[0];
-      o.init(MPFR_PREC_MIN);
-    } else {
-      if (bits() != o.bits()) { release(); init(o.bits()); }
-      copy_limbs(o);
-    }
-    return *this;
-  }
-  BX_INLINE ~MpfrX() { release(); }
-
-  BX_INLINE mpfr_prec_t bits() const { return mpfr_get_prec(v_); }
-  BX_INLINE mpfr_ptr get() { return v_; }
-  BX_INLINE mpfr_srcptr get() const { return v_; }
-  bool set_decimal(std::string_view text) {
-    std::string s(text);
-    char* end = nullptr;
-    mpfr_strtofr(v_, s.c_str(), &end, 10, MPFR_RNDN);
-    return !s.empty() && end && *end == '\0';
-  }
-
-  BX_INLINE MpfrX& operator+=(const MpfrX& o) { mpfr_add(v_, v_, o.v_, MPFR_RNDN); return *this; }
-  BX_INLINE MpfrX& operator-=(const MpfrX& o) { mpfr_sub(v_, v_, o.v_, MPFR_RNDN); return *this; }
-  BX_INLINE MpfrX& operator*=(const MpfrX& o) { mpfr_mul(v_, v_, o.v_, MPFR_RNDN); return *this; }
-  BX_INLINE MpfrX& operator/=(const MpfrX& o) { mpfr_div(v_, v_, o.v_, MPFR_RNDN); return *this; }
-  BX_INLINE MpfrX& operator*=(long n) { mpfr_mul_si(v_, v_, n, MPFR_RNDN); return *this; }
-  BX_INLINE MpfrX& operator/=(long n) { mpfr_div_si(v_, v_, n, MPFR_RNDN); return *this; }
-
-#define BX_BIN(op, fn) \
-  BX_INLINE friend MpfrX operator op(const MpfrX& x, const MpfrX& y) { MpfrX r(wider(x, y)); fn(r.v_, x.v_, y.v_, MPFR_RNDN); return r; }
-  BX_BIN(+, mpfr_add)
-  BX_BIN(-, mpfr_sub)
-  BX_BIN(*, mpfr_mul)
-  BX_BIN(/, mpfr_div)
-#undef BX_BIN
-  BX_INLINE friend MpfrX operator-(const MpfrX& x) { MpfrX r(x.bits()); mpfr_neg(r.v_, x.v_, MPFR_RNDN); return r; }
-  BX_INLINE friend MpfrX operator+(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_add_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
-  BX_INLINE friend MpfrX operator-(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_sub_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
-  BX_INLINE friend MpfrX operator-(long n, const MpfrX& x) { MpfrX r(x.bits()); mpfr_si_sub(r.v_, n, x.v_, MPFR_RNDN); return r; }
-  BX_INLINE friend MpfrX operator*(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_mul_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
-  BX_INLINE friend MpfrX operator*(long n, const MpfrX& x) { return x * n; }
-  BX_INLINE friend MpfrX operator/(const MpfrX& x, long n) { MpfrX r(x.bits()); mpfr_div_si(r.v_, x.v_, n, MPFR_RNDN); return r; }
-  BX_INLINE friend MpfrX operator/(long n, const MpfrX& x) { MpfrX r(x.bits()); mpfr_si_div(r.v_, n, x.v_, MPFR_RNDN); return r; }
-
-  BX_INLINE friend bool operator<(const MpfrX& x, const MpfrX& y) { return mpfr_less_p(x.v_, y.v_); }
-  BX_INLINE friend bool operator<=(const MpfrX& x, const MpfrX& y) { return mpfr_lessequal_p(x.v_, y.v_); }
-  BX_INLINE friend bool operator>(const MpfrX& x, const MpfrX& y) { return mpfr_greater_p(x.v_, y.v_); }
-  BX_INLINE friend bool operator>=(const MpfrX& x, const MpfrX& y) { return mpfr_greaterequal_p(x.v_, y.v_); }
-  BX_INLINE friend bool operator==(const MpfrX& x, const MpfrX& y) { return mpfr_equal_p(x.v_, y.v_); }
-
-  friend MpfrX sqrt(const MpfrX& x) { MpfrX r(x.bits()); mpfr_sqrt(r.v_, x.v_, MPFR_RNDN); return r; }
-  friend MpfrX exp(const MpfrX& x) { MpfrX r(x.bits()); mpfr_exp(r.v_, x.v_, MPFR_RNDN); return r; }
-  friend MpfrX log(const MpfrX& x) { MpfrX r(x.bits()); mpfr_log(r.v_, x.v_, MPFR_RNDN); return r; }
-  friend MpfrX abs(const MpfrX& x) { MpfrX r(x.bits()); mpfr_abs(r.v_, x.v_, MPFR_RNDN); return r; }
-  friend MpfrX floor(const MpfrX& x) { MpfrX r(x.bits()); mpfr_floor(r.v_, x.v_); return r; }
-
- private:
-  mpfr_t v_;
-  mp_limb_t limbs_[kInlineLimbs];
-
-  BX_INLINE static mpfr_prec_t wider(const MpfrX& x, const MpfrX& y) { return std::max(x.bits(), y.bits()); }
-  BX_INLINE bool is_inline() const { return mpfr_custom_get_significand(v_) == static_cast<const void*>(limbs_); }
-  BX_INLINE void init(mpfr_prec_t bits) {
-    if (mpfr_custom_get_size(bits) <= sizeof(limbs_)) {
-      mpfr_custom_init(limbs_, bits);
-      mpfr_custom_init_set(v_, MPFR_NAN_KIND, 0, bits, limbs_);
-    } else {
-      mpfr_init2(v_, bits);
-    }
-  }
-  BX_INLINE void release() {
-    if (!is_inline()) mpfr_clear(v_);
-  }
-  BX_INLINE void copy_limbs(const MpfrX& o) {
-    v_->_mpfr_sign = o.v_->_mpfr_sign;
-    v_->_mpfr_exp = o.v_->_mpfr_exp;
-    const size_t n = mpfr_custom_get_size(o.bits()) / sizeof(mp_limb_t);
-    for (size_t i = 0; i < n; ++i) limbs_[i] = o.limbs_[i];
-  }
-};
-#undef BX_INLINE
-
-template <>
-struct ScalarTraits<MpfrX> {
-  static constexpr bool is_interval = false;
-  static constexpr const char* family = "mpfr";
-  static MpfrX from_decimal(std::string_view text, long bits) {
-    MpfrX x(bits);
-    if (!x.set_decimal(text)) throw std::invalid_argument("not a decimal");
-    return x;
-  }
-  static MpfrX from_int(long n, long bits) { return MpfrX(n, bits); }
-  static long bits(const MpfrX& x) { return x.bits(); }
-  static Truth lt(const MpfrX& x, const MpfrX& y) { return nan(x, y) ? Truth::invalid : truth(x < y); }
-  static Truth le(const MpfrX& x, const MpfrX& y) { return nan(x, y) ? Truth::invalid : truth(x <= y); }
-  static Truth is_zero(const MpfrX& x) { return mpfr_nan_p(x.get()) ? Truth::invalid : truth(mpfr_zero_p(x.get()) != 0); }
-  static bool likely_negative(const MpfrX& x) { return mpfr_sgn(x.get()) < 0; }
-  static MpfrX nonneg(const MpfrX& x) { return mpfr_sgn(x.get()) < 0 ? MpfrX(0, x.bits()) : x; }
-  static bool is_finite(const MpfrX& x) { return mpfr_number_p(x.get()) != 0; }
-  static double to_double(const MpfrX& x) { return mpfr_get_d(x.get(), MPFR_RNDN); }
-  static MpfrX below(const MpfrX& x) { MpfrX r = x; mpfr_nextbelow(r.get()); return r; }
-  static int exponent(const MpfrX& x) { return mpfr_zero_p(x.get()) ? 0 : static_cast<int>(mpfr_get_exp(x.get())); }
-  static MpfrX floor(const MpfrX& x) { MpfrX r(x.bits()); mpfr_floor(r.get(), x.get()); return r; }
-  static MpfrX pow_3_5(const MpfrX& x) {
-    MpfrX r(x.bits());
-    mpfr_pow_ui(r.get(), x.get(), 3, MPFR_RNDN);
-    mpfr_rootn_ui(r.get(), r.get(), 5, MPFR_RNDN);
-    return r;
-  }
-  static std::string to_string(const MpfrX& x) { return mpfr_to_string(x.get(), MPFR_RNDN); }
-  static bool nan(const MpfrX& x, const MpfrX& y) { return mpfr_nan_p(x.get()) || mpfr_nan_p(y.get()); }
-};
-
-// Dbl: a plain double in a struct, so that the unmodified core template ImpactMap<T> can be
-// instantiated in this file (ImpactMap<double> itself is extern: compiled in the library).
-// Same operations as double, so ImpactMap<Dbl> must equal ImpactMap<double> bitwise; its
-// row (--decompose) separates "the core's code" from "where the core is compiled".
-struct Dbl {
-  double x = 0;
-  Dbl() = default;
-  explicit constexpr Dbl(double v) : x(v) {}
-  Dbl& operator+=(Dbl o) { x += o.x; return *this; }
-  Dbl& operator-=(Dbl o) { x -= o.x; return *this; }
-  Dbl& operator*=(Dbl o) { x *= o.x; return *this; }
-  Dbl& operator/=(Dbl o) { x /= o.x; return *this; }
-  Dbl& operator*=(long n) { x *= static_cast<double>(n); return *this; }
-  Dbl& operator/=(long n) { x /= static_cast<double>(n); return *this; }
-  friend Dbl operator+(Dbl a, Dbl b) { return Dbl(a.x + b.x); }
-  friend Dbl operator-(Dbl a, Dbl b) { return Dbl(a.x - b.x); }
-  friend Dbl operator*(Dbl a, Dbl b) { return Dbl(a.x * b.x); }
-  friend Dbl operator/(Dbl a, Dbl b) { return Dbl(a.x / b.x); }
-  friend Dbl operator-(Dbl a) { return Dbl(-a.x); }
-  friend Dbl operator+(Dbl a, long n) { return Dbl(a.x + static_cast<double>(n)); }
-  friend Dbl operator-(Dbl a, long n) { return Dbl(a.x - static_cast<double>(n)); }
-  friend Dbl operator-(long n, Dbl a) { return Dbl(static_cast<double>(n) - a.x); }
-  friend Dbl operator*(Dbl a, long n) { return Dbl(a.x * static_cast<double>(n)); }
-  friend Dbl operator*(long n, Dbl a) { return Dbl(static_cast<double>(n) * a.x); }
-  friend Dbl operator/(Dbl a, long n) { return Dbl(a.x / static_cast<double>(n)); }
-  friend Dbl operator/(long n, Dbl a) { return Dbl(static_cast<double>(n) / a.x); }
-  friend bool operator<(Dbl a, Dbl b) { return a.x < b.x; }
-  friend bool operator<=(Dbl a, Dbl b) { return a.x <= b.x; }
-  friend bool operator>(Dbl a, Dbl b) { return a.x > b.x; }
-  friend bool operator>=(Dbl a, Dbl b) { return a.x >= b.x; }
-  friend bool operator==(Dbl a, Dbl b) { return a.x == b.x; }
-  friend Dbl sqrt(Dbl a) { return Dbl(std::sqrt(a.x)); }
-  friend Dbl exp(Dbl a) { return Dbl(std::exp(a.x)); }
-  friend Dbl log(Dbl a) { return Dbl(std::log(a.x)); }
-  friend Dbl floor(Dbl a) { return Dbl(std::floor(a.x)); }
-  friend Dbl abs(Dbl a) { return Dbl(std::fabs(a.x)); }
-};
-
-template <>
-struct ScalarTraits<Dbl> {
-  using D = ScalarTraits<double>;
-  static constexpr bool is_interval = false;
-  static constexpr const char* family = "double";
-  static Dbl from_decimal(std::string_view text, long bits) { return Dbl(D::from_decimal(text, bits)); }
-  static Dbl from_int(long n, long) { return Dbl(static_cast<double>(n)); }
-  static long bits(const Dbl&) { return 53; }
-  static Truth lt(const Dbl& x, const Dbl& y) { return D::lt(x.x, y.x); }
-  static Truth le(const Dbl& x, const Dbl& y) { return D::le(x.x, y.x); }
-  static Truth is_zero(const Dbl& x) { return D::is_zero(x.x); }
-  static bool likely_negative(const Dbl& x) { return x.x < 0; }
-  static Dbl nonneg(const Dbl& x) { return x.x < 0 ? Dbl(0) : x; }
-  static bool is_finite(const Dbl& x) { return std::isfinite(x.x); }
-  static double to_double(const Dbl& x) { return x.x; }
-  static Dbl below(const Dbl& x) { return Dbl(D::below(x.x)); }
-  static int exponent(const Dbl& x) { return D::exponent(x.x); }
-  static Dbl floor(const Dbl& x) { return Dbl(std::floor(x.x)); }
-  static Dbl pow_3_5(const Dbl& x) { return Dbl(D::pow_3_5(x.x)); }
-  static std::string to_string(const Dbl& x) { return D::to_string(x.x); }
-};
-
-}  // namespace bouncer
 
 namespace {
 
@@ -308,11 +92,9 @@ std::vector<Case> all_cases() {
 
 constexpr double kVReset = 1e4;  // (the MPFR versions compare with the integer 10000)
 inline bool vbig(double v) { return v > kVReset; }
-inline bool vbig(const Dbl& v) { return v.x > kVReset; }
 inline bool vbig(long double v) { return v > kVReset; }
 inline bool vbig(const Quad& v) { return v > kVReset; }
 inline bool vbig(const Mpfr& v) { return mpfr_cmp_si(v.get(), 10000) > 0; }
-inline bool vbig(const MpfrX& v) { return mpfr_cmp_si(v.get(), 10000) > 0; }
 inline bool vbig(const Mpfi& v) { return mpfr_cmp_si(&v.get()->right, 10000) > 0; }
 
 // ---------------------------------------------------------------------------------------
@@ -852,364 +634,6 @@ class RawMpfrMap {
   }
 };
 
-// ---------------------------------------------------------------------------------------
-// Experiment: a copy of ImpactMap<T>::step with the overheads found by callgrind removed
-// (same arithmetic, so it must stay bitwise equal to ImpactMap<T>). Candidate changes for
-// lib/include/bouncer/{scalar,model}; see the final report.
-//   E1 decide(): the yes/no fast path inline, the throw in a cold out-of-line function
-//      (gcc does not inline bouncer::decide because of its throw: one call per branch).
-//   E2 IEEE three-valued lt/le: x<y ? yes : x>=y ? no : invalid (two compares, no isnan).
-//   E3 no copies of state/wall values: pos as a pointer (to s.theta or a wall knot),
-//      rel computed into W, q referenced (not copied) when on the wall, clamp and nonneg
-//      in place, collide/ride take const T&, ride assigns next.theta/next.v directly.
-//   E4 the zero of the model's precision built once per map, not once per step.
-// ---------------------------------------------------------------------------------------
-
-namespace fast {
-
-[[noreturn, gnu::cold, gnu::noinline]] void throw_undecided_fast(Truth t, Reason where) {
-  throw Undecided(t == Truth::invalid ? Reason::nonfinite : where);
-}
-[[gnu::always_inline]] inline bool fdecide(Truth t, Reason where) {
-  if (t == Truth::yes) return true;
-  if (t == Truth::no) return false;
-  throw_undecided_fast(t, where);
-}
-
-template <class T>
-constexpr bool ieee = std::is_floating_point_v<T> || std::is_same_v<T, Quad>;
-
-template <class T>
-inline Truth lt(const T& x, const T& y) {
-  if constexpr (ieee<T>) return x < y ? Truth::yes : x >= y ? Truth::no : Truth::invalid;
-  else return ScalarTraits<T>::lt(x, y);
-}
-template <class T>
-inline Truth le(const T& x, const T& y) {
-  if constexpr (ieee<T>) return x <= y ? Truth::yes : x > y ? Truth::no : Truth::invalid;
-  else return ScalarTraits<T>::le(x, y);
-}
-template <class T>
-inline Truth is_zero(const T& x) {
-  if constexpr (ieee<T>) return x == 0 ? Truth::yes : x != 0 && x == x ? Truth::no : Truth::invalid;
-  else return ScalarTraits<T>::is_zero(x);
-}
-template <class T>
-inline void make_nonneg(T& x) {
-  if constexpr (std::is_same_v<T, Mpfr> || std::is_same_v<T, MpfrX>) {
-    if (mpfr_sgn(x.get()) < 0) mpfr_set_zero(x.get(), 1);
-  } else if constexpr (ieee<T>) {
-    if (x < 0) x = T(0);
-  } else {
-    x = ScalarTraits<T>::nonneg(x);
-  }
-}
-template <class T>
-inline void clamp_in_place(T& x, const T& lo, const T& hi) {
-  if constexpr (ScalarTraits<T>::is_interval) {
-    x = intersect(x, hull(lo, hi));
-  } else {
-    if (x < lo) x = lo;
-    else if (!(x < hi)) x = ScalarTraits<T>::below(hi);
-  }
-}
-
-// Where a copy is free (IEEE types) values stay in registers; otherwise refer, never copy.
-template <class T>
-using Arg = std::conditional_t<ieee<T>, T, const T&>;
-template <class T>
-struct Slot {  // "the current phase": a value for IEEE types, a pointer otherwise
-  const T* p = nullptr;
-  const T& get() const { return *p; }
-  void refer(const T& x) { p = &x; }
-};
-template <class T>
-  requires ieee<T>
-struct Slot<T> {
-  T v{};
-  const T& get() const { return v; }
-  void refer(const T& x) { v = x; }
-};
-
-// Flags put back one overhead of ImpactMap at a time (for --decompose).
-constexpr unsigned kOldDecide = 1;   // bouncer::decide (out of line) instead of E1
-constexpr unsigned kOldCompare = 2;  // ScalarTraits<T>::lt/le/is_zero instead of E2
-constexpr unsigned kCopyOut = 4;     // build the result in a local and copy it out (as Walk)
-// E5 (not in E by default): hot expressions as one temporary plus compound assignments, e.g.
-// W -= a*L; W += u_j; W -= u_k instead of W = W - a*L + u_j - u_k (same operations in the
-// same order, so the same roundings: all operands of a Model<T> share one precision).
-constexpr unsigned kInPlace = 8;
-
-template <class T, unsigned F = 0>
-class Map {
-  static constexpr bool kIn = (F & kInPlace) != 0;
-
- public:
-  explicit Map(Model<T> m) : m_(std::move(m)), zero_(m_.zero()) { require_default_options(m_); }
-
-  // The next state only, returned by value (for --decompose, row "E,advance"). The idea was
-  // that a State<double> comes back in two SSE registers, so the caller never reloads the two
-  // 8-byte stores the step just made as one 16-byte load (see take()); measured, it does not
-  // help (gcc reloads r.next with a 16-byte load inside advance instead).
-  [[gnu::noinline]] State<T> advance(const State<T>& s) const {
-    StepResult<T> r = step_body(s);
-    return std::move(r.next);
-  }
-  [[gnu::noinline]] StepResult<T> step(const State<T>& s) const { return step_body(s); }
-
-  [[gnu::always_inline]] StepResult<T> step_body(const State<T>& s) const {
-    using Tr = ScalarTraits<T>;
-    using std::sqrt;
-    const Wall<T>& wall = m_.wall;
-    const T& a = m_.a;
-    const T& zero = zero_;
-    StepResult<T> r;
-    r.tau = zero;
-    int j = segment_of(s.theta);
-    if constexpr (Tr::is_interval) dec(lt_(s.theta, wall.end[j]), Reason::phase_at_corner);
-    const int j0 = j;
-    T W = s.v - wall.velocity[j];  // rel
-    if (dec(is_zero_(W), Reason::riding)) {
-      r.kind = EventKind::ride;
-      ride(r, j, s.theta);
-    } else {
-      Slot<T> pos;
-      pos.refer(s.theta);
-      T pos_store{};  // pos after a jump
-      T L = wall.end[j] - s.theta;
-      T G = zero;
-      bool on_wall = true, jumped = false;
-      for (long iter = 0;; ++iter) {
-        if (iter > kWalkLimit) throw Undecided(Reason::walk_limit);
-        T qbuf = on_wall ? T() : [&] {
-          if constexpr (kIn) {
-            T d = W * W, t = 2 * a;
-            t *= G;
-            d += t;
-            make_nonneg(d);
-            return sqrt(d);
-          } else {
-            T d = W * W + 2 * a * G;
-            make_nonneg(d);
-            return sqrt(d);
-          }
-        }();
-        Arg<T> q = on_wall ? W : qbuf;
-        T sigma = [&] {
-          if constexpr (kIn) {
-            if (on_wall) { T x = 2 * W; x /= a; return x; }
-            if (Tr::likely_negative(W)) { T x = 2 * G; x /= T(q - W); return x; }
-            T x = W + q;
-            x /= a;
-            return x;
-          } else {
-            return on_wall ? 2 * W / a : Tr::likely_negative(W) ? 2 * G / (q - W) : (W + q) / a;
-          }
-        }();
-        if (dec(lt_(sigma, L), Reason::impact_at_corner)) {
-          r.tau += sigma;
-          T theta = pos.get() + sigma;
-          clamp_in_place(theta, wall.start[j], wall.end[j]);
-          if (jumped) {
-            r.indirect = Truth::yes;
-          } else {
-            if constexpr (kIn) {
-              T f0 = s.theta - wall.start[j0];
-              f0 *= wall.velocity[j0];
-              f0 += wall.height[j0];
-              T lhs = wall.top - f0, two_a = 2 * a;
-              lhs *= two_a;
-              r.indirect = bouncer::detail::both(lt_(lhs, T(s.v * s.v)), lt_(T(wall.velocity[j] - q), zero));
-            } else {
-              const T f0 = wall.height_at(j0, s.theta);
-              r.indirect = bouncer::detail::both(lt_(T(2 * a * (wall.top - f0)), T(s.v * s.v)),
-                                                 lt_(T(wall.velocity[j] - q), zero));
-            }
-          }
-          collide(r, j, theta, q);
-          break;
-        }
-        const int k = wall.next(j);
-        r.tau += L;
-        if (k == 0) ++r.periods;
-        if (!dec(lt_(L, sigma), Reason::impact_at_corner)) {
-          T Wk = [&] {
-            if constexpr (kIn) {
-              T x = W - a * L;
-              x += wall.velocity[j];
-              x -= wall.velocity[k];
-              return x;
-            } else {
-              return W - a * L + wall.velocity[j] - wall.velocity[k];
-            }
-          }();
-          if (dec(lt_(Wk, zero), Reason::corner_approach)) {
-            r.corner = true;
-            r.indirect = jumped ? Truth::yes : Truth::no;
-            collide(r, k, wall.start[k], -Wk);
-            break;
-          }
-          if (dec(is_zero_(Wk), Reason::riding)) {
-            ride(r, k, wall.start[k]);
-            break;
-          }
-          G = zero;
-          W = std::move(Wk);
-          on_wall = true;
-        } else {
-          T gap = [&] {
-            if constexpr (kIn) {
-              T x = sigma - L;
-              x *= a;
-              if (on_wall) {
-                x *= L;
-              } else {
-                T u = 2 * G;
-                u /= T(a * sigma);
-                u += L;
-                x *= u;
-              }
-              return x / 2;
-            } else {
-              return on_wall ? a * (sigma - L) * L / 2 : a * (sigma - L) * (L + 2 * G / (a * sigma)) / 2;
-            }
-          }();
-          if constexpr (kIn) {
-            const T t = a * L;
-            W -= t;
-            W += wall.velocity[j];
-            W -= wall.velocity[k];
-          } else {
-            W = W - a * L + wall.velocity[j] - wall.velocity[k];
-          }
-          make_nonneg(gap);
-          G = std::move(gap);
-          on_wall = false;
-        }
-        j = k;
-        pos.refer(wall.start[k]);
-        L = wall.end[k] - wall.start[k];
-        if (!jumped && certainly(lt_(wall.top, T(wall.height[j] + G)))) {
-          jumped = true;
-          const T f0 = wall.height_at(j0, s.theta);
-          T d = s.v * s.v - 2 * a * (wall.top - f0);
-          make_nonneg(d);
-          const T root = sqrt(d);
-          const T tau_fall = (s.v + root) / a;
-          const T x = s.theta + tau_fall;
-          T whole = zero;
-          dec(floor_certain(x, whole), Reason::period_boundary);
-          r.periods = bouncer::detail::whole_periods(whole);
-          r.phase_bits_lost = std::max(0, Tr::exponent(x));
-          r.tau = tau_fall;
-          pos_store = x - whole;
-          clamp_in_place(pos_store, zero, wall.end.back());
-          pos.refer(pos_store);
-          j = segment_of(pos_store);
-          L = wall.end[j] - pos_store;
-          G = wall.top - wall.height_at(j, pos_store);
-          make_nonneg(G);
-          W = -root - wall.velocity[j];
-          on_wall = false;
-        }
-      }
-    }
-    if (!Tr::is_finite(r.next.theta) || !Tr::is_finite(r.next.v)) throw Undecided(Reason::nonfinite);
-    if constexpr ((F & kCopyOut) != 0) {
-      StepResult<T> out(std::move(r));
-      return out;
-    } else {
-      return r;
-    }
-  }
-
- private:
-  static bool dec(Truth t, Reason where) {
-    if constexpr ((F & kOldDecide) != 0) return bouncer::decide(t, where);
-    else return fdecide(t, where);
-  }
-  static Truth lt_(const T& x, const T& y) {
-    if constexpr ((F & kOldCompare) != 0) return ScalarTraits<T>::lt(x, y);
-    else return fast::lt(x, y);
-  }
-  static Truth le_(const T& x, const T& y) {
-    if constexpr ((F & kOldCompare) != 0) return ScalarTraits<T>::le(x, y);
-    else return fast::le(x, y);
-  }
-  static Truth is_zero_(const T& x) {
-    if constexpr ((F & kOldCompare) != 0) return ScalarTraits<T>::is_zero(x);
-    else return fast::is_zero(x);
-  }
-  Model<T> m_;
-  T zero_;
-
-  int segment_of(const T& theta) const {
-    for (int j = m_.wall.segments() - 1; j > 0; --j)
-      if (dec(le_(m_.wall.start[j], theta), Reason::phase_at_corner)) return j;
-    return 0;
-  }
-
-  void collide(StepResult<T>& r, int j, Arg<T> theta, Arg<T> speed) const {
-    using Tr = ScalarTraits<T>;
-    using std::exp;
-    const Wall<T>& wall = m_.wall;
-    const T tmp = m_.law == Law::constant ? m_.eps * speed
-                  : m_.law == Law::veldep ? exp(-Tr::pow_3_5(speed / m_.c)) * speed
-                                          : T();
-    Arg<T> out = m_.law == Law::elastic ? speed : tmp;
-    r.segment = j;
-    r.next.v = wall.velocity[j] + out;
-    if (m_.law == Law::constant && dec(le_(out, [&] {
-          if constexpr (kIn) {
-            T x = wall.end[j] - theta;
-            x *= m_.collapse;
-            return x;
-          } else {
-            return T(m_.collapse * (wall.end[j] - theta));
-          }
-        }()), Reason::sticking_threshold)) {
-      if (r.kind != EventKind::sticking) {
-        r.kind = EventKind::sticking;
-        r.stick_segment = j;
-        r.stuck_theta = theta;
-        r.stuck_v = r.next.v;
-      }
-      ride(r, j, theta);
-      return;
-    }
-    r.next.theta = theta;
-  }
-
-  void ride(StepResult<T>& r, int j, Arg<T> pos0) const {
-    const Wall<T>& wall = m_.wall;
-    Slot<T> pos;
-    pos.refer(pos0);
-    for (;;) {
-      r.tau += wall.end[j] - pos.get();
-      const int k = wall.next(j);
-      if (k == 0) ++r.periods;
-      r.segment = j;
-      switch (wall.turn[j]) {
-        case Turn::down:
-          r.next.theta = wall.start[k];
-          r.next.v = wall.velocity[j];
-          return;
-        case Turn::none:
-          break;
-        case Turn::up:
-          r.passed_upward_turn = true;
-          if (m_.law == Law::constant && m_.downward == DownwardSticking::paper) break;
-          r.corner = true;
-          collide(r, k, wall.start[k], wall.velocity[k] - wall.velocity[j]);
-          return;
-      }
-      j = k;
-      pos.refer(wall.start[k]);
-    }
-  }
-};
-
-}  // namespace fast
 
 // ---------------------------------------------------------------------------------------
 // Bitwise checks of the floors against ImpactMap
@@ -1304,103 +728,6 @@ Check check_raw(const Case& k, long bits, long steps) {
   return c;
 }
 
-template <class T>
-bool same_bits_t(const T& x, const T& y) {
-  if constexpr (std::is_same_v<T, double>) return same_bits(x, y);
-  else return same_bits(x.get(), y.get());
-}
-
-// Any map over scalar U against ImpactMap<T> (same model, same start), bitwise.
-template <class T, class U, class MapU>
-Check check_against(const Case& k, long bits, long steps) {
-  const ImpactMap<T> map(make_model<T>(k.spec, bits));
-  const MapU other(make_model<U>(k.spec, bits));
-  State<T> s = make_state<T>(k.ic, bits);
-  State<U> u = make_state<U>(k.ic, bits);
-  Check c;
-  for (long n = 1; n <= steps; ++n) {
-    const StepResult<T> t = map.step(s);
-    const StepResult<U> f = other.step(u);
-    bool ok = same_flags(f, t) && same_bits(f.next.theta.get(), t.next.theta.get()) &&
-              same_bits(f.next.v.get(), t.next.v.get()) && same_bits(f.tau.get(), t.tau.get());
-    if (t.kind == EventKind::sticking)
-      ok = ok && same_bits(f.stuck_theta.get(), t.stuck_theta.get()) && same_bits(f.stuck_v.get(), t.stuck_v.get());
-    if (!ok) {
-      c.first_bad = n;
-      c.what = mismatch_text(ScalarTraits<T>::to_string(t.next.theta), ScalarTraits<U>::to_string(f.next.theta));
-      return c;
-    }
-    c.steps = n;
-    c.stickings += t.kind == EventKind::sticking;
-    s = t.next;
-    u = f.next;
-    if (vbig(s.v)) {
-      s = make_state<T>(k.ic, bits);
-      u = make_state<U>(k.ic, bits);
-    }
-  }
-  return c;
-}
-
-// ImpactMap<Dbl> (the core's code compiled in this file) against ImpactMap<double>.
-Check check_dbl(const Case& k, long steps) {
-  const ImpactMap<double> map(make_model<double>(k.spec, 53));
-  const ImpactMap<Dbl> other(make_model<Dbl>(k.spec, 53));
-  State<double> s = make_state<double>(k.ic, 53);
-  State<Dbl> u = make_state<Dbl>(k.ic, 53);
-  Check c;
-  for (long n = 1; n <= steps; ++n) {
-    const StepResult<double> t = map.step(s);
-    const StepResult<Dbl> f = other.step(u);
-    bool ok = same_flags(f, t) && same_bits(f.next.theta.x, t.next.theta) && same_bits(f.next.v.x, t.next.v) &&
-              same_bits(f.tau.x, t.tau);
-    if (t.kind == EventKind::sticking)
-      ok = ok && same_bits(f.stuck_theta.x, t.stuck_theta) && same_bits(f.stuck_v.x, t.stuck_v);
-    if (!ok) {
-      c.first_bad = n;
-      c.what = mismatch_text(ScalarTraits<double>::to_string(t.next.theta), ScalarTraits<Dbl>::to_string(f.next.theta));
-      return c;
-    }
-    c.steps = n;
-    c.stickings += t.kind == EventKind::sticking;
-    s = t.next;
-    u = f.next;
-    if (vbig(s.v)) {
-      s = make_state<double>(k.ic, 53);
-      u = make_state<Dbl>(k.ic, 53);
-    }
-  }
-  return c;
-}
-
-// The experimental copy against ImpactMap<T> (T = double or Mpfr).
-template <class T, unsigned F = 0>
-Check check_fast(const Case& k, long bits, long steps) {
-  const Model<T> model = make_model<T>(k.spec, bits);
-  const ImpactMap<T> map(model);
-  const fast::Map<T, F> fmap(model);
-  State<T> s = make_state<T>(k.ic, bits);
-  Check c;
-  for (long n = 1; n <= steps; ++n) {
-    const StepResult<T> t = map.step(s);
-    const StepResult<T> f = fmap.step(s);
-    bool ok = same_flags(f, t) && same_bits_t(f.next.theta, t.next.theta) && same_bits_t(f.next.v, t.next.v) &&
-              same_bits_t(f.tau, t.tau);
-    if (t.kind == EventKind::sticking)
-      ok = ok && same_bits_t(f.stuck_theta, t.stuck_theta) && same_bits_t(f.stuck_v, t.stuck_v);
-    if (!ok) {
-      c.first_bad = n;
-      c.what = mismatch_text(ScalarTraits<T>::to_string(t.next.theta), ScalarTraits<T>::to_string(f.next.theta));
-      return c;
-    }
-    c.steps = n;
-    c.stickings += t.kind == EventKind::sticking;
-    s = t.next;
-    if (vbig(s.v)) s = make_state<T>(k.ic, bits);
-  }
-  return c;
-}
-
 // ---------------------------------------------------------------------------------------
 // Runners: run n steps from the current state (resetting as described at the top)
 // ---------------------------------------------------------------------------------------
@@ -1427,11 +754,9 @@ struct Runner {
   long resets = 0;
 };
 
-// kPlainCopy: update the state with `s = r.next` as lib/src/orbit.cpp does (for --decompose).
-// kAdvance: `s = map.advance(s)` (experiment only).
-template <class T, class M = ImpactMap<T>, bool kPlainCopy = false, bool kAdvance = false>
+template <class T>
 struct MapRunner : Runner {
-  M map;
+  ImpactMap<T> map;
   State<T> start, s;
   MapRunner(const Case& k, long bits)
       : map(make_model<T>(k.spec, bits)), start(make_state<T>(k.ic, bits)), s(start) {}
@@ -1441,17 +766,10 @@ struct MapRunner : Runner {
     while (done < n) {
       try {
         for (; done < n; ++done) {
-          if constexpr (kAdvance) {
-            s = map.advance(s);
-          } else {
-            StepResult<T> r = map.step(s);
-            if constexpr (kPlainCopy) {
-              s = r.next;
-            } else {
-              take(s.theta, r.next.theta);
-              take(s.v, r.next.v);
-            }
-          }
+          StepResult<T> r = map.step(s);
+          take(s.theta, r.next.theta);
+          take(s.v, r.next.v);
+          s.knot = r.next.knot;
           if (vbig(s.v)) { s = start; ++resets; }
         }
       } catch (const Undecided&) {
@@ -1671,8 +989,6 @@ void print_row(const Row& r) {
 
 struct Options {
   bool quick = false;
-  bool experiment = true;
-  bool decompose = false;  // extra experiment rows: E with one ImpactMap overhead put back
   double time_s = 0.2;
   int reps = 5;
   std::string model_filter;
@@ -1683,9 +999,8 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
   std::printf(
-      "usage: bench_step [--quick] [--time SECONDS] [--reps N] [--model SUBSTRING] [--no-experiment]\n"
-      "                  [--decompose]\n"
-      "       bench_step --profile plain|double|double-E|raw|mpfr|mpfr-E|mpfr-E5|mpfr-S|mpfr-E5S|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
+      "usage: bench_step [--quick] [--time SECONDS] [--reps N] [--model SUBSTRING]\n"
+      "       bench_step --profile plain|double|raw|mpfr|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
       "         (runs one runner N steps without timing, for valgrind --tool=callgrind)\n"
       "  Times ImpactMap<T>::step for each model and scalar type next to hand-written floors\n"
       "  (plain double; raw MPFR with preallocated temporaries), after checking bitwise that the\n"
@@ -1703,8 +1018,7 @@ Options parse_args(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--quick") o.quick = true;
-    else if (a == "--no-experiment") o.experiment = false;
-    else if (a == "--decompose") o.decompose = true;
+    else if (a == "--no-experiment") {}  // accepted for old command lines: there are no experiments now
     else if (a == "--time") o.time_s = std::atof(value().c_str());
     else if (a == "--reps") o.reps = std::atoi(value().c_str());
     else if (a == "--model") o.model_filter = value();
@@ -1741,16 +1055,6 @@ int main(int argc, char** argv) {
     else if (opt.profile == "double") r = std::make_unique<MapRunner<double>>(k, 53);
     else if (opt.profile == "raw") r = std::make_unique<RawRunner>(k, opt.bits);
     else if (opt.profile == "mpfr") r = std::make_unique<MapRunner<Mpfr>>(k, opt.bits);
-    else if (opt.profile == "double-E") r = std::make_unique<MapRunner<double, fast::Map<double>>>(k, 53);
-    else if (opt.profile == "double-E+copyout")
-      r = std::make_unique<MapRunner<double, fast::Map<double, fast::kCopyOut>>>(k, 53);
-    else if (opt.profile == "double-E+old3")
-      r = std::make_unique<MapRunner<double, fast::Map<double, fast::kCopyOut | fast::kOldDecide | fast::kOldCompare>>>(k, 53);
-    else if (opt.profile == "mpfr-E") r = std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr>>>(k, opt.bits);
-    else if (opt.profile == "core-here") r = std::make_unique<MapRunner<Dbl>>(k, 53);
-    else if (opt.profile == "mpfr-S") r = std::make_unique<MapRunner<MpfrX>>(k, opt.bits);
-    else if (opt.profile == "mpfr-E5S") r = std::make_unique<MapRunner<MpfrX, fast::Map<MpfrX, fast::kInPlace>>>(k, opt.bits);
-    else if (opt.profile == "mpfr-E5") r = std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr, fast::kInPlace>>>(k, opt.bits);
     else if (opt.profile == "interval") r = std::make_unique<MapRunner<Mpfi>>(k, opt.bits);
     else usage(2);
     r->reset();
@@ -1776,10 +1080,6 @@ int main(int argc, char** argv) {
   std::printf("# NOTE: the machine is shared (other people compile), so absolute ns vary from run to run;\n"
               "#   quote the ratios from one run, where a row and its floor were timed minutes apart.\n");
   std::printf("# resets/k: state resets per 1000 steps (undecided interval step, or v > 1e4).\n");
-  if (opt.experiment)
-    std::printf("# rows *-E, *-E5 (experiment, not the library): a copy of ImpactMap<T>::step in this file with\n"
-                "#   the overheads found by profiling removed (see the comments at namespace fast); same results\n"
-                "#   bitwise. They show what the proposed core changes would give; --no-experiment hides them.\n");
 
   std::vector<Case> cases;
   for (Case& k : all_cases())
@@ -1795,39 +1095,6 @@ int main(int argc, char** argv) {
     const Check c = check_plain(k, 1000);
     std::printf("#   %-19s plain-double vs ImpactMap<double>: %s\n", k.name.c_str(), describe(c).c_str());
     all_ok = all_ok && c.first_bad < 0;
-    if (opt.experiment) {
-      const Check e = check_fast<double>(k, 53, 1000);
-      std::printf("#   %-19s experiment E<double> vs ImpactMap<double>: %s\n", k.name.c_str(), describe(e).c_str());
-      const Check f = check_fast<Mpfr>(k, 256, 200);
-      std::printf("#   %-19s experiment E<Mpfr>:256 vs ImpactMap<Mpfr>: %s\n", k.name.c_str(), describe(f).c_str());
-      all_ok = all_ok && e.first_bad < 0 && f.first_bad < 0;
-      {
-        const Check g = check_fast<double, fast::kInPlace>(k, 53, 1000);
-        const Check h = check_fast<Mpfr, fast::kInPlace>(k, 256, 200);
-        std::printf("#   %-19s experiment E5<double>, E5<Mpfr>:256 vs ImpactMap: %s; %s\n", k.name.c_str(),
-                    describe(g).c_str(), describe(h).c_str());
-        all_ok = all_ok && g.first_bad < 0 && h.first_bad < 0;
-      }
-      if (opt.decompose) {
-        const Check d = check_dbl(k, 1000);
-        std::printf("#   %-19s ImpactMap<Dbl> (core code compiled here) vs ImpactMap<double>: %s\n", k.name.c_str(),
-                    describe(d).c_str());
-        all_ok = all_ok && d.first_bad < 0;
-        const Check g = check_against<Mpfr, MpfrX, ImpactMap<MpfrX>>(k, 256, 200);
-        const Check h = check_against<Mpfr, MpfrX, fast::Map<MpfrX, fast::kInPlace>>(k, 256, 200);
-        std::printf("#   %-19s experiment S: ImpactMap<MpfrX>, E5<MpfrX> vs ImpactMap<Mpfr> at 256: %s; %s\n",
-                    k.name.c_str(), describe(g).c_str(), describe(h).c_str());
-        all_ok = all_ok && g.first_bad < 0 && h.first_bad < 0;
-      }
-      if (opt.decompose) {
-        constexpr unsigned all3 = fast::kOldDecide | fast::kOldCompare | fast::kCopyOut;
-        const Check g = check_fast<double, all3>(k, 53, 1000);
-        const Check h = check_fast<Mpfr, all3>(k, 256, 200);
-        std::printf("#   %-19s experiment E+old3 <double>, <Mpfr>:256:  %s; %s\n", k.name.c_str(), describe(g).c_str(),
-                    describe(h).c_str());
-        all_ok = all_ok && g.first_bad < 0 && h.first_bad < 0;
-      }
-    }
     for (long bits : {53L, 256L, 4096L}) {
       if (opt.quick && bits != 256) continue;
       const Check r = check_raw(k, bits, 200);
@@ -1846,26 +1113,6 @@ int main(int argc, char** argv) {
       PlainRunner floor(k);
       MapRunner<double> d(k, 53);
       std::vector<Runner*> g{&floor, &d};
-      std::vector<std::unique_ptr<Runner>> extra;
-      std::vector<std::string> extra_names;
-      auto add = [&](std::unique_ptr<Runner> r, const char* name) {
-        g.push_back(r.get());
-        extra.push_back(std::move(r));
-        extra_names.push_back(name);
-      };
-      if (opt.experiment) add(std::make_unique<MapRunner<double, fast::Map<double>>>(k, 53), "double-E");
-      if (opt.experiment) add(std::make_unique<MapRunner<double, fast::Map<double, fast::kInPlace>>>(k, 53), "double-E5");
-      if (opt.experiment && opt.decompose) {
-        using namespace fast;
-        add(std::make_unique<MapRunner<double, Map<double, kOldDecide>>>(k, 53), "E+olddec");
-        add(std::make_unique<MapRunner<double, Map<double, kOldCompare>>>(k, 53), "E+oldcmp");
-        add(std::make_unique<MapRunner<double, Map<double, kCopyOut>>>(k, 53), "E+copyout");
-        add(std::make_unique<MapRunner<double, Map<double, kOldDecide | kOldCompare | kCopyOut>>>(k, 53), "E+old3");
-        add(std::make_unique<MapRunner<Dbl>>(k, 53), "core-here");
-        add(std::make_unique<MapRunner<double, ImpactMap<double>, true>>(k, 53), "dbl,s=r.next");
-        add(std::make_unique<MapRunner<double, Map<double>, true>>(k, 53), "E,s=r.next");
-        add(std::make_unique<MapRunner<double, Map<double>, false, true>>(k, 53), "E,advance");
-      }
       std::unique_ptr<MapRunner<long double>> ld;
       std::unique_ptr<MapRunner<Quad>> qd;
       if (!opt.quick) {
@@ -1878,7 +1125,6 @@ int main(int argc, char** argv) {
       print_row({k.name, "plain", 53, t[0], nullptr, ""});
       print_row({k.name, "double", 53, t[1], &t[0], "plain-double"});
       size_t i = 2;
-      for (const std::string& name : extra_names) print_row({k.name, name, 53, t[i++], &t[0], "plain-double"});
       if (!opt.quick) {
         print_row({k.name, "long", 64, t[i++], &t[0], "plain-double"});
         print_row({k.name, "quad", 113, t[i++], &t[0], "plain-double"});
@@ -1889,29 +1135,9 @@ int main(int argc, char** argv) {
       MapRunner<Mpfr> m(k, bits);
       MapRunner<Mpfi> i(k, bits);
       std::vector<Runner*> g{&floor, &m, &i};
-      std::vector<std::unique_ptr<Runner>> extra;
-      std::vector<std::string> extra_names;
-      auto add = [&](std::unique_ptr<Runner> r, const char* name) {
-        g.push_back(r.get());
-        extra.push_back(std::move(r));
-        extra_names.push_back(name);
-      };
-      if (opt.experiment) add(std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr>>>(k, bits), "mpfr-E");
-      if (opt.experiment) add(std::make_unique<MapRunner<Mpfr, fast::Map<Mpfr, fast::kInPlace>>>(k, bits), "mpfr-E5");
-      if (opt.experiment && opt.decompose) {
-        add(std::make_unique<MapRunner<MpfrX>>(k, bits), "mpfr-S");
-        add(std::make_unique<MapRunner<MpfrX, fast::Map<MpfrX, fast::kInPlace>>>(k, bits), "mpfr-E5S");
-      }
-      if (opt.experiment && opt.decompose) {
-        using namespace fast;
-        add(std::make_unique<MapRunner<Mpfr, Map<Mpfr, kCopyOut>>>(k, bits), "E+copyout");
-        add(std::make_unique<MapRunner<Mpfr, Map<Mpfr, kOldDecide | kOldCompare | kCopyOut>>>(k, bits), "E+old3");
-      }
       const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
       print_row({k.name, "raw-mpfr", bits, t[0], nullptr, ""});
       print_row({k.name, "mpfr", bits, t[1], &t[0], "raw-mpfr"});
-      for (size_t e = 0; e < extra_names.size(); ++e)
-        print_row({k.name, extra_names[e], bits, t[3 + e], &t[0], "raw-mpfr"});
       print_row({k.name, "interval", bits, t[2], &t[0], "raw-mpfr(point)"});
     }
   }

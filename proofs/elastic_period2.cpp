@@ -124,15 +124,8 @@ int main(int argc, char** argv) {
         ++families;
         const Mpfi A = qi(a, bits), V = qi(v, bits);
         ImpactMap<Mpfi> map(triangle_model(Law::elastic, A, Mpfi(1, bits), Mpfi(1, bits), bits));
-        ImpactMap<Mpfi> walk_map(triangle_model(Law::elastic, A, Mpfi(1, bits), Mpfi(1, bits), bits, 1L << 20));
-        long fallback = 0;
         auto step = [&](const Mpfi& th, const Mpfi& vv, StepResult<Mpfi>& res) {
-          std::string why = try_step(map, State<Mpfi>{th, vv}, res);
-          if (why.find("whole period") != std::string::npos) {
-            why = try_step(walk_map, State<Mpfi>{th, vv}, res);
-            if (why.empty()) ++fallback;
-          }
-          return why;
+          return try_step(map, State<Mpfi>{th, vv}, res);
         };
         auto no_return = [&](const Mpfi& box) -> std::string {
           StepResult<Mpfi> r1, r2;
@@ -160,7 +153,6 @@ int main(int argc, char** argv) {
         }
         orb.evidence.push_back("p=" + std::to_string(p) + " k=" + std::to_string(k) + ": a = " + qs(a) + ", v_n = " + qs(v) +
                                ": two steps never return on [delta, 1/2-delta]: " + describe(c) +
-                               (fallback ? " (" + std::to_string(fallback) + " steps via the walk without the jump shortcut)" : "") +
                                "; thin point " + pts + (accel ? " (v grows by 8 per impact at constant phase: Fermi acceleration)" : ""));
       }
     }

@@ -124,15 +124,8 @@ int main(int argc, char** argv) {
 
     const Mpfi A = qi(a, bits), E = qi(eps, bits), V = qi(vn, bits), VP = qi(vp1, bits);
     ImpactMap<Mpfi> map(triangle_model(Law::constant, A, E, Mpfi(1, bits), bits));
-    ImpactMap<Mpfi> walk_map(triangle_model(Law::constant, A, E, Mpfi(1, bits), bits, 1L << 20));
-    long fallback = 0;
     auto step = [&](const Mpfi& th, const Mpfi& vv, StepResult<Mpfi>& r) {
-      std::string why = try_step(map, State<Mpfi>{th, vv}, r);
-      if (why.find("whole period") != std::string::npos) {
-        why = try_step(walk_map, State<Mpfi>{th, vv}, r);
-        if (why.empty()) ++fallback;
-      }
-      return why;
+      return try_step(map, State<Mpfi>{th, vv}, r);
     };
     auto two = [&](const Mpfi& th, const Mpfi& vv, StepResult<Mpfi>& r1, StepResult<Mpfi>& r2) {
       std::string why = step(th, vv, r1);
@@ -191,8 +184,7 @@ int main(int argc, char** argv) {
     sv.evidence.push_back("eps=" + et + ": a = " + qs(a) + " (paper's a: equal), v_n = " + qs(vn) + " (paper: " + qs(vp1) +
                           "), v_{n+1} = " + qs(v1) + "; period 2 on [theta_lo+delta, theta_hi-delta]: " + describe(c) +
                           (pts ? "; 3 thin points return" : "; THIN POINTS FAILED") +
-                          "; paper's v_n never returns on [delta, 1/2-delta]: " + describe(pc) +
-                          (fallback ? " (" + std::to_string(fallback) + " steps via the walk without the jump shortcut)" : ""));
+                          "; paper's v_n never returns on [delta, 1/2-delta]: " + describe(pc));
     sd.evidence.push_back("eps=" + et + ": theta_lo = " + qs(th_lo) + ", theta_hi = " + qs(th_hi) +
                           "; not period 2 on [delta, theta_lo-delta] and [theta_hi+delta, 1/2-delta]: " + describe(out_hi));
 

@@ -56,9 +56,10 @@ inline Mpfi powi(const Mpfi& x, const Mpfi& r) { return exp(r * log(x)); }
 //
 // `top_override`: Wall::top is only used by the step as "a height the wall never exceeds"
 // (the particle above it cannot meet the wall; the jump to the moment it falls back to
-// `top`; the indirect flag). Any value >= max f = 1 gives the same exact map. A large value
-// disables the jump shortcut, whose floor(theta + fall time) can be undecided at isolated
-// phases where the true dynamics is regular (see the report); the walk is then used.
+// `top`; the indirect flag). Any value >= max f = 1 gives the same exact map (the indirect
+// flag aside). A large value disables the jump shortcut, so the step walks every segment;
+// the Jacobian evaluations use that to differentiate one formula path. (The step itself
+// already walks where the jump's phase is undecided.)
 inline bouncer::Model<Mpfi> triangle_model(bouncer::Law law, const Mpfi& a, const Mpfi& eps,
                                            const Mpfi& c, long bits,
                                            std::optional<long> top_override = std::nullopt) {

@@ -60,21 +60,9 @@ Mpfi meet(const Mpfi& x, const Mpfi& y) {
 
 }  // namespace
 
-// Wall::top is only "a height the wall never exceeds" (any value >= max f gives the same
-// exact map). Above it the step jumps analytically to the fall back to `top`, whose
-// floor(theta + fall time) is undecided wherever that sum is near an integer although the
-// dynamics is regular there. With a top far above every flight the step walks the
-// segments instead: no spurious branch, but wider enclosures (the walk's recurrences
-// overestimate), so the walk is only the fallback for a step undecided at a period boundary.
-Model<Mpfi> walking(Model<Mpfi> m) {
-  m.wall.top = Mpfi(1L << 30, m.bits);
-  return m;
-}
-
 struct OrbitEnclosure::Impl {
-  ImpactMap<Mpfi> map, map_walk;
-  std::optional<ImpactMap<IDual>> dmap, dmap_walk;
-  long long walks = 0;
+  ImpactMap<Mpfi> map;
+  std::optional<ImpactMap<IDual>> dmap;
   EnclosureMethod method;
   long bits;
   State<Mpfi> box;
@@ -85,18 +73,16 @@ struct OrbitEnclosure::Impl {
   Mpfi r[2];
 
   Impl(const Model<Mpfi>& m, const State<Mpfi>& start, EnclosureMethod meth)
-      : map(m), map_walk(walking(m)), method(meth), bits(m.bits), box(start) {
+      : map(m), method(meth), bits(m.bits), box(start) {
     if (method == EnclosureMethod::lohner) {
       dmap.emplace(lift(m));
-      dmap_walk.emplace(lift(walking(m)));
       reset_frame();
     }
   }
 
   Impl(const Model<Mpfi>& m, const Parallelogram& start)
-      : map(m), map_walk(walking(m)), method(EnclosureMethod::lohner), bits(m.bits) {
+      : map(m), method(EnclosureMethod::lohner), bits(m.bits) {
     dmap.emplace(lift(m));
-    dmap_walk.emplace(lift(walking(m)));
     for (int i = 0; i < 2; ++i) {
       c[i] = start.c[i];
       r[i] = start.r[i];
@@ -118,24 +104,8 @@ struct OrbitEnclosure::Impl {
     r[1] = box.v - thin(c[1]);
   }
 
-  // The step with the jump, or with the walk when the jump's period boundary is undecided.
-  template <class T>
-  StepResult<T> either(const ImpactMap<T>& jump, const ImpactMap<T>& walk, const State<T>& x, bool& walked) {
-    if (!walked) {
-      try {
-        return jump.step(x);
-      } catch (const Undecided& u) {
-        if (u.reason != Reason::period_boundary) throw;
-      }
-      walked = true;
-      ++walks;
-    }
-    return walk.step(x);
-  }
-
   EnclosedStep naive() {
-    bool walked = false;
-    StepResult<Mpfi> s = either(map, map_walk, box, walked);
+    StepResult<Mpfi> s = map.step(box);
     box = s.next;
     EnclosedStep out;
     out.kind = s.kind;
@@ -146,8 +116,7 @@ struct OrbitEnclosure::Impl {
   EnclosedStep lohner() {
     using Tr = ScalarTraits<Mpfi>;
     const State<IDual> ds{IDual::variable(box.theta, 0), IDual::variable(box.v, 1)};
-    bool walked = false;
-    StepResult<IDual> rd = either(*dmap, *dmap_walk, ds, walked);  // decides every branch for the whole box
+    StepResult<IDual> rd = dmap->step(ds);  // decides every branch for the whole box
     EnclosedStep out;
     out.kind = rd.kind;
     const State<Mpfi> image{rd.next.theta.v, rd.next.v.v};
@@ -167,7 +136,7 @@ struct OrbitEnclosure::Impl {
         if (!Tr::is_finite(x)) return fall_back(true);
     StepResult<Mpfi> yc;
     try {
-      yc = either(map, map_walk, State<Mpfi>{thin(c[0]), thin(c[1])}, walked);
+      yc = map.step(State<Mpfi>{thin(c[0]), thin(c[1])});
     } catch (const Undecided&) {
       return fall_back(true);
     }
@@ -257,19 +226,13 @@ Parallelogram OrbitEnclosure::set() const {
 bool jacobian_of_iterate(const Model<Mpfi>& model, const State<Mpfi>& x, long q, double J[2][2]) {
   // Approximate (only a frame is built from it): each step is linearized at the midpoint of
   // the previous image and the point is re-centred, so no interval width accumulates.
-  const ImpactMap<IDual> map(lift(model)), walk(lift(walking(model)));
+  const ImpactMap<IDual> map(lift(model));
   double P[2][2] = {{1, 0}, {0, 1}};
   Mpfr c[2] = {x.theta.mid(), x.v.mid()};
   try {
     for (long i = 0; i < q; ++i) {
       const State<IDual> s{IDual::variable(thin(c[0]), 0), IDual::variable(thin(c[1]), 1)};
-      StepResult<IDual> r;
-      try {
-        r = map.step(s);
-      } catch (const Undecided& u) {
-        if (u.reason != Reason::period_boundary) throw;
-        r = walk.step(s);
-      }
+      const StepResult<IDual> r = map.step(s);
       const IDual* row[2] = {&r.next.theta, &r.next.v};
       double S[2][2];
       for (int a = 0; a < 2; ++a)

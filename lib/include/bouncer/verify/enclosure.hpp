@@ -38,9 +38,7 @@ const char* name(EnclosureMethod m);
 EnclosureMethod parse_enclosure_method(const std::string& field, const std::string& text);
 
 // Model<Mpfi> with every decimal enclosed at `bits`; with a_range, a is the interval
-// [lo, hi] (exact rationals enclosed outward) instead of the spec's a. The wall's `top`
-// is raised to 2^30 (same exact map; the step walks long flights segment by segment
-// instead of the analytic jump, whose floor(theta + fall time) is a spurious branch).
+// [lo, hi] (exact rationals enclosed outward) instead of the spec's a.
 Model<Mpfi> interval_model(const ModelSpec& spec, long bits,
                            const std::optional<std::pair<mpq_class, mpq_class>>& a_range = std::nullopt);
 // The interval [lo, hi] of two exact rationals, rounded outward at `bits`.

@@ -83,6 +83,20 @@ inline void add_model_options(OptionSet& o) {
   o.add("veldep-collapse", "For --model veldep: on = stick when the chatter provably collapses before the wall turns; off (default)");
 }
 
+// Help text of --precision for the commands that follow point orbits.
+inline const char* kPointPrecisionHelp = "double (default) | long | quad | mpfr:BITS (16 <= BITS <= 1048576)";
+
+// The single initial condition (--theta, --v) of an orbit command, validated against the model.
+inline void add_start_options(OptionSet& o) {
+  o.add("theta", "Initial phase in [0, 1)");
+  o.add("v", "Initial velocity after impact, >= the wall velocity at theta");
+}
+inline InitialCondition start_from(const Options& o, const ModelSpec& spec) {
+  InitialCondition ic{parse_decimal("theta", o.get("theta")), parse_decimal("v", o.get("v"))};
+  validate(spec, ic, "theta", "v");
+  return ic;
+}
+
 inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,
                                  const std::string& argv_text) {
   Provenance pr;

@@ -214,7 +214,7 @@ Command add_basin(CLI::App& app) {
   opts->add("transient", "Steps before classifying (default 5000, as in the paper)");
   opts->add("steps", "Steps examined by the classifier (default 500)");
   opts->add("max-period", "Longest period looked for (default 64, at most steps/2)");
-  opts->add("precision", "double (default) | mpfr:BITS");
+  opts->add("precision", kPointPrecisionHelp);
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());

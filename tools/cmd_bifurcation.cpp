@@ -282,7 +282,7 @@ Command add_bifurcation(CLI::App& app) {
   opts->add("record", "Steps recorded at each value, M >= 1 (default 500, as in the paper)");
   opts->add_list("theta", "Initial phase in [0, 1)");
   opts->add_list("v", "Initial velocity after impact, >= the wall velocity at theta");
-  opts->add("precision", "double (default) | long | quad | mpfr:BITS");
+  opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: theta (default) or v against the parameter");
   opts->add("bins", "Rows of the density image, 10..4000 (default 400)");
   sub->add_flag("--carry", *carry, "Start each value from the last state of the previous one (one worker)");

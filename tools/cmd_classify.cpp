@@ -45,19 +45,17 @@ Command add_classify(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
-  opts->add("theta", "Initial phase in [0, 1)");
-  opts->add("v", "Initial velocity after impact, >= the wall velocity at theta");
+  add_start_options(*opts);
   opts->add("transient", "Steps discarded first, integer in [0, 1e10] (default 5000, as the paper)");
   opts->add("steps", "Steps examined, integer in [8, 1e9] (default 500, as the paper)");
   opts->add("max-period", "Longest period looked for, integer in [1, steps/2] (default 64)");
-  opts->add("precision", "double (default) | mpfr:BITS (16 <= BITS <= 1048576)");
+  opts->add("precision", kPointPrecisionHelp);
   sub->add_flag("--json", *json, "Print the summary as JSON on stdout");
 
   auto run = [opts, scene, json](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "classify", classify_keys()), opts->collected());
     const ModelSpec spec = model_from(o);
-    InitialCondition ic{parse_decimal("theta", o.get("theta")), parse_decimal("v", o.get("v"))};
-    validate(spec, ic, "theta", "v");
+    const InitialCondition ic = start_from(o, spec);
     ClassifyOptions co;
     co.transient = integer_from(o, "transient", 0, 10000000000LL, 5000);
     co.steps = integer_from(o, "steps", 8, 1000000000LL, 500);

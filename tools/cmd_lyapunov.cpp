@@ -49,19 +49,17 @@ Command add_lyapunov(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
-  opts->add("theta", "Initial phase in [0, 1)");
-  opts->add("v", "Initial velocity after impact, >= the wall velocity at theta");
+  add_start_options(*opts);
   opts->add("transient", "Steps discarded first, integer in [0, 1e12] (default 1000)");
   opts->add("steps", "Steps measured, integer in [1, 1e12] (default 10000)");
   opts->add("blocks", "Blocks for the error estimate, integer in [1, 10000] (default 20)");
-  opts->add("precision", "double (default) | mpfr:BITS (16 <= BITS <= 1048576)");
+  opts->add("precision", kPointPrecisionHelp);
   sub->add_flag("--json", *json, "Print the summary as JSON on stdout");
 
   auto run = [opts, scene, json](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "lyapunov", lyapunov_keys()), opts->collected());
     const ModelSpec spec = model_from(o);
-    InitialCondition ic{parse_decimal("theta", o.get("theta")), parse_decimal("v", o.get("v"))};
-    validate(spec, ic, "theta", "v");
+    const InitialCondition ic = start_from(o, spec);
     LyapunovOptions lo;
     lo.transient = integer_from(o, "transient", 0, 1000000000000LL, 1000);
     lo.steps = integer_from(o, "steps", 1, 1000000000000LL, 10000);

@@ -66,7 +66,7 @@ Command add_periodic(CLI::App& app) {
   add_model_options(*opts);
   opts->add("period", "Period q, integer in [1, 100]");
   opts->add_list("guess", "Starting point theta,v (default: a grid of guesses in the trapping region)");
-  opts->add("precision", "double (default) | mpfr:BITS (16 <= BITS <= 1048576)");
+  opts->add("precision", kPointPrecisionHelp);
   opts->add("max-iter", "Newton iterations per guess, integer in [1, 10000] (default 60)");
   opts->add("grid", "Guesses per axis without --guess, integer in [1, 64] (default 8)");
   sub->add_flag("--json", *json, "Print the summary as JSON on stdout");

@@ -172,7 +172,7 @@ Command add_portrait(CLI::App& app) {
   opts->add_list("v", "Initial velocities, as many as theta, each >= the wall velocity at its theta");
   opts->add("steps", "Steps drawn per orbit (default 1000)");
   opts->add("transient", "Steps discarded first (default 0)");
-  opts->add("precision", "double (default) | long | quad | mpfr:BITS");
+  opts->add("precision", kPointPrecisionHelp);
   sub->add_flag("--polar", *polar, "Polar picture: angle 2 pi theta, radius v");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, polar, flags](const std::string& argv_text) {

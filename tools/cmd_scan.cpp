@@ -252,7 +252,7 @@ Command add_scan(CLI::App& app) {
   opts->add("transient", "Steps before classifying (default 5000)");
   opts->add("steps", "Steps examined by the classifier (default 500)");
   opts->add("max-period", "Longest period looked for (default 64, at most steps/2)");
-  opts->add("precision", "double (default) | mpfr:BITS");
+  opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {

@@ -171,8 +171,7 @@ Command add_sweep(CLI::App& app) {
   auto as_json = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
-  opts->add("theta", "Initial phase in [0, 1)");
-  opts->add("v", "Initial velocity after impact, >= the wall velocity at theta");
+  add_start_options(*opts);
   opts->add("steps", "Number of steps N, integer in [1, 1000000] (default 1000)");
   opts->add("tolerance", "Distance from the enclosure that counts as leaving it, decimal in [0, 1] (default 2^-20)");
   opts->add("reference-max-bits", "Largest precision of the certified reference's escalation (default 16384)");

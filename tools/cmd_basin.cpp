@@ -185,21 +185,7 @@ const std::set<std::string>& basin_keys() {
 
 int run_basin(const Options& o, const RunFlags& f) {
   const BasinRequest req = basin_request(o);
-  PictureJob job;
-  job.command = "basin";
-  job.job = job_options(o);
-  job.plan.items = req.nx * req.ny;
-  job.plan.tile_items = std::max<long>(1, std::min<long>(256, job.plan.items / 64 + 1));
-  const Provenance prov = provenance_for("basin", job.job, req.precision, f.invocation);
-  auto go = [&](auto grid) {
-    job.item = [grid](long i) { return grid->item(i); };
-    const auto items = run_job(job, f);
-    if (items) basin_finish(req, *items, f, prov);
-    return 0;
-  };
-  return with_point_scalar(req.precision, [&](auto tag) {
-    return go(std::make_shared<BasinGrid<typename decltype(tag)::type>>(req));
-  });
+  return run_point_grid<BasinGrid>("basin", o, f, req, req.nx * req.ny, 256, basin_finish);
 }
 
 Command add_basin(CLI::App& app) {

@@ -219,21 +219,7 @@ const std::set<std::string>& scan_keys() {
 
 int run_scan(const Options& o, const RunFlags& f) {
   const ScanRequest req = scan_request(o);
-  PictureJob job;
-  job.command = "scan";
-  job.job = job_options(o);
-  job.plan.items = req.p * req.q;
-  job.plan.tile_items = std::max<long>(1, std::min<long>(16, job.plan.items / 64 + 1));
-  const Provenance prov = provenance_for("scan", job.job, req.precision, f.invocation);
-  auto go = [&](auto grid) {
-    job.item = [grid](long i) { return grid->item(i); };
-    const auto items = run_job(job, f);
-    if (items) finish(req, *items, f, prov);
-    return 0;
-  };
-  return with_point_scalar(req.precision, [&](auto tag) {
-    return go(std::make_shared<ScanGrid<typename decltype(tag)::type>>(req));
-  });
+  return run_point_grid<ScanGrid>("scan", o, f, req, req.p * req.q, 16, finish);
 }
 
 Command add_scan(CLI::App& app) {

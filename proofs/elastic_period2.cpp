@@ -50,12 +50,9 @@ int main(int argc, char** argv) {
       "Theta x {v_n} covering [delta, 1/2-delta] (adaptive bisection); interval AD Jacobian",
       128, argc, argv);
   const long bits = cert.bits();
-  const int delta_exp = cert.full() ? 24 : 12;
-  const int depth = cert.full() ? 36 : 14;
-  const long initial = cert.full() ? 256 : 16;
-  const mpq_class delta(mpz_class(1), mpz_class(1) << delta_exp);
-  cert.note("delta = 2^-" + std::to_string(delta_exp) + ", " + std::to_string(initial) +
-            " initial boxes, bisection depth <= " + std::to_string(depth));
+  const CoverPlan plan = cover_plan(cert.full(), 12, 14, 24, 36);
+  const auto [delta_exp, depth, initial, delta] = plan;
+  cert.note(plan.text());
 
   SubClaim& alg = cert.add("eq33-arithmetic", "eq. (33) for p = 1, k = 0: a = (22 +- 2*13)/3 = 16 or -4/3; v_n = 8");
   SubClaim& orb = cert.add("orbit", "eqs. (8), (9): a period-2 up/up orbit exists with v_n = ap/4 + 4 - 8k/p");

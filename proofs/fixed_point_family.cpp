@@ -70,16 +70,13 @@ int main(int argc, char** argv) {
       "forward-mode AD (Dual<Mpfi>) through the same step vs the hand-derived formula",
       128, argc, argv);
   const long bits = cert.bits();
-  const int delta_exp = cert.full() ? 24 : 12;
-  const int depth = cert.full() ? 36 : 14;
-  const long initial = cert.full() ? 256 : 16;
-  const mpq_class delta(mpz_class(1), mpz_class(1) << delta_exp);
+  const CoverPlan plan = cover_plan(cert.full(), 12, 14, 24, 36);
+  const auto [delta_exp, depth, initial, delta] = plan;
 
   const std::vector<Family> families = {{1, 2, 1}, {1, 2, 2}, {1, 2, 3}, {1, 3, 1}, {1, 3, 2},
                                         {1, 3, 3}, {9, 10, 1}, {9, 10, 2}, {9, 10, 3}, {1, 5, 1},
                                         {1, 5, 2}, {1, 5, 3}};
-  cert.note("delta = 2^-" + std::to_string(delta_exp) + ", " + std::to_string(initial) +
-            " initial boxes, bisection depth <= " + std::to_string(depth) +
+  cert.note(plan.text() +
             "; box test: branch (impact, upward segment, p periods) + image enclosure contains (Theta, v*); "
             "thin-point test: |theta'-theta|, |v'-v*| <= 2^-(bits/2) (v*+1) at 3 points per family");
 

@@ -85,12 +85,9 @@ int main(int argc, char** argv) {
       "Jacobian (Dual<Mpfi>); MPFR finite differences (sanity only); interval Newton for eps*",
       128, argc, argv);
   const long bits = cert.bits();
-  const int delta_exp = cert.full() ? 36 : 16;
-  const int depth = cert.full() ? 24 : 14;
-  const long initial = cert.full() ? 256 : 16;
-  const mpq_class delta(mpz_class(1), mpz_class(1) << delta_exp);
-  cert.note("delta = 2^-" + std::to_string(delta_exp) + ", " + std::to_string(initial) +
-            " initial boxes, bisection depth <= " + std::to_string(depth));
+  const CoverPlan plan = cover_plan(cert.full(), 16, 14, 36, 24);
+  const auto [delta_exp, depth, initial, delta] = plan;
+  cert.note(plan.text());
 
   SubClaim& sa = cert.add("a-formula", "a = 32/(1-eps) - 16/(1+eps^2) - 8");
   SubClaim& sv = cert.add("v_n-formula", "v_n = 4(eps-3)(eps^3-eps^2-3eps-3)/((eps-1)^2(eps^2+1)) = a(eps^2-4)/((eps-1)(eps+1)^2) + 4");

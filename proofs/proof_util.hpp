@@ -78,6 +78,23 @@ inline bouncer::Model<Mpfi> triangle_model(bouncer::Law law, const Mpfi& a, cons
   return m;
 }
 
+// How finely a proof covers an open interval: [lo + delta, hi - delta] with delta = 2^-delta_exp,
+// `initial` boxes bisected at most `depth` times; the default mode or the finer --full one.
+struct CoverPlan {
+  int delta_exp;
+  int depth;
+  long initial;
+  mpq_class delta;
+  std::string text() const {
+    return "delta = 2^-" + std::to_string(delta_exp) + ", " + std::to_string(initial) +
+           " initial boxes, bisection depth <= " + std::to_string(depth);
+  }
+};
+inline CoverPlan cover_plan(bool full, int delta_exp, int depth, int delta_exp_full, int depth_full) {
+  const int e = full ? delta_exp_full : delta_exp;
+  return {e, full ? depth_full : depth, full ? 256L : 16L, mpq_class(mpz_class(1), mpz_class(1) << e)};
+}
+
 // Result of a cover of [lo, hi] by boxes with adaptive bisection.
 struct Cover {
   long certified = 0;        // boxes on which the check succeeded

@@ -63,12 +63,9 @@ int main(int argc, char** argv) {
       "ImpactMap<Mpfi> on boxes covering the theta-family (adaptive bisection); interval AD Jacobian",
       128, argc, argv);
   const long bits = cert.bits();
-  const int delta_exp = cert.full() ? 24 : 12;
-  const int depth = cert.full() ? 36 : 14;
-  const long initial = cert.full() ? 256 : 16;
-  const mpq_class delta(mpz_class(1), mpz_class(1) << delta_exp);
-  cert.note("delta = 2^-" + std::to_string(delta_exp) + ", " + std::to_string(initial) +
-            " initial boxes, bisection depth <= " + std::to_string(depth));
+  const CoverPlan plan = cover_plan(cert.full(), 12, 14, 24, 36);
+  const auto [delta_exp, depth, initial, delta] = plan;
+  cert.note(plan.text());
 
   SubClaim& sf = cert.add("family", "for given (a, c, p) the fixed points are theta* in (0,1/2), v* = c(2 arccoth(ap/8))^(5/3) - 4");
   SubClaim& sn = cert.add("none-for-small-a", "no fixed points for 0 < a <= 8/p");

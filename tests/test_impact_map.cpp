@@ -97,7 +97,7 @@ Mpfr wide(const Quad& q) {
   return r;
 }
 double dbl(const Mpfr& x) { return x.to_double(); }
-template <class T>
+template <class T> requires (!is_mpfr_node<T>)  // Mpfr expressions take the overload above
 double dbl(const T& x) { return Tr<T>::to_double(x); }
 
 // |x - y| with x, y any scalars, as a double.
@@ -472,7 +472,7 @@ struct StepChecker {
       for (int i = 1; i < samples; ++i) {
         const T t = r.tau * Tr<T>::from_int(i, Cfg<T>::bits) / Tr<T>::from_int(samples, Cfg<T>::bits);
         const T x = fn + s.v * t - a * t * t / 2L;
-        const T w = wall.f(frac(s.theta + t));
+        const T w = wall.f(frac<T>(s.theta + t));
         if (dbl(x - w) < -64 * ulp * (2 + v0 * tau + av * tau * tau))
           return fail("particle below the wall at t = " + Tr<T>::to_string(t));
       }
@@ -961,7 +961,7 @@ TYPED_TEST(ImpactMapTyped, LongChatteringVeldep) {
     mpfr_set(w.get(), w_wide.get(), MPFR_RNDN);
     const Mpfr w0 = w;
     const Mpfr a = num<Mpfr>("25", 300), c = num<Mpfr>("1000", 300), tf = Mpfr(3, 300) / Mpfr(5, 300);
-    auto restitute = [&](const Mpfr& x) {  // x exp(-(x/c)^(3/5))
+    auto restitute = [&](const Mpfr& x) -> Mpfr {  // x exp(-(x/c)^(3/5))
       Mpfr p = x / c;
       mpfr_pow(p.get(), p.get(), tf.get(), MPFR_RNDN);
       return exp(-p) * x;

@@ -58,7 +58,7 @@ Fd finite_differences(const ImpactMap<Mpfr>& map, const State<Mpfr>& s, int q) {
     out[k] = run(pts[k], b);
     if (b != b0) return fd;
   }
-  auto diff = [&](const Mpfr& p, const Mpfr& m) { return ((p - m) / (2 * h)).to_double(); };
+  auto diff = [&](const Mpfr& p, const Mpfr& m) { return Mpfr((p - m) / (2 * h)).to_double(); };
   fd.J[0][0] = diff(out[0].theta, out[1].theta);
   fd.J[1][0] = diff(out[0].v, out[1].v);
   fd.J[0][1] = diff(out[2].theta, out[3].theta);

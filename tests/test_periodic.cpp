@@ -210,7 +210,7 @@ TEST(Periodic, VelocityDependentFixedPoints) {
     Mpfr x = a;
     const Mpfr c = mp(1000);
     for (int it = 0; it < 60; ++it) {
-      auto g = [&](const Mpfr& aa) { return paper::veldep_fixed_v(aa, c, p) - aa * p / 2; };
+      auto g = [&](const Mpfr& aa) -> Mpfr { return paper::veldep_fixed_v(aa, c, p) - aa * p / 2; };
       Mpfr h(1, kBits);
       mpfr_div_2si(h.get(), h.get(), 100, MPFR_RNDN);
       const Mpfr d = (g(x + h) - g(x - h)) / (2 * h);

@@ -467,16 +467,143 @@ TEST(Mpfr, VectorReallocationKeepsValues) {
 
 TEST(Mpfr, PrecisionRules) {
   const Mpfr a = third(64), b = third(300);
-  EXPECT_EQ((a + b).bits(), 300);
-  EXPECT_EQ((b * a).bits(), 300);
+  EXPECT_EQ(Mpfr(a + b).bits(), 300);
+  EXPECT_EQ(Mpfr(b * a).bits(), 300);
   Mpfr c = a;
   c += b;  // compound assignment keeps the left precision
   EXPECT_EQ(c.bits(), 64);
   EXPECT_EQ(exact(c), round_to_bits(third_exact(64) + third_exact(300), 64));
-  EXPECT_EQ((a * 3L).bits(), 64);
+  EXPECT_EQ(Mpfr(a * 3L).bits(), 64);
   // Integer operands are exact: (1/3 rounded) * 3 at the operand's precision.
   EXPECT_EQ(exact(a * 3L), round_to_bits(third_exact(64) * 3, 64));
   EXPECT_EQ(exact(1L - a), round_to_bits(1 - third_exact(64), 64));
+}
+
+// ---------------------------------------------------------------------------------------
+// Mpfr expressions: evaluated in place, they must round exactly as one correctly rounded
+// temporary per operation would (truth: exact rationals rounded with integers).
+
+Mpfr from_q(const mpq_class& q, long bits) {
+  Mpfr r(bits);
+  mpfr_set_q(r.get(), q.get_mpq_t(), MPFR_RNDN);
+  return r;
+}
+mpq_class rnd(const mpq_class& q, long bits) { return round_to_bits(q, bits); }
+Mpfr by_value(const Mpfr& x) { return x; }  // a temporary operand
+
+TEST(MpfrExpression, NestedExpressionsRoundLikeOneTemporaryPerOperation) {
+  for (long p : {53L, 113L, 1024L, 1100L}) {  // 1100: limbs on the heap
+    SCOPED_TRACE("bits " + std::to_string(p));
+    const Mpfr x = from_q(mpq_class(1, 3), p), y = from_q(mpq_class(2, 7), p);
+    const Mpfr z = from_q(mpq_class(5, 11), p), w = from_q(mpq_class(-1, 13), p);
+    const mpq_class X = exact(x), Y = exact(y), Z = exact(z), W = exact(w);
+    auto R = [p](const mpq_class& q) { return rnd(q, p); };
+    // left-deep, right-deep, both sides nodes, integers on either side, negation
+    EXPECT_EQ(exact(Mpfr((x + y) * z - w)), R(R(R(X + Y) * Z) - W));
+    EXPECT_EQ(exact(Mpfr(x / (y - z * w))), R(X / R(Y - R(Z * W))));
+    EXPECT_EQ(exact(Mpfr((x + y) * (z - w))), R(R(X + Y) * R(Z - W)));
+    EXPECT_EQ(exact(Mpfr(2 * x * y / 3 - 1)), R(R(R(R(2 * X) * Y) / 3) - 1));
+    EXPECT_EQ(exact(Mpfr(1 - x / (2 - y))), R(1 - R(X / R(2 - Y))));
+    EXPECT_EQ(exact(Mpfr(-(x - y) * -z)), R(R(-(X - Y)) * -Z));
+    EXPECT_EQ(exact(Mpfr(3 / (x + 5) + 7 / z)), R(R(3 / R(X + 5)) + R(7 / Z)));
+    Mpfr d(p);
+    d = (w - x) / (y + z) * (x - y);  // assignment evaluates into d as well
+    EXPECT_EQ(exact(d), R(R(R(W - X) / R(Y + Z)) * R(X - Y)));
+    EXPECT_EQ(d.bits(), p);
+  }
+}
+
+TEST(MpfrExpression, SubexpressionsOfSmallerPrecisionRoundToTheirOwnPrecision) {
+  const Mpfr x = from_q(mpq_class(1, 3), 64), z = from_q(mpq_class(2, 7), 64);
+  const Mpfr y = from_q(mpq_class(5, 11), 300);
+  const mpq_class X = exact(x), Y = exact(y), Z = exact(z);
+  const mpq_class own = rnd(rnd(X * Z, 64) + Y, 300);  // x*z is a 64-bit temporary
+  ASSERT_NE(own, rnd(X * Z + Y, 300));  // the test can tell the two apart
+  const Mpfr d = x * z + y;
+  EXPECT_EQ(d.bits(), 300);
+  EXPECT_EQ(exact(d), own);
+  EXPECT_EQ(exact(Mpfr(y + x * z)), rnd(Y + rnd(X * Z, 64), 300));
+  EXPECT_EQ(exact(Mpfr((x - z) * (y + y))), rnd(rnd(X - Z, 64) * rnd(Y + Y, 300), 300));
+  EXPECT_EQ(exact(Mpfr(-(x * z) + y)), rnd(-rnd(X * Z, 64) + Y, 300));
+}
+
+TEST(MpfrExpression, DestinationMayBeAnOperand) {
+  for (long p : {53L, 1100L}) {
+    SCOPED_TRACE("bits " + std::to_string(p));
+    const Mpfr x = from_q(mpq_class(1, 3), p), y = from_q(mpq_class(2, 7), p);
+    const mpq_class X = exact(x), Y = exact(y), D = exact(from_q(mpq_class(-4, 9), p));
+    auto R = [p](const mpq_class& q) { return rnd(q, p); };
+    auto fresh = [p] { return from_q(mpq_class(-4, 9), p); };
+    Mpfr d = fresh();
+    d = (d + y) * d;  // d read after the left side is evaluated into d
+    EXPECT_EQ(exact(d), R(R(D + Y) * D));
+    d = fresh();
+    d = y * (x - d);
+    EXPECT_EQ(exact(d), R(Y * R(X - D)));
+    d = fresh();
+    d = d - 2 * d * y;  // d on the left, the right side a node containing d
+    EXPECT_EQ(exact(d), R(D - R(R(2 * D) * Y)));
+    d = fresh();
+    d = (y - d) / d;
+    EXPECT_EQ(exact(d), R(R(Y - D) / D));
+    d = fresh();
+    d = (x + d) * (d - y) - d;
+    EXPECT_EQ(exact(d), R(R(R(X + D) * R(D - Y)) - D));
+    d = fresh();
+    d = sqrt(d * d) + d;
+    Mpfr t = fresh();  // the same operations as raw MPFR calls on the old value
+    const Mpfr old = fresh();
+    mpfr_mul(t.get(), old.get(), old.get(), MPFR_RNDN);
+    mpfr_sqrt(t.get(), t.get(), MPFR_RNDN);
+    mpfr_add(t.get(), t.get(), old.get(), MPFR_RNDN);
+    EXPECT_EQ(exact(d), exact(t));
+  }
+}
+
+TEST(MpfrExpression, AssignmentTakesThePrecisionCompoundKeepsIt) {
+  const Mpfr x = from_q(mpq_class(1, 3), 300), y = from_q(mpq_class(2, 7), 300);
+  const mpq_class X = exact(x), Y = exact(y);
+  Mpfr d(53);
+  d = x * y + x;
+  EXPECT_EQ(d.bits(), 300);
+  EXPECT_EQ(exact(d), rnd(rnd(X * Y, 300) + X, 300));
+  Mpfr c = from_q(mpq_class(1, 5), 64);
+  const mpq_class C = exact(c);
+  c += x * y;  // the product is rounded at its own 300 bits, then the sum at c's 64
+  EXPECT_EQ(c.bits(), 64);
+  EXPECT_EQ(exact(c), rnd(C + rnd(X * Y, 300), 64));
+  c = from_q(mpq_class(1, 5), 64);
+  c /= x - y;
+  EXPECT_EQ(exact(c), rnd(C / rnd(X - Y, 300), 64));
+}
+
+TEST(MpfrExpression, TemporaryOperandsAndFunctions) {
+  const long p = 113;
+  const Mpfr x = from_q(mpq_class(1, 3), p), y = from_q(mpq_class(2, 7), p);
+  const mpq_class X = exact(x), Y = exact(y);
+  EXPECT_EQ(exact(Mpfr(by_value(x) + by_value(y) * 2)), rnd(X + rnd(Y * 2, p), p));
+  EXPECT_EQ(exact(Mpfr(2 - by_value(x))), rnd(2 - X, p));
+  // The functions against the same MPFR calls on explicit temporaries.
+  auto ref = [p](int (*f)(mpfr_ptr, mpfr_srcptr, mpfr_rnd_t), const Mpfr& arg) {
+    Mpfr r(p);
+    f(r.get(), arg.get(), MPFR_RNDN);
+    return exact(r);
+  };
+  const Mpfr xy = x * y, negx = -x, x1 = x + 1, xm1 = x - 1;
+  EXPECT_EQ(exact(Mpfr(sqrt(x * y))), ref(mpfr_sqrt, xy));
+  EXPECT_EQ(exact(Mpfr(exp(-x))), ref(mpfr_exp, negx));
+  EXPECT_EQ(exact(Mpfr(log(x + 1))), ref(mpfr_log, x1));
+  EXPECT_EQ(exact(Mpfr(abs(x - 1))), ref(mpfr_abs, xm1));
+  EXPECT_EQ(exact(Mpfr(floor(x * 7))), mpq_class(2));
+  EXPECT_EQ(exact(Mpfr(floor(-x))), mpq_class(-1));
+  Mpfr d = x;
+  d = sqrt(d);  // in place
+  EXPECT_EQ(exact(d), ref(mpfr_sqrt, x));
+  // NaN propagates through a tree and is visible to the comparisons.
+  const Mpfr nan(p);
+  EXPECT_TRUE(mpfr_nan_p(Mpfr((nan + x) * 2 - y).get()));
+  EXPECT_FALSE(nan * 1 < x);
+  EXPECT_FALSE(x <= nan - 1);
 }
 
 TEST(Mpfi, CopyMoveAssignKeepEndsAndPrecision) {

@@ -85,8 +85,8 @@ Eigen2<S> eigenvalues(const Mat2<S>& m) {
     return e;
   }
   const S w = sqrt(disc);
-  S l1 = Tr::likely_negative(h) ? h - w : h + w;  // the larger modulus, no cancellation
-  S l2 = Tr::is_zero(l1) == Truth::yes ? h - w : det / l1;
+  S l1 = Tr::likely_negative(h) ? S(h - w) : S(h + w);  // the larger modulus, no cancellation
+  S l2 = Tr::is_zero(l1) == Truth::yes ? S(h - w) : S(det / l1);
   e.re[0] = std::move(l1);
   e.re[1] = std::move(l2);
   e.im[0] = zero;

@@ -61,7 +61,7 @@ std::optional<Eval<T>> evaluate(const TangentMap<T>& tm, const State<T>& x, long
   try {
     Eval<T> e{tm.steps(x, q), {}, {}, 0};
     const State<T>& end = e.orbit.points.back();
-    e.ft = wrap_half(end.theta - x.theta, bits);
+    e.ft = wrap_half<T>(end.theta - x.theta, bits);
     e.fv = end.v - x.v;
     e.norm = residual_norm(e.ft, e.fv, x.v);
     if (!std::isfinite(e.norm)) return std::nullopt;
@@ -162,13 +162,13 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
     A.a22 = A.a22 - 1;
     T dt, dv;
     bool dropped = false;
-    pinv_solve(A, -e->ft, -e->fv, opt.rcond, dt, dv, dropped);
+    pinv_solve(A, T(-e->ft), T(-e->fv), opt.rcond, dt, dv, dropped);
     dropped_any = dropped_any || dropped;
     double t = 1;
     bool accepted = false;
     for (int h = 0; h < 40; ++h, t /= 2) {
       const T tt = Tr<T>::from_int(1, bits) / (1L << h);  // t = 2^-h
-      State<T> y{wrap_unit(x.theta + tt * dt), x.v + tt * dv};
+      State<T> y{wrap_unit<T>(x.theta + tt * dt), x.v + tt * dv};
       if (!valid_state(m, y)) continue;
       std::optional<Eval<T>> ey = evaluate(tm, y, q, bits);
       if (!ey) continue;
@@ -228,7 +228,7 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
     const double tol = std::max(1e3 * out.tolerance, 1e-10);
     for (long d = 1; d < q; ++d) {
       if (q % d) continue;
-      const T ft = wrap_half(out.points[d % q].theta - out.points[0].theta, bits);
+      const T ft = wrap_half<T>(out.points[d % q].theta - out.points[0].theta, bits);
       const T fv = out.points[d % q].v - out.points[0].v;
       if (residual_norm(ft, fv, out.points[0].v) <= tol) {
         out.minimal_period = d;

@@ -53,13 +53,27 @@ std::string mpfr_to_string(mpfr_srcptr x, mpfr_rnd_t rnd) {
   const long n = static_cast<long>(m.size());
   std::string out = sign;
   if (e > -6 && e <= 21) {
-    if (e <= 0) out += "0." + std::string(static_cast<size_t>(-e), '0') + m;
-    else if (e < n) out += m.substr(0, static_cast<size_t>(e)) + "." + m.substr(static_cast<size_t>(e));
-    else out += m + std::string(static_cast<size_t>(e - n), '0');
+    // Appended piece by piece (operator+ on temporaries trips GCC 12's -Wrestrict).
+    if (e <= 0) {
+      out += "0.";
+      out.append(static_cast<size_t>(-e), '0');
+      out += m;
+    } else if (e < n) {
+      out.append(m, 0, static_cast<size_t>(e));
+      out += '.';
+      out.append(m, static_cast<size_t>(e));
+    } else {
+      out += m;
+      out.append(static_cast<size_t>(e - n), '0');
+    }
   } else {
-    out += m.substr(0, 1);
-    if (n > 1) out += "." + m.substr(1);
-    out += "e" + std::to_string(static_cast<long>(e - 1));
+    out += m[0];
+    if (n > 1) {
+      out += '.';
+      out.append(m, 1);
+    }
+    out += 'e';
+    out += std::to_string(static_cast<long>(e - 1));
   }
   return out;
 }
@@ -185,6 +199,13 @@ Mpfi ScalarTraits<Mpfi>::pow_3_5(const Mpfi& x) {
 
 std::string ScalarTraits<Mpfi>::lower_string(const Mpfi& x) { return mpfr_to_string(&x.get()->left, MPFR_RNDD); }
 std::string ScalarTraits<Mpfi>::upper_string(const Mpfi& x) { return mpfr_to_string(&x.get()->right, MPFR_RNDU); }
-std::string ScalarTraits<Mpfi>::to_string(const Mpfi& x) { return "[" + lower_string(x) + ", " + upper_string(x) + "]"; }
+std::string ScalarTraits<Mpfi>::to_string(const Mpfi& x) {
+  std::string s = "[";  // appended piece by piece: "[" + temporary trips GCC 12's -Wrestrict
+  s += lower_string(x);
+  s += ", ";
+  s += upper_string(x);
+  s += ']';
+  return s;
+}
 
 }  // namespace bouncer

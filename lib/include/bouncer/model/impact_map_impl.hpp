@@ -100,35 +100,33 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
     ride(r, j, s.theta);
   } else {
     const T* pos = &s.theta;       // phase at which the current piece begins
-    T fall;                        // theta_fall after a jump (pos points here then)
+    T fall = blank<T>(m_.bits);    // theta_fall after a jump (pos points here then)
     T L = wall.end[j] - s.theta;   // time left in the current segment
     T G = zero;                    // gap as the piece begins
-    T root_D, sigma;               // sqrt(W^2 + 2aG) (when G > 0) and the first zero of the gap
+    T root_D = blank<T>(m_.bits);  // sqrt(W^2 + 2aG) (when G > 0)
+    T sigma = blank<T>(m_.bits);   // the first zero of the gap
     bool on_wall = true;           // G == 0 exactly: the root is 2W/a, the impact speed W
     bool jumped = false;
     for (long iter = 0;; ++iter) {
       if (iter > detail::kWalkLimit) throw Undecided(Reason::walk_limit);
       if (on_wall) {
-        sigma = W;
-        sigma += W;
-        sigma /= a;
+        sigma = (W + W) / a;
       } else {
-        root_D = W * W;
-        root_D += 2 * a * G;
-        root_D = sqrt(Tr::nonneg(root_D));
+        root_D = W * W + 2 * a * G;
+        make_nonneg(root_D);
+        root_D = sqrt(root_D);
         if (Tr::likely_negative(W)) {
-          sigma = 2 * G;
-          sigma /= root_D - W;
+          sigma = 2 * G / (root_D - W);
         } else {
-          sigma = W + root_D;
-          sigma /= a;
+          sigma = (W + root_D) / a;
         }
       }
       const T& q = on_wall ? W : root_D;  // relative impact speed if the impact is here
       if (decide(Tr::lt(sigma, L), Reason::impact_at_corner)) {
         // Impact inside segment j.
         r.tau += sigma;
-        T theta = clamp_to_segment(*pos + sigma, wall.start[j], wall.end[j]);
+        T theta = *pos + sigma;
+        clamp_into_segment(theta, wall.start[j], wall.end[j]);
         if (jumped) {
           r.indirect = Truth::yes;
         } else {
@@ -180,7 +178,8 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         W -= a * L;
         W += wall.velocity[j];
         W -= wall.velocity[k];
-        G = Tr::nonneg(gap);
+        make_nonneg(gap);
+        G = std::move(gap);
         on_wall = false;
       }
       j = k;
@@ -193,14 +192,17 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         // straddling a period boundary or a corner), the walk simply goes on.
         jumped = true;
         const T f0 = wall.height_at(j0, s.theta);
-        const T root = sqrt(Tr::nonneg(s.v * s.v - 2 * a * (wall.top - f0)));
+        T root = s.v * s.v - 2 * a * (wall.top - f0);
+        make_nonneg(root);
+        root = sqrt(root);
         const T tau_fall = (s.v + root) / a;
         const T x = s.theta + tau_fall;
         T whole = zero;
         const Truth whole_known = floor_certain(x, whole);
         if (whole_known == Truth::invalid) throw Undecided(Reason::nonfinite);
         if (whole_known == Truth::yes) {
-          fall = clamp_to_segment(x - whole, zero, wall.end.back());
+          fall = x - whole;
+          clamp_into_segment(fall, zero, wall.end.back());
           const int jf = wall.segment_if_certain(fall);
           if (jf >= 0) {
             r.periods = detail::whole_periods(whole);
@@ -209,7 +211,8 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
             j = jf;
             pos = &fall;
             L = wall.end[j] - fall;
-            G = Tr::nonneg(wall.top - wall.height_at(j, fall));
+            G = wall.top - wall.height_at(j, fall);
+            make_nonneg(G);
             W = -root - wall.velocity[j];
             on_wall = false;
             continue;
@@ -233,9 +236,9 @@ void ImpactMap<T>::collide(StepResult<T>& r, int j, T theta, const T& speed, int
   using std::exp;
   const Wall<T>& wall = m_.wall;
   // Relative speed after the impact: eps * speed.
-  T out = m_.law == Law::elastic    ? speed
-          : m_.law == Law::constant ? m_.eps * speed
-                                    : exp(-Tr::pow_3_5(speed / m_.c)) * speed;
+  T out = speed;
+  if (m_.law == Law::constant) out *= m_.eps;
+  if (m_.law == Law::veldep) out *= exp(-Tr::pow_3_5(speed / m_.c));
   r.segment = j;
   r.next.v = wall.velocity[j] + out;
   // Sticking (paper sec. II.B.3, generalized to any segment): in the wall's frame each

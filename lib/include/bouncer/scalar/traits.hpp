@@ -157,6 +157,32 @@ T clamp_to_segment(const T& x, const T& lo, const T& hi) {
   }
 }
 
+// A value to be assigned before it is read, with the precision `bits` where the type has
+// one (an Mpfr of the right precision lets later assignments evaluate in place).
+template <class T>
+T blank(long bits) {
+  if constexpr (std::is_same_v<T, Mpfr>) return Mpfr(bits);
+  else return T();
+}
+
+// In-place forms of ScalarTraits::nonneg and clamp_to_segment, for the hot path of the
+// impact map: the same results without a copy for the multiple-precision point type.
+template <class T>
+void make_nonneg(T& x) { x = ScalarTraits<T>::nonneg(x); }
+inline void make_nonneg(Mpfr& x) {
+  if (mpfr_sgn(x.get()) < 0) mpfr_set_zero(x.get(), 1);
+}
+template <class T>
+void clamp_into_segment(T& x, const T& lo, const T& hi) { x = clamp_to_segment(x, lo, hi); }
+inline void clamp_into_segment(Mpfr& x, const Mpfr& lo, const Mpfr& hi) {
+  if (x < lo) {
+    x = lo;
+  } else if (!(x < hi)) {
+    x = hi;
+    mpfr_nextbelow(x.get());
+  }
+}
+
 // Integer part of x, when it is certain (for an interval: both ends agree).
 template <class T>
 Truth floor_certain(const T& x, T& out) {

@@ -10,6 +10,7 @@
 
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
+#include "bouncer/verify/enclosure.hpp"
 
 namespace bouncer {
 
@@ -22,6 +23,9 @@ struct OrbitRequest {
   long long every = 1;
   Precision precision;
   Format format = Format::csv;
+  // Interval runs only: naive iterates the interval box with ImpactMap<Mpfi>; lohner
+  // follows Lohner's set c + B r (verify/enclosure.hpp) and prints the box around it.
+  EnclosureMethod method = EnclosureMethod::naive;
 };
 
 const std::set<std::string>& orbit_keys();
@@ -33,6 +37,7 @@ struct OrbitOutcome {
   bool undecided = false;        // stopped early at step steps_done + 1
   std::string reason;            // why, when undecided
   long long phase_lost_at = -1;  // first step after which theta had no correct bit, or -1
+  long long fallbacks = -1;      // lohner: steps that used the naive box image; -1 otherwise
 };
 
 // Writes the provenance header, the rows and a final line per orbit.

@@ -847,36 +847,50 @@ TYPED_TEST(ImpactMapTyped, CornerStarts) {
   }
 }
 
-// The release state (1/2, 4) with 8/a a whole number: the particle comes back to height 1
-// after exactly 8/a periods, at the top corner, with v^- = -4 = u(1/2): zero relative
-// velocity, so it rides the falling wall to theta = 1 (time 1/2). Then
-//   constant (paper): rides the rising wall to the release (1/2, 4): total tau = 8/a + 1;
-//   elastic: the upward turn is an impact of relative speed 8: (0, 12), total 8/a + 1/2.
-// (a binary-exact so that every type sees the exact corner.) The map may split this into a
-// zero-speed collision and a ride: up to two steps are allowed to reach the state.
-TYPED_TEST(ImpactMapTyped, ReturnToTheTopCornerWithTheWallsVelocity) {
+// A touchdown: the particle meets the wall exactly at the peak corner (theta = 1/2, height 1)
+// with v^- = -4, the velocity of the falling wall there: relative speed zero. That is a
+// collision of speed 0 whichever path of the step finds it (every number binary-exact):
+//   walk: a = 64 from (1/4, 12): x = 12 tau - 32 tau^2 reaches 1 at tau = 1/4 with v = -4,
+//         after rising above the top inside the segment (apex 9/8): an indirect flight;
+//   jump: a = 1/2, 1, 2 from the release (1/2, 4): back at height 1 after 8/a periods.
+// Constant eps (paper convention): the collision sticks at (1/2, -4); the ride goes down to
+//   theta = 1, on through the upward turn, and is released at (1/2, 4): one step.
+// Elastic: the collision leaves the particle on the wall at (1/2, -4); the next step rides
+//   to theta = 1, where the upward turn is an impact of speed 8: (0, 12).
+TYPED_TEST(ImpactMapTyped, TouchdownAtThePeakIsAZeroSpeedCollision) {
   using T = TypeParam;
-  for (const char* a : {"0.5", "1", "2"}) {
-    SCOPED_TRACE(a);
-    const double per = 8 / std::strtod(a, nullptr);
-    for (Law law : {Law::constant, Law::elastic}) {
-      const ImpactMap<T> map = make_map<T>(spec(law, a, "0.9"));
-      State<T> s = st<T>("0.5", "4");
-      Mpfr tau(0, 64);
-      int n = 0;
-      const char* want_theta = law == Law::constant ? "0.5" : "0";
-      const long want_v = law == Law::constant ? 4 : 12;
-      do {
-        const StepResult<T> r = map.step(s);
-        tau = tau + wide(r.tau);
-        s = r.next;
-        ++n;
-      } while (n < 2 && !(s.theta == num<T>(want_theta) && s.v == Tr<T>::from_int(want_v, Cfg<T>::bits)));
-      EXPECT_TRUE(s.theta == num<T>(want_theta)) << name(law) << " " << Tr<T>::to_string(s.theta);
-      EXPECT_TRUE(s.v == Tr<T>::from_int(want_v, Cfg<T>::bits)) << name(law) << " " << Tr<T>::to_string(s.v);
-      const long twice = static_cast<long>(2 * per) + (law == Law::constant ? 2 : 1);
-      EXPECT_LE(dist(tau, Mpfr(twice, 64) / 2L), Cfg<T>::tol * per) << name(law);
-    }
+  struct Path {
+    const char *name, *a, *theta, *v, *flight, *flight_and_ride;
+  };
+  const Path paths[] = {{"walk a=64", "64", "0.25", "12", "0.25", "1.25"},
+                        {"jump a=1/2", "0.5", "0.5", "4", "16", "17"},
+                        {"jump a=1", "1", "0.5", "4", "8", "9"},
+                        {"jump a=2", "2", "0.5", "4", "4", "5"}};
+  auto is = [](const T& x, const char* want) { return x == num<T>(want); };
+  for (const Path& p : paths) {
+    SCOPED_TRACE(p.name);
+    const StepResult<T> c = make_map<T>(spec(Law::constant, p.a, "0.9")).step(st<T>(p.theta, p.v));
+    EXPECT_EQ(c.kind, EventKind::sticking);
+    EXPECT_TRUE(c.corner);
+    EXPECT_EQ(c.indirect, Truth::yes);
+    EXPECT_EQ(c.stick_segment, 1);
+    EXPECT_TRUE(c.passed_upward_turn);
+    EXPECT_TRUE(is(c.stuck_theta, "0.5") && is(c.stuck_v, "-4"));
+    EXPECT_TRUE(is(c.next.theta, "0.5") && is(c.next.v, "4")) << Tr<T>::to_string(c.next.theta);
+    EXPECT_TRUE(is(c.tau, p.flight_and_ride)) << Tr<T>::to_string(c.tau);
+
+    const ImpactMap<T> elastic = make_map<T>(spec(Law::elastic, p.a));
+    const StepResult<T> e1 = elastic.step(st<T>(p.theta, p.v));
+    EXPECT_EQ(e1.kind, EventKind::impact);
+    EXPECT_TRUE(e1.corner);
+    EXPECT_EQ(e1.indirect, Truth::yes);
+    EXPECT_EQ(e1.segment, 1);
+    EXPECT_TRUE(is(e1.next.theta, "0.5") && is(e1.next.v, "-4")) << Tr<T>::to_string(e1.next.v);
+    EXPECT_TRUE(is(e1.tau, p.flight));
+    const StepResult<T> e2 = elastic.step(e1.next);
+    EXPECT_EQ(e2.kind, EventKind::ride);
+    EXPECT_TRUE(is(e2.next.theta, "0") && is(e2.next.v, "12")) << Tr<T>::to_string(e2.next.v);
+    EXPECT_TRUE(is(e2.tau, "0.5"));
   }
 }
 

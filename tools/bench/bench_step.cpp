@@ -170,6 +170,12 @@ struct PlainMap {
   double height_at(int j, double theta) const { return m.height[j] + m.vel[j] * (theta - m.start[j]); }
   int next(int j) const { return j + 1 == m.n ? 0 : j + 1; }
 
+  // Left the collision zone: falling at the impact (v^- = u - q < 0), apex above the top.
+  Truth left_zone(double theta0, double v0, int j0, double u, double q) const {
+    if (!(u < q)) return Truth::no;
+    const double f0 = height_at(j0, theta0);
+    return 2 * m.a * (m.top - f0) < v0 * v0 ? Truth::yes : Truth::no;
+  }
   void collide(PlainResult& r, int j, double theta, double speed) const {
     double out;
     switch (m.law) {
@@ -239,7 +245,7 @@ struct PlainMap {
       ride(r, j, theta0);
     } else {
       double pos = theta0, L = m.end[j] - theta0, G = 0, W = rel;
-      bool on_wall = true, jumped = false;
+      bool on_wall = true, jumped = false, at_fall = false;
       for (long iter = 0;; ++iter) {
         if (iter > kWalkLimit) throw Undecided(Reason::walk_limit);
         double q, sigma;
@@ -254,17 +260,8 @@ struct PlainMap {
         if (sigma < L) {
           r.tau += sigma;
           const double th = clamp(pos + sigma, m.start[j], m.end[j]);
-          if (jumped) {
-            r.indirect = Truth::yes;
-          } else {
-            const bool falling = m.vel[j] < q;  // v^- = u - q < 0
-            bool above = false;
-            if (falling) {
-              const double f0 = height_at(j0, theta0);
-              above = 2 * a * (m.top - f0) < v0 * v0;
-            }
-            r.indirect = above && falling ? Truth::yes : Truth::no;
-          }
+          r.indirect = jumped ? Truth::yes : left_zone(theta0, v0, j0, m.vel[j], q);
+          r.corner = at_fall && sigma == 0 && pos == m.start[j];
           collide(r, j, th, q);
           break;
         }
@@ -273,14 +270,10 @@ struct PlainMap {
         if (k == 0) ++r.periods;
         if (!(L < sigma)) {
           const double Wk = W - a * L + m.vel[j] - m.vel[k];
-          if (Wk < 0) {
+          if (Wk <= 0) {
             r.corner = true;
-            r.indirect = jumped ? Truth::yes : Truth::no;
+            r.indirect = jumped ? Truth::yes : left_zone(theta0, v0, j0, m.vel[k], -Wk);
             collide(r, k, m.start[k], -Wk);
-            break;
-          }
-          if (Wk == 0) {
-            ride(r, k, m.start[k]);
             break;
           }
           G = 0;
@@ -294,6 +287,7 @@ struct PlainMap {
         }
         j = k;
         pos = m.start[k];
+        at_fall = false;
         L = m.end[k] - m.start[k];
         if (!jumped && m.top < m.height[j] + G) {
           jumped = true;
@@ -310,6 +304,7 @@ struct PlainMap {
           r.phase_bits_lost = std::max(0, e);
           r.tau = tau_fall;
           pos = clamp(x - whole, 0.0, m.end[m.n - 1]);
+          at_fall = true;
           j = segment_of(pos);
           L = m.end[j] - pos;
           const double g = m.top - height_at(j, pos);
@@ -410,7 +405,7 @@ class RawMpfrMap {
       mpfr_set(pos_, theta0, N);
       mpfr_sub(L_, end_[j], theta0, N);
       mpfr_set_zero(G_, 1);
-      bool on_wall = true, jumped = false;
+      bool on_wall = true, jumped = false, at_fall = false;
       for (long iter = 0;; ++iter) {
         if (iter > kWalkLimit) throw Undecided(Reason::walk_limit);
         if (on_wall) {
@@ -437,21 +432,8 @@ class RawMpfrMap {
           mpfr_add(r.tau, r.tau, sigma_, N);
           mpfr_add(th_, pos_, sigma_, N);
           clamp(th_, start_[j], end_[j]);
-          if (jumped) {
-            r.indirect = Truth::yes;
-          } else {
-            const bool falling = mpfr_less_p(vel_[j], q_);  // v^- = u - q < 0
-            bool above = false;
-            if (falling) {
-              height_at(f0_, j0, theta0);
-              mpfr_mul_si(t1_, a_, 2, N);
-              mpfr_sub(t2_, top_, f0_, N);
-              mpfr_mul(t1_, t1_, t2_, N);
-              mpfr_mul(t2_, v0, v0, N);
-              above = mpfr_less_p(t1_, t2_);
-            }
-            r.indirect = above && falling ? Truth::yes : Truth::no;
-          }
+          r.indirect = jumped ? Truth::yes : left_zone(theta0, v0, j0, vel_[j], q_);
+          r.corner = at_fall && mpfr_zero_p(sigma_) && mpfr_equal_p(pos_, start_[j]);
           collide(j, th_, q_);
           break;
         }
@@ -463,15 +445,11 @@ class RawMpfrMap {
           mpfr_sub(t3_, W_, t1_, N);  // Wk
           mpfr_add(t3_, t3_, vel_[j], N);
           mpfr_sub(t3_, t3_, vel_[k], N);
-          if (mpfr_less_p(t3_, zero_)) {
+          if (mpfr_lessequal_p(t3_, zero_)) {
             r.corner = true;
-            r.indirect = jumped ? Truth::yes : Truth::no;
             mpfr_neg(speed_, t3_, N);
+            r.indirect = jumped ? Truth::yes : left_zone(theta0, v0, j0, vel_[k], speed_);
             collide(k, start_[k], speed_);
-            break;
-          }
-          if (mpfr_zero_p(t3_)) {
-            ride(k, start_[k]);
             break;
           }
           mpfr_set_zero(G_, 1);
@@ -499,6 +477,7 @@ class RawMpfrMap {
         }
         j = k;
         mpfr_set(pos_, start_[k], N);
+        at_fall = false;
         mpfr_sub(L_, end_[k], start_[k], N);
         if (!jumped) {
           mpfr_add(t1_, height_[j], G_, N);
@@ -523,6 +502,7 @@ class RawMpfrMap {
             mpfr_set(r.tau, tau_fall_, N);
             mpfr_sub(pos_, x_, whole_, N);
             clamp(pos_, zero_, end_[n_ - 1]);
+            at_fall = true;
             j = segment_of(pos_);
             mpfr_sub(L_, end_[j], pos_, N);
             height_at(t1_, j, pos_);
@@ -571,6 +551,17 @@ class RawMpfrMap {
     mpfr_add(out, height_[j], out, MPFR_RNDN);
   }
 
+  // Left the collision zone: falling at the impact (v^- = u - q < 0), apex above the top.
+  Truth left_zone(mpfr_srcptr theta0, mpfr_srcptr v0, int j0, mpfr_srcptr u, mpfr_srcptr q) {
+    constexpr mpfr_rnd_t N = MPFR_RNDN;
+    if (!mpfr_less_p(u, q)) return Truth::no;
+    height_at(f0_, j0, theta0);
+    mpfr_mul_si(t1_, a_, 2, N);
+    mpfr_sub(t2_, top_, f0_, N);
+    mpfr_mul(t1_, t1_, t2_, N);
+    mpfr_mul(t2_, v0, v0, N);
+    return mpfr_less_p(t1_, t2_) ? Truth::yes : Truth::no;
+  }
   void collide(int j, mpfr_srcptr theta, mpfr_srcptr speed) {
     constexpr mpfr_rnd_t N = MPFR_RNDN;
     mpfr_srcptr out = out_;

@@ -48,6 +48,7 @@ class ImpactMap {
   void collide(StepResult<T>& r, int j, T theta, const T& speed, int knot = -1) const;
   void ride(StepResult<T>& r, int j, const T& from) const;
   bool veldep_collapse_certain(const T& out, const T& time_left) const;
+  Truth left_zone(const State<T>& s, int j0, const T& u, const T& q) const;
 };
 
 // Explicitly instantiated in lib/src/impact_map.cpp for the supported scalar set.

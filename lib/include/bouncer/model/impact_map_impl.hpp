@@ -127,21 +127,10 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         r.tau += sigma;
         T theta = *pos + sigma;
         clamp_into_segment(theta, wall.start[j], wall.end[j]);
-        if (jumped) {
-          r.indirect = Truth::yes;
-        } else {
-          // Left the collision zone iff the impact follows the apex (falling: v^- = u - q < 0)
-          // and the apex is above the top (2a(top - f0) < v^2).
-          const Truth falling = Tr::lt(wall.velocity[j], q);
-          if (falling == Truth::no) {
-            r.indirect = Truth::no;
-          } else {
-            T f0 = wall.height_at(j0, s.theta);
-            f0 = wall.top - f0;
-            f0 *= a;
-            r.indirect = detail::both(Tr::lt(2 * f0, s.v * s.v), falling);
-          }
-        }
+        r.indirect = jumped ? Truth::yes : left_zone(s, j0, wall.velocity[j], q);
+        // Only a landing exactly on the top after a jump can have sigma = 0; it is a corner
+        // impact when the top is a knot (the triangle's peak), as the walk would report.
+        r.corner = pos == &fall && certainly(Tr::is_zero(sigma)) && certainly(Tr::is_zero(T(fall - wall.start[j])));
         collide(r, j, std::move(theta), q);
         break;
       }
@@ -149,18 +138,18 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
       r.tau += L;
       if (k == 0) ++r.periods;
       if (!decide(Tr::lt(L, sigma), Reason::impact_at_corner)) {
-        // The gap closes exactly at the corner: impact only if approaching the new segment.
+        // The gap closes exactly at the corner: an impact unless the particle moves away
+        // from the new segment. Landing with zero relative speed is a collision of speed
+        // 0, as everywhere else (the particle then moves with the wall; constant eps: it
+        // sticks), so a touchdown is labelled the same whichever path finds it.
         W -= a * L;
         W += wall.velocity[j];
         W -= wall.velocity[k];
-        if (decide(Tr::lt(W, zero), Reason::corner_approach)) {
+        if (decide(Tr::le(W, zero), Reason::corner_approach)) {
           r.corner = true;
-          r.indirect = jumped ? Truth::yes : Truth::no;
-          collide(r, k, wall.start[k], -W, k);
-          break;
-        }
-        if (decide(Tr::is_zero(W), Reason::riding)) {  // lands with zero relative speed
-          ride(r, k, wall.start[k]);
+          W = -W;  // the impact speed
+          r.indirect = jumped ? Truth::yes : left_zone(s, j0, wall.velocity[k], W);
+          collide(r, k, wall.start[k], W, k);
           break;
         }
         G = zero;  // grazes the corner and flies on
@@ -226,6 +215,21 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
   }
   if (!Tr::is_finite(r.next.theta) || !Tr::is_finite(r.next.v)) throw Undecided(Reason::nonfinite);
   return r;
+}
+
+// Whether a flight from s (on segment j0) that ends with relative impact speed q on a
+// segment of velocity u left the collision zone (paper sec. II.A): iff the impact follows
+// the apex (falling: v^- = u - q < 0) and the apex is above the wall's top
+// (2a(top - f0) < v^2). Flights that took the jump are indirect without this test.
+template <class T>
+Truth ImpactMap<T>::left_zone(const State<T>& s, int j0, const T& u, const T& q) const {
+  using Tr = ScalarTraits<T>;
+  const Truth falling = Tr::lt(u, q);
+  if (falling == Truth::no) return Truth::no;
+  T f0 = m_.wall.height_at(j0, s.theta);
+  f0 = m_.wall.top - f0;
+  f0 *= m_.a;
+  return detail::both(Tr::lt(2 * f0, s.v * s.v), falling);
 }
 
 // The collision law (paper eq. 2) with relative impact speed `speed` = |v^- - fdot| on

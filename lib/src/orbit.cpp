@@ -1,6 +1,7 @@
 #include "bouncer/io/orbit.hpp"
 
 #include <iomanip>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -216,6 +217,12 @@ std::vector<std::string> step_row(long long n, const StepResult<T>& r, const Mod
   return row;
 }
 
+// Interval runs with --method lohner follow Lohner's set c + B r (OrbitEnclosure) next to
+// the box: each row's state is the box around the set, which grows at the rate of the
+// linearized dynamics instead of compounding the wrapping of a box. The event columns (tau,
+// periods, sticking, ...) stay those of the interval step over the box before the step: it
+// decides the same branches for the same set (the Lohner step evaluates the map and its
+// Jacobian on that box), so they are enclosures for every state in the set.
 template <class T>
 std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std::ostream& out) {
   const long bits = req.precision.bits;
@@ -228,9 +235,22 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
     OrbitOutcome o;
     State<T> s = make_state<T>(map.model(), req.initial[i]);
     w.row(start_row(s, i));
+    std::optional<OrbitEnclosure> lohner;
+    if constexpr (ScalarTraits<T>::is_interval) {
+      if (req.method == EnclosureMethod::lohner) {
+        lohner.emplace(map.model(), s, EnclosureMethod::lohner);
+        o.fallbacks = 0;
+      }
+    }
     for (long long n = 1; n <= req.steps; ++n) {
       try {
         StepResult<T> r = map.step(s);
+        if constexpr (ScalarTraits<T>::is_interval) {
+          if (lohner) {
+            r.next = lohner->step().next;
+            o.fallbacks = lohner->fallbacks();
+          }
+        }
         s = r.next;
         o.steps_done = n;
         if (o.phase_lost_at < 0 && r.phase_bits_lost >= ScalarTraits<T>::bits(s.theta)) o.phase_lost_at = n;
@@ -248,51 +268,9 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
   return outcomes;
 }
 
-// Interval orbits by Lohner's method. Each row's state is the box around the Lohner set
-// c + B r, which grows at the rate of the linearized dynamics instead of compounding the
-// wrapping of a box. The event columns (tau, periods, sticking, ...) are those of the
-// interval step over the box before the step: it decides the same branches for the same
-// set (the Lohner step evaluates the map and its Jacobian on that box), so they are
-// enclosures for every state in the set.
-std::vector<OrbitOutcome> run_lohner(const OrbitRequest& req, const Provenance& p, std::ostream& out) {
-  const long bits = req.precision.bits;
-  const Model<Mpfi> model = make_model<Mpfi>(req.model, bits);
-  const ImpactMap<Mpfi> map(model);
-  RowWriter w(out, req.format, true, bits);
-  w.begin(p);
-  std::vector<OrbitOutcome> outcomes;
-  for (size_t i = 0; i < req.initial.size(); ++i) {
-    w.begin_orbit(i);
-    OrbitOutcome o;
-    o.fallbacks = 0;
-    const State<Mpfi> start = make_state<Mpfi>(model, req.initial[i]);
-    w.row(start_row(start, i));
-    OrbitEnclosure set(model, start, EnclosureMethod::lohner);
-    for (long long n = 1; n <= req.steps; ++n) {
-      try {
-        StepResult<Mpfi> r = map.step(set.box());
-        r.next = set.step().next;
-        o.steps_done = n;
-        o.fallbacks = set.fallbacks();
-        if (o.phase_lost_at < 0 && r.phase_bits_lost >= bits) o.phase_lost_at = n;
-        if (n % req.every == 0 || n == req.steps) w.row(step_row(n, r, model, i));
-      } catch (const Undecided& u) {
-        o.undecided = true;
-        o.reason = u.what();
-        break;
-      }
-    }
-    w.end_orbit(i, o, bits);
-    outcomes.push_back(o);
-  }
-  w.finish();
-  return outcomes;
-}
-
 }  // namespace
 
 std::vector<OrbitOutcome> write_orbits(const OrbitRequest& r, const Provenance& p, std::ostream& out) {
-  if (r.method == EnclosureMethod::lohner) return run_lohner(r, p, out);
   return with_scalar(r.precision, [&](auto tag) { return run<typename decltype(tag)::type>(r, p, out); });
 }
 

@@ -491,6 +491,16 @@ Mpfr from_q(const mpq_class& q, long bits) {
 mpq_class rnd(const mpq_class& q, long bits) { return round_to_bits(q, bits); }
 Mpfr by_value(const Mpfr& x) { return x; }  // a temporary operand
 
+// Integer operands are exact; a floating operand would be rounded somewhere unseen (it used to
+// convert silently to long: x * 0.5 was x * 0), so it does not compile.
+template <class X, class N>
+concept multiplies = requires(const X& x, N n) { Mpfr(x * n); };
+template <class X, class N>
+concept adds_to = requires(const X& x, N n) { Mpfr(n + x); };
+static_assert(multiplies<Mpfr, int> && multiplies<Mpfr, long> && adds_to<Mpfr, unsigned>);
+static_assert(!multiplies<Mpfr, double> && !adds_to<Mpfr, double> && !multiplies<Mpfr, float>);
+static_assert(!multiplies<Mpfr, unsigned long>);  // would not fit MPFR's long
+
 TEST(MpfrExpression, NestedExpressionsRoundLikeOneTemporaryPerOperation) {
   for (long p : {53L, 113L, 1024L, 1100L}) {  // 1100: limbs on the heap
     SCOPED_TRACE("bits " + std::to_string(p));

@@ -100,6 +100,26 @@ TEST(Classify, FermiAccelerationIsUnbounded) {
   EXPECT_NEAR(c.alpha, 1, 0.05) << c.evidence;
 }
 
+TEST(Classify, ConstantRestitutionIsNeverUnbounded) {
+  // eps = 0.96, a = 31 from the release state, 20000 quad steps, then a 500-step window with
+  // no transient (what `bouncer sweep` asks): the running maximum of v still grows there, but
+  // every orbit of constant eps < 1 enters the trapping region v <= 4(1+3eps)/(1-eps) = 388
+  // (proofs/trapping_region), so the growth is a transient and must not read as unbounded.
+  const ImpactMap<Quad> map(make_model<Quad>(spec(Law::constant, "31", "0.96"), 113));
+  State<Quad> s = make_state<Quad>(map.model(), InitialCondition{*Decimal::parse("0.5"), *Decimal::parse("4")});
+  double vmax = 0;
+  for (int n = 0; n < 20000; ++n) {
+    s = map.step(s).next;
+    vmax = std::max(vmax, static_cast<double>(s.v));
+  }
+  EXPECT_LE(vmax, 388.0);
+  ClassifyOptions o;
+  o.transient = 0;
+  o.steps = 500;
+  const Classification c = classify(map, s, o);
+  EXPECT_NE(c.cls, OrbitClass::unbounded) << c.evidence;
+}
+
 TEST(Classify, ChaoticAndQuasiperiodic) {
   // The velocity-dependent attractor at a = 27, c = 1000 (positive exponent confirmed by
   // orbit separation in test_lyapunov).

@@ -1,6 +1,7 @@
 // Attractor types (analysis/classify.hpp). The decision order, each with its evidence:
 //   1. a step undecided (NaN, overflow, walk limit)            -> undecided
 //   2. unbounded growth of the running maximum of v            -> unbounded (v ~ n^alpha)
+//      (not for constant eps < 1, whose orbits all enter a proved trapping region)
 //   3. a sticking step whose release state recurs exactly      -> sticking, k = steps
 //      between the two releases (the release state is a constant of the wall, so the
 //      recurrence is exact in every precision)
@@ -137,8 +138,10 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
     return c;
   }
 
-  // 2. Unbounded growth.
-  {
+  // 2. Unbounded growth. Not with constant eps < 1: there every orbit enters the trapping
+  //    region v <= 4(1 + 3 eps)/(1 - eps) (proofs/trapping_region), so growth is a transient.
+  const bool trapped = model.law == Law::constant && certainly(Tr::lt(model.eps, Tr::from_int(1, model.bits)));
+  if (!trapped) {
     const double alpha = growth.alpha(N);
     const double early = growth.max_at(N / 16.0);
     if (N >= 64 && alpha > 0.2 && growth.runmax > 1.5 * early) {

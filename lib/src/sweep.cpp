@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <iomanip>
 #include <sstream>
 
+#include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {
@@ -60,6 +62,11 @@ std::string plain_answer(const SweepRow& r, long long steps, bool failed, long l
   else if (failed) s << "step " << failed_at << " failed (NaN or overflow)";
   else if (r.attractor_period) s << "no sticking within " << steps << " steps; settles on a period-" << *r.attractor_period << " orbit";
   else s << "no sticking within " << steps << " steps; no period <= " << max_period << " in the final steps";
+  if (!r.orbit_class.empty()) {
+    s << "; over " << kSweepClassifySteps << " more steps: " << r.orbit_class;
+    if (r.orbit_class == name(OrbitClass::undecided)) s << " (" << r.class_evidence << ")";
+    else if (r.lambda) s << " (lambda " << std::setprecision(3) << *r.lambda << " per collision)";
+  }
   return s.str();
 }
 
@@ -110,6 +117,17 @@ SweepRow run_plain(const SweepQuestion& q, const Precision& p, const Reference& 
     if (tail.size() > keep) tail.pop_front();
   }
   if (!row.sticking_period && !failed) row.attractor_period = final_period(tail);
+  if (!row.sticking_period && !failed && !row.attractor_period) {
+    // What kind of orbit this precision sees: the attractor classification, continued
+    // from the final state (the periods up to max_period are already excluded).
+    ClassifyOptions co;
+    co.transient = 0;
+    co.steps = kSweepClassifySteps;
+    const Classification c = classify(map, s, co);
+    row.orbit_class = name(c.cls);
+    row.class_evidence = c.evidence;
+    if (std::isfinite(c.lambda)) row.lambda = c.lambda;
+  }
   row.answer = plain_answer(row, q.steps, failed, failed_at, q.max_period);
   return row;
 }

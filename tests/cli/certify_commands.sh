@@ -79,6 +79,15 @@ if run sweep sweep --model constant --eps 0.96 --a 31 --theta 0.5 --v 4 --steps 
 fi
 if run sweepj sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 100 --json; then
   check sweepj 'len(j["rows"]) == 10 and all(r["answer"].startswith("sticks at step 4") for r in j["rows"])'
+  check sweepj 'all(r["class"] is None and r["lambda"] is None for r in j["rows"])'  # sticking: no classification
+fi
+# A chaotic elastic orbit: no sticking, no period, so each row classifies what its precision
+# sees. From 512 bits on the runs are the same orbit through all 1500 steps (they agree to
+# far below double), so they must agree on a chaotic class and on one positive exponent.
+if run sweepc sweep --model elastic --a 19 --theta 0.1 --v 5 --steps 1000 --json; then
+  check sweepc 'all(r["class"] is not None and "over 500 more steps: " + r["class"] in r["answer"] for r in j["rows"])'
+  check sweepc 'all(r["class"] == "chaotic" and r["lambda"] > 0.01 for r in j["rows"][6:])'
+  check sweepc 'max(r["lambda"] for r in j["rows"][6:]) - min(r["lambda"] for r in j["rows"][6:]) < 1e-9'
 fi
 
 # --- audit ----------------------------------------------------------------------------------

@@ -40,6 +40,8 @@ struct SweepQuestion {
 // double, long, quad, mpfr:64, 128, 256, 512, 1024, 2048, 4096.
 std::vector<Precision> default_sweep_precisions();
 
+constexpr long kSweepClassifySteps = 500;
+
 struct SweepRow {
   std::string precision;                // Precision::text()
   long bits = 0;
@@ -47,6 +49,11 @@ struct SweepRow {
   std::string why;                      // how it left: distance, event, failure
   std::optional<long long> sticking_period;
   std::optional<long> attractor_period; // period of the final steps, when no sticking
+  // Neither sticking nor a period: bouncer::classify over kSweepClassifySteps more steps at
+  // this precision ("chaotic", "quasiperiodic", "unbounded", ...) and its exponent.
+  std::string orbit_class;
+  std::string class_evidence;           // classify's one-line evidence
+  std::optional<double> lambda;
   std::string answer;                   // qualitative answer, one phrase
 };
 

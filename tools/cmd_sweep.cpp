@@ -23,7 +23,7 @@ using json = nlohmann::ordered_json;
 const std::set<std::string>& sweep_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"theta", "v", "steps", "tolerance", "reference-max-bits", "method", "json", "out"});
+    k.insert({"theta", "v", "steps", "tolerance", "reference-max-bits", "method", "classify-steps", "json", "out"});
     return k;
   }();
   return keys;
@@ -50,6 +50,7 @@ Request request_from(const Options& o) {
   }
   r.q.reference.max_bits = integer_from(o, "reference-max-bits", 64, kMaxBits, 16384);
   r.q.method = parse_enclosure_method("method", o.get_or("method", "lohner"));
+  r.q.classify_steps = integer_from(o, "classify-steps", 8, 1000000, 500);
   r.json = o.get_or("json", "false") == "true";
   if (o.has("out")) {
     r.prefix = o.get("out");
@@ -180,6 +181,8 @@ Command add_sweep(CLI::App& app) {
   opts->add("tolerance", "Distance from the enclosure that counts as leaving it, decimal in [0, 1] (default 2^-20)");
   opts->add("reference-max-bits", "Largest precision of the certified reference's escalation (default 16384)");
   opts->add("method", "Reference enclosure: lohner (default) | naive");
+  opts->add("classify-steps", "Rows with neither sticking nor a period are classified over this many more steps, "
+                              "integer in [8, 1000000] (default 500)");
   opts->add("out", "PREFIX: write PREFIX.json, PREFIX.csv and PREFIX.png (atomically)");
   sub->add_flag("--json", *as_json, "JSON on stdout instead of the text table");
 

@@ -1,6 +1,7 @@
 // Precision sweep against a certified reference (verify/sweep.hpp).
 #include "bouncer/verify/sweep.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -56,14 +57,15 @@ std::optional<long> final_period(const std::deque<std::pair<double, double>>& ta
   return std::nullopt;
 }
 
-std::string plain_answer(const SweepRow& r, long long steps, bool failed, long long failed_at, long max_period) {
+std::string plain_answer(const SweepRow& r, const SweepQuestion& q, bool failed, long long failed_at) {
+  const long long steps = q.steps;
   std::ostringstream s;
   if (r.sticking_period) s << "sticks at step " << *r.sticking_period << " (sticking period " << *r.sticking_period << ")";
   else if (failed) s << "step " << failed_at << " failed (NaN or overflow)";
   else if (r.attractor_period) s << "no sticking within " << steps << " steps; settles on a period-" << *r.attractor_period << " orbit";
-  else s << "no sticking within " << steps << " steps; no period <= " << max_period << " in the final steps";
+  else s << "no sticking within " << steps << " steps; no period <= " << q.max_period << " in the final steps";
   if (!r.orbit_class.empty()) {
-    s << "; over " << kSweepClassifySteps << " more steps: " << r.orbit_class;
+    s << "; over " << q.classify_steps << " more steps: " << r.orbit_class;
     if (r.orbit_class == name(OrbitClass::undecided)) s << " (" << r.class_evidence << ")";
     else if (r.lambda) s << " (lambda " << std::setprecision(3) << *r.lambda << " per collision)";
   }
@@ -122,13 +124,14 @@ SweepRow run_plain(const SweepQuestion& q, const Precision& p, const Reference& 
     // from the final state (the periods up to max_period are already excluded).
     ClassifyOptions co;
     co.transient = 0;
-    co.steps = kSweepClassifySteps;
+    co.steps = q.classify_steps;
+    co.max_period = std::min(co.max_period, q.classify_steps / 2);
     const Classification c = classify(map, s, co);
     row.orbit_class = name(c.cls);
     row.class_evidence = c.evidence;
     if (std::isfinite(c.lambda)) row.lambda = c.lambda;
   }
-  row.answer = plain_answer(row, q.steps, failed, failed_at, q.max_period);
+  row.answer = plain_answer(row, q, failed, failed_at);
   return row;
 }
 

@@ -89,6 +89,9 @@ if run sweepc sweep --model elastic --a 19 --theta 0.1 --v 5 --steps 1000 --json
   check sweepc 'all(r["class"] == "chaotic" and r["lambda"] > 0.01 for r in j["rows"][6:])'
   check sweepc 'max(r["lambda"] for r in j["rows"][6:]) - min(r["lambda"] for r in j["rows"][6:]) < 1e-9'
 fi
+if run sweepw sweep --model elastic --a 19 --theta 0.1 --v 5 --steps 300 --classify-steps 100 --json; then
+  check sweepw 'any(r["class"] for r in j["rows"]) and all("over 100 more steps: " in r["answer"] for r in j["rows"] if r["class"])'
+fi
 
 # --- audit ----------------------------------------------------------------------------------
 audit_rc() { local rc=0; "$BOUNCER" audit "$1" >"$TMP/audit.out" 2>"$TMP/audit.err" || rc=$?; echo $rc; }
@@ -129,6 +132,7 @@ bad bits certify-sticking --eps 0.5 --a 24 --max-bits 8 --out "$TMP/bad_bits.jso
 bad steps sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 0 --out "$TMP/bad_steps"
 bad theta sweep --model constant --eps 0.5 --a 24 --theta 1.5 --v 4 --steps 10 --out "$TMP/bad_theta"
 bad tol sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --tolerance -1 --out "$TMP/bad_tol"
+bad csteps sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --classify-steps 7 --out "$TMP/bad_csteps"
 
 if [[ $failures -ne 0 ]]; then
   echo "certify_commands: $failures failure(s)" >&2

@@ -35,12 +35,11 @@ struct SweepQuestion {
   EnclosureMethod method = EnclosureMethod::lohner;
   std::vector<Precision> precisions;  // empty: the default list
   long max_period = 2000;             // longest period looked for in a run's final steps
+  long classify_steps = 500;          // window of the classification of rows without either
 };
 
 // double, long, quad, mpfr:64, 128, 256, 512, 1024, 2048, 4096.
 std::vector<Precision> default_sweep_precisions();
-
-constexpr long kSweepClassifySteps = 500;
 
 struct SweepRow {
   std::string precision;                // Precision::text()
@@ -49,8 +48,8 @@ struct SweepRow {
   std::string why;                      // how it left: distance, event, failure
   std::optional<long long> sticking_period;
   std::optional<long> attractor_period; // period of the final steps, when no sticking
-  // Neither sticking nor a period: bouncer::classify over kSweepClassifySteps more steps at
-  // this precision ("chaotic", "quasiperiodic", "unbounded", ...) and its exponent.
+  // Neither sticking nor a period: bouncer::classify over classify_steps more steps at this
+  // precision ("chaotic", "quasiperiodic", "unbounded", ...), its evidence and exponent.
   std::string orbit_class;
   std::string class_evidence;           // classify's one-line evidence
   std::optional<double> lambda;

@@ -59,6 +59,18 @@ Request request_from(const Options& o) {
   return r;
 }
 
+// A CSV field in double quotes, inner quotes doubled (RFC 4180): answers carry commas and
+// classify's evidence.
+std::string csv_quoted(const std::string& text) {
+  std::string q = "\"";
+  for (char ch : text) {
+    if (ch == '"') q += '"';
+    q += ch;
+  }
+  q += '"';
+  return q;
+}
+
 json null_or(const std::optional<long long>& x) { return x ? json(*x) : json(nullptr); }
 json null_or(const std::optional<double>& x) { return x ? json(*x) : json(nullptr); }
 
@@ -126,8 +138,8 @@ std::string csv_text(const SweepReport& rep, const Provenance& p) {
   o << "# implied_lyapunov: " << (rep.implied_lyapunov ? std::to_string(*rep.implied_lyapunov) : "none") << "\n";
   o << "precision,bits,leaves_enclosure_at,answer\n";
   for (const SweepRow& r : rep.rows)
-    o << r.precision << "," << r.bits << "," << (r.leaves_at ? std::to_string(*r.leaves_at) : "") << ",\"" << r.answer
-      << "\"\n";
+    o << r.precision << "," << r.bits << "," << (r.leaves_at ? std::to_string(*r.leaves_at) : "") << ","
+      << csv_quoted(r.answer) << "\n";
   return o.str();
 }
 

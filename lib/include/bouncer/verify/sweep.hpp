@@ -35,7 +35,7 @@ struct SweepQuestion {
   EnclosureMethod method = EnclosureMethod::lohner;
   std::vector<Precision> precisions;  // empty: the default list
   long max_period = 2000;             // longest period looked for in a run's final steps
-  long classify_steps = 500;          // window of the classification of rows without either
+  long classify_steps = 500;          // classify window for runs with neither sticking nor a period
 };
 
 // double, long, quad, mpfr:64, 128, 256, 512, 1024, 2048, 4096.

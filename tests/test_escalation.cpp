@@ -97,7 +97,7 @@ void expect_encloses_reference(const ModelSpec& spec, EnclosureMethod method, lo
     }
     const StepResult<Mpfr> r = ref.step(x);
     x = r.next;
-    ASSERT_EQ(e.kind, r.kind) << "step " << n;
+    ASSERT_EQ(e.event.kind, r.kind) << "step " << n;
     ASSERT_TRUE(e.next.theta.contains(x.theta)) << name(method) << " step " << n << " theta";
     ASSERT_TRUE(e.next.v.contains(x.v)) << name(method) << " step " << n << " v";
     ++done;

@@ -81,7 +81,7 @@ TEST(StickingPeriod, FirstImpactMatchesTheAnalyticFormula) {
   OrbitEnclosure orbit(interval_model(m, 256), make_state<Mpfi>({*Decimal::parse("0.5"), Decimal::from_int(4)}, 256),
                        EnclosureMethod::lohner);
   const EnclosedStep s = orbit.step();
-  EXPECT_EQ(s.kind, EventKind::impact);
+  EXPECT_EQ(s.event.kind, EventKind::impact);
   EXPECT_TRUE(s.next.theta.contains(ScalarTraits<Mpfr>::from_decimal("0.82", 256)));
   EXPECT_TRUE(s.next.v.contains(Mpfr(0, 256)));
   EXPECT_LT(s.next.theta.width().to_double(), 1e-60);

@@ -44,6 +44,24 @@ double box_width(const State<Mpfi>& s) {
 namespace {
 
 // The interval model with every parameter a constant (zero derivatives).
+// The interval step result inside a dual one (the values without the derivatives).
+StepResult<Mpfi> values_of(const StepResult<IDual>& d) {
+  StepResult<Mpfi> r;
+  r.next = State<Mpfi>{d.next.theta.v, d.next.v.v, d.next.knot};
+  r.tau = d.tau.v;
+  r.periods = d.periods;
+  r.segment = d.segment;
+  r.kind = d.kind;
+  r.corner = d.corner;
+  r.indirect = d.indirect;
+  r.stick_segment = d.stick_segment;
+  r.passed_upward_turn = d.passed_upward_turn;
+  r.stuck_theta = d.stuck_theta.v;
+  r.stuck_v = d.stuck_v.v;
+  r.phase_bits_lost = d.phase_bits_lost;
+  return r;
+}
+
 Model<IDual> lift(const Model<Mpfi>& m) {
   return convert_model<IDual>(m, [](const Mpfi& x) { return IDual(x); });
 }
@@ -105,10 +123,9 @@ struct OrbitEnclosure::Impl {
   }
 
   EnclosedStep naive() {
-    StepResult<Mpfi> s = map.step(box);
-    box = s.next;
     EnclosedStep out;
-    out.kind = s.kind;
+    out.event = map.step(box);
+    box = out.event.next;
     out.next = box;
     return out;
   }
@@ -118,8 +135,8 @@ struct OrbitEnclosure::Impl {
     const State<IDual> ds{IDual::variable(box.theta, 0), IDual::variable(box.v, 1)};
     StepResult<IDual> rd = dmap->step(ds);  // decides every branch for the whole box
     EnclosedStep out;
-    out.kind = rd.kind;
-    const State<Mpfi> image{rd.next.theta.v, rd.next.v.v};
+    out.event = values_of(rd);
+    const State<Mpfi>& image = out.event.next;
     auto fall_back = [&](bool count) {
       box = image;
       reset_frame();

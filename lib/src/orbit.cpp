@@ -217,12 +217,11 @@ std::vector<std::string> step_row(long long n, const StepResult<T>& r, const Mod
   return row;
 }
 
-// Interval runs with --method lohner follow Lohner's set c + B r (OrbitEnclosure) next to
-// the box: each row's state is the box around the set, which grows at the rate of the
-// linearized dynamics instead of compounding the wrapping of a box. The event columns (tau,
-// periods, sticking, ...) stay those of the interval step over the box before the step: it
-// decides the same branches for the same set (the Lohner step evaluates the map and its
-// Jacobian on that box), so they are enclosures for every state in the set.
+// Interval runs with --method lohner follow Lohner's set c + B r (OrbitEnclosure): each
+// row's state is the box around the set, which grows at the rate of the linearized dynamics
+// instead of compounding the wrapping of a box. The event columns (tau, periods, sticking,
+// ...) are those of the interval step over the box before the step, which the Lohner step
+// computes anyway (EnclosedStep::event): enclosures for every state in the set.
 template <class T>
 std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std::ostream& out) {
   const long bits = req.precision.bits;
@@ -242,15 +241,20 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
         o.fallbacks = 0;
       }
     }
+    auto step = [&](const State<T>& from) -> StepResult<T> {
+      if constexpr (ScalarTraits<T>::is_interval) {
+        if (lohner) {
+          EnclosedStep e = lohner->step();
+          o.fallbacks = lohner->fallbacks();
+          e.event.next = std::move(e.next);  // the Lohner box, tighter than the box image
+          return std::move(e.event);
+        }
+      }
+      return map.step(from);
+    };
     for (long long n = 1; n <= req.steps; ++n) {
       try {
-        StepResult<T> r = map.step(s);
-        if constexpr (ScalarTraits<T>::is_interval) {
-          if (lohner) {
-            r.next = lohner->step().next;
-            o.fallbacks = lohner->fallbacks();
-          }
-        }
+        StepResult<T> r = step(s);
         s = r.next;
         o.steps_done = n;
         if (o.phase_lost_at < 0 && r.phase_bits_lost >= ScalarTraits<T>::bits(s.theta)) o.phase_lost_at = n;

@@ -159,7 +159,7 @@ std::optional<AttractorProof> prove_trapped(const Model<Mpfi>& m, const Parallel
       try {
         for (long i = 1; i <= 8 * p; ++i) {
           const EnclosedStep s = trap.step();
-          if (s.kind == EventKind::sticking) break;
+          if (s.event.kind == EventKind::sticking) break;
           if (i % p == 0 && inside(f, trap.set(), pm)) {
             AttractorProof proof;
             proof.period = p;
@@ -192,7 +192,7 @@ RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
   for (long long n = 1; n <= q.max_steps; ++n) {
     const EnclosedStep s = orbit.step();  // throws Undecided
     progress.steps = n;
-    if (s.kind == EventKind::sticking) {
+    if (s.event.kind == EventKind::sticking) {
       r.outcome = StickingOutcome::sticks;
       r.period = n;
       r.steps = n;

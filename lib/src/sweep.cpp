@@ -36,7 +36,7 @@ struct Reference {
 
 RefStep ref_step(const EnclosedStep& s) {
   return {mpfr_get_d(&s.next.theta.get()->left, MPFR_RNDD), mpfr_get_d(&s.next.theta.get()->right, MPFR_RNDU),
-          mpfr_get_d(&s.next.v.get()->left, MPFR_RNDD), mpfr_get_d(&s.next.v.get()->right, MPFR_RNDU), s.kind};
+          mpfr_get_d(&s.next.v.get()->left, MPFR_RNDD), mpfr_get_d(&s.next.v.get()->right, MPFR_RNDU), s.event.kind};
 }
 
 double outside(double x, double lo, double hi) { return std::max({0.0, lo - x, x - hi}); }

@@ -45,8 +45,11 @@ Model<Mpfi> interval_model(const ModelSpec& spec, long bits,
 Mpfi enclose(const mpq_class& lo, const mpq_class& hi, long bits);
 
 struct EnclosedStep {
-  EventKind kind = EventKind::impact;
-  State<Mpfi> next;          // box enclosing the exact state after the step
+  // The interval step over the box before the step (both methods compute it): its kind and
+  // event fields (tau, periods, sticking, ...) enclose those of every state in the set, and
+  // event.next is the box image.
+  StepResult<Mpfi> event;
+  State<Mpfi> next;          // box enclosing the exact state after the step (lohner: tighter)
   bool fallback = false;     // lohner only: this step used the naive box image
 };
 

@@ -72,7 +72,6 @@ std::string csv_quoted(const std::string& text) {
 }
 
 json null_or(const std::optional<long long>& x) { return x ? json(*x) : json(nullptr); }
-json null_or(const std::optional<double>& x) { return x ? json(*x) : json(nullptr); }
 
 json report_json(const Request& r, const SweepReport& rep, const Provenance& p) {
   json j;
@@ -98,12 +97,14 @@ json report_json(const Request& r, const SweepReport& rep, const Provenance& p) 
   ref["attempts"] = att;
   j["reference"] = ref;
   json rows = json::array();
-  for (const SweepRow& row : rep.rows)
+  for (const SweepRow& row : rep.rows) {
+    const std::optional<Classification>& c = row.classification;
     rows.push_back({{"precision", row.precision}, {"bits", row.bits}, {"leaves_enclosure_at", null_or(row.leaves_at)},
                     {"answer", row.answer}, {"why", row.why}, {"sticking_period", null_or(row.sticking_period)},
-                    {"class", row.orbit_class.empty() ? json(nullptr) : json(row.orbit_class)},
-                    {"class_evidence", row.orbit_class.empty() ? json(nullptr) : json(row.class_evidence)},
-                    {"lambda", null_or(row.lambda)}});
+                    {"class", c ? json(name(c->cls)) : json(nullptr)},
+                    {"class_evidence", c ? json(c->evidence) : json(nullptr)},
+                    {"lambda", c && std::isfinite(c->lambda) ? json(c->lambda) : json(nullptr)}});
+  }
   j["rows"] = rows;
   j["slope_steps_per_bit"] = rep.slope ? json(*rep.slope) : json(nullptr);
   j["implied_lyapunov"] = rep.implied_lyapunov ? json(*rep.implied_lyapunov) : json(nullptr);

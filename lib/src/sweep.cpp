@@ -8,7 +8,6 @@
 #include <iomanip>
 #include <sstream>
 
-#include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {
@@ -64,10 +63,10 @@ std::string plain_answer(const SweepRow& r, const SweepQuestion& q, bool failed,
   else if (failed) s << "step " << failed_at << " failed (NaN or overflow)";
   else if (r.attractor_period) s << "no sticking within " << steps << " steps; settles on a period-" << *r.attractor_period << " orbit";
   else s << "no sticking within " << steps << " steps; no period <= " << q.max_period << " in the final steps";
-  if (!r.orbit_class.empty()) {
-    s << "; over " << q.classify_steps << " more steps: " << r.orbit_class;
-    if (r.orbit_class == name(OrbitClass::undecided)) s << " (" << r.class_evidence << ")";
-    else if (r.lambda) s << " (lambda " << std::setprecision(3) << *r.lambda << " per collision)";
+  if (const auto& c = r.classification) {
+    s << "; over " << q.classify_steps << " more steps: " << name(c->cls);
+    if (c->cls == OrbitClass::undecided) s << " (" << c->evidence << ")";
+    else if (std::isfinite(c->lambda)) s << " (lambda " << std::setprecision(3) << c->lambda << " per collision)";
   }
   return s.str();
 }
@@ -126,10 +125,7 @@ SweepRow run_plain(const SweepQuestion& q, const Precision& p, const Reference& 
     co.transient = 0;
     co.steps = q.classify_steps;
     co.max_period = std::min(co.max_period, q.classify_steps / 2);
-    const Classification c = classify(map, s, co);
-    row.orbit_class = name(c.cls);
-    row.class_evidence = c.evidence;
-    if (std::isfinite(c.lambda)) row.lambda = c.lambda;
+    row.classification = classify(map, s, co);
   }
   row.answer = plain_answer(row, q, failed, failed_at);
   return row;

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/spec.hpp"
 #include "bouncer/scalar/precision.hpp"
 #include "bouncer/verify/enclosure.hpp"
@@ -49,10 +50,8 @@ struct SweepRow {
   std::optional<long long> sticking_period;
   std::optional<long> attractor_period; // period of the final steps, when no sticking
   // Neither sticking nor a period: bouncer::classify over classify_steps more steps at this
-  // precision ("chaotic", "quasiperiodic", "unbounded", ...), its evidence and exponent.
-  std::string orbit_class;
-  std::string class_evidence;           // classify's one-line evidence
-  std::optional<double> lambda;
+  // precision (chaotic, quasiperiodic, unbounded, ...), with its evidence and exponent.
+  std::optional<Classification> classification;
   std::string answer;                   // qualitative answer, one phrase
 };
 

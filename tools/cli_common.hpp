@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "bouncer/analysis/classify.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
 
@@ -95,6 +96,22 @@ inline InitialCondition start_from(const Options& o, const ModelSpec& spec) {
   InitialCondition ic{parse_decimal("theta", o.get("theta")), parse_decimal("v", o.get("v"))};
   validate(spec, ic, "theta", "v");
   return ic;
+}
+
+// The classifier's window (classify, basin, scan): one help text, one validation.
+inline void add_classify_options(OptionSet& o) {
+  o.add("transient", "Steps discarded before classifying, integer in [0, 1e10] (default 5000, as the paper)");
+  o.add("steps", "Steps examined by the classifier, integer in [8, 1e9] (default 500, as the paper)");
+  o.add("max-period", "Longest period looked for, integer in [1, steps/2] (default 64, or steps/2 if smaller)");
+}
+inline ClassifyOptions classify_options_from(const Options& o) {
+  ClassifyOptions c;
+  c.transient = integer_from(o, "transient", 0, 10000000000LL, 5000);
+  c.steps = integer_from(o, "steps", 8, 1000000000LL, 500);
+  c.max_period = integer_from(o, "max-period", 1, 1000000000LL, std::min<long>(64, c.steps / 2));
+  if (c.max_period * 2 > c.steps)
+    throw InputError("max-period", "must be at most steps/2 (" + std::to_string(c.steps / 2) + ")");
+  return c;
 }
 
 inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,

@@ -35,11 +35,7 @@ BasinRequest basin_request(const Options& o) {
     throw InputError("theta-range", "must lie in [0, 1] (got '" + o.get_or("theta-range", "0:1") + "')");
   std::tie(r.v0, r.v1) = parse_range("v-range", o.get("v-range"));
   if (r.v1.approx() > 1e15 || r.v0.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
-  r.classify.transient = integer_from(o, "transient", 0, 100000000, 5000);
-  r.classify.steps = integer_from(o, "steps", 8, 10000000, 500);
-  r.classify.max_period = integer_from(o, "max-period", 1, 100000, std::min<long>(64, r.classify.steps / 2));
-  if (r.classify.max_period * 2 > r.classify.steps)
-    throw InputError("max-period", "must be at most steps/2 (" + std::to_string(r.classify.steps / 2) + ")");
+  r.classify = classify_options_from(o);
   r.precision = point_precision(o);
   return r;
 }
@@ -197,9 +193,7 @@ Command add_basin(CLI::App& app) {
   opts->add("grid", "NxM: N phases by M velocities (cell centres), 1..8192 each (default 100x100)");
   opts->add("theta-range", "T0:T1 within [0, 1] (default 0:1)");
   opts->add("v-range", "V0:V1, the initial velocities (points below the wall velocity are 'outside')");
-  opts->add("transient", "Steps before classifying (default 5000, as in the paper)");
-  opts->add("steps", "Steps examined by the classifier (default 500)");
-  opts->add("max-period", "Longest period looked for (default 64, at most steps/2)");
+  add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {

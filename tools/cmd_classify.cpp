@@ -46,9 +46,7 @@ Command add_classify(CLI::App& app) {
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
   add_start_options(*opts);
-  opts->add("transient", "Steps discarded first, integer in [0, 1e10] (default 5000, as the paper)");
-  opts->add("steps", "Steps examined, integer in [8, 1e9] (default 500, as the paper)");
-  opts->add("max-period", "Longest period looked for, integer in [1, steps/2] (default 64)");
+  add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
   sub->add_flag("--json", *json, "Print the summary as JSON on stdout");
 
@@ -56,12 +54,7 @@ Command add_classify(CLI::App& app) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "classify", classify_keys()), opts->collected());
     const ModelSpec spec = model_from(o);
     const InitialCondition ic = start_from(o, spec);
-    ClassifyOptions co;
-    co.transient = integer_from(o, "transient", 0, 10000000000LL, 5000);
-    co.steps = integer_from(o, "steps", 8, 1000000000LL, 500);
-    co.max_period = integer_from(o, "max-period", 1, 1000000000LL, 64);
-    if (co.max_period * 2 > co.steps)
-      throw InputError("max-period", "must be at most steps/2 (" + std::to_string(co.steps / 2) + ")");
+    const ClassifyOptions co = classify_options_from(o);
     const Precision prec = analysis_precision(o, "classify");
     const Provenance p = provenance_for("classify", o, prec, argv_text);
     const nlohmann::ordered_json body = with_point_scalar(

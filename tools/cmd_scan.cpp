@@ -70,11 +70,7 @@ ScanRequest scan_request(const Options& given) {
   } else if (law == Law::constant && r.y1 == Decimal::from_int(1)) {
     throw InputError("v-range", "is needed when eps reaches 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
   }
-  r.classify.transient = integer_from(o, "transient", 0, 100000000, 5000);
-  r.classify.steps = integer_from(o, "steps", 8, 10000000, 500);
-  r.classify.max_period = integer_from(o, "max-period", 1, 100000, std::min<long>(64, r.classify.steps / 2));
-  if (r.classify.max_period * 2 > r.classify.steps)
-    throw InputError("max-period", "must be at most steps/2 (" + std::to_string(r.classify.steps / 2) + ")");
+  r.classify = classify_options_from(o);
   r.precision = point_precision(o);
   r.show = o.get_or("show", "regular");
   bool known = r.show == "regular";
@@ -235,9 +231,7 @@ Command add_scan(CLI::App& app) {
   opts->add("ics", "K: K x K initial conditions per parameter point (default 10, as in the paper)");
   opts->add("theta-range", "Initial phases T0:T1 within [0, 1] (default 0:1)");
   opts->add("v-range", "Initial velocities V0:V1 (default: the trapping region [4, v_upper] of each point)");
-  opts->add("transient", "Steps before classifying (default 5000)");
-  opts->add("steps", "Steps examined by the classifier (default 500)");
-  opts->add("max-period", "Longest period looked for (default 64, at most steps/2)");
+  add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
   auto flags = add_run_options(sub, *opts);

@@ -105,6 +105,14 @@ bad lyapunov.precision 'precision.*allowed' lyapunov --model elastic --a 20 --th
 bad lyapunov.a ' a: |^bouncer: a' lyapunov --model elastic --a -1 --theta 0.3 --v 9
 bad classify.v 'v' classify --model elastic --a 20 --theta 0.3
 bad classify.maxperiod 'max-period' classify --model elastic --a 20 --theta 0.3 --v 9 --steps 100 --max-period 64
+bad classify.transient 'transient.*\[0, 10000000000\]' classify --model elastic --a 20 --theta 0.3 --v 9 --transient -1
+# classify, basin and scan share one validation of the classifier window: the same errors,
+# and a short window without --max-period takes max-period = steps/2 instead of failing.
+bad basin.maxperiod 'max-period.*steps/2 \(50\)' basin --model constant --a 24 --eps 0.5 --v-range 4:12 --grid 4x4 --steps 100 --max-period 60
+bad scan.transient 'transient' scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 2x2 --transient -1
+"$BOUNCER" classify --model constant --a 24 --eps 0.5 --theta 0.3 --v 11.5 --steps 100 --json >"$TMP/cshort.json" 2>&1 &&
+  python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["max_period"] == 50 and j["class"] == "fixed", j' "$TMP/cshort.json" ||
+  fail classify.short "--steps 100 without --max-period: $(head -c 300 "$TMP/cshort.json")"
 bad classify.precision 'precision.*allowed' classify --model elastic --a 20 --theta 0.3 --v 9 --precision interval:64
 bad classify.eps 'eps' classify --model elastic --a 20 --eps 0.5 --theta 0.3 --v 9
 

@@ -47,6 +47,10 @@ Request request_from(Options& o) {
   const std::string par = name(r.q.vary);
   if (range_key && *range_key != par + "-range")
     throw InputError("vary", "is " + par + " but the range is --" + *range_key);
+  const std::string law = o.get_or("model", "");
+  if ((r.q.vary == Parameter::eps && law != "constant") || (r.q.vary == Parameter::c && law != "veldep"))
+    throw InputError(range_key ? *range_key : "vary", par + " varies only with --model " +
+                                                          (r.q.vary == Parameter::eps ? "constant" : "veldep"));
   Options parse = o;
   std::optional<std::pair<Decimal, Decimal>> range;
   if (range_key) {
@@ -59,10 +63,6 @@ Request request_from(Options& o) {
     parse.set(par, range->first.text());
   }
   r.q.model = model_from(parse);
-  if (r.q.vary == Parameter::eps && r.q.model.law != Law::constant)
-    throw InputError(range_key ? *range_key : "vary", "eps varies only with --model constant");
-  if (r.q.vary == Parameter::c && r.q.model.law != Law::veldep)
-    throw InputError(range_key ? *range_key : "vary", "c varies only with --model veldep");
   if (range) {
     for (const Decimal& end : {range->first, range->second}) {
       try {
@@ -159,7 +159,7 @@ json certificate_json(const PeriodicCertificate& c) {
   }
   if (!c.double_theta.empty()) {
     j["double_newton"] = {c.double_theta, c.double_v};
-    j["double_inside"] = c.double_inside ? json(*c.double_inside) : json(nullptr);
+    j["double_distance"] = c.double_distance ? json(*c.double_distance) : json(nullptr);
   }
   json a = json::array();
   for (const Attempt& t : c.attempts)

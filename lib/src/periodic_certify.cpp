@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <functional>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -234,6 +236,24 @@ KrawczykStep krawczyk(const Problem& P, const Mpfi f[2], const Mpfi Y[2]) {
   return out;
 }
 
+// Newton on y at z^ (for families, whose parameter is an unknown): y <- y - C F(y),
+// evaluated in thin intervals (their midpoints are the iterates).
+void refine(Problem& P) {
+  for (int it = 0; it < 40; ++it) {
+    Mpfi f[2];
+    residual(P, f);
+    const Mpfi Y[2] = {thin(P.yhat[0]), thin(P.yhat[1])};
+    const Problem at{P.model, P.par, P.q, {P.yi[0], P.yi[1]}, P.zi, thin(P.zhat), {P.yhat[0], P.yhat[1]}, P.zhat};
+    // K(thin y) = y - C F(y) exactly the Newton step (dy and dz are 0).
+    const KrawczykStep k = krawczyk(at, f, Y);
+    const Mpfr next[2] = {k.K[0].mid(), k.K[1].mid()};
+    const bool same = next[0] == P.yhat[0] && next[1] == P.yhat[1];
+    P.yhat[0] = next[0];
+    P.yhat[1] = next[1];
+    if (same) return;
+  }
+}
+
 // Epsilon inflation (Rump): grow Y around y^ until K(Y) lies inside it; then tighten with
 // Y <- K(Y) n Y, which keeps the unique zero.
 struct KrawczykResult {
@@ -344,7 +364,8 @@ MultiplierEnclosure multipliers(const Mpfi J[2][2], std::string& stability, bool
                       Tr::lt(abs(tr), onep) == Truth::yes;
   const bool unstable = Tr::lt(one, det) == Truth::yes || Tr::lt(det, -one) == Truth::yes ||
                         Tr::lt(onep, abs(tr)) == Truth::yes;
-  stability = stable ? "stable" : unstable ? "unstable" : "undecided";
+  const bool elliptic = e.kind == "complex" && Tr::le(sqrt(det), one) != Truth::no && Tr::le(one, sqrt(det)) != Truth::no;
+  stability = stable ? "stable" : unstable ? "unstable" : elliptic ? "elliptic" : "undecided";
   return e;
 }
 
@@ -369,14 +390,25 @@ class Attempt1 {
     c.bits = bits_;
     const PeriodicOrbit<Mpfr> newton = newton_orbit();
     newton_point = newton.points.empty() ? std::nullopt : std::optional<State<Mpfr>>(newton.points[0]);
+    // A family exists at one parameter value only, where Newton at fixed parameter may not
+    // converge: with --family on, start from the guess and solve for (v, p) instead.
+    if (q_.family == FamilyMode::family && !newton.converged && (guess_ || q_.guess)) {
+      const State<Mpfr> g = guess_ ? *guess_ : make_state<Mpfr>(*q_.guess, bits_);
+      return family_orbit(g, c);
+    }
     if (!newton.converged)
       throw NotFound("Newton found no period-" + std::to_string(q_.period) + " orbit" +
                      (newton.note.empty() ? "" : " (" + newton.note + ")"));
     const bool contracted =
         std::any_of(newton.kinds.begin(), newton.kinds.end(), [](EventKind k) { return k != EventKind::impact; });
     if (contracted) return through_release(newton, c);
-    const bool family = q_.family == FamilyMode::family || (q_.family == FamilyMode::automatic && newton.marginal && !q_.range);
-    return family ? family_orbit(newton, c) : isolated(newton, c);
+    if (q_.family == FamilyMode::family) return family_orbit(newton.points[0], c);
+    // A real multiplier 1 (Newton's, in double) makes F_(theta, v) singular: a family.
+    // Elliptic orbits (a complex pair on the unit circle) are isolated.
+    const Eigen2<Mpfr>& mu = newton.multipliers;
+    const bool one = !mu.complex && (std::fabs(mu.re[0].to_double() - 1) < 1e-6 || std::fabs(mu.re[1].to_double() - 1) < 1e-6);
+    if (q_.family == FamilyMode::automatic && one && !q_.range) return family_orbit(newton.points[0], c);
+    return isolated(newton, c);
   }
 
   struct NotFound : std::runtime_error {
@@ -413,17 +445,27 @@ class Attempt1 {
   }
   mutable std::vector<State<Mpfi>> boxes_;
 
-  // Minimal period from the point boxes: P^d(x*) is a period-Q point in box d; if that box
-  // lies in the Krawczyk box, uniqueness makes it x* (only for isolated orbits); disjoint
-  // boxes prove P^d(x*) != x*.
-  void minimal_period(PeriodicCertificate& c, bool unique_in_box0) const {
+  // Minimal period. Disjoint point boxes prove P^d(x*) != x*. For an isolated orbit whose
+  // box d meets box 0, the Krawczyk operator for P^d around the same point may prove a
+  // period-d point x' in a box inside the proof box of P^Q; x' is then a period-Q point
+  // there, so x' = x* by uniqueness and x* has period d. (Families: disjointness only.)
+  void minimal_period(PeriodicCertificate& c, const std::optional<State<Mpfi>>& unique_box,
+                      const Mpfr* yhat = nullptr) const {
     for (long d : proper_divisors(q_.period)) {
       const State<Mpfi>& b = boxes_[d];
       if (disjoint(b.theta, boxes_[0].theta) || disjoint(b.v, boxes_[0].v)) continue;
-      if (unique_in_box0 && inside(b.theta, boxes_[0].theta) && inside(b.v, boxes_[0].v)) {
-        c.minimal_period = d;
-        c.minimal_period_certified = true;
-        return;
+      if (unique_box && yhat) {
+        try {
+          const Problem P{model_, q_.vary, d, {0, 1}, 2, Z_, {yhat[0], yhat[1]}, Z_.mid()};
+          const KrawczykResult k = prove(P);
+          if (inside(k.Y[0], unique_box->theta) && inside(k.Y[1], unique_box->v)) {
+            c.minimal_period = d;
+            c.minimal_period_certified = true;
+            return;
+          }
+        } catch (const NotCertified&) {
+        } catch (const Undecided&) {
+        }
       }
       c.minimal_period = 0;
       c.minimal_period_certified = false;
@@ -440,17 +482,19 @@ class Attempt1 {
     c.unknowns = "theta, v";
     c.free_name = name(q_.vary);
     finish(c, P, k, State<Mpfi>{k.Y[0], k.Y[1]}, model_, false);
-    minimal_period(c, true);
+    const Mpfr yhat[2] = {newton.points[0].theta, newton.points[0].v};
+    minimal_period(c, State<Mpfi>{k.Y0[0], k.Y0[1]}, yhat);
     return c;
   }
 
   // Families: unknowns (v, p), first at theta^ exactly (tight enclosures, multipliers), then
   // for every theta of the widest strip around theta^ that certifies (the family statement).
-  PeriodicCertificate family_orbit(const PeriodicOrbit<Mpfr>& newton, PeriodicCertificate& c) {
-    const Mpfr& th = newton.points[0].theta;
-    const Problem at{model_, q_.vary, q_.period, {1, 2}, 0, thin(th), {newton.points[0].v, Z_.mid()}, th};
+  PeriodicCertificate family_orbit(const State<Mpfr>& start, PeriodicCertificate& c) {
+    const Mpfr& th = start.theta;
+    Problem at{model_, q_.vary, q_.period, {1, 2}, 0, thin(th), {start.v, Z_.mid()}, th};
     KrawczykResult k0;
     try {
+      refine(at);
       k0 = prove(at);
     } catch (const NotCertified& nc) {
       throw NotCertified(std::string("family (unknowns v, ") + name(q_.vary) + " at theta = theta^): " + nc.what());
@@ -463,7 +507,7 @@ class Attempt1 {
     finish(c, at, k0, State<Mpfi>{thin(th), k0.Y[0]}, m, true);
     c.family_parameter = enclosure(k0.Y[1]);
     c.given_parameter = inside(Z_, k0.Y[1]) ? "inside" : disjoint(Z_, k0.Y[1]) ? "outside" : "overlaps";
-    minimal_period(c, false);
+    minimal_period(c, std::nullopt);
     for (int e : {4, 8, 12, 16, 24, 32}) {
       // theta^ +- 2^-e / 2, outward.
       const Mpfi w = Mpfi(1, bits_) / (1L << (e / 2)) / (1L << (e - e / 2));
@@ -543,7 +587,7 @@ std::string statement(const PeriodicQuestion& q, const PeriodicCertificate& c, c
   const std::string Q = std::to_string(q.period);
   switch (c.outcome) {
     case PeriodicOutcome::isolated:
-      s << "For every " << where << " there is exactly one point of period " << Q << " of the map in the box "
+      s << (q.range ? "For every " : "At ") << where << " there is exactly one point of period " << Q << " of the map in the box "
         << point_text(c.points[0]) << "; its minimal period is "
         << (c.minimal_period_certified ? std::to_string(c.minimal_period) : "undecided") << ", it is " << c.stability
         << " (multipliers " << c.multipliers.kind << ")";
@@ -569,7 +613,7 @@ std::string statement(const PeriodicQuestion& q, const PeriodicCertificate& c, c
       break;
     }
     case PeriodicOutcome::through_release:
-      s << "For every " << where << " the orbit of the release state (" << c.points[0].theta.lo << ", " << c.points[0].v.lo
+      s << (q.range ? "For every " : "At ") << where << " the orbit of the release state (" << c.points[0].theta.lo << ", " << c.points[0].v.lo
         << ") sticks for the first time at step " << c.minimal_period << " and is released at the same state: a periodic "
         << "sticking orbit of minimal period " << c.minimal_period << " (superstable: the release state does not depend "
         << "on the state before the collapse)";
@@ -657,22 +701,18 @@ void compare_with_double(const PeriodicQuestion& q, PeriodicCertificate& c) {
   c.double_theta = ScalarTraits<double>::to_string(o.points[0].theta);
   c.double_v = ScalarTraits<double>::to_string(o.points[0].v);
   if (!c.certified) return;
-  // Inside any of the orbit's point boxes (Newton may land on another point of the cycle).
-  bool in = false;
+  // Distance to the nearest of the orbit's point boxes (Newton may land on another point of
+  // the cycle), max(|d theta|, |d v| / max(1, |v|)); 0 inside. In double: a report, not a proof.
+  double best = std::numeric_limits<double>::infinity();
+  const double t = o.points[0].theta, w = o.points[0].v;
   for (const CertifiedPoint& p : c.points) {
-    Mpfi th(53), v(53);
-    th.set_decimal(p.theta.lo);
-    Mpfi th_hi(53);
-    th_hi.set_decimal(p.theta.hi);
-    Mpfi v_lo(53), v_hi(53);
-    v_lo.set_decimal(p.v.lo);
-    v_hi.set_decimal(p.v.hi);
-    const double t = o.points[0].theta, w = o.points[0].v;
-    if (th.lower().to_double() <= t && t <= th_hi.upper().to_double() && v_lo.lower().to_double() <= w &&
-        w <= v_hi.upper().to_double())
-      in = true;
+    auto gap = [](double x, const Enclosure& e) {
+      const double lo = std::strtod(e.lo.c_str(), nullptr), hi = std::strtod(e.hi.c_str(), nullptr);
+      return x < lo ? lo - x : x > hi ? x - hi : 0.0;
+    };
+    best = std::min(best, std::max(gap(t, p.theta), gap(w, p.v) / std::max(1.0, std::fabs(w))));
   }
-  c.double_inside = in;
+  c.double_distance = best;
 }
 
 }  // namespace

@@ -122,9 +122,10 @@ struct PeriodicCertificate {
   std::optional<Enclosure> family_parameter;
   std::optional<Enclosure> strip_theta, strip_v, strip_parameter;
   std::string given_parameter;         // the given value vs family_parameter: inside | outside | overlaps
-  // The double-precision Newton point, and whether it lies in the certified box.
+  // The double-precision Newton point, and its distance to the nearest certified point box
+  // (max of |d theta| and |d v| / max(1, |v|); 0 inside): how far plain double is off.
   std::string double_theta, double_v;
-  std::optional<bool> double_inside;
+  std::optional<double> double_distance;
   std::string statement;
   std::string reason;                  // why not certified
   std::vector<Attempt> attempts;

@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# End-to-end: certify-periodic.
+#   --json: an isolated orbit (constant eps = 0.8, a = 19, period 2) with det DP^2 enclosing
+#     eps^4 = 0.4096 (area contraction, an invariant the certifier never uses), a family
+#     (eq. 5 corrected: eps = 0.5, a = 24 encloses v* = 12, multipliers 1 and 1/4), a
+#     parameter range (the pieces tile it), text output, --out and a scene;
+#   audit: the JSON result reruns bit for bit;
+#   bad input: exit 2, one line on stderr, no output file left.
+# Usage: bash certify_periodic.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash certify_periodic.sh <bouncer-binary> <source-dir>}
+SRC=${2:?usage: bash certify_periodic.sh <bouncer-binary> <source-dir>}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+run() {  # run NAME ARGS... : stdout -> TMP/NAME.out; must exit 0
+  local name=$1 rc=0
+  shift
+  "$BOUNCER" "$@" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
+  [[ $rc -eq 0 ]] || { fail "$name" "exit status $rc (bouncer $*): $(head -c 500 "$TMP/$name.err")"; return 1; }
+}
+check() {  # check NAME PYTHON-EXPR-ON-j
+  python3 - "$TMP/$1.out" "$2" <<'PY' || fail "$1" "check failed: $2"
+import json, sys
+from fractions import Fraction as F
+j = json.load(open(sys.argv[1]))
+def inside(x, e):  # exact rational x in the decimal enclosure e = [lo, hi]
+    return F(e[0]) <= F(x) <= F(e[1])
+sys.exit(0 if eval("(" + sys.argv[2] + ")", {"j": j, "inside": inside, "F": F}) else 1)
+PY
+}
+
+run iso certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.944,-0.345 --json &&
+  check iso 'j["certified"] and j["outcome"] == "isolated" and j["minimal_period"] == 2 and j["stability"] == "unstable"
+             and inside("0.4096", j["multipliers"]["det"]) and len(j["points"]) == 2 and j["provenance"]["command"] == "certify-periodic"
+             and F(j["krawczyk"]["box"][0][0]) < F(j["krawczyk"]["image"][0][0]) and F(j["krawczyk"]["image"][0][1]) < F(j["krawczyk"]["box"][0][1])'
+
+run fam certify-periodic --model constant --eps 0.5 --a 24 --period 1 --guess 0.3,12 --json &&
+  check fam 'j["outcome"] == "family" and inside(24, j["family"]["parameter_at_theta"]) and inside(12, j["points"][0]["v"])
+             and inside(1, j["multipliers"]["mu1"]) and inside(F(1, 4), j["multipliers"]["mu2"]) and j["family"]["given_parameter"] == "inside"'
+
+run range certify-periodic --model constant --eps 0.8 --a-range 18.9:19.1 --period 2 --guess 0.944,-0.345 --json &&
+  check range 'j["certified"] and j["pieces"][0]["lo"] == "18.9" and j["pieces"][-1]["hi"] == "19.1"
+               and all(F(a["hi"]) == F(b["lo"]) for a, b in zip(j["pieces"], j["pieces"][1:])) and "Theorem" in j["theorem"]'
+
+# Text output: key: value lines with the provenance comment header.
+run text certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.944,-0.345 &&
+  { grep -q '^certified: true$' "$TMP/text.out" && grep -q '^# bouncer .* certify-periodic$' "$TMP/text.out" &&
+    grep -q '^krawczyk.box: \[\[' "$TMP/text.out"; } || fail text "text output lacks its fields"
+
+# --out, audit, scene.
+run out certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.944,-0.345 --json --out "$TMP/r.json"
+[[ -s "$TMP/r.json" && ! -s "$TMP/out.out" ]] || fail out "--out did not write the file (or also wrote stdout)"
+run audit audit "$TMP/r.json" && grep -q IDENTICAL "$TMP/audit.out" || fail audit "audit of a fresh result: $(cat "$TMP/audit.out")"
+cat > "$TMP/scene.toml" <<'TOML'
+command = "certify-periodic"
+model = "constant"
+eps = "0.5"
+a = "24"
+period = 1
+guess = ["0.3", "12"]
+TOML
+run scene certify-periodic --scene "$TMP/scene.toml" --json && check scene 'j["outcome"] == "family"'
+
+# Bad input: exit 2, one line naming the option, no file.
+bad() {  # bad NAME EXPECTED-WORD ARGS...
+  local name=$1 word=$2 rc=0
+  shift 2
+  "$BOUNCER" certify-periodic "$@" --out "$TMP/bad.json" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
+  [[ $rc -eq 2 ]] || fail "$name" "exit $rc, expected 2: $(cat "$TMP/$name.err")"
+  [[ $(wc -l <"$TMP/$name.err") -eq 1 ]] || fail "$name" "expected one line on stderr: $(cat "$TMP/$name.err")"
+  grep -q -- "$word" "$TMP/$name.err" || fail "$name" "message does not name $word: $(cat "$TMP/$name.err")"
+  [[ ! -e "$TMP/bad.json" && ! -e "$TMP/bad.json.partial" ]] || fail "$name" "left an output file"
+}
+bad no_period period --model constant --eps 0.5 --a 24
+bad period_range period --model constant --eps 0.5 --a 24 --period 0
+bad both a-range --model constant --eps 0.5 --a 24 --a-range 1:2 --period 1
+bad two_ranges range --model constant --eps 0.5 --a-range 1:2 --eps-range 0.1:0.2 --period 1
+bad eps_veldep eps-range --model veldep --c 10 --a 3 --eps-range 0.1:0.2 --period 1
+bad reversed a-range --model constant --eps 0.5 --a-range 2:1 --period 1
+bad family_range family --model constant --eps 0.5 --a-range 1:2 --period 1 --family on
+bad family_word family --model constant --eps 0.5 --a 24 --period 1 --family maybe
+bad guess guess --model constant --eps 0.5 --a 24 --period 1 --guess 0.3
+bad inside_wall guess --model constant --eps 0.5 --a 24 --period 1 --guess 0.3,-10
+bad bits max-bits --model constant --eps 0.5 --a 24 --period 1 --max-bits 5
+
+if [[ $failures -gt 0 ]]; then
+  echo "$failures check(s) failed" >&2
+  exit 1
+fi
+echo "certify-periodic: all checks passed"

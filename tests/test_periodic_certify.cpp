@@ -86,6 +86,22 @@ TEST(CertifyPeriodic, Eq5FamilyAtAnotherEpsAndP) {
   EXPECT_EQ(c.wall_periods[0], 2);
 }
 
+TEST(CertifyPeriodic, Eq10PeriodTwoFamilyInItsCorrectedForm) {
+  // README claim 3 (corrected): a = 8(1+e)^3/((1-e)(1+e^2)), v = 4 + 8e(1+e)/((1-e)(1+e^2)),
+  // multipliers 1 and e^4. e = 1/2: a = 43.2 = 216/5, v = 13.6 = 68/5, lambda2 = 1/16.
+  PeriodicQuestion q;
+  q.model = constant_model("0.5", "43.2");
+  q.period = 2;
+  q.guess = InitialCondition{*Decimal::parse("0.03"), *Decimal::parse("13.6")};
+  const PeriodicCertificate c = certify_periodic(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.outcome, PeriodicOutcome::family);
+  EXPECT_TRUE(contains_rational(*c.family_parameter, 216, 5));
+  EXPECT_TRUE(contains_rational(c.points[0].v, 68, 5));
+  EXPECT_TRUE(contains_rational(c.multipliers.mu[1], 1, 16));
+  EXPECT_EQ(c.minimal_period, 2);
+}
+
 TEST(CertifyPeriodic, VelocityDependentFixedPointFamilyHasVEqualsAHalf) {
   // The derived condition (README "Claims"): v = ap/2 and ap/2 = 2^(5/3) c arccoth(ap/8)^(5/3) - 4.
   const double c10 = 10, a_star = veldep_fixed_point_a(c10, 1);

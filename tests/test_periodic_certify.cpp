@@ -167,6 +167,25 @@ TEST(CertifyPeriodic, AMultipleOfThePeriodHasTheTrueMinimalPeriod) {
   EXPECT_TRUE(interval(c.multipliers.det, 512).contains(det12));
 }
 
+TEST(CertifyPeriodic, ThePeriod103AttractorAtEps096A2882IsProvedStable) {
+  // README claim 9: the release orbit at eps = 0.96, a = 28.82 falls onto a period-103
+  // attractor. The guess is the double orbit's state after 20000 steps from (1/2, 4).
+  PeriodicQuestion q;
+  q.model = constant_model("0.96", "28.82");
+  q.period = 103;
+  q.guess = InitialCondition{*Decimal::parse("0.30576639227782704"), *Decimal::parse("43.55500361255162")};
+  const PeriodicCertificate c = certify_periodic(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.outcome, PeriodicOutcome::isolated);
+  EXPECT_EQ(c.minimal_period, 103);
+  EXPECT_TRUE(c.minimal_period_certified);
+  EXPECT_EQ(c.stability, "stable");
+  // det DP^103 = 0.96^206 = (24/25)^206, enclosed in exact interval arithmetic here.
+  Mpfi p(1, 1024);
+  for (int i = 0; i < 206; ++i) p = p * 24 / 25;
+  EXPECT_TRUE(interval(c.multipliers.det, 1024).contains(p));
+}
+
 TEST(CertifyPeriodic, ElasticOrbitsPreserveArea) {
   PeriodicQuestion q;
   q.model.law = Law::elastic;

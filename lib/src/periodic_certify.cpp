@@ -270,7 +270,9 @@ KrawczykResult prove(const Problem& P) {
   Mpfr r[2];
   for (int i = 0; i < 2; ++i) {
     // Start from the residual's size (and a few ulps of y^), then let K tell the size.
-    Mpfi s = abs(f[0]) + abs(f[1]) + abs(thin(P.yhat[i])) * Mpfi(1, bits) / (1L << 20) / (1L << 30);
+    Mpfi ulps = abs(thin(P.yhat[i])) + 1;
+    mpfi_mul_2si(ulps.get(), ulps.get(), -(bits - 8));
+    const Mpfi s = abs(f[0]) + abs(f[1]) + ulps;
     r[i] = s.upper();
   }
   KrawczykResult out;

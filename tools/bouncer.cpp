@@ -4,7 +4,8 @@
 //
 // Exit status: 0 success (an orbit that stopped at an undecided step is a result, and is
 // reported), 2 bad input (one line on stderr naming the option and the allowed range; no
-// output file is left behind), 1 unexpected failure.
+// output file is left behind), 1 the computation or the output failed (a write to a file or
+// to stdout that fails is never silent).
 #include <iostream>
 #include <vector>
 
@@ -30,10 +31,17 @@ int main(int argc, char** argv) {
   }
   try {
     for (const Command& c : commands)
-      if (c.app->parsed()) return c.run(invocation(argc, argv));
+      if (c.app->parsed()) {
+        const int status = c.run(invocation(argc, argv));
+        check_stdout();  // whatever a command printed must have arrived
+        return status;
+      }
   } catch (const InputError& e) {
     std::cerr << "bouncer: " << e.what() << "\n";
     return 2;
+  } catch (const OutputError& e) {
+    std::cerr << "bouncer: " << e.what() << "\n";
+    return 1;
   } catch (const std::exception& e) {
     std::cerr << "bouncer: internal error: " << e.what() << "\n";
     return 1;

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bouncer/analysis/classify.hpp"
+#include "bouncer/io/output.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
 
@@ -49,26 +50,16 @@ class OptionSet {
   std::map<std::string, std::vector<std::string>> lists_;
 };
 
-// Writes to PATH.partial and renames it over PATH only when `body` succeeds, so that no
-// half-written file is ever left behind. Without a path, writes to stdout.
+// Writes an --out file (io/output.hpp: PATH.partial renamed over PATH only when complete;
+// devices and pipes written through; directories refused) or, without a path, stdout
+// (checked: a failed write is an OutputError, exit status 1).
 inline void write_atomically(const std::optional<std::string>& path, const std::function<void(std::ostream&)>& body) {
   if (!path) {
     body(std::cout);
+    check_stdout();
     return;
   }
-  const std::string tmp = *path + ".partial";
-  try {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw InputError("out", "cannot write '" + *path + "'");
-    body(f);
-    f.close();
-    if (!f) throw InputError("out", "writing '" + *path + "' failed");
-    std::filesystem::rename(tmp, *path);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw;
-  }
+  write_output(output_target("out", *path), body);
 }
 
 // The command line as one string, for provenance.

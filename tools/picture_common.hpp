@@ -79,6 +79,8 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
   if (o.has("out")) {
     r.out = o.get("out");
     if (r.out->empty()) throw InputError("out", "must be a file name prefix");
+    if (r.out->back() == '/' || std::filesystem::is_directory(*r.out))
+      throw InputError("out", "'" + *r.out + "' is a directory: give a file name prefix (PREFIX.csv, PREFIX.png, PREFIX.json)");
     const auto parent = std::filesystem::path(*r.out).parent_path();
     if (!parent.empty() && !std::filesystem::is_directory(parent))
       throw InputError("out", "directory '" + parent.string() + "' does not exist");

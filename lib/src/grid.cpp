@@ -1,4 +1,5 @@
 #include "bouncer/analysis/grid.hpp"
+#include "bouncer/io/output.hpp"
 
 #include <unistd.h>
 
@@ -97,12 +98,12 @@ void write_tile(const std::string& dir, long tile, const GridPlan& plan, const s
     if (!f) {
       std::error_code ec;
       fs::remove(tmp, ec);
-      throw std::runtime_error("cannot write tile '" + path + "'");
+      throw OutputError("cannot write tile '" + path + "'");
     }
   }
   std::error_code ec;
   fs::rename(tmp, path, ec);
-  if (ec) throw std::runtime_error("cannot rename tile '" + tmp + "': " + ec.message());
+  if (ec) throw OutputError("cannot rename tile '" + tmp + "': " + ec.message());
 }
 
 bool read_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,

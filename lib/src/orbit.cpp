@@ -1,4 +1,5 @@
 #include "bouncer/io/orbit.hpp"
+#include "bouncer/io/output.hpp"
 
 #include <iomanip>
 #include <optional>
@@ -156,6 +157,11 @@ class RowWriter {
   void finish() {
     if (f_ == Format::json) out_ << "\n ]\n}\n";
     out_.flush();
+    check();
+  }
+  // A stream that failed (disk full, closed pipe) ends the run at once, not after 1e10 rows.
+  void check() const {
+    if (!out_) throw OutputError("writing the orbit failed (disk full, or the reader closed the pipe?)");
   }
 
  private:
@@ -259,6 +265,7 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
         o.steps_done = n;
         if (o.phase_lost_at < 0 && r.phase_bits_lost >= ScalarTraits<T>::bits(s.theta)) o.phase_lost_at = n;
         if (n % req.every == 0 || n == req.steps) w.row(step_row(n, r, map.model(), i));
+        if ((n & 4095) == 0) w.check();
       } catch (const Undecided& u) {
         o.undecided = true;
         o.reason = u.what();

@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "bouncer/io/output.hpp"
 #include "bouncer/io/provenance.hpp"
 
 namespace bouncer {
@@ -220,13 +221,13 @@ void save(const std::string& path, const Canvas& c, std::vector<std::pair<std::s
   if (!encode_png(tmp.c_str(), c.width(), c.height(), c.bytes().data(), text.data(), static_cast<int>(text.size()))) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot write PNG '" + path + "'");
+    throw OutputError("cannot write PNG '" + path + "'");
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) {
     std::filesystem::remove(tmp, ec);
-    throw std::runtime_error("cannot rename '" + tmp + "' to '" + path + "'");
+    throw OutputError("cannot rename '" + tmp + "' to '" + path + "'");
   }
 }
 

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# End-to-end: outputs never replace what they should not and never fail silently
+# (lib/include/bouncer/io/output.hpp, README "Exit status and outputs").
+#   * stdout on a full device (/dev/full): exit 1, one line, for every kind of command;
+#   * --out /dev/full: exit 1, no PATH.partial left; --out /dev/null: written through, the
+#     device stays a device; --out a named pipe: written through (its reader gets the data);
+#   * --out a symlink to a regular file: the target is written, the link survives;
+#   * --out a directory or DIR/: exit 2, naming --out, nothing written.
+# Usage: bash output_edges.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash output_edges.sh <bouncer-binary> <source-dir>}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+MODEL=(--model constant --eps 0.5 --a 24)
+
+expect() {  # expect NAME STATUS ARGS... (stdout to /dev/full unless --out is given)
+  local name=$1 want=$2 rc=0
+  shift 2
+  "$BOUNCER" "$@" >/dev/full 2>"$TMP/$name.err" || rc=$?
+  [[ $rc -eq $want ]] || fail "$name" "exit $rc, expected $want: $(head -c 300 "$TMP/$name.err")"
+  [[ $(wc -l <"$TMP/$name.err") -eq 1 ]] || fail "$name" "expected one line on stderr, got: $(head -c 300 "$TMP/$name.err")"
+}
+expect orbit 1 orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10
+expect orbit_long 1 orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 100000000
+expect sticking 1 certify-sticking --eps 0.5 --a 10
+expect periodic_certified 1 certify-periodic "${MODEL[@]}" --period 1 --guess 0.3,12
+expect periodic 1 periodic "${MODEL[@]}" --period 1 --guess 0.3,12
+expect classify 1 classify "${MODEL[@]}" --theta 0.3 --v 12
+expect lyapunov 1 lyapunov "${MODEL[@]}" --theta 0.2 --v 7
+expect sweep 1 sweep "${MODEL[@]}" --theta 0.5 --v 4 --steps 100 --json
+"$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 5 --format json --out "$TMP/r.json" 2>/dev/null
+expect audit 1 audit "$TMP/r.json"
+expect basin 1 basin "${MODEL[@]}" --grid 3x3 --v-range 4:20 --transient 10 --steps 16 --json --quiet
+
+# --out on devices, pipes and links.
+rc=0; "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out /dev/full 2>"$TMP/full.err" || rc=$?
+[[ $rc -eq 1 && ! -e /dev/full.partial ]] || fail out_full "exit $rc: $(cat "$TMP/full.err")"
+"$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out /dev/null || fail out_null "exit $?"
+[[ -c /dev/null ]] || fail out_null "/dev/null is no longer a character device"
+mkfifo "$TMP/pipe"
+cat "$TMP/pipe" >"$TMP/from-pipe" &
+reader=$!
+"$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/pipe" || fail out_fifo "exit $?"
+wait $reader
+[[ -p "$TMP/pipe" ]] || fail out_fifo "the pipe was replaced"
+grep -q '^10,' "$TMP/from-pipe" || fail out_fifo "the reader did not get the orbit"
+echo old >"$TMP/target"
+ln -s "$TMP/target" "$TMP/link"
+"$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/link" || fail out_link "exit $?"
+[[ -L "$TMP/link" ]] || fail out_link "the symlink was replaced by a file"
+grep -q '^10,' "$TMP/target" || fail out_link "the link's target was not written"
+
+# Directories: exit 2, nothing written.
+mkdir "$TMP/dir"
+for args in "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/dir" \
+            "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/dir/" \
+            "basin ${MODEL[*]} --grid 3x3 --v-range 4:20 --transient 10 --steps 16 --quiet --out $TMP/dir/" \
+            "certify-periodic ${MODEL[*]} --period 1 --guess 0.3,12 --out $TMP/dir"; do
+  rc=0
+  # shellcheck disable=SC2086
+  "$BOUNCER" $args >/dev/null 2>"$TMP/dir.err" || rc=$?
+  [[ $rc -eq 2 ]] && grep -q '^bouncer: out:' "$TMP/dir.err" || fail out_dir "exit $rc for '$args': $(cat "$TMP/dir.err")"
+  [[ -z "$(ls -A "$TMP/dir")" ]] || fail out_dir "files written into the directory: $(ls -A "$TMP/dir")"
+done
+
+if [[ $failures -gt 0 ]]; then
+  echo "$failures check(s) failed" >&2
+  exit 1
+fi
+echo "output edges: all checks passed"

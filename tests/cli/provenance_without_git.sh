@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Provenance without git (cmake/BuildInfo.cmake): a source tree without git metadata (a
+# tarball, a copy) is identified by "tree-sha256:<64 hex>" over its files; with git, by the
+# 40-hex commit (+dirty). Checks: the binary's commit has exactly one of those two forms; a
+# copy without .git gets the tree form, the same for two runs, and a different one after a
+# one-byte change of a source file.
+# Usage: bash provenance_without_git.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash provenance_without_git.sh <bouncer-binary> <source-dir>}
+SRC=${2:?usage: bash provenance_without_git.sh <bouncer-binary> <source-dir>}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+form='^([0-9a-f]{40}(\+dirty)?|tree-sha256:[0-9a-f]{64})$'
+
+commit=$("$BOUNCER" --version | sed -n 's/.*(commit \(.*\))$/\1/p')
+[[ $commit =~ $form ]] || fail version "commit '$commit' is neither a git commit nor a tree hash"
+
+mkdir "$TMP/copy"
+for d in CMakeLists.txt cmake lib tools proofs tests data; do cp -r "$SRC/$d" "$TMP/copy/"; done
+info() { cmake -DSRC="$TMP/copy" -DOUT="$TMP/$1.cpp" -DGIT= -DVERSION=0 -P "$SRC/cmake/BuildInfo.cmake" &&
+         sed -n 's/.*info{"0", "\([^"]*\)".*/\1/p' "$TMP/$1.cpp"; }
+first=$(info a)
+second=$(info b)
+[[ $first =~ ^tree-sha256:[0-9a-f]{64}$ ]] || fail tree "a copy without .git got '$first'"
+[[ $first == "$second" ]] || fail stable "two runs on the same tree differ: $first vs $second"
+echo "// one more byte" >>"$TMP/copy/lib/src/output.cpp"
+third=$(info c)
+[[ $third != "$first" && $third =~ ^tree-sha256: ]] || fail change "a changed source file kept the hash $first"
+
+if [[ $failures -gt 0 ]]; then
+  echo "$failures check(s) failed" >&2
+  exit 1
+fi
+echo "provenance without git: all checks passed"

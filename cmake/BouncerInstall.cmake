@@ -13,4 +13,5 @@ configure_package_config_file(cmake/bouncerConfig.cmake.in
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/bouncerConfigVersion.cmake
   COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfigVersion.cmake
+  ${CMAKE_CURRENT_SOURCE_DIR}/cmake/bouncerNumerics.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)

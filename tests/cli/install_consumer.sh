@@ -10,5 +10,5 @@ trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
 cmake -S "$src/tests/consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$tmp/consumer" >/dev/null
-"$tmp/consumer/consumer"
+"$tmp/consumer/consumer"  # prints the certified step; exits 1 if it is not a narrow enclosure of the fixed point
 echo "install_consumer: find_package(bouncer) works"

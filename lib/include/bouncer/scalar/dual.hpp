@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cmath>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -144,6 +145,12 @@ Dual<S> clamp_to_segment(const Dual<S>& x, const Dual<S>& lo, const Dual<S>& hi)
   if (x.v < lo.v) return {lo.v, x.d[0], x.d[1]};
   if (!(x.v < hi.v)) return {ScalarTraits<S>::below(hi.v), x.d[0], x.d[1]};
   return x;
+}
+
+// "value (d/dtheta0, d/dv0)", each part printed as its scalar type prints.
+template <class S>
+std::ostream& operator<<(std::ostream& os, const Dual<S>& x) {
+  return os << x.v << " (d " << x.d[0] << ", " << x.d[1] << ")";
 }
 
 }  // namespace bouncer

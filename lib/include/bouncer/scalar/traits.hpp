@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <limits>
+#include <ostream>
 #include <string>
 #include <string_view>
 
@@ -198,5 +199,11 @@ Truth floor_certain(const T& x, T& out) {
     return Truth::yes;
   }
 }
+
+// Printing: an Mpfr with enough digits to read back the same number at its precision; an
+// Mpfi as "[lo, hi]" with the lower end rounded down and the upper end rounded up, so the
+// printed interval still encloses the value.
+inline std::ostream& operator<<(std::ostream& os, const Mpfr& x) { return os << ScalarTraits<Mpfr>::to_string(x); }
+inline std::ostream& operator<<(std::ostream& os, const Mpfi& x) { return os << ScalarTraits<Mpfi>::to_string(x); }
 
 }  // namespace bouncer

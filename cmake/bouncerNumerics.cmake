@@ -1,0 +1,31 @@
+# Imported targets for the C numerics libraries, which ship no CMake package of their own
+# (Debian: libgmp-dev, libmpfr-dev, libmpfi-dev): bouncer::gmp, bouncer::gmpxx,
+# bouncer::mpfr, bouncer::mpfi. Used by the build and installed with the package config, so
+# that an installed bouncer refers to these targets, never to the build machine's paths.
+include(FindPackageHandleStandardArgs)
+foreach(lib IN ITEMS gmp gmpxx mpfr mpfi)
+  if(TARGET bouncer::${lib})
+    continue()
+  endif()
+  set(header ${lib}.h)
+  if(lib STREQUAL "gmpxx")
+    set(header gmpxx.h)
+  endif()
+  find_path(BOUNCER_${lib}_INCLUDE_DIR ${header})
+  find_library(BOUNCER_${lib}_LIBRARY ${lib})
+  find_package_handle_standard_args(bouncer_${lib} REQUIRED_VARS BOUNCER_${lib}_LIBRARY BOUNCER_${lib}_INCLUDE_DIR
+                                    NAME_MISMATCHED)
+  if(NOT bouncer_${lib}_FOUND)
+    set(pkg libgmp-dev)
+    if(lib MATCHES "^mpf")
+      set(pkg lib${lib}-dev)
+    endif()
+    message(FATAL_ERROR "bouncer: library ${lib} not found: install the Debian package '${pkg}' (apt-get install ${pkg})")
+  endif()
+  add_library(bouncer::${lib} UNKNOWN IMPORTED)
+  set_target_properties(bouncer::${lib} PROPERTIES IMPORTED_LOCATION "${BOUNCER_${lib}_LIBRARY}"
+                        INTERFACE_INCLUDE_DIRECTORIES "${BOUNCER_${lib}_INCLUDE_DIR}")
+endforeach()
+set_property(TARGET bouncer::gmpxx APPEND PROPERTY INTERFACE_LINK_LIBRARIES bouncer::gmp)
+set_property(TARGET bouncer::mpfr APPEND PROPERTY INTERFACE_LINK_LIBRARIES bouncer::gmp)
+set_property(TARGET bouncer::mpfi APPEND PROPERTY INTERFACE_LINK_LIBRARIES bouncer::mpfr)

@@ -285,7 +285,7 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     Figure fig;
     const bool show_theta = r.show == "theta";
     Series st{"stable", {}, {}, Rgb{33, 102, 172}, false, true, 2};
-    Series un{"unstable", {}, {}, Rgb{244, 165, 130}, false, true, 1};
+    Series un{"unstable", {}, {}, Rgb{230, 97, 1}, false, true, 2};
     Series mg{"marginal", {}, {}, Rgb{150, 150, 150}, false, true, 1};
     double y0 = show_theta ? 0 : INFINITY, y1 = show_theta ? 1 : -INFINITY;
     for (const BranchPoint<T>& p : b.points) {
@@ -313,12 +313,28 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
       s << std::setprecision(8) << Tr::to_double(x);
       return s.str();
     };
+    // Legend labels short enough for one line: the cause and the impact.
+    auto end_label = [&](const BranchEnd<T>& e) {
+      const std::string i = std::to_string(e.impact + 1);
+      const std::string knot = e.knot >= 0 ? m.wall.knot_exact[e.knot].get_str() : "";
+      std::string what = cause_words(e.reason, e.margin);
+      if (e.reason == EndReason::border) {
+        switch (static_cast<Margin>(e.margin)) {
+          case Margin::knot: what = "border collision, impact " + i + " at θ = " + knot; break;
+          case Margin::clearance: what = "grazing, flight " + i + " at θ = " + knot; break;
+          case Margin::speed: what = "touchdown, impact " + i; break;
+          case Margin::sticking: what = "sticking threshold, impact " + i; break;
+        }
+      }
+      return par + "* = " + short_num(e.param) + ": " + what;
+    };
     for (const BranchEnd<T>* e : {&b.low, &b.high})
       if (e->reason != EndReason::range_end && e->reason != EndReason::max_points)
-        vline(e->param, par + "* = " + short_num(e->param) + ": " + cause_words(e->reason, e->margin) + ", " + e->detail,
-              e->reason == EndReason::fold ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
+        vline(e->param, end_label(*e), e->reason == EndReason::fold ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
     for (const Bifurcation<T>& x : b.bifurcations)
-      vline(x.param, par + "* = " + short_num(x.param) + ": " + name(x.kind), Rgb{27, 120, 55});
+      vline(x.param, par + "* = " + short_num(x.param) + ": " +
+                         (x.kind == SmoothKind::fold ? "fold (+1)" : x.kind == SmoothKind::period_doubling ? "period doubling (-1)" : "Neimark-Sacker"),
+            Rgb{27, 120, 55});
     fig.x_min = r.lo.approx();
     fig.x_max = r.hi.approx();
     fig.y_min = y0;

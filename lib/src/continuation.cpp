@@ -484,7 +484,8 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
   const BranchPoint<T> start = analyse_orbit(m, p, std::move(o0));
   const double range = Tr<T>::to_double(T(hi - lo));
   const double h0 = opt.step > 0 ? opt.step : range / 100;
-  const double hmax = std::max(h0, range / 10), hmin = h0 * 1e-4;
+  // At most range/40 per step, so that a branch diagram has points all along it.
+  const double hmax = std::max(h0, range / 40), hmin = h0 * 1e-4;
   std::vector<BranchPoint<T>> side[2];
   long accepted = 1;
   for (int d : {-1, 1}) {

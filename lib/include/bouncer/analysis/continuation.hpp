@@ -11,7 +11,7 @@
 // the new parameter value. A step is accepted when Newton converges, the minimal period is
 // still q, the event sequence is unchanged (up to a rotation of the orbit) and the orbit
 // did not jump away from the prediction; otherwise the step is halved. It grows by 3/2
-// after a step Newton took in at most 3 iterations. When the step falls below 1e-4 of the
+// after a step Newton took in at most 3 iterations (to at most range/40). When the step falls below 1e-4 of the
 // first step, the end is located by bisection between the last accepted value and the
 // first refused one (the corrector runs at every trial value), down to the working
 // precision (2^-44 relative for double, 2^-(bits-12) for the others).

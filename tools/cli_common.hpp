@@ -3,6 +3,11 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+// GCC 12 at -O3 reports false "maybe uninitialized" warnings inside nlohmann::json.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#include <nlohmann/json.hpp>
+#pragma GCC diagnostic pop
 
 #include <filesystem>
 #include <fstream>
@@ -112,6 +117,28 @@ inline ClassifyOptions classify_options_from(const Options& o) {
   if (c.max_period * 2 > c.steps)
     throw InputError("max-period", "must be at most steps/2 (" + std::to_string(c.steps / 2) + ")");
   return c;
+}
+
+// The text form of a certified command's result: "# " provenance lines, then one
+// "key: value" line per field (nested objects and arrays as dotted/indexed keys). Timings
+// go to "# time:" lines, which audit ignores.
+inline void print_key_values(std::ostream& out, const Provenance& p, const nlohmann::ordered_json& j) {
+  out << p.as_comment_lines();
+  std::function<void(const std::string&, const nlohmann::ordered_json&)> put = [&](const std::string& prefix,
+                                                                                  const nlohmann::ordered_json& x) {
+    for (const auto& [k, v] : x.items()) {
+      if (k == "seconds") {
+        out << "# time: " << prefix << k << " = " << v.dump() << "\n";
+      } else if (v.is_object()) {
+        put(prefix + k + ".", v);
+      } else if (v.is_array() && !v.empty() && v[0].is_object()) {
+        for (size_t i = 0; i < v.size(); ++i) put(prefix + k + "[" + std::to_string(i) + "].", v[i]);
+      } else {
+        out << prefix << k << ": " << (v.is_string() ? v.get<std::string>() : v.dump()) << "\n";
+      }
+    }
+  };
+  put("", j);
 }
 
 inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,

@@ -151,24 +151,6 @@ ModelSpec with_a(ModelSpec m, const mpq_class& x) {
   return m;
 }
 
-void print_text(std::ostream& out, const Provenance& p, const json& j) {
-  out << p.as_comment_lines();
-  std::function<void(const std::string&, const json&)> put = [&](const std::string& prefix, const json& x) {
-    for (const auto& [k, v] : x.items()) {
-      if (k == "seconds") {
-        out << "# time: " << prefix << k << " = " << v.dump() << "\n";  // volatile (audit skips it)
-      } else if (v.is_object()) {
-        put(prefix + k + ".", v);
-      } else if (k == "attempts" || k == "pieces") {
-        for (size_t i = 0; i < v.size(); ++i) put(prefix + k + "[" + std::to_string(i) + "].", v[i]);
-      } else {
-        out << prefix << k << ": " << (v.is_string() ? v.get<std::string>() : v.dump()) << "\n";
-      }
-    }
-  };
-  put("", j);
-}
-
 }  // namespace
 
 Command add_certify_sticking(CLI::App& app) {
@@ -247,7 +229,7 @@ Command add_certify_sticking(CLI::App& app) {
         for (const auto& [k, v] : body.items()) outj[k] = v;
         s << outj.dump(1) << "\n";
       } else {
-        print_text(s, p, body);
+        print_key_values(s, p, body);
       }
     });
     return 0;

@@ -16,6 +16,7 @@ struct Command {
 
 Command add_orbit(CLI::App& app);
 Command add_certify_sticking(CLI::App& app);
+Command add_certify_periodic(CLI::App& app);
 Command add_sweep(CLI::App& app);
 Command add_audit(CLI::App& app);
 Command add_periodic(CLI::App& app);

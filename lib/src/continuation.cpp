@@ -7,15 +7,6 @@
 
 namespace bouncer {
 
-const char* name(Parameter p) {
-  switch (p) {
-    case Parameter::a: return "a";
-    case Parameter::eps: return "eps";
-    case Parameter::c: return "c";
-  }
-  return "?";
-}
-
 const char* name(Margin m) {
   switch (m) {
     case Margin::knot: return "knot_distance";
@@ -361,6 +352,7 @@ struct Continuer {
     e.param = good.param + (bad - good.param) / 2;
     e.bracket_lo = dir > 0 ? good.param : bad;
     e.bracket_hi = dir > 0 ? bad : good.param;
+    e.last_point = good.orbit.points[0];
     // The cause: the margin (or det(J - I)) that shrank the most since the location began.
     double best = 1e-3;
     for (size_t i = 0; i < good.margins.size(); ++i)

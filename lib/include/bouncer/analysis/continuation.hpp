@@ -28,8 +28,8 @@
 
 namespace bouncer {
 
-enum class Parameter { a, eps, c };
-const char* name(Parameter);
+// Parameter (a | eps | c) and name(Parameter): model/spec.hpp, shared with the certifier
+// (verify/periodic_certify.hpp), so that one enum names the varied parameter everywhere.
 
 // The model with `p` set to `value` (and the sticking threshold rebuilt from it).
 template <class T>
@@ -107,6 +107,7 @@ struct BranchEnd {
   int impact = -1;    // its step
   int knot = -1;      // the knot involved (knot, clearance)
   std::string detail; // one phrase, e.g. "impact 3 reaches the knot theta = 1/2"
+  State<T> last_point;  // the orbit's first point at the branch side of the bracket
   // Just beyond a*: a period-q orbit Newton finds there from the last orbit (if any), and
   // the class of the orbit from the last orbit point.
   bool beyond_done = false;

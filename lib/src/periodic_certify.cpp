@@ -1,0 +1,738 @@
+// Certified periodic orbits by the Krawczyk operator (verify/periodic_certify.hpp).
+#include "bouncer/verify/periodic_certify.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "bouncer/verify/enclosure.hpp"
+#include "bouncer/verify/interval_dual.hpp"
+#include "bouncer/verify/sticking.hpp"
+
+namespace bouncer {
+
+const char* name(Parameter p) {
+  switch (p) {
+    case Parameter::a: return "a";
+    case Parameter::eps: return "eps";
+    case Parameter::c: return "c";
+  }
+  return "?";
+}
+
+Parameter parse_parameter(const std::string& field, const std::string& text) {
+  if (text == "a") return Parameter::a;
+  if (text == "eps") return Parameter::eps;
+  if (text == "c") return Parameter::c;
+  throw InputError(field, "must be a, eps or c (got '" + text + "')");
+}
+
+const Decimal& parameter_of(const ModelSpec& m, Parameter p) {
+  return p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c;
+}
+
+ModelSpec with_parameter(ModelSpec m, Parameter p, const Decimal& value) {
+  (p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c) = value;
+  return m;
+}
+
+FamilyMode parse_family_mode(const std::string& field, const std::string& text) {
+  if (text == "auto") return FamilyMode::automatic;
+  if (text == "off") return FamilyMode::isolated;
+  if (text == "on") return FamilyMode::family;
+  throw InputError(field, "must be auto, on or off (got '" + text + "')");
+}
+
+const char* name(PeriodicOutcome o) {
+  switch (o) {
+    case PeriodicOutcome::isolated: return "isolated";
+    case PeriodicOutcome::family: return "family";
+    case PeriodicOutcome::through_release: return "through_release";
+    case PeriodicOutcome::not_found: return "not_found";
+    case PeriodicOutcome::undecided: return "undecided";
+  }
+  return "?";
+}
+
+namespace {
+
+using Tr = ScalarTraits<Mpfi>;
+
+// Why one attempt at one precision failed (caught by the escalation loop).
+struct NotCertified : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+Mpfi thin(const Mpfr& x) { return Mpfi(x, x); }
+
+Mpfr at_bits(const Mpfr& x, long bits) {
+  Mpfr r(bits);
+  mpfr_set(r.get(), x.get(), MPFR_RNDN);
+  return r;
+}
+
+Enclosure enclosure(const Mpfi& x) {
+  // MPFI keeps an upper end 0 as -0: print it as 0.
+  const std::string hi = Tr::upper_string(x);
+  return {Tr::lower_string(x), hi == "-0" ? "0" : hi, x.mid().to_double(), x.width().to_double()};
+}
+
+bool strictly_inside(const Mpfi& x, const Mpfi& y) { return mpfi_is_strictly_inside(x.get(), y.get()) > 0; }
+bool disjoint(const Mpfi& x, const Mpfi& y) {
+  return Tr::lt(x, y) == Truth::yes || Tr::lt(y, x) == Truth::yes;
+}
+bool inside(const Mpfi& x, const Mpfi& y) { return y.contains(x); }
+
+template <class T>
+void set_parameter(Model<T>& m, Parameter p, const T& value) {
+  (p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c) = value;
+  m.collapse = m.a * (1 - m.eps) / 2;
+}
+
+// What a step was, in words ("impact(seg 1, corner)").
+std::string event_text(const StepResult<Mpfi>& r) {
+  std::string s = name(r.kind);
+  s += "(seg " + std::to_string(r.segment);
+  if (r.corner) s += ", corner";
+  if (r.indirect == Truth::yes) s += ", indirect";
+  s += ")";
+  return s;
+}
+
+// Q interval steps from a box; every step's result (throws Undecided, naming the step).
+std::vector<StepResult<Mpfi>> interval_orbit(const Model<Mpfi>& m, const State<Mpfi>& start, long q) {
+  const ImpactMap<Mpfi> map(m);
+  std::vector<StepResult<Mpfi>> out;
+  State<Mpfi> s = start;
+  for (long i = 0; i < q; ++i) {
+    try {
+      out.push_back(map.step(s));
+    } catch (const Undecided& u) {
+      throw NotCertified("step " + std::to_string(i + 1) + " of the period is undecided over the box: " + u.what());
+    }
+    s = out.back().next;
+  }
+  return out;
+}
+
+// Variables of the Krawczyk problem: 0 = theta, 1 = v, 2 = the parameter.
+struct Box3 {
+  Mpfi x[3];
+};
+
+// P^Q over a box with its derivatives D[row][var] (row: theta, v; var: theta, v, p),
+// from two interval-dual runs through the same step.
+struct Derivatives {
+  Mpfi value[2];
+  Mpfi D[2][3];
+};
+
+Derivatives derivatives(const Model<Mpfi>& m, Parameter par, const Box3& b, long q) {
+  Derivatives out;
+  for (int run = 0; run < 2; ++run) {
+    Model<IDual> dm = convert_model<IDual>(m, [](const Mpfi& x) { return IDual(x); });
+    set_parameter(dm, par, run == 1 ? IDual::variable(b.x[2], 0) : IDual(b.x[2]));
+    State<IDual> s = run == 0 ? State<IDual>{IDual::variable(b.x[0], 0), IDual::variable(b.x[1], 1)}
+                              : State<IDual>{IDual(b.x[0]), IDual(b.x[1])};
+    const ImpactMap<IDual> map(std::move(dm));
+    for (long i = 0; i < q; ++i) {
+      try {
+        s = map.step(s).next;
+      } catch (const Undecided& u) {
+        throw NotCertified("step " + std::to_string(i + 1) + " of the period is undecided over the box: " + u.what());
+      }
+    }
+    const IDual* rows[2] = {&s.theta, &s.v};
+    for (int r = 0; r < 2; ++r) {
+      if (!ScalarTraits<IDual>::derivatives_finite(*rows[r]))
+        throw NotCertified("the Jacobian enclosure over the box is not finite (a square root at 0: grazing or touchdown)");
+      if (run == 0) {
+        out.value[r] = rows[r]->v;
+        out.D[r][0] = rows[r]->d[0];
+        out.D[r][1] = rows[r]->d[1];
+      } else {
+        out.D[r][2] = rows[r]->d[0];
+      }
+    }
+  }
+  return out;
+}
+
+// The Krawczyk problem: unknowns y = (x[yi[0]], x[yi[1]]), free variable z = x[zi].
+struct Problem {
+  const Model<Mpfi>& model;  // parameters as given (overridden per evaluation)
+  Parameter par;
+  long q;
+  int yi[2];
+  int zi;
+  Mpfi Z;                    // interval of the free variable
+  Mpfr yhat[2];
+  Mpfr zhat;
+};
+
+Box3 assemble(const Problem& P, const Mpfi y[2], const Mpfi& z) {
+  Box3 b;
+  b.x[P.yi[0]] = y[0];
+  b.x[P.yi[1]] = y[1];
+  b.x[P.zi] = z;
+  return b;
+}
+
+// F(y^; z^) = P^Q(x) - (theta, v) at the point, in intervals.
+void residual(const Problem& P, Mpfi f[2]) {
+  const Mpfi yh[2] = {thin(P.yhat[0]), thin(P.yhat[1])};
+  const Box3 b = assemble(P, yh, thin(P.zhat));
+  Model<Mpfi> m = P.model;
+  set_parameter(m, P.par, b.x[2]);
+  const std::vector<StepResult<Mpfi>> orbit = interval_orbit(m, State<Mpfi>{b.x[0], b.x[1]}, P.q);
+  f[0] = orbit.back().next.theta - b.x[0];
+  f[1] = orbit.back().next.v - b.x[1];
+}
+
+// dF_row/dvar: P^Q's derivative minus the identity's.
+Mpfi dF(const Derivatives& d, int row, int var) {
+  return row == var ? d.D[row][var] - 1 : d.D[row][var];
+}
+
+struct KrawczykStep {
+  Mpfi K[2];
+  Derivatives d;
+};
+
+KrawczykStep krawczyk(const Problem& P, const Mpfi f[2], const Mpfi Y[2]) {
+  Model<Mpfi> m = P.model;
+  const Box3 b = assemble(P, Y, P.Z);
+  set_parameter(m, P.par, b.x[2]);
+  KrawczykStep out{{}, derivatives(m, P.par, b, P.q)};
+  const Derivatives& d = out.d;
+  Mpfi Fy[2][2], Fz[2];
+  for (int r = 0; r < 2; ++r) {
+    for (int k = 0; k < 2; ++k) Fy[r][k] = dF(d, r, P.yi[k]);
+    Fz[r] = dF(d, r, P.zi);
+  }
+  // C: an approximate inverse of mid(F_y), as exact points (any C is valid).
+  const Mpfi m11 = thin(Fy[0][0].mid()), m12 = thin(Fy[0][1].mid()), m21 = thin(Fy[1][0].mid()),
+             m22 = thin(Fy[1][1].mid());
+  const Mpfi det = m11 * m22 - m12 * m21;
+  if (Tr::is_zero(det) != Truth::no) throw NotCertified("the midpoint Jacobian of F is singular");
+  const Mpfi C[2][2] = {{thin((m22 / det).mid()), thin((-m12 / det).mid())},
+                        {thin((-m21 / det).mid()), thin((m11 / det).mid())}};
+  const Mpfi dz = P.Z - thin(P.zhat);
+  const Mpfi dy[2] = {Y[0] - thin(P.yhat[0]), Y[1] - thin(P.yhat[1])};
+  for (int r = 0; r < 2; ++r) {
+    Mpfi k = thin(P.yhat[r]) - (C[r][0] * f[0] + C[r][1] * f[1]) - (C[r][0] * Fz[0] + C[r][1] * Fz[1]) * dz;
+    for (int c = 0; c < 2; ++c) {
+      Mpfi M = (r == c ? Mpfi(1, P.model.bits) : Mpfi(0, P.model.bits)) - (C[r][0] * Fy[0][c] + C[r][1] * Fy[1][c]);
+      k += M * dy[c];
+    }
+    if (k.has_nan() || !k.bounded()) throw NotCertified("the Krawczyk image is not finite");
+    out.K[r] = k;
+  }
+  return out;
+}
+
+// Epsilon inflation (Rump): grow Y around y^ until K(Y) lies inside it; then tighten with
+// Y <- K(Y) n Y, which keeps the unique zero.
+struct KrawczykResult {
+  Mpfi Y0[2], K0[2];  // the proof: K(Y0) inside the interior of Y0
+  Mpfi Y[2];          // the tightened enclosure of the zero
+  Derivatives d;
+  int inflations = 0;
+};
+
+KrawczykResult prove(const Problem& P) {
+  const long bits = P.model.bits;
+  Mpfi f[2];
+  residual(P, f);
+  Mpfr r[2];
+  for (int i = 0; i < 2; ++i) {
+    // Start from the residual's size (and a few ulps of y^), then let K tell the size.
+    Mpfi s = abs(f[0]) + abs(f[1]) + abs(thin(P.yhat[i])) * Mpfi(1, bits) / (1L << 20) / (1L << 30);
+    r[i] = s.upper();
+  }
+  KrawczykResult out;
+  Mpfi Y[2];
+  for (int it = 0; it < 24; ++it) {
+    for (int i = 0; i < 2; ++i) Y[i] = Mpfi(Mpfr(P.yhat[i] - r[i]), Mpfr(P.yhat[i] + r[i]));
+    KrawczykStep k = krawczyk(P, f, Y);
+    if (strictly_inside(k.K[0], Y[0]) && strictly_inside(k.K[1], Y[1])) {
+      out.inflations = it;
+      for (int i = 0; i < 2; ++i) {
+        out.Y0[i] = Y[i];
+        out.K0[i] = k.K[i];
+      }
+      out.d = std::move(k.d);
+      // Tighten: every zero in Y lies in K(Y).
+      Mpfi T[2] = {intersect(k.K[0], Y[0]), intersect(k.K[1], Y[1])};
+      for (int t = 0; t < 6; ++t) {
+        KrawczykStep kt = krawczyk(P, f, T);
+        const Mpfi N[2] = {intersect(kt.K[0], T[0]), intersect(kt.K[1], T[1])};
+        const bool shrank = mpfr_less_p(N[0].width().get(), T[0].width().get()) ||
+                            mpfr_less_p(N[1].width().get(), T[1].width().get());
+        T[0] = N[0];
+        T[1] = N[1];
+        out.d = std::move(kt.d);
+        if (!shrank) break;
+      }
+      out.Y[0] = T[0];
+      out.Y[1] = T[1];
+      // The final derivatives are over the tightened box (for the multipliers).
+      Model<Mpfi> m = P.model;
+      const Box3 b = assemble(P, T, P.Z);
+      set_parameter(m, P.par, b.x[2]);
+      out.d = derivatives(m, P.par, b, P.q);
+      return out;
+    }
+    for (int i = 0; i < 2; ++i) {
+      const Mpfi dist = abs(k.K[i] - thin(P.yhat[i]));
+      Mpfr grown(bits);
+      grown = dist.upper() * 2;
+      Mpfr doubled(bits);
+      doubled = r[i] * 2;
+      r[i] = mpfr_greater_p(grown.get(), doubled.get()) ? grown : doubled;
+    }
+  }
+  throw NotCertified("the Krawczyk operator did not map any box around the Newton point into itself");
+}
+
+// Eigenvalues (multipliers) of every matrix of an interval 2x2 Jacobian, and stability by
+// the Jury conditions on trace and determinant: both |mu| < 1 iff |det| < 1 and
+// |tr| < 1 + det.
+MultiplierEnclosure multipliers(const Mpfi J[2][2], std::string& stability, bool family) {
+  MultiplierEnclosure e;
+  const long bits = J[0][0].bits();
+  const Mpfi tr = J[0][0] + J[1][1];
+  const Mpfi det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  const Mpfi disc = tr * tr - 4 * det;
+  const Mpfi zero(0, bits), one(1, bits);
+  e.trace = enclosure(tr);
+  e.det = enclosure(det);
+  Mpfi mu[2];
+  if (Tr::lt(zero, disc) == Truth::yes) {
+    e.kind = "real";
+    const Mpfi s = sqrt(disc);
+    mu[0] = (tr + s) / 2;
+    mu[1] = (tr - s) / 2;
+    if (Tr::lt(abs(mu[0]), abs(mu[1])) == Truth::yes) std::swap(mu[0], mu[1]);
+    e.mu[0] = enclosure(mu[0]);
+    e.mu[1] = enclosure(mu[1]);
+  } else if (Tr::lt(disc, zero) == Truth::yes) {
+    e.kind = "complex";
+    e.mu[0] = enclosure(tr / 2);
+    e.mu[1] = enclosure(sqrt(-disc) / 2);
+    e.modulus = enclosure(sqrt(det));
+  } else {
+    e.kind = "undecided";
+  }
+  if (family) {
+    // One multiplier is 1 along the family: the other one decides transversal stability.
+    if (e.kind == "real") {
+      const Mpfi& other = Tr::lt(abs(mu[0] - 1), abs(mu[1] - 1)) == Truth::yes ? mu[1] : mu[0];
+      stability = Tr::lt(abs(other), one) == Truth::yes   ? "neutral-stable"
+                  : Tr::lt(one, abs(other)) == Truth::yes ? "neutral-unstable"
+                                                          : "undecided";
+    } else {
+      stability = "undecided";
+    }
+    return e;
+  }
+  const Mpfi onep = one + det;
+  const bool stable = Tr::lt(det, one) == Truth::yes && Tr::lt(-one, det) == Truth::yes &&
+                      Tr::lt(abs(tr), onep) == Truth::yes;
+  const bool unstable = Tr::lt(one, det) == Truth::yes || Tr::lt(det, -one) == Truth::yes ||
+                        Tr::lt(onep, abs(tr)) == Truth::yes;
+  stability = stable ? "stable" : unstable ? "unstable" : "undecided";
+  return e;
+}
+
+std::vector<long> proper_divisors(long q) {
+  std::vector<long> d;
+  for (long k = 1; k < q; ++k)
+    if (q % k == 0) d.push_back(k);
+  return d;
+}
+
+// One certification at `bits` for the parameter in [zlo, zhi] (equal for one value).
+class Attempt1 {
+ public:
+  Attempt1(const PeriodicQuestion& q, long bits, const Mpfi& Z, const std::optional<State<Mpfr>>& guess)
+      : q_(q), bits_(bits), Z_(Z), guess_(guess), model_(interval_model(q.model, bits)) {
+    set_parameter(model_, q.vary, Z_);
+  }
+
+  PeriodicCertificate run() {
+    PeriodicCertificate c;
+    c.period = q_.period;
+    c.bits = bits_;
+    const PeriodicOrbit<Mpfr> newton = newton_orbit();
+    newton_point = newton.points.empty() ? std::nullopt : std::optional<State<Mpfr>>(newton.points[0]);
+    if (!newton.converged)
+      throw NotFound("Newton found no period-" + std::to_string(q_.period) + " orbit" +
+                     (newton.note.empty() ? "" : " (" + newton.note + ")"));
+    const bool contracted =
+        std::any_of(newton.kinds.begin(), newton.kinds.end(), [](EventKind k) { return k != EventKind::impact; });
+    if (contracted) return through_release(newton, c);
+    const bool family = q_.family == FamilyMode::family || (q_.family == FamilyMode::automatic && newton.marginal && !q_.range);
+    return family ? family_orbit(newton, c) : isolated(newton, c);
+  }
+
+  struct NotFound : std::runtime_error {
+    using std::runtime_error::runtime_error;
+  };
+  std::optional<State<Mpfr>> newton_point;
+
+ private:
+  const PeriodicQuestion& q_;
+  long bits_;
+  Mpfi Z_;
+  std::optional<State<Mpfr>> guess_;
+  Model<Mpfi> model_;
+
+  PeriodicOrbit<Mpfr> newton_orbit() const {
+    Model<Mpfr> m = make_model<Mpfr>(q_.model, bits_);
+    set_parameter(m, q_.vary, Z_.mid());
+    if (guess_) return find_periodic(m, q_.period, *guess_, q_.newton);
+    if (q_.guess) return find_periodic(m, q_.period, make_state<Mpfr>(*q_.guess, bits_), q_.newton);
+    return search_periodic(m, q_.period, q_.newton);
+  }
+
+  void fill_orbit(PeriodicCertificate& c, const State<Mpfi>& start, const Model<Mpfi>& m) const {
+    const std::vector<StepResult<Mpfi>> orbit = interval_orbit(m, start, q_.period);
+    c.points.push_back({enclosure(start.theta), enclosure(start.v)});
+    for (size_t i = 0; i + 1 < orbit.size(); ++i)
+      c.points.push_back({enclosure(orbit[i].next.theta), enclosure(orbit[i].next.v)});
+    for (const StepResult<Mpfi>& r : orbit) {
+      c.events.push_back(event_text(r));
+      c.wall_periods.push_back(r.periods);
+    }
+    boxes_.assign(1, start);
+    for (size_t i = 0; i + 1 < orbit.size(); ++i) boxes_.push_back(orbit[i].next);
+  }
+  mutable std::vector<State<Mpfi>> boxes_;
+
+  // Minimal period from the point boxes: P^d(x*) is a period-Q point in box d; if that box
+  // lies in the Krawczyk box, uniqueness makes it x* (only for isolated orbits); disjoint
+  // boxes prove P^d(x*) != x*.
+  void minimal_period(PeriodicCertificate& c, bool unique_in_box0) const {
+    for (long d : proper_divisors(q_.period)) {
+      const State<Mpfi>& b = boxes_[d];
+      if (disjoint(b.theta, boxes_[0].theta) || disjoint(b.v, boxes_[0].v)) continue;
+      if (unique_in_box0 && inside(b.theta, boxes_[0].theta) && inside(b.v, boxes_[0].v)) {
+        c.minimal_period = d;
+        c.minimal_period_certified = true;
+        return;
+      }
+      c.minimal_period = 0;
+      c.minimal_period_certified = false;
+      return;
+    }
+    c.minimal_period = q_.period;
+    c.minimal_period_certified = true;
+  }
+
+  PeriodicCertificate isolated(const PeriodicOrbit<Mpfr>& newton, PeriodicCertificate& c) {
+    Problem P{model_, q_.vary, q_.period, {0, 1}, 2, Z_, {newton.points[0].theta, newton.points[0].v}, Z_.mid()};
+    const KrawczykResult k = prove(P);
+    c.outcome = PeriodicOutcome::isolated;
+    c.unknowns = "theta, v";
+    c.free_name = name(q_.vary);
+    finish(c, P, k, State<Mpfi>{k.Y[0], k.Y[1]}, model_, false);
+    minimal_period(c, true);
+    return c;
+  }
+
+  // Families: unknowns (v, p), first at theta^ exactly (tight enclosures, multipliers), then
+  // for every theta of the widest strip around theta^ that certifies (the family statement).
+  PeriodicCertificate family_orbit(const PeriodicOrbit<Mpfr>& newton, PeriodicCertificate& c) {
+    const Mpfr& th = newton.points[0].theta;
+    const Problem at{model_, q_.vary, q_.period, {1, 2}, 0, thin(th), {newton.points[0].v, Z_.mid()}, th};
+    KrawczykResult k0;
+    try {
+      k0 = prove(at);
+    } catch (const NotCertified& nc) {
+      throw NotCertified(std::string("family (unknowns v, ") + name(q_.vary) + " at theta = theta^): " + nc.what());
+    }
+    c.outcome = PeriodicOutcome::family;
+    c.unknowns = std::string("v, ") + name(q_.vary);
+    c.free_name = "theta";
+    Model<Mpfi> m = model_;
+    set_parameter(m, q_.vary, k0.Y[1]);
+    finish(c, at, k0, State<Mpfi>{thin(th), k0.Y[0]}, m, true);
+    c.family_parameter = enclosure(k0.Y[1]);
+    c.given_parameter = inside(Z_, k0.Y[1]) ? "inside" : disjoint(Z_, k0.Y[1]) ? "outside" : "overlaps";
+    minimal_period(c, false);
+    for (int e : {4, 8, 12, 16, 24, 32}) {
+      // theta^ +- 2^-e / 2, outward.
+      const Mpfi w = Mpfi(1, bits_) / (1L << (e / 2)) / (1L << (e - e / 2));
+      const Mpfi strip((thin(th) - w / 2).lower(), (thin(th) + w / 2).upper());
+      const Problem P{model_, q_.vary, q_.period, {1, 2}, 0, strip, {k0.Y[0].mid(), k0.Y[1].mid()}, th};
+      try {
+        const KrawczykResult k = prove(P);
+        c.strip_theta = enclosure(strip);
+        c.strip_v = enclosure(k.Y[0]);
+        c.strip_parameter = enclosure(k.Y[1]);
+        break;
+      } catch (const NotCertified&) {
+      } catch (const Undecided&) {
+      }
+    }
+    return c;
+  }
+
+  void finish(PeriodicCertificate& c, const Problem& P, const KrawczykResult& k, const State<Mpfi>& start,
+              const Model<Mpfi>& m, bool family) const {
+    for (int i = 0; i < 2; ++i) {
+      c.box[i] = enclosure(k.Y0[i]);
+      c.image[i] = enclosure(k.K0[i]);
+    }
+    c.free_range = enclosure(P.Z);
+    c.inflations = k.inflations;
+    fill_orbit(c, start, m);
+    const Mpfi J[2][2] = {{k.d.D[0][0], k.d.D[0][1]}, {k.d.D[1][0], k.d.D[1][1]}};
+    c.multipliers = multipliers(J, c.stability, family);
+    c.certified = true;
+  }
+
+  // The orbit of the release state: certified iff the first step ending at a release is
+  // step Q and it ends at the same release.
+  PeriodicCertificate through_release(const PeriodicOrbit<Mpfr>& newton, PeriodicCertificate& c) {
+    long last = -1;
+    for (long i = 0; i < q_.period; ++i)
+      if (newton.kinds[i] != EventKind::impact) last = i;
+    const int k = newton.points[(last + 1) % q_.period].knot;
+    if (k < 0) throw NotCertified("the Newton orbit's release state is not at a wall knot");
+    const Wall<Mpfi>& w = model_.wall;
+    const int before = (k + w.segments() - 1) % w.segments();
+    const State<Mpfi> R{w.start[k], w.velocity[before], k};
+    const std::vector<StepResult<Mpfi>> orbit = interval_orbit(model_, R, q_.period);
+    for (long i = 0; i < q_.period; ++i) {
+      if (orbit[i].kind == EventKind::impact) continue;
+      if (orbit[i].next.knot != k || mpfi_cmp(orbit[i].next.v.get(), R.v.get()) != 0)
+        throw NotCertified("step " + std::to_string(i + 1) + " from the release ends at another release state");
+      if (q_.period % (i + 1) != 0)
+        throw NotCertified("the release state has period " + std::to_string(i + 1) + ", which does not divide " +
+                           std::to_string(q_.period));
+      c.minimal_period = i + 1;
+      c.minimal_period_certified = true;
+      break;
+    }
+    if (!c.minimal_period_certified) throw NotCertified("the orbit of the release state does not return within the period");
+    c.outcome = PeriodicOutcome::through_release;
+    c.unknowns = "none (the release state is exact)";
+    c.free_name = name(q_.vary);
+    c.free_range = enclosure(Z_);
+    fill_orbit(c, R, model_);
+    c.multipliers.kind = "real";
+    c.multipliers.mu[0] = c.multipliers.mu[1] = enclosure(Mpfi(0, bits_));
+    c.multipliers.trace = c.multipliers.det = enclosure(Mpfi(0, bits_));
+    c.stability = "superstable";
+    c.certified = true;
+    return c;
+  }
+};
+
+std::string point_text(const CertifiedPoint& p) {
+  return "(theta, v) in [" + p.theta.lo + ", " + p.theta.hi + "] x [" + p.v.lo + ", " + p.v.hi + "]";
+}
+
+std::string statement(const PeriodicQuestion& q, const PeriodicCertificate& c, const std::string& where) {
+  std::ostringstream s;
+  const std::string Q = std::to_string(q.period);
+  switch (c.outcome) {
+    case PeriodicOutcome::isolated:
+      s << "For every " << where << " there is exactly one point of period " << Q << " of the map in the box "
+        << point_text(c.points[0]) << "; its minimal period is "
+        << (c.minimal_period_certified ? std::to_string(c.minimal_period) : "undecided") << ", it is " << c.stability
+        << " (multipliers " << c.multipliers.kind << ")";
+      break;
+    case PeriodicOutcome::family: {
+      const std::string p = name(q.vary);
+      s << "Family (a multiplier 1; the parameter " << p << " is an unknown, theta is free): at theta = "
+        << c.points[0].theta.lo << " there is exactly one (v, " << p << ") in [" << c.points[0].v.lo << ", "
+        << c.points[0].v.hi << "] x [" << c.family_parameter->lo << ", " << c.family_parameter->hi << "] with P^" << Q
+        << "(theta, v) = (theta, v)";
+      if (c.strip_theta)
+        s << "; for every theta in [" << c.strip_theta->lo << ", " << c.strip_theta->hi << "] there is exactly one (v, "
+          << p << ") in [" << c.strip_v->lo << ", " << c.strip_v->hi << "] x [" << c.strip_parameter->lo << ", "
+          << c.strip_parameter->hi << "]: a curve of period-" << Q << " points across that strip";
+      s << ". The given " << p << " = " << parameter_of(q.model, q.vary).text() << " "
+        << (c.given_parameter == "inside"     ? "lies in the enclosure at theta^"
+            : c.given_parameter == "outside" ? "lies OUTSIDE the enclosure at theta^ (the family is elsewhere)"
+                                             : "overlaps the enclosure at theta^")
+        << "; that the curve has exactly constant " << p
+        << " (a whole family at one parameter value) is a codimension-one coincidence that intervals cannot prove. "
+           "Transversal stability: "
+        << c.stability;
+      break;
+    }
+    case PeriodicOutcome::through_release:
+      s << "For every " << where << " the orbit of the release state (" << c.points[0].theta.lo << ", " << c.points[0].v.lo
+        << ") sticks for the first time at step " << c.minimal_period << " and is released at the same state: a periodic "
+        << "sticking orbit of minimal period " << c.minimal_period << " (superstable: the release state does not depend "
+        << "on the state before the collapse)";
+      break;
+    default:
+      break;
+  }
+  s << ". Event sequence: ";
+  for (size_t i = 0; i < c.events.size(); ++i) s << (i ? ", " : "") << c.events[i];
+  s << ".";
+  return s.str();
+}
+
+std::string where_text(const PeriodicQuestion& q) {
+  const std::string p = name(q.vary);
+  if (q.range) return p + " in [" + exact_decimal(q.range->first) + ", " + exact_decimal(q.range->second) + "]";
+  return p + " = " + parameter_of(q.model, q.vary).text() + " (the exact decimal)";
+}
+
+Mpfi parameter_interval(const PeriodicQuestion& q, long bits) {
+  if (q.range) return enclose(q.range->first, q.range->second, bits);
+  Mpfi x(bits);
+  x.set_decimal(parameter_of(q.model, q.vary).text());
+  return x;
+}
+
+PeriodicCertificate certify_with_guess(const PeriodicQuestion& q, const std::optional<State<Mpfr>>& chained,
+                                       std::optional<State<Mpfr>>* solution) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PeriodicCertificate best;
+  best.period = q.period;
+  std::vector<Attempt> attempts;
+  bool found = false;
+  for (long bits : q.schedule.bits()) {
+    Attempt a;
+    a.bits = bits;
+    const auto ta = std::chrono::steady_clock::now();
+    std::optional<State<Mpfr>> guess;
+    if (chained) guess = State<Mpfr>{at_bits(chained->theta, bits), at_bits(chained->v, bits), chained->knot};
+    Attempt1 run(q, bits, parameter_interval(q, bits), guess);
+    try {
+      PeriodicCertificate c = run.run();
+      a.decided = true;
+      a.seconds = detail::seconds_since(ta);
+      attempts.push_back(a);
+      c.attempts = attempts;
+      c.statement = statement(q, c, where_text(q));
+      if (solution) *solution = run.newton_point;
+      c.seconds = detail::seconds_since(t0);
+      return c;
+    } catch (const Attempt1::NotFound& nf) {
+      a.reason = nf.what();
+      found = false;
+    } catch (const NotCertified& nc) {
+      a.reason = nc.what();
+      found = true;
+    } catch (const Undecided& u) {
+      a.reason = std::string("undecided: ") + u.what();
+      found = true;
+    }
+    a.seconds = detail::seconds_since(ta);
+    attempts.push_back(a);
+    if (solution && run.newton_point) *solution = run.newton_point;
+    if (!found && !chained && !q.guess) break;  // a grid search that found nothing at all: more bits won't help
+  }
+  best.outcome = found ? PeriodicOutcome::undecided : PeriodicOutcome::not_found;
+  best.attempts = attempts;
+  best.reason = attempts.empty() ? "" : attempts.back().reason;
+  best.statement = found ? "Not certified at " + std::to_string(attempts.back().bits) +
+                               " bits (the largest precision tried): " + best.reason
+                         : "No period-" + std::to_string(q.period) + " orbit was found to certify: " + best.reason +
+                               ". Nothing is claimed.";
+  best.seconds = detail::seconds_since(t0);
+  return best;
+}
+
+void compare_with_double(const PeriodicQuestion& q, PeriodicCertificate& c) {
+  // The double Newton orbit from the same start, at the nearest double of the parameter.
+  Decimal mid = parameter_of(q.model, q.vary);
+  if (q.range) mid = *Decimal::parse(exact_decimal((q.range->first + q.range->second) / 2));
+  const Model<double> m = make_model<double>(with_parameter(q.model, q.vary, mid), 53);
+  const PeriodicOrbit<double> o =
+      q.guess ? find_periodic(m, q.period, make_state<double>(*q.guess, 53), q.newton) : search_periodic(m, q.period, q.newton);
+  if (!o.converged || o.points.empty()) return;
+  c.double_theta = ScalarTraits<double>::to_string(o.points[0].theta);
+  c.double_v = ScalarTraits<double>::to_string(o.points[0].v);
+  if (!c.certified) return;
+  // Inside any of the orbit's point boxes (Newton may land on another point of the cycle).
+  bool in = false;
+  for (const CertifiedPoint& p : c.points) {
+    Mpfi th(53), v(53);
+    th.set_decimal(p.theta.lo);
+    Mpfi th_hi(53);
+    th_hi.set_decimal(p.theta.hi);
+    Mpfi v_lo(53), v_hi(53);
+    v_lo.set_decimal(p.v.lo);
+    v_hi.set_decimal(p.v.hi);
+    const double t = o.points[0].theta, w = o.points[0].v;
+    if (th.lower().to_double() <= t && t <= th_hi.upper().to_double() && v_lo.lower().to_double() <= w &&
+        w <= v_hi.upper().to_double())
+      in = true;
+  }
+  c.double_inside = in;
+}
+
+}  // namespace
+
+PeriodicCertificate certify_periodic(const PeriodicQuestion& q) {
+  PeriodicCertificate c = certify_with_guess(q, std::nullopt, nullptr);
+  compare_with_double(q, c);
+  return c;
+}
+
+PeriodicRangeReport certify_periodic_range(const PeriodicQuestion& q) {
+  if (!q.range) throw InputError("range", "is required");
+  const auto t0 = std::chrono::steady_clock::now();
+  PeriodicRangeReport rep;
+  int runs = 0;
+  std::optional<State<Mpfr>> chain;
+  std::function<void(const mpq_class&, const mpq_class&, int)> rec = [&](const mpq_class& lo, const mpq_class& hi,
+                                                                         int depth) {
+    PeriodicQuestion sub = q;
+    sub.range = std::make_pair(lo, hi);
+    std::optional<State<Mpfr>> next;
+    PeriodicCertificate c = certify_with_guess(sub, chain, &next);
+    ++runs;
+    if (!c.certified && c.outcome != PeriodicOutcome::not_found && depth < q.max_depth && runs + 2 <= q.max_pieces) {
+      const mpq_class mid = (lo + hi) / 2;
+      rec(lo, mid, depth + 1);
+      rec(mid, hi, depth + 1);
+      return;
+    }
+    if (c.certified && next) chain = next;
+    rep.pieces.push_back({lo, hi, std::move(c)});
+  };
+  rec(q.range->first, q.range->second, 0);
+  rep.uncertified_length = 0;
+  std::set<std::string> sequences;
+  for (const PeriodicPiece& p : rep.pieces) {
+    if (!p.cert.certified) rep.uncertified_length += p.hi - p.lo;
+    else {
+      std::string seq;
+      for (const std::string& e : p.cert.events) seq += e + " ";
+      sequences.insert(seq);
+    }
+  }
+  std::ostringstream t;
+  const std::string par = name(q.vary);
+  t << "For every " << par << " in [" << exact_decimal(q.range->first) << ", " << exact_decimal(q.range->second) << "]";
+  if (rep.uncertified_length != 0) t << " except a set of total length " << exact_decimal(rep.uncertified_length);
+  t << ", the map has a period-" << q.period << " orbit, proved by the Krawczyk operator on " << rep.pieces.size()
+    << " piece(s), each with its own box (unique in it)";
+  if (sequences.size() == 1) t << ", all with the same event sequence";
+  else if (sequences.size() > 1) t << "; the event sequence changes between pieces (" << sequences.size() << " sequences)";
+  t << ".";
+  if (rep.uncertified_length == mpq_class(q.range->second - q.range->first)) {
+    t.str("");
+    t << "Nothing certified for " << par << " in [" << exact_decimal(q.range->first) << ", "
+      << exact_decimal(q.range->second) << "].";
+  }
+  rep.theorem = t.str();
+  rep.seconds = detail::seconds_since(t0);
+  return rep;
+}
+
+}  // namespace bouncer

@@ -239,6 +239,7 @@ int audit(const std::string& path) {
   for (const auto& [k, v] : rec->inputs) {
     if (k == "out") { has_out = true; continue; }
     if (k == "json") { if (v == "true") argv.push_back("--json"); continue; }
+    if (k == "certify") { if (v == "true") argv.push_back("--certify"); continue; }  // a flag of continue
     argv.push_back("--" + k);
     argv.push_back(v);
   }

@@ -7,10 +7,12 @@
 #include <cmath>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include "analysis_common.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "commands.hpp"
+#include "continue_certify.hpp"
 #include "picture_common.hpp"
 
 namespace bouncer::cli {
@@ -23,7 +25,7 @@ const std::set<std::string>& continue_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"period", "guess", "vary", "range", "precision", "step", "max-points", "max-iter", "beyond", "show",
-              "transient", "steps", "max-period", "out"});
+              "transient", "steps", "max-period", "out", "certify"});
     return k;
   }();
   return keys;
@@ -40,6 +42,7 @@ struct ContinueRequest {
   ContinuationOptions opt;
   std::string show = "v";
   std::optional<std::string> out;
+  bool certify = false;
 };
 
 ContinueRequest continue_request(const Options& given) {
@@ -101,6 +104,9 @@ ContinueRequest continue_request(const Options& given) {
   r.opt.classify = classify_options_from(o);
   r.show = o.get_or("show", "v");
   if (r.show != "theta" && r.show != "v") throw InputError("show", "must be theta or v (got '" + r.show + "')");
+  const std::string certify = o.get_or("certify", "false");
+  if (certify != "true" && certify != "false") throw InputError("certify", "must be true or false");
+  r.certify = certify == "true";
   if (o.has("out")) {
     r.out = o.get("out");
     if (r.out->empty()) throw InputError("out", "must be a file name prefix");
@@ -253,6 +259,34 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
   sum["param_max"] = Tr::to_string(b.points.back().param);
   sum["corrector_runs"] = b.corrector_runs;
   json low = end_json(b, b.low, par, m.wall), high = end_json(b, b.high, par, m.wall);
+  if (r.certify) {
+    // Krawczyk over an interval of width 1e-6 max(1, |a*|) on the branch side of each border
+    // end: a certified run of it proves the branch reaches at least its inner end.
+    for (const auto& [ej, e, high] : {std::tuple<json*, const BranchEnd<T>*, bool>{&low, &b.low, false},
+                                      std::tuple<json*, const BranchEnd<T>*, bool>{&high, &b.high, true}}) {
+      if (e->reason != EndReason::border) continue;
+      const T& g = high ? e->bracket_lo : e->bracket_hi;
+      const T w = Tr::from_decimal(num(std::max(1.0, std::fabs(Tr::to_double(g))) * 1e-6), bits);
+      const T far = high ? T(g - w) : T(g + w);
+      EndToCertify c;
+      c.model = r.model;
+      c.vary = r.vary;
+      c.period = r.period;
+      c.theta = Tr::to_string(e->last_point.theta);
+      c.v = Tr::to_string(e->last_point.v);
+      c.lo = Tr::to_string(high ? far : g);
+      c.hi = Tr::to_string(high ? g : far);
+      c.high_end = high;
+      json cj = certify_end(c);
+      const bool ok = !cj["certified_to"].is_null();
+      cj["statement"] = ok ? "certified (Krawczyk): the period-" + std::to_string(r.period) + " orbit exists for every " + par +
+                                 " in [" + cj["certified_range"][0].get<std::string>() + ", " +
+                                 cj["certified_range"][1].get<std::string>() + "], so " + par + "* " + (high ? ">= " : "<= ") +
+                                 cj["certified_to"].get<std::string>() + "; the other side of the bracket is numerical only"
+                           : "nothing certified next to " + par + "*";
+      (*ej)["certified"] = cj;
+    }
+  }
   low["events_at_end"] = event_text(b.points.front().events);
   high["events_at_end"] = event_text(b.points.back().events);
   sum["low"] = low;
@@ -276,6 +310,8 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
        << Tr::to_string(b.points.back().param) << "]\n";
   text << "low end:  " << low["sentence"].get<std::string>() << "\n";
   text << "high end: " << high["sentence"].get<std::string>() << "\n";
+  for (const json* e : {&low, &high})
+    if (e->contains("certified")) text << (e == &low ? "low end " : "high end ") << (*e)["certified"]["statement"].get<std::string>() << "\n";
   for (const Bifurcation<T>& x : b.bifurcations)
     text << name(x.kind) << " at " << par << "* = " << Tr::to_string(x.param) << "\n";
 
@@ -381,11 +417,12 @@ Command add_continue(CLI::App& app) {
   add_classify_options(*opts);
   opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json");
   sub->add_flag("--json", *json_flag, "Print the JSON summary on stdout");
-  sub->add_flag("--certify", *certify, "Certified brackets of the border collisions (not yet available)");
+  sub->add_flag("--certify", *certify,
+                 "Krawczyk on the branch side of each border end: a certified one-sided bound on a*");
   auto run = [opts, scene, json_flag, certify](const std::string& argv_text) {
-    if (*certify)
-      throw InputError("certify", "is not yet available: the Krawczyk certifier for periodic orbits has not landed");
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), opts->collected());
+    Options cl = opts->collected();
+    if (*certify) cl.set("certify", "true");
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), cl);
     const ContinueRequest req = continue_request(o);
     const Provenance prov = provenance_for("continue", o, req.precision, argv_text);
     return with_point_scalar(req.precision, [&](auto tag) {

@@ -9,6 +9,7 @@
 #     threshold;
 #   - the JSON summary carries the documented fields; `bouncer audit PREFIX.json` reruns it;
 #   - a scene file gives the same result as the command line;
+#   - --certify's certified one-sided bounds are consistent with the closed form;
 #   - bad input exits 2 with one line on stderr naming the option, nothing on stdout.
 # Usage: bash continue_command.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -82,6 +83,15 @@ check scene.same '.summary.high.param' "$(jq -r .summary.high.param "$TMP/k.json
 "$BOUNCER" continue --scene "$SRC/data/scenes/continue-veldep-period7.toml" --json >"$TMP/v7.json"
 check scene.v7 '.summary.start.stability != null and .summary.period == 7' true "$TMP/v7.json"
 
+# --- --certify: the certified one-sided bounds agree with the closed form -------------
+# Low end: the orbit is proved to exist on [c, ...], so a* <= c must hold for a* = 200/9;
+# high end: a* >= c for a* = 32. Both bounds within 1e-4 of a*.
+"$BOUNCER" continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 20:33.5 --certify \
+  --json >"$TMP/cert.json"
+check certify.low '(.summary.low.certified.certified_to | tonumber) as $c | $c >= 200/9 and $c - 200/9 < 1e-4' true "$TMP/cert.json"
+check certify.high '(.summary.high.certified.certified_to | tonumber) as $c | $c <= 32 and 32 - $c < 1e-4' true "$TMP/cert.json"
+check certify.input '.provenance.inputs.certify' true "$TMP/cert.json"
+
 # --- bad input: exit 2, one line naming the option, nothing on stdout -----------------
 bad_input() {
   local name=$1 field=$2
@@ -107,7 +117,6 @@ bad_input guess-inside guess --model constant --eps 0.25 --a 26 --period 1 --gue
 bad_input period-0 period --model constant --eps 0.25 --a 26 --period 0 --guess 0.5,4 --range 20:31
 bad_input precision precision "${OK[@]}" --range 20:31 --precision interval:64
 bad_input step step "${OK[@]}" --range 20:31 --step 20
-bad_input certify certify "${OK[@]}" --range 20:31 --certify
 [[ ! -e $TMP/none.csv ]] || fail bad.files "a file was written"
 
 if ((failures)); then

@@ -241,6 +241,25 @@ struct Continuer {
         t.why = Trial<T>::Why::no_convergence;
         return t;
       }
+      // Start the orbit at its point nearest to the prediction, so that points[i] (and
+      // impact i) stay the same along the branch: Newton may converge onto another point
+      // of the same orbit. (J stays that of the old start: a conjugate, with the same
+      // trace, determinant and multipliers.)
+      size_t nearest = 0;
+      double dmin = std::numeric_limits<double>::infinity();
+      for (size_t i = 0; i < o.points.size(); ++i) {
+        const double dth = std::fabs(circle_diff(Tr<T>::to_double(T(o.points[i].theta - guess.theta))));
+        const double dv = std::fabs(Tr<T>::to_double(T(o.points[i].v - guess.v))) / std::max(1.0, std::fabs(Tr<T>::to_double(guess.v)));
+        if (std::max(dth, dv) < dmin) {
+          dmin = std::max(dth, dv);
+          nearest = i;
+        }
+      }
+      if (nearest != 0 && o.points.size() == o.kinds.size() && o.points.size() == o.wall_periods.size()) {
+        std::rotate(o.points.begin(), o.points.begin() + nearest, o.points.end());
+        std::rotate(o.kinds.begin(), o.kinds.begin() + nearest, o.kinds.end());
+        std::rotate(o.wall_periods.begin(), o.wall_periods.begin() + nearest, o.wall_periods.end());
+      }
       BranchPoint<T> b = analyse_orbit(m, par, std::move(o));
       const bool period_ok = b.orbit.minimal_period == q;
       const bool events_ok = same_cycle(b.events, ref.events);
@@ -332,8 +351,10 @@ struct Continuer {
 
   // Locates the end between the accepted point `good` (with its predecessor) and the
   // refused value `bad`, names its cause and looks beyond it.
-  BranchEnd<T> locate_end(BranchPoint<T> good, std::optional<BranchPoint<T>> prev, T bad, int dir) {
-    const BranchPoint<T> first = good;
+  // `first` is the branch's start point: the margins are compared with their values there
+  // (the accepted points may already have crept close to a* before the location begins).
+  BranchEnd<T> locate_end(BranchPoint<T> good, std::optional<BranchPoint<T>> prev, T bad, int dir,
+                          const BranchPoint<T>& first) {
     Trial<T> last_bad;
     bool have_bad = false;
     for (long it = 0; it < max_bisections() && wide(good.param, bad); ++it) {
@@ -518,7 +539,7 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
       }
       h /= 2;
       if (h < hmin) {
-        e = c.locate_end(cur, prev, t, d);
+        e = c.locate_end(cur, prev, t, d, start);
         break;
       }
     }

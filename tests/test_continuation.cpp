@@ -172,3 +172,13 @@ TEST(Continuation, PeriodDoublingWhereAMultiplierIsMinusOne) {
   // the period-2 orbit, and Newton finds no period-4 orbit next to it on either side, so the
   // doubling is not a clean supercritical one; we did not derive what it is.)
 }
+
+// Newton's grid search of the velocity-dependent model finds (theta, v) = (0.0625, 4 + 4e-13)
+// as a "fixed point": the particle moves with the rising wall and lands after a flight of
+// a few ulps. It satisfies P(x) = x at every a, so it is refused as a start, not followed.
+TEST(Continuation, TouchdownIsNotABranch) {
+  const Model<double> m = make_model<double>(spec(Law::veldep, "12", "1", "100"), 53);
+  const Branch<double> b = continue_branch(m, Parameter::a, 1, State<double>{0.0625, 4.0000000000004095}, 5.0, 60.0);
+  EXPECT_FALSE(b.started);
+  EXPECT_NE(b.note.find("touches down"), std::string::npos) << b.note;
+}

@@ -493,8 +493,18 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
               std::to_string(q);
     return br;
   }
-  br.started = true;
   const BranchPoint<T> start = analyse_orbit(m, p, std::move(o0));
+  // Newton also "converges" onto v = wall velocity with a flight of a few ulps (a ride in
+  // the limit: the velocity-dependent model's grid search finds (0.0625, 4 + 4e-13)). It
+  // satisfies P(x) = x at every parameter value: not a branch.
+  const double speed = start.min_margin[static_cast<int>(Margin::speed)];
+  if (!std::isnan(speed) && speed < 1e-9 * std::max(1.0, std::fabs(Tr<T>::to_double(start.orbit.points[0].v)))) {
+    std::ostringstream why;
+    why << "the orbit touches down (relative impact speed " << speed << "): a ride in the limit, not a branch to follow";
+    br.note = why.str();
+    return br;
+  }
+  br.started = true;
   const double range = Tr<T>::to_double(T(hi - lo));
   const double h0 = opt.step > 0 ? opt.step : range / 100;
   // At most range/40 per step, so that a branch diagram has points all along it.

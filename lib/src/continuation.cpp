@@ -525,7 +525,9 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
         e.detail = "the range ends";
         break;
       }
-      if (accepted >= opt.max_points) {
+      // Half of the points for each direction (the high one also gets what the low one left).
+      const long budget = d < 0 ? 1 + (opt.max_points - 1) / 2 : opt.max_points;
+      if (accepted >= budget) {
         e.reason = EndReason::max_points;
         e.param = e.bracket_lo = e.bracket_hi = cur.param;
         e.detail = "the number of points reaches --max-points";

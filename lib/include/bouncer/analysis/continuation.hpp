@@ -130,7 +130,7 @@ struct Bifurcation {
 
 struct ContinuationOptions {
   double step = 0;          // first step (0: range / 100)
-  long max_points = 2000;   // accepted points, both directions together
+  long max_points = 2000;   // accepted points, both directions together (half each)
   NewtonOptions newton{30, 1e-9, 8};
   ClassifyOptions classify{};
   double beyond = 1e-6;     // classify at a* + beyond * max(1, |a*|) past each end

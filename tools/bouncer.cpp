@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", build_info().version + " (commit " + build_info().commit + ")");
-  std::vector<Command> commands{add_orbit(app), add_certify_sticking(app), add_certify_periodic(app), add_sweep(app), add_audit(app), add_periodic(app), add_lyapunov(app), add_classify(app), add_bifurcation(app), add_portrait(app), add_basin(app), add_scan(app), add_merge(app)};
+  std::vector<Command> commands{add_orbit(app), add_certify_sticking(app), add_certify_periodic(app), add_sweep(app), add_audit(app), add_periodic(app), add_lyapunov(app), add_classify(app), add_bifurcation(app), add_portrait(app), add_basin(app), add_scan(app), add_merge(app), add_continue(app)};
 
   try {
     app.parse(argc, argv);

@@ -4,7 +4,7 @@
 // A result is a JSON output with "provenance": {"command", "inputs", ...} (orbit --format
 // json, certify-sticking --json, sweep PREFIX.json) or a text/CSV output whose first line
 // is "# bouncer VERSION (commit C) COMMAND" with an "# inputs: k=v ..." line (orbit csv and
-// table, certify-sticking text, sweep PREFIX.csv). The command is rerun with exactly the
+// table, certify-sticking text, sweep PREFIX.csv; continue PREFIX.json and PREFIX.csv). The command is rerun with exactly the
 // recorded inputs by this same binary, into a temporary directory, and the two outputs are
 // compared.
 //
@@ -239,11 +239,12 @@ int audit(const std::string& path) {
   for (const auto& [k, v] : rec->inputs) {
     if (k == "out") { has_out = true; continue; }
     if (k == "json") { if (v == "true") argv.push_back("--json"); continue; }
+    if (k == "certify") { if (v == "true") argv.push_back("--certify"); continue; }  // a flag of continue
     argv.push_back("--" + k);
     argv.push_back(v);
   }
   if (has_out) {
-    if (rec->command == "sweep") {
+    if (rec->command == "sweep" || rec->command == "continue") {  // PREFIX.json / PREFIX.csv
       const std::string ext = std::filesystem::path(path).extension().string();  // .json / .csv
       argv.push_back("--out");
       argv.push_back(dir + "/result");

@@ -27,5 +27,6 @@ Command add_portrait(CLI::App& app);
 Command add_basin(CLI::App& app);
 Command add_scan(CLI::App& app);
 Command add_merge(CLI::App& app);
+Command add_continue(CLI::App& app);
 
 }  // namespace bouncer::cli

@@ -27,6 +27,11 @@ enum class Law { elastic, constant, veldep };
 enum class DownwardSticking { paper, impact };
 
 const char* name(Law);
+
+// A parameter of the model that a family is followed or certified in (continuation,
+// certify-periodic). name(): "a", "eps", "c" (lib/src/periodic_certify.cpp).
+enum class Parameter { a, eps, c };
+const char* name(Parameter p);
 const char* name(DownwardSticking);
 
 // A continuous periodic piecewise-linear wall: knots 0 = s_0 < s_1 < ... < s_{n-1} < 1 with

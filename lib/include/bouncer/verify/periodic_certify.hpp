@@ -48,8 +48,7 @@
 
 namespace bouncer {
 
-enum class Parameter { a, eps, c };
-const char* name(Parameter p);
+// Parameter (a | eps | c) and name(Parameter): model/spec.hpp (shared with continuation).
 Parameter parse_parameter(const std::string& field, const std::string& text);
 // The parameter's exact decimal in the spec, and the spec with it replaced.
 const Decimal& parameter_of(const ModelSpec& m, Parameter p);

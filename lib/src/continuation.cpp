@@ -1,0 +1,582 @@
+#include "bouncer/analysis/continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace bouncer {
+
+const char* name(Margin m) {
+  switch (m) {
+    case Margin::knot: return "knot_distance";
+    case Margin::clearance: return "clearance";
+    case Margin::speed: return "impact_speed";
+    case Margin::sticking: return "sticking_margin";
+  }
+  return "?";
+}
+
+const char* name(EndReason r) {
+  switch (r) {
+    case EndReason::range_end: return "range_end";
+    case EndReason::border: return "border";
+    case EndReason::fold: return "fold";
+    case EndReason::event_change: return "event_change";
+    case EndReason::period_collapse: return "period_collapse";
+    case EndReason::lost: return "lost";
+    case EndReason::max_points: return "max_points";
+  }
+  return "?";
+}
+
+const char* name(SmoothKind k) {
+  switch (k) {
+    case SmoothKind::fold: return "fold";
+    case SmoothKind::period_doubling: return "period_doubling";
+    case SmoothKind::neimark_sacker: return "neimark_sacker";
+  }
+  return "?";
+}
+
+std::string event_text(const std::vector<StepEvent>& events) {
+  std::string s;
+  for (const StepEvent& e : events) {
+    if (!s.empty()) s += ' ';
+    s += e.kind == EventKind::impact ? 'I' : e.kind == EventKind::sticking ? 'S' : 'R';
+    s += std::to_string(e.segment);
+    if (e.corner) s += 'c';
+    if (e.indirect) s += '^';
+  }
+  return s;
+}
+
+bool same_cycle(const std::vector<StepEvent>& x, const std::vector<StepEvent>& y) {
+  if (x.size() != y.size()) return false;
+  const size_t n = x.size();
+  for (size_t r = 0; r < std::max<size_t>(n, 1); ++r) {
+    bool same = true;
+    for (size_t i = 0; i < n && same; ++i) same = x[i].same_piece(y[(i + r) % n]);
+    if (same) return true;
+  }
+  return false;
+}
+
+template <class T>
+Model<T> with_parameter(const Model<T>& m, Parameter p, const T& value) {
+  Model<T> r = m;
+  (p == Parameter::a ? r.a : p == Parameter::eps ? r.eps : r.c) = value;
+  r.collapse = r.a * (1 - r.eps) / 2;  // as make_model: the threshold follows a and eps
+  return r;
+}
+
+template <class T>
+const T& parameter_of(const Model<T>& m, Parameter p) {
+  return p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c;
+}
+
+namespace {
+
+template <class T>
+using Tr = ScalarTraits<T>;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+template <class T>
+T from_double(double x, long bits) {
+  if constexpr (std::is_same_v<T, Mpfr>) {
+    Mpfr r(static_cast<mpfr_prec_t>(bits));
+    mpfr_set_d(r.get(), x, MPFR_RNDN);
+    return r;
+  } else {
+    (void)bits;
+    return T(x);
+  }
+}
+
+template <class T>
+T wrap_unit(const T& x) {
+  return x - Tr<T>::floor(x);
+}
+
+// theta difference on the circle, in [-1/2, 1/2), as a double.
+double circle_diff(double d) { return d - std::floor(d + 0.5); }
+
+template <class T>
+ImpactMargins margins_of_step(const Model<T>& m, const State<T>& from, const StepResult<T>& r) {
+  ImpactMargins out;
+  out.value.fill(kNaN);
+  if (r.kind == EventKind::ride) return out;
+  const Wall<T>& w = m.wall;
+  const bool stuck = r.kind == EventKind::sticking;
+  const int j = stuck ? r.stick_segment : r.segment;
+  const T& th = stuck ? r.stuck_theta : r.next.theta;
+  const T& vout = stuck ? r.stuck_v : r.next.v;
+  // Flight time: the whole step, less the ride from the collision to the release knot
+  // (shorter than one period: a ride ends at the next downward turn).
+  T tau = r.tau;
+  if (stuck) tau = tau - wrap_unit<T>(r.next.theta - th);
+  // knot distance: to the nearer end of segment j
+  const T d0 = th - w.start[j], d1 = w.end[j] - th;
+  const bool near_start = !(d1 < d0);
+  out.value[static_cast<int>(Margin::knot)] = Tr<T>::to_double(near_start ? d0 : d1);
+  out.knot = near_start ? j : w.next(j);
+  // relative impact speed from the flight: v^- = v0 - a tau, speed = u_j - v^-
+  const T vminus = from.v - m.a * tau;
+  out.value[static_cast<int>(Margin::speed)] = Tr<T>::to_double(T(w.velocity[j] - vminus));
+  if (m.law == Law::constant)
+    out.value[static_cast<int>(Margin::sticking)] =
+        Tr<T>::to_double(T(vout - w.velocity[j] - m.collapse * (w.end[j] - th)));
+  // clearance at every knot passed strictly inside the flight
+  const int j0 = w.segment_of(from.theta);
+  const T f0 = w.height_at(j0, from.theta);
+  const double tau_d = Tr<T>::to_double(tau);
+  double best = std::numeric_limits<double>::infinity();
+  long evaluated = 0;
+  for (int k = 0; k < w.segments(); ++k) {
+    T t = wrap_unit<T>(w.start[k] - from.theta);
+    if (!(Tr<T>::to_double(t) > 0)) t = t + 1;
+    for (; Tr<T>::to_double(t) < tau_d && evaluated < 100000; t = t + 1, ++evaluated) {
+      const T gap = f0 + from.v * t - m.a * t * t / 2 - w.height[k];
+      const double g = Tr<T>::to_double(gap);
+      if (g < best) {
+        best = g;
+        out.graze_knot = k;
+      }
+    }
+  }
+  out.value[static_cast<int>(Margin::clearance)] = best;
+  return out;
+}
+
+template <class T>
+std::string stability_of(const PeriodicOrbit<T>& o) {
+  const double m0 = o.multipliers.modulus(0);
+  return o.marginal ? (m0 > 1 + 1e-6 ? "unstable" : "marginal") : m0 < 1 ? "stable" : "unstable";
+}
+
+}  // namespace
+
+template <class T>
+BranchPoint<T> analyse_orbit(const Model<T>& m, Parameter p, PeriodicOrbit<T> orbit) {
+  BranchPoint<T> b;
+  b.param = parameter_of(m, p);
+  const ImpactMap<T> map(m);
+  const long q = static_cast<long>(orbit.points.size());
+  b.min_margin.fill(kNaN);
+  b.min_impact.fill(-1);
+  for (long i = 0; i < q; ++i) {
+    const StepResult<T> r = map.step(orbit.points[i]);
+    StepEvent e;
+    e.kind = r.kind;
+    e.segment = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
+    e.corner = r.corner;
+    e.indirect = r.indirect == Truth::yes;
+    b.events.push_back(e);
+    b.margins.push_back(margins_of_step(m, orbit.points[i], r));
+    for (int k = 0; k < kMargins; ++k) {
+      // The sticking margin is signed (negative on a sticking step): its distance to 0.
+      const double v = k == static_cast<int>(Margin::sticking) ? std::fabs(b.margins.back().value[k]) : b.margins.back().value[k];
+      if (std::isnan(v)) continue;
+      if (b.min_impact[k] < 0 || v < b.min_margin[k]) {
+        b.min_margin[k] = v;
+        b.min_impact[k] = static_cast<int>(i);
+      }
+    }
+  }
+  const double a11 = Tr<T>::to_double(orbit.J.a11), a12 = Tr<T>::to_double(orbit.J.a12);
+  const double a21 = Tr<T>::to_double(orbit.J.a21), a22 = Tr<T>::to_double(orbit.J.a22);
+  const double tr = a11 + a22, det = a11 * a22 - a12 * a21;
+  b.test_fold = 1 - tr + det;
+  b.test_pd = 1 + tr + det;
+  b.test_ns = det - 1;
+  b.stability = stability_of(orbit);
+  b.orbit = std::move(orbit);
+  return b;
+}
+
+namespace {
+
+// What the corrector made of one trial value.
+template <class T>
+struct Trial {
+  bool good = false;
+  std::optional<BranchPoint<T>> point;  // good, or converged onto another piece
+  enum class Why { none, no_convergence, period, events, jump, undecided } why = Why::none;
+};
+
+template <class T>
+struct Continuer {
+  const Model<T>& base;
+  Parameter par;
+  long q;
+  const ContinuationOptions& opt;
+  long bits;
+  long runs = 0;
+
+  Model<T> at(const T& p) const { return with_parameter(base, par, p); }
+
+  // The predicted start point at parameter p from cur (and prev, when the same rotation).
+  State<T> predict(const BranchPoint<T>& cur, const BranchPoint<T>* prev, const T& p) const {
+    const State<T>& x = cur.orbit.points[0];
+    if (!prev) return {x.theta, x.v};
+    const State<T>& y = prev->orbit.points[0];
+    const double dth = circle_diff(Tr<T>::to_double(T(x.theta - y.theta)));
+    const double dv = Tr<T>::to_double(T(x.v - y.v));
+    // A secant that moves by more than 0.1 per step is not to be trusted (a rotation of a
+    // sticking orbit, or a jump): predict constant instead.
+    if (std::fabs(dth) > 0.1 || std::fabs(dv) > 0.1 * std::max(1.0, std::fabs(Tr<T>::to_double(x.v))))
+      return {x.theta, x.v};
+    const T s = (p - cur.param) / (cur.param - prev->param);
+    return {wrap_unit<T>(x.theta + s * from_double<T>(dth, bits)), x.v + s * (x.v - y.v)};
+  }
+
+  Trial<T> correct(const T& p, const BranchPoint<T>& ref, const State<T>& guess) {
+    Trial<T> t;
+    ++runs;
+    const Model<T> m = at(p);
+    try {
+      PeriodicOrbit<T> o = find_periodic(m, q, guess, opt.newton);
+      if (!o.converged) {
+        t.why = Trial<T>::Why::no_convergence;
+        return t;
+      }
+      // Start the orbit at its point nearest to the prediction, so that points[i] (and
+      // impact i) stay the same along the branch: Newton may converge onto another point
+      // of the same orbit. (J stays that of the old start: a conjugate, with the same
+      // trace, determinant and multipliers.)
+      size_t nearest = 0;
+      double dmin = std::numeric_limits<double>::infinity();
+      for (size_t i = 0; i < o.points.size(); ++i) {
+        const double dth = std::fabs(circle_diff(Tr<T>::to_double(T(o.points[i].theta - guess.theta))));
+        const double dv = std::fabs(Tr<T>::to_double(T(o.points[i].v - guess.v))) / std::max(1.0, std::fabs(Tr<T>::to_double(guess.v)));
+        if (std::max(dth, dv) < dmin) {
+          dmin = std::max(dth, dv);
+          nearest = i;
+        }
+      }
+      if (nearest != 0 && o.points.size() == o.kinds.size() && o.points.size() == o.wall_periods.size()) {
+        std::rotate(o.points.begin(), o.points.begin() + nearest, o.points.end());
+        std::rotate(o.kinds.begin(), o.kinds.begin() + nearest, o.kinds.end());
+        std::rotate(o.wall_periods.begin(), o.wall_periods.begin() + nearest, o.wall_periods.end());
+      }
+      BranchPoint<T> b = analyse_orbit(m, par, std::move(o));
+      const bool period_ok = b.orbit.minimal_period == q;
+      const bool events_ok = same_cycle(b.events, ref.events);
+      // Distance of the nearest orbit point to the prediction (the orbit may be rotated).
+      double dist = std::numeric_limits<double>::infinity();
+      for (const State<T>& s : b.orbit.points) {
+        const double dth = std::fabs(circle_diff(Tr<T>::to_double(T(s.theta - guess.theta))));
+        const double dv = std::fabs(Tr<T>::to_double(T(s.v - guess.v))) / std::max(1.0, std::fabs(Tr<T>::to_double(guess.v)));
+        dist = std::min(dist, std::max(dth, dv));
+      }
+      t.point = std::move(b);
+      if (!period_ok) t.why = Trial<T>::Why::period;
+      else if (!events_ok) t.why = Trial<T>::Why::events;
+      else if (dist > 0.05) t.why = Trial<T>::Why::jump;
+      else t.good = true;
+    } catch (const Undecided&) {
+      t.why = Trial<T>::Why::undecided;
+    }
+    return t;
+  }
+
+  double tolerance_rel() const {
+    if constexpr (std::is_same_v<T, double>) return std::ldexp(1.0, -44);
+    return std::ldexp(1.0, -static_cast<int>(std::min(bits - 12, 1000L)));
+  }
+  bool wide(const T& x, const T& y) const {
+    const double w = std::fabs(Tr<T>::to_double(T(x - y)));
+    return w > tolerance_rel() * std::max(1.0, std::fabs(Tr<T>::to_double(x)));
+  }
+  long max_bisections() const { return std::min(bits, 1000L) + 80; }
+
+  // Regula falsi (Illinois) on a smooth test function between two accepted points whose
+  // values have opposite signs; the corrector runs at every trial value.
+  std::optional<Bifurcation<T>> locate_smooth(SmoothKind kind, const BranchPoint<T>& A, const BranchPoint<T>& B) {
+    auto g = [kind](const BranchPoint<T>& b) {
+      return kind == SmoothKind::fold ? b.test_fold : kind == SmoothKind::period_doubling ? b.test_pd : b.test_ns;
+    };
+    BranchPoint<T> lo = A, hi = B;
+    double glo = g(lo), ghi = g(hi);
+    int side = 0;
+    Bifurcation<T> out{kind, lo.param, lo.param, hi.param, 0};
+    for (long it = 0; it < max_bisections() && wide(lo.param, hi.param); ++it) {
+      out.iterations = it + 1;
+      double f = glo / (glo - ghi);
+      if (!(f > 0.01 && f < 0.99)) f = 0.5;
+      T p = lo.param + (hi.param - lo.param) * from_double<T>(f, bits);
+      Trial<T> t = correct(p, lo, lo.orbit.points[0]);
+      if (!t.good) {
+        p = lo.param + (hi.param - lo.param) / 2;
+        t = correct(p, lo, lo.orbit.points[0]);
+        if (!t.good) break;
+      }
+      const double gp = g(*t.point);
+      if (gp == 0) {
+        lo = hi = *t.point;
+        break;
+      }
+      if ((gp < 0) == (glo < 0)) {
+        lo = std::move(*t.point);
+        glo = gp;
+        if (side == -1) ghi /= 2;
+        side = -1;
+      } else {
+        hi = std::move(*t.point);
+        ghi = gp;
+        if (side == 1) glo /= 2;
+        side = 1;
+      }
+    }
+    out.param = lo.param + (hi.param - lo.param) / 2;
+    out.bracket_lo = lo.param < hi.param ? lo.param : hi.param;
+    out.bracket_hi = lo.param < hi.param ? hi.param : lo.param;
+    return out;
+  }
+
+  // The tests between two accepted neighbours: a sign change of det(J -+ I) is a real
+  // multiplier through +-1; of det J - 1 with a complex pair at both ends, Neimark-Sacker.
+  void smooth_events(const BranchPoint<T>& A, const BranchPoint<T>& B, std::vector<Bifurcation<T>>& out) {
+    auto flips = [](double x, double y) { return (x < 0 && y > 0) || (x > 0 && y < 0); };
+    if (flips(A.test_fold, B.test_fold))
+      if (auto b = locate_smooth(SmoothKind::fold, A, B)) out.push_back(*b);
+    if (flips(A.test_pd, B.test_pd))
+      if (auto b = locate_smooth(SmoothKind::period_doubling, A, B)) out.push_back(*b);
+    if (A.orbit.multipliers.complex && B.orbit.multipliers.complex && flips(A.test_ns, B.test_ns))
+      if (auto b = locate_smooth(SmoothKind::neimark_sacker, A, B)) out.push_back(*b);
+  }
+
+  std::string knot_text(int k) const { return base.wall.knot_exact[k].get_str(); }
+
+  // Locates the end between the accepted point `good` (with its predecessor) and the
+  // refused value `bad`, names its cause and looks beyond it.
+  // `first` is the branch's start point: the margins are compared with their values there
+  // (the accepted points may already have crept close to a* before the location begins).
+  BranchEnd<T> locate_end(BranchPoint<T> good, std::optional<BranchPoint<T>> prev, T bad, int dir,
+                          const BranchPoint<T>& first) {
+    Trial<T> last_bad;
+    bool have_bad = false;
+    for (long it = 0; it < max_bisections() && wide(good.param, bad); ++it) {
+      const T p = good.param + (bad - good.param) / 2;
+      Trial<T> t = correct(p, good, predict(good, prev ? &*prev : nullptr, p));
+      if (t.good) {
+        prev = std::move(good);
+        good = std::move(*t.point);
+      } else {
+        bad = p;
+        last_bad = std::move(t);
+        have_bad = true;
+      }
+    }
+    BranchEnd<T> e;
+    e.param = good.param + (bad - good.param) / 2;
+    e.bracket_lo = dir > 0 ? good.param : bad;
+    e.bracket_hi = dir > 0 ? bad : good.param;
+    e.last_point = good.orbit.points[0];
+    // The cause: the margin (or det(J - I)) that shrank the most since the location began.
+    double best = 1e-3;
+    for (size_t i = 0; i < good.margins.size(); ++i)
+      for (int k = 0; k < kMargins; ++k) {
+        const double now = std::fabs(good.margins[i].value[k]), then = std::fabs(first.margins[i].value[k]);
+        if (std::isnan(now) || std::isnan(then) || std::isinf(now) || !(then > 0)) continue;
+        const double ratio = now / then;
+        if (ratio < best) {
+          best = ratio;
+          e.reason = EndReason::border;
+          e.margin = k;
+          e.impact = static_cast<int>(i);
+          e.knot = k == static_cast<int>(Margin::clearance) ? good.margins[i].graze_knot : good.margins[i].knot;
+        }
+      }
+    // An impact landing on a knot also makes the clearance of a neighbouring flight vanish
+    // at that knot (the flight starts or ends next to it), and a corner impact can make
+    // several margins vanish together: among the margins within a factor 100 of the
+    // smallest, name the most specific one (knot, sticking, speed, then clearance).
+    if (e.reason == EndReason::border) {
+      const double limit = best * 100;
+      for (Margin pref : {Margin::knot, Margin::sticking, Margin::speed, Margin::clearance}) {
+        const int k = static_cast<int>(pref);
+        int found = -1;
+        double least = limit;
+        for (size_t i = 0; i < good.margins.size(); ++i) {
+          const double now = std::fabs(good.margins[i].value[k]), then = std::fabs(first.margins[i].value[k]);
+          if (std::isnan(now) || std::isnan(then) || std::isinf(now) || !(then > 0)) continue;
+          if (now / then <= least) {
+            least = now / then;
+            found = static_cast<int>(i);
+          }
+        }
+        if (found >= 0) {
+          e.margin = k;
+          e.impact = found;
+          e.knot = pref == Margin::clearance ? good.margins[found].graze_knot : good.margins[found].knot;
+          break;
+        }
+      }
+    }
+    const double fold_ratio = std::fabs(good.test_fold) / std::max(std::fabs(first.test_fold), 1e-300);
+    if (fold_ratio < best && std::fabs(good.test_fold) < 1e-3) {
+      e.reason = EndReason::fold;
+      e.margin = e.impact = e.knot = -1;
+    }
+    if (e.margin < 0 && e.reason != EndReason::fold) {
+      const auto why = have_bad ? last_bad.why : Trial<T>::Why::no_convergence;
+      e.reason = why == Trial<T>::Why::period ? EndReason::period_collapse
+                 : why == Trial<T>::Why::events ? EndReason::event_change
+                                                : EndReason::lost;
+    }
+    const std::string i1 = std::to_string(e.impact + 1);
+    switch (e.reason) {
+      case EndReason::border:
+        switch (static_cast<Margin>(e.margin)) {
+          case Margin::knot: e.detail = "impact " + i1 + " reaches the knot theta = " + knot_text(e.knot); break;
+          case Margin::clearance: e.detail = "flight " + i1 + " grazes the wall at the knot theta = " + knot_text(e.knot); break;
+          case Margin::speed: e.detail = "impact " + i1 + " reaches zero relative speed (touchdown)"; break;
+          case Margin::sticking: e.detail = "impact " + i1 + " reaches the sticking threshold"; break;
+        }
+        break;
+      case EndReason::fold: e.detail = "a multiplier reaches +1 where the orbit meets another and disappears"; break;
+      case EndReason::period_collapse:
+        e.detail = "the orbit falls onto one of minimal period " +
+                   std::to_string(last_bad.point ? last_bad.point->orbit.minimal_period : 0);
+        break;
+      case EndReason::event_change:
+        e.detail = "the event sequence changes to " + (last_bad.point ? event_text(last_bad.point->events) : std::string("?"));
+        break;
+      default: e.detail = "the corrector stops converging"; break;
+    }
+    look_beyond(e, good, dir);
+    return e;
+  }
+
+  void look_beyond(BranchEnd<T>& e, const BranchPoint<T>& good, int dir) {
+    if (!opt.classify_beyond) return;
+    const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(e.param)));
+    e.beyond_param = e.param + from_double<T>(dir * opt.beyond * scale, bits);
+    const double pb = Tr<T>::to_double(e.beyond_param);
+    if (!(pb > 0) || (par == Parameter::eps && pb > 1)) {
+      e.beyond_note = "the value beyond is outside the model's range";
+      return;
+    }
+    const Model<T> m = at(e.beyond_param);
+    try {
+      const PeriodicOrbit<T> o = find_periodic(m, q, good.orbit.points[0], opt.newton);
+      if (o.converged) {
+        e.beyond_orbit = event_text(analyse_orbit(m, par, o).events);
+        e.beyond_orbit_period = o.minimal_period;
+      }
+    } catch (const Undecided&) {
+    }
+    e.beyond = classify(ImpactMap<T>(m), good.orbit.points[0], opt.classify);
+    e.beyond_done = true;
+  }
+};
+
+}  // namespace
+
+template <class T>
+Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>& guess, const T& lo, const T& hi,
+                          const ContinuationOptions& opt) {
+  Branch<T> br;
+  br.parameter = p;
+  br.period = q;
+  Continuer<T> c{m, p, q, opt, m.bits};
+  PeriodicOrbit<T> o0 = find_periodic(m, q, guess, opt.newton);
+  ++c.runs;
+  if (!o0.converged) {
+    br.note = "the guess does not converge to a period-" + std::to_string(q) + " orbit: " + o0.note;
+    return br;
+  }
+  if (o0.minimal_period != q) {
+    br.note = "the guess converges to an orbit of minimal period " + std::to_string(o0.minimal_period) + ", not " +
+              std::to_string(q);
+    return br;
+  }
+  const BranchPoint<T> start = analyse_orbit(m, p, std::move(o0));
+  // Newton also "converges" onto v = wall velocity with a flight of a few ulps (a ride in
+  // the limit: the velocity-dependent model's grid search finds (0.0625, 4 + 4e-13)). It
+  // satisfies P(x) = x at every parameter value: not a branch.
+  const double speed = start.min_margin[static_cast<int>(Margin::speed)];
+  if (!std::isnan(speed) && speed < 1e-9 * std::max(1.0, std::fabs(Tr<T>::to_double(start.orbit.points[0].v)))) {
+    std::ostringstream why;
+    why << "the orbit touches down (relative impact speed " << speed << "): a ride in the limit, not a branch to follow";
+    br.note = why.str();
+    return br;
+  }
+  br.started = true;
+  const double range = Tr<T>::to_double(T(hi - lo));
+  const double h0 = opt.step > 0 ? opt.step : range / 100;
+  // At most range/40 per step, so that a branch diagram has points all along it.
+  const double hmax = std::max(h0, range / 40), hmin = h0 * 1e-4;
+  std::vector<BranchPoint<T>> side[2];
+  long accepted = 1;
+  for (int d : {-1, 1}) {
+    std::vector<BranchPoint<T>>& pts = side[d > 0];
+    const T end = d > 0 ? hi : lo;
+    BranchEnd<T>& e = d > 0 ? br.high : br.low;
+    BranchPoint<T> cur = start;
+    std::optional<BranchPoint<T>> prev;
+    double h = h0;
+    for (;;) {
+      if (!c.wide(cur.param, end)) {
+        e.reason = EndReason::range_end;
+        e.param = e.bracket_lo = e.bracket_hi = cur.param;
+        e.detail = "the range ends";
+        break;
+      }
+      // Half of the points for each direction (the high one also gets what the low one left).
+      const long budget = d < 0 ? 1 + (opt.max_points - 1) / 2 : opt.max_points;
+      if (accepted >= budget) {
+        e.reason = EndReason::max_points;
+        e.param = e.bracket_lo = e.bracket_hi = cur.param;
+        e.detail = "the number of points reaches --max-points";
+        break;
+      }
+      T t = cur.param + from_double<T>(d * h, m.bits);
+      if (d > 0 ? !(t < end) : !(end < t)) t = end;
+      Trial<T> tr = c.correct(t, cur, c.predict(cur, prev ? &*prev : nullptr, t));
+      if (tr.good) {
+        BranchPoint<T> next = std::move(*tr.point);
+        std::vector<Bifurcation<T>> found;
+        c.smooth_events(cur, next, found);
+        br.bifurcations.insert(br.bifurcations.end(), found.begin(), found.end());
+        const bool easy = next.orbit.iterations <= 3;
+        prev = std::move(cur);
+        cur = std::move(next);
+        pts.push_back(cur);
+        ++accepted;
+        if (easy) h = std::min(h * 1.5, hmax);
+        continue;
+      }
+      h /= 2;
+      if (h < hmin) {
+        e = c.locate_end(cur, prev, t, d, start);
+        break;
+      }
+    }
+  }
+  std::reverse(side[0].begin(), side[0].end());
+  br.points = std::move(side[0]);
+  br.start = br.points.size();
+  br.points.push_back(start);
+  br.points.insert(br.points.end(), side[1].begin(), side[1].end());
+  std::sort(br.bifurcations.begin(), br.bifurcations.end(),
+            [](const Bifurcation<T>& x, const Bifurcation<T>& y) { return x.param < y.param; });
+  br.corrector_runs = c.runs;
+  return br;
+}
+
+#define BOUNCER_CONTINUATION_INSTANTIATE(T)                                                                  \
+  template Model<T> with_parameter<T>(const Model<T>&, Parameter, const T&);                              \
+  template const T& parameter_of<T>(const Model<T>&, Parameter);                                          \
+  template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
+                                        const T&, const ContinuationOptions&);                            \
+  template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);
+BOUNCER_CONTINUATION_INSTANTIATE(double)
+BOUNCER_CONTINUATION_INSTANTIATE(long double)
+BOUNCER_CONTINUATION_INSTANTIATE(Quad)
+BOUNCER_CONTINUATION_INSTANTIATE(Mpfr)
+#undef BOUNCER_CONTINUATION_INSTANTIATE
+
+}  // namespace bouncer

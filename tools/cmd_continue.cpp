@@ -1,0 +1,435 @@
+// bouncer continue: follow a period-q orbit (Newton) in a, eps or c in both directions from
+// the guess's parameter value, locate where the branch ends (border collision, grazing,
+// touchdown, sticking threshold, fold) and the smooth bifurcations on the way (period
+// doubling, Neimark-Sacker), and classify what the map does just beyond each end.
+// Outputs: PREFIX.csv (one row per branch point), PREFIX.json (branch summary), PREFIX.png
+// (branch diagram); without --out a text summary, or the JSON summary with --json.
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <tuple>
+
+#include "analysis_common.hpp"
+#include "bouncer/analysis/continuation.hpp"
+#include "commands.hpp"
+#include "continue_certify.hpp"
+#include "picture_common.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+const std::set<std::string>& continue_keys() {
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k = model_keys();
+    k.insert({"period", "guess", "vary", "range", "precision", "step", "max-points", "max-iter", "beyond", "show",
+              "transient", "steps", "max-period", "out", "certify"});
+    return k;
+  }();
+  return keys;
+}
+
+struct ContinueRequest {
+  ModelSpec model;
+  Parameter vary = Parameter::a;
+  std::string vary_name;
+  Decimal lo, hi;
+  long period = 0;
+  InitialCondition guess;
+  Precision precision;
+  ContinuationOptions opt;
+  std::string show = "v";
+  std::optional<std::string> out;
+  bool certify = false;
+};
+
+ContinueRequest continue_request(const Options& given) {
+  ContinueRequest r;
+  r.vary_name = given.get_or("vary", "a");
+  if (r.vary_name != "a" && r.vary_name != "eps" && r.vary_name != "c")
+    throw InputError("vary", "must be a, eps or c (got '" + r.vary_name + "')");
+  r.vary = r.vary_name == "a" ? Parameter::a : r.vary_name == "eps" ? Parameter::eps : Parameter::c;
+  if (!given.has("range")) throw InputError("range", "is required (LO:HI, the interval of " + r.vary_name + ")");
+  if (!given.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
+  if (!given.has("guess")) throw InputError("guess", "is required (theta,v of a point near the period-q orbit)");
+  // The varied parameter must belong to the model (checked before the model is built, so
+  // that the message names --vary rather than the parameter filled in below).
+  const Law law = parse_law("model", given.get("model"));
+  if (r.vary == Parameter::eps && law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
+  if (r.vary == Parameter::c && law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
+  Options o = given;
+  // The varied parameter starts at the range's low end unless given.
+  if (!o.has(r.vary_name)) {
+    const std::string range = o.get("range");
+    o.set(r.vary_name, range.substr(0, range.find(':')));
+  }
+  r.model = model_from(o);
+  std::tie(r.lo, r.hi) = parse_range("range", o.get("range"));
+  for (const Decimal& end : {r.lo, r.hi}) {
+    ModelSpec m = r.model;
+    (r.vary == Parameter::a ? m.a : r.vary == Parameter::eps ? m.eps : m.c) = end;
+    try {
+      validate(m);
+    } catch (const InputError& e) {
+      throw InputError("range", std::string("end ") + end.text() + " is outside the model's range (" + e.what() + ")");
+    }
+  }
+  const Decimal& start = r.vary == Parameter::a ? r.model.a : r.vary == Parameter::eps ? r.model.eps : r.model.c;
+  if (start < r.lo || r.hi < start)
+    throw InputError(r.vary_name, "the start value " + start.text() + " must lie in the range [" + r.lo.text() + ", " +
+                                      r.hi.text() + "]");
+  r.period = integer_from(o, "period", 1, 100, 0);
+  const auto& g = o.values.at("guess");
+  if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
+  r.guess = InitialCondition{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
+  validate(r.model, r.guess, "guess", "guess");
+  r.precision = analysis_precision(o, "continue");
+  if (o.has("step")) {
+    const Decimal s = parse_decimal("step", o.get("step"));
+    const double range = r.hi.approx() - r.lo.approx();
+    if (!(s.approx() > 0) || s.approx() > range)
+      throw InputError("step", "must be a decimal in (0, HI - LO] = (0, " + std::to_string(range) + "] (got " + s.text() + ")");
+    r.opt.step = s.approx();
+  }
+  r.opt.max_points = integer_from(o, "max-points", 2, 100000, 2000);
+  r.opt.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 30);
+  if (o.has("beyond")) {
+    const Decimal b = parse_decimal("beyond", o.get("beyond"));
+    if (!(b.approx() > 0) || b.approx() > 0.1)
+      throw InputError("beyond", "must be a decimal in (0, 0.1] (relative distance past a*; got " + b.text() + ")");
+    r.opt.beyond = b.approx();
+  }
+  r.opt.classify = classify_options_from(o);
+  r.show = o.get_or("show", "v");
+  if (r.show != "theta" && r.show != "v") throw InputError("show", "must be theta or v (got '" + r.show + "')");
+  const std::string certify = o.get_or("certify", "false");
+  if (certify != "true" && certify != "false") throw InputError("certify", "must be true or false");
+  r.certify = certify == "true";
+  if (o.has("out")) {
+    r.out = o.get("out");
+    if (r.out->empty()) throw InputError("out", "must be a file name prefix");
+    const auto parent = std::filesystem::path(*r.out).parent_path();
+    if (!parent.empty() && !std::filesystem::is_directory(parent))
+      throw InputError("out", "directory '" + parent.string() + "' does not exist");
+  }
+  return r;
+}
+
+std::string num(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  return ScalarTraits<double>::to_string(x);
+}
+
+// What the map does beyond an end, in words.
+std::string class_words(const Classification& c) {
+  std::ostringstream s;
+  switch (c.cls) {
+    case OrbitClass::fixed: s << "a fixed point"; break;
+    case OrbitClass::periodic: s << "a periodic orbit of period " << c.period; break;
+    case OrbitClass::sticking: s << "a sticking solution (sticking period " << c.period << ")"; break;
+    case OrbitClass::quasiperiodic: s << "a quasiperiodic orbit"; break;
+    case OrbitClass::chaotic: s << "a chaotic attractor (lambda " << std::setprecision(3) << c.lambda << ")"; break;
+    case OrbitClass::unbounded: s << "unbounded growth (Fermi acceleration)"; break;
+    case OrbitClass::effective_sticking: s << "effective sticking (chatter to the wall's velocity)"; break;
+    case OrbitClass::undecided: s << "an undecided orbit (" << c.evidence << ")"; break;
+  }
+  return s.str();
+}
+
+std::string cause_words(EndReason r, int margin) {
+  switch (r) {
+    case EndReason::border:
+      switch (static_cast<Margin>(margin)) {
+        case Margin::knot: return "a border collision";
+        case Margin::clearance: return "a grazing";
+        case Margin::speed: return "a touchdown";
+        case Margin::sticking: return "the sticking threshold";
+      }
+      return "a border collision";
+    case EndReason::fold: return "a fold";
+    case EndReason::event_change: return "a change of the event sequence";
+    case EndReason::period_collapse: return "a period collapse";
+    case EndReason::lost: return "loss of the corrector";
+    default: return "";
+  }
+}
+
+template <class T>
+std::string sentence(const Branch<T>& b, const BranchEnd<T>& e, const std::string& par) {
+  using Tr = ScalarTraits<T>;
+  const std::string q = "period " + std::to_string(b.period);
+  if (e.reason == EndReason::range_end) return q + " reaches the range end " + par + " = " + Tr::to_string(e.param);
+  if (e.reason == EndReason::max_points) return q + " stops at " + par + " = " + Tr::to_string(e.param) + " (--max-points)";
+  std::string s = q + " ends at " + par + "* = " + Tr::to_string(e.param) + " by " + cause_words(e.reason, e.margin) + " (" +
+                  e.detail + ")";
+  if (e.beyond_done) {
+    s += "; beyond it the orbit goes to " + class_words(e.beyond);
+    if (!e.beyond_orbit.empty())
+      s += "; Newton finds a period-" + std::to_string(b.period) + " orbit there with events " + e.beyond_orbit +
+           (e.beyond_orbit_period != b.period ? " (minimal period " + std::to_string(e.beyond_orbit_period) + ")" : "");
+  } else if (!e.beyond_note.empty()) {
+    s += "; " + e.beyond_note;
+  }
+  return s;
+}
+
+template <class T>
+json end_json(const Branch<T>& b, const BranchEnd<T>& e, const std::string& par, const Wall<T>& wall) {
+  using Tr = ScalarTraits<T>;
+  json j;
+  j["reason"] = name(e.reason);
+  j["param"] = Tr::to_string(e.param);
+  j["bracket"] = {Tr::to_string(e.bracket_lo), Tr::to_string(e.bracket_hi)};
+  j["margin"] = e.margin >= 0 ? json(name(static_cast<Margin>(e.margin))) : json(nullptr);
+  j["impact"] = e.impact >= 0 ? json(e.impact + 1) : json(nullptr);
+  j["knot"] = e.knot >= 0 ? json(wall.knot_exact[e.knot].get_str()) : json(nullptr);
+  j["detail"] = e.detail;
+  if (e.beyond_done) {
+    json by;
+    by["param"] = Tr::to_string(e.beyond_param);
+    by["class"] = name(e.beyond.cls);
+    by["period"] = e.beyond.period;
+    by["lambda"] = json_number(e.beyond.lambda);
+    by["evidence"] = e.beyond.evidence;
+    by["newton_orbit_events"] = e.beyond_orbit;
+    by["newton_orbit_minimal_period"] = e.beyond_orbit_period;
+    j["beyond"] = by;
+  } else {
+    j["beyond"] = nullptr;
+    if (!e.beyond_note.empty()) j["beyond_note"] = e.beyond_note;
+  }
+  j["sentence"] = sentence(b, e, par);
+  return j;
+}
+
+template <class T>
+int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json) {
+  using Tr = ScalarTraits<T>;
+  const long bits = r.precision.bits;
+  const Model<T> m = make_model<T>(r.model, bits);
+  const T lo = Tr::from_decimal(r.lo.text(), bits), hi = Tr::from_decimal(r.hi.text(), bits);
+  const Branch<T> b = continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), lo, hi, r.opt);
+  const std::string& par = r.vary_name;
+  if (!b.started) throw InputError("guess", b.note);
+
+  // CSV: one row per branch point.
+  std::ostringstream csv;
+  csv << par << ",stability,mu1_re,mu1_im,mu1_abs,mu2_re,mu2_im,mu2_abs,events";
+  for (int k = 0; k < kMargins; ++k) csv << ',' << name(static_cast<Margin>(k)) << ',' << name(static_cast<Margin>(k)) << "_impact";
+  csv << ",residual";
+  for (long i = 0; i < r.period; ++i) csv << ",theta_" << i << ",v_" << i;
+  csv << "\n";
+  for (const BranchPoint<T>& p : b.points) {
+    const auto& mu = p.orbit.multipliers;
+    csv << Tr::to_string(p.param) << ',' << p.stability;
+    for (int i = 0; i < 2; ++i) csv << ',' << Tr::to_string(mu.re[i]) << ',' << Tr::to_string(mu.im[i]) << ',' << num(mu.modulus(i));
+    csv << ',' << event_text(p.events);
+    for (int k = 0; k < kMargins; ++k) {
+      csv << ',' << num(p.min_margin[k]) << ',';
+      if (p.min_impact[k] >= 0) csv << p.min_impact[k] + 1;
+    }
+    csv << ',' << num(p.orbit.residual);
+    for (const State<T>& s : p.orbit.points) csv << ',' << Tr::to_string(s.theta) << ',' << Tr::to_string(s.v);
+    csv << "\n";
+  }
+
+  // JSON summary.
+  const BranchPoint<T>& s0 = b.points[b.start];
+  json sum;
+  sum["command"] = "continue";
+  sum["model"] = name(r.model.law);
+  sum["vary"] = par;
+  sum["period"] = r.period;
+  sum["range"] = {r.lo.text(), r.hi.text()};
+  sum["precision"] = r.precision.text();
+  json start;
+  start["param"] = Tr::to_string(s0.param);
+  json pts = json::array();
+  for (const State<T>& s : s0.orbit.points) pts.push_back({Tr::to_string(s.theta), Tr::to_string(s.v)});
+  start["points"] = pts;
+  start["events"] = event_text(s0.events);
+  start["stability"] = s0.stability;
+  start["multiplier_moduli"] = {json_number(s0.orbit.multipliers.modulus(0)), json_number(s0.orbit.multipliers.modulus(1))};
+  sum["start"] = start;
+  sum["points"] = b.points.size();
+  sum["param_min"] = Tr::to_string(b.points.front().param);
+  sum["param_max"] = Tr::to_string(b.points.back().param);
+  sum["corrector_runs"] = b.corrector_runs;
+  json low = end_json(b, b.low, par, m.wall), high = end_json(b, b.high, par, m.wall);
+  if (r.certify) {
+    // Krawczyk over an interval of width 1e-6 max(1, |a*|) on the branch side of each border
+    // end: a certified run of it proves the branch reaches at least its inner end.
+    for (const auto& [ej, e, high] : {std::tuple<json*, const BranchEnd<T>*, bool>{&low, &b.low, false},
+                                      std::tuple<json*, const BranchEnd<T>*, bool>{&high, &b.high, true}}) {
+      if (e->reason != EndReason::border) continue;
+      const T& g = high ? e->bracket_lo : e->bracket_hi;
+      const T w = Tr::from_decimal(num(std::max(1.0, std::fabs(Tr::to_double(g))) * 1e-6), bits);
+      const T far = high ? T(g - w) : T(g + w);
+      EndToCertify c;
+      c.model = r.model;
+      c.vary = r.vary;
+      c.period = r.period;
+      c.theta = Tr::to_string(e->last_point.theta);
+      c.v = Tr::to_string(e->last_point.v);
+      c.lo = Tr::to_string(high ? far : g);
+      c.hi = Tr::to_string(high ? g : far);
+      c.high_end = high;
+      json cj = certify_end(c);
+      const bool ok = !cj["certified_to"].is_null();
+      cj["statement"] = ok ? "certified (Krawczyk): the period-" + std::to_string(r.period) + " orbit exists for every " + par +
+                                 " in [" + cj["certified_range"][0].get<std::string>() + ", " +
+                                 cj["certified_range"][1].get<std::string>() + "], so " + par + "* " + (high ? ">= " : "<= ") +
+                                 cj["certified_to"].get<std::string>() + "; the other side of the bracket is numerical only"
+                           : "nothing certified next to " + par + "*";
+      (*ej)["certified"] = cj;
+    }
+  }
+  low["events_at_end"] = event_text(b.points.front().events);
+  high["events_at_end"] = event_text(b.points.back().events);
+  sum["low"] = low;
+  sum["high"] = high;
+  json bif = json::array();
+  for (const Bifurcation<T>& x : b.bifurcations)
+    bif.push_back({{"kind", name(x.kind)}, {"param", Tr::to_string(x.param)},
+                   {"bracket", {Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi)}}});
+  sum["bifurcations"] = bif;
+
+  json doc;
+  doc["provenance"] = json::parse(prov.as_json());
+  doc["summary"] = sum;
+
+  // Text summary.
+  std::ostringstream text;
+  text << prov.as_comment_lines();
+  text << "period " << r.period << " branch (" << name(r.model.law) << " model) in " << par << ", started at " << par
+       << " = " << Tr::to_string(s0.param) << " (" << s0.stability << ", events " << event_text(s0.events) << "): "
+       << b.points.size() << " points, " << par << " in [" << Tr::to_string(b.points.front().param) << ", "
+       << Tr::to_string(b.points.back().param) << "]\n";
+  text << "low end:  " << low["sentence"].get<std::string>() << "\n";
+  text << "high end: " << high["sentence"].get<std::string>() << "\n";
+  for (const json* e : {&low, &high})
+    if (e->contains("certified")) text << (e == &low ? "low end " : "high end ") << (*e)["certified"]["statement"].get<std::string>() << "\n";
+  for (const Bifurcation<T>& x : b.bifurcations)
+    text << name(x.kind) << " at " << par << "* = " << Tr::to_string(x.param) << "\n";
+
+  if (r.out) {
+    write_atomically(*r.out + ".csv", [&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); });
+    // Branch diagram: the shown coordinate of every orbit point against the parameter.
+    Figure fig;
+    const bool show_theta = r.show == "theta";
+    Series st{"stable", {}, {}, Rgb{33, 102, 172}, false, true, 2};
+    Series un{"unstable", {}, {}, Rgb{230, 97, 1}, false, true, 2};
+    Series mg{"marginal", {}, {}, Rgb{150, 150, 150}, false, true, 1};
+    double y0 = show_theta ? 0 : INFINITY, y1 = show_theta ? 1 : -INFINITY;
+    for (const BranchPoint<T>& p : b.points) {
+      Series& s = p.stability == "stable" ? st : p.stability == "unstable" ? un : mg;
+      for (const State<T>& x : p.orbit.points) {
+        const double y = Tr::to_double(show_theta ? x.theta : x.v);
+        s.x.push_back(Tr::to_double(p.param));
+        s.y.push_back(y);
+        if (!show_theta) { y0 = std::min(y0, y); y1 = std::max(y1, y); }
+      }
+    }
+    if (!show_theta) {
+      const double pad = std::max(1e-6, (y1 - y0) * 0.06);
+      y0 -= pad;
+      y1 += pad;
+    }
+    for (Series* s : {&st, &un, &mg})
+      if (!s->x.empty()) fig.series.push_back(*s);
+    auto vline = [&](const T& at, const std::string& label, Rgb colour) {
+      const double x = Tr::to_double(at);
+      fig.series.push_back(Series{label, {x, x}, {y0, y1}, colour, true, false, 0});
+    };
+    auto short_num = [](const T& x) {
+      std::ostringstream s;
+      s << std::setprecision(8) << Tr::to_double(x);
+      return s.str();
+    };
+    // Legend labels short enough for one line: the cause and the impact.
+    auto end_label = [&](const BranchEnd<T>& e) {
+      const std::string i = std::to_string(e.impact + 1);
+      const std::string knot = e.knot >= 0 ? m.wall.knot_exact[e.knot].get_str() : "";
+      std::string what = cause_words(e.reason, e.margin);
+      if (e.reason == EndReason::border) {
+        switch (static_cast<Margin>(e.margin)) {
+          case Margin::knot: what = "border collision, impact " + i + " at θ = " + knot; break;
+          case Margin::clearance: what = "grazing, flight " + i + " at θ = " + knot; break;
+          case Margin::speed: what = "touchdown, impact " + i; break;
+          case Margin::sticking: what = "sticking threshold, impact " + i; break;
+        }
+      }
+      return par + "* = " + short_num(e.param) + ": " + what;
+    };
+    for (const BranchEnd<T>* e : {&b.low, &b.high})
+      if (e->reason != EndReason::range_end && e->reason != EndReason::max_points)
+        vline(e->param, end_label(*e), e->reason == EndReason::fold ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
+    for (const Bifurcation<T>& x : b.bifurcations)
+      vline(x.param, par + "* = " + short_num(x.param) + ": " +
+                         (x.kind == SmoothKind::fold ? "fold (+1)" : x.kind == SmoothKind::period_doubling ? "period doubling (-1)" : "Neimark-Sacker"),
+            Rgb{27, 120, 55});
+    fig.x_min = r.lo.approx();
+    fig.x_max = r.hi.approx();
+    fig.y_min = y0;
+    fig.y_max = y1;
+    fig.legend_below = true;
+    fig.title = "Period-" + std::to_string(r.period) + " branch, " + std::string(name(r.model.law)) + " model";
+    std::string fixed;
+    if (r.vary != Parameter::a) fixed += "a = " + r.model.a.text() + ", ";
+    if (r.model.law == Law::constant && r.vary != Parameter::eps) fixed += "ε = " + r.model.eps.text() + ", ";
+    if (r.model.law == Law::veldep && r.vary != Parameter::c) fixed += "c = " + r.model.c.text() + ", ";
+    fig.subtitle = fixed + "started at " + par + " = " + short_num(s0.param) + "; " + std::to_string(b.points.size()) +
+                   " points, " + r.precision.text();
+    fig.xlabel = r.vary == Parameter::eps ? "ε" : par;
+    fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
+    fig.metadata = png_metadata(prov, fig.title);
+    write_png(*r.out + ".png", fig);
+    write_atomically(*r.out + ".json", [&](std::ostream& f) { f << doc.dump(2) << "\n"; });
+  }
+  if (print_json) std::cout << doc.dump(2) << "\n";
+  else std::cout << text.str();
+  return 0;
+}
+
+}  // namespace
+
+Command add_continue(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand("continue", "Continue a period-q orbit in a, eps or c; locate where its branch ends");
+  auto opts = std::make_shared<OptionSet>(sub);
+  auto scene = std::make_shared<std::string>();
+  auto json_flag = std::make_shared<bool>(false);
+  auto certify = std::make_shared<bool>(false);
+  sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
+  add_model_options(*opts);
+  opts->add("period", "Period q, integer in [1, 100] (required)");
+  opts->add_list("guess", "Starting point theta,v near the orbit at the start value (required)");
+  opts->add("vary", "Parameter to continue in: a (default) | eps (constant model) | c (veldep model)");
+  opts->add("range", "Interval LO:HI of the parameter (required); the start is the model's value (default LO)");
+  opts->add("precision", "double (default) | long | quad | mpfr:BITS (16 <= BITS <= 1048576)");
+  opts->add("step", "First continuation step, decimal in (0, HI - LO] (default (HI - LO)/100)");
+  opts->add("max-points", "Most branch points, both directions together, integer in [2, 100000] (default 2000)");
+  opts->add("max-iter", "Newton iterations per corrector run, integer in [1, 10000] (default 30)");
+  opts->add("beyond", "Classify at a* + BEYOND*max(1,|a*|) past each end, decimal in (0, 0.1] (default 1e-6)");
+  opts->add("show", "Picture: v (default) or theta of every orbit point against the parameter");
+  add_classify_options(*opts);
+  opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json");
+  sub->add_flag("--json", *json_flag, "Print the JSON summary on stdout");
+  sub->add_flag("--certify", *certify,
+                 "Krawczyk on the branch side of each border end: a certified one-sided bound on a*");
+  auto run = [opts, scene, json_flag, certify](const std::string& argv_text) {
+    Options cl = opts->collected();
+    if (*certify) cl.set("certify", "true");
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), cl);
+    const ContinueRequest req = continue_request(o);
+    const Provenance prov = provenance_for("continue", o, req.precision, argv_text);
+    return with_point_scalar(req.precision, [&](auto tag) {
+      return run_typed<typename decltype(tag)::type>(req, prov, *json_flag);
+    });
+  };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

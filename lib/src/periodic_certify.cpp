@@ -16,31 +16,6 @@
 
 namespace bouncer {
 
-const char* name(Parameter p) {
-  switch (p) {
-    case Parameter::a: return "a";
-    case Parameter::eps: return "eps";
-    case Parameter::c: return "c";
-  }
-  return "?";
-}
-
-Parameter parse_parameter(const std::string& field, const std::string& text) {
-  if (text == "a") return Parameter::a;
-  if (text == "eps") return Parameter::eps;
-  if (text == "c") return Parameter::c;
-  throw InputError(field, "must be a, eps or c (got '" + text + "')");
-}
-
-const Decimal& parameter_of(const ModelSpec& m, Parameter p) {
-  return p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c;
-}
-
-ModelSpec with_parameter(ModelSpec m, Parameter p, const Decimal& value) {
-  (p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c) = value;
-  return m;
-}
-
 FamilyMode parse_family_mode(const std::string& field, const std::string& text) {
   if (text == "auto") return FamilyMode::automatic;
   if (text == "off") return FamilyMode::isolated;

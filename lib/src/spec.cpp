@@ -144,4 +144,29 @@ void validate(const ModelSpec& m, const InitialCondition& ic, const std::string&
     throw InputError(v_field, "must be <= 1e15 (got " + ic.v.text() + ")");
 }
 
+const char* name(Parameter p) {
+  switch (p) {
+    case Parameter::a: return "a";
+    case Parameter::eps: return "eps";
+    case Parameter::c: return "c";
+  }
+  return "?";
+}
+
+Parameter parse_parameter(const std::string& field, const std::string& text) {
+  if (text == "a") return Parameter::a;
+  if (text == "eps") return Parameter::eps;
+  if (text == "c") return Parameter::c;
+  throw InputError(field, "must be a, eps or c (got '" + text + "')");
+}
+
+const Decimal& parameter_of(const ModelSpec& m, Parameter p) {
+  return p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c;
+}
+
+ModelSpec with_parameter(ModelSpec m, Parameter p, const Decimal& value) {
+  (p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c) = value;
+  return m;
+}
+
 }  // namespace bouncer

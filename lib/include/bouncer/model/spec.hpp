@@ -28,10 +28,6 @@ enum class DownwardSticking { paper, impact };
 
 const char* name(Law);
 
-// A parameter of the model that a family is followed or certified in (continuation,
-// certify-periodic). name(): "a", "eps", "c" (lib/src/periodic_certify.cpp).
-enum class Parameter { a, eps, c };
-const char* name(Parameter p);
 const char* name(DownwardSticking);
 
 // A continuous periodic piecewise-linear wall: knots 0 = s_0 < s_1 < ... < s_{n-1} < 1 with
@@ -53,6 +49,15 @@ struct ModelSpec {
   // wall turns (bound in README "Velocity-dependent collapse"), as constant eps does.
   bool veldep_collapse = false;
 };
+
+// A parameter of the model that a family is followed or certified in (continuation,
+// certify-periodic): its name ("a", "eps", "c"), its exact decimal in a spec, and the spec
+// with it replaced.
+enum class Parameter { a, eps, c };
+const char* name(Parameter p);
+Parameter parse_parameter(const std::string& field, const std::string& text);
+const Decimal& parameter_of(const ModelSpec& m, Parameter p);
+ModelSpec with_parameter(ModelSpec m, Parameter p, const Decimal& value);
 
 struct InitialCondition {
   Decimal theta = Decimal::from_int(0);

@@ -48,11 +48,7 @@
 
 namespace bouncer {
 
-// Parameter (a | eps | c) and name(Parameter): model/spec.hpp (shared with continuation).
-Parameter parse_parameter(const std::string& field, const std::string& text);
-// The parameter's exact decimal in the spec, and the spec with it replaced.
-const Decimal& parameter_of(const ModelSpec& m, Parameter p);
-ModelSpec with_parameter(ModelSpec m, Parameter p, const Decimal& value);
+// Parameter (a | eps | c), its parsing and parameter_of / with_parameter: model/spec.hpp.
 
 enum class FamilyMode { automatic, isolated, family };
 FamilyMode parse_family_mode(const std::string& field, const std::string& text);

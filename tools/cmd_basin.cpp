@@ -76,7 +76,8 @@ std::string attractor_label(const std::string& cls, long period) {
   if (cls == "periodic") return "period " + std::to_string(period);
   if (cls == "sticking") return "sticking, k = " + std::to_string(period);
   if (cls == "effective_sticking") return "effective sticking";
-  if (cls == "transient_chaos") return period ? "transient chaos, settles with period " + std::to_string(period) : std::string("transient chaos");
+  if (cls == "transient_chaos")
+    return period ? "transient chaos, settles with period " + std::to_string(period) : std::string("transient chaos, settles (no period)");
   if (cls == "outside") return "outside (v < wall)";
   return cls;
 }
@@ -100,11 +101,12 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
     return x.second != y.second ? x.second > y.second : x.first < y.first;
   });
   std::map<std::pair<std::string, long>, Rgb> color;
-  int periodic_rank = 0, sticking_rank = 0;
+  int periodic_rank = 0, sticking_rank = 0, transient_rank = 0;
   for (const auto& [k, n] : order) {
-    color[k] = attractor_color(k.first, periodic_rank, sticking_rank);
+    color[k] = attractor_color(k.first, periodic_rank, k.first == "transient_chaos" ? transient_rank : sticking_rank);
     if (k.first == "periodic") ++periodic_rank;
     if (k.first == "sticking") ++sticking_rank;
+    if (k.first == "transient_chaos") ++transient_rank;
   }
   ImageFigure fig;
   Raster& ras = fig.raster;

@@ -266,16 +266,21 @@ inline Precision point_precision(const Options& o) {
 }
 
 // The colour of an attractor type (basin, scan legends, exponent curves): black = fixed
-// points and red = sticking as in the paper; `rank` orders the periodic types by their share.
-inline Rgb attractor_color(const std::string& cls, int rank, int sticking_rank) {
+// points and red = sticking as in the paper; `rank` orders the periodic types by their share,
+// `sub_rank` the sticking periods (red shades) and the periods transient chaos settles on
+// (pale green shades).
+inline Rgb attractor_color(const std::string& cls, int rank, int sub_rank) {
   if (cls == "fixed") return Rgb{0, 0, 0};
   if (cls == "sticking") {
     static const Rgb reds[] = {{215, 25, 28}, {150, 10, 20}, {250, 110, 100}, {100, 0, 30}, {240, 60, 120}, {190, 70, 40}};
-    return reds[sticking_rank % 6];
+    return reds[sub_rank % 6];
   }
   if (cls == "unbounded") return Rgb{30, 70, 210};
   if (cls == "chaotic") return Rgb{0, 150, 40};
-  if (cls == "transient_chaos") return Rgb{150, 215, 110};  // pale green: chaos that settled later
+  if (cls == "transient_chaos") {  // pale greens: chaos that settled later
+    static const Rgb greens[] = {{150, 215, 110}, {200, 240, 160}, {105, 170, 75}, {175, 200, 60}};
+    return greens[sub_rank % 4];
+  }
   if (cls == "quasiperiodic") return Rgb{150, 60, 200};
   if (cls == "effective_sticking") return Rgb{255, 170, 160};
   if (cls == "undecided") return Rgb{150, 150, 150};

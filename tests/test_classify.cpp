@@ -227,6 +227,28 @@ TEST(Classify, TransientChaosIsRecheckedAndSettles) {
   const Classification old = run(m, 0.5, 4, off);
   EXPECT_EQ(old.cls, OrbitClass::chaotic) << old.evidence;
   EXPECT_NE(old.evidence.find("recheck off"), std::string::npos) << old.evidence;
+
+  // From (0.0375, 4.6) the window's exponent is within its error of 0 (quasiperiodic by the
+  // window alone); in this dissipative map that is re-checked too, and the orbit is on the
+  // same 2-cycle from a step found here directly.
+  std::vector<State<double>> o2{{0.0375, 4.6}};
+  for (int n = 1; n <= 120000; ++n) o2.push_back(map.step(o2.back()).next);
+  long S2 = 0;
+  for (long n = 119990; n >= 5500; --n)
+    if (dist(o2[n], o2[n + 2]) > 1e-9) { S2 = n + 1; break; }
+  ASSERT_GT(S2, 5500);
+  auto on_cycle = [&](const State<double>& x) {
+    double d = 1;
+    for (const State<Mpfr>& p : po.points)
+      d = std::min(d, dist(x, State<double>{ScalarTraits<Mpfr>::to_double(p.theta), ScalarTraits<Mpfr>::to_double(p.v)}));
+    return d;
+  };
+  EXPECT_LT(on_cycle(o2[119000]), 1e-9);  // the same Newton 2-cycle as from the release state
+  EXPECT_EQ(run(m, 0.0375, 4.6, off).cls, OrbitClass::quasiperiodic);
+  const Classification q = run(m, 0.0375, 4.6);
+  EXPECT_EQ(q.cls, OrbitClass::transient_chaos) << q.evidence;
+  EXPECT_EQ(q.period, 2);
+  EXPECT_EQ(q.settled_at, S2) << q.evidence;
 }
 
 TEST(Classify, StartOnAnUnstableOrbitIsPeriodic) {

@@ -24,11 +24,15 @@
 //      unstable period-q orbit                                 -> fixed / periodic
 //      (rounding would carry a numerical orbit off it, and a window much later would
 //      report whatever the orbit falls to instead)
-//   7. a `chaotic` verdict is re-checked after R = recheck_factor x max(transient, steps)
-//      further steps, with the same rules: settled on fixed/periodic/sticking/effective
-//      sticking/quasiperiodic -> transient_chaos (with the step it settled at); still
-//      chaotic -> chaotic; anything else -> undecided. A window of 500 steps after 5000
-//      can catch a long chaotic transient, so the label must not depend on that window.
+//   7. a `chaotic` verdict (and in a dissipative model a `quasiperiodic` one: a chaotic
+//      transient whose exponent is within its error of 0) is re-checked after
+//      R = recheck_factor x max(transient, steps) further steps, with the same rules:
+//      settled on fixed/periodic/sticking/effective sticking (or, from chaotic,
+//      quasiperiodic) -> transient_chaos (with the step it settled at); still aperiodic ->
+//      the later label; growing -> unbounded; anything else -> undecided. In a conservative
+//      map (elastic, eps = 1) nothing settles: a quiet later window keeps `chaotic`. A
+//      window of 500 steps after 5000 can catch a long chaotic transient, so the label
+//      must not depend on that window.
 // Every evidence line ends with the windows used: [windows: transient N, steps M, recheck R].
 // For unbounded orbits the growth is described further (accelerator modes vs diffusion):
 // mean dv per step, phase clusters on the circle (the spokes of the polar portrait), and
@@ -443,11 +447,19 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
 
   State<T> last = s;
   Classification c = classify_window(map, s, opt, last);
-  if (c.cls != OrbitClass::chaotic || opt.recheck_factor <= 0) {
+  // A conservative map (elastic, or eps = 1) preserves a measure and has no attractors: a
+  // chaotic orbit cannot settle, and a quiet later window is a sticky episode near an island.
+  // In a dissipative map an invariant circle is rare and a chaotic transient whose exponent
+  // is within its error of 0 is common, so there `quasiperiodic` is re-checked too.
+  const Model<T>& model = map.model();
+  const bool conservative = model.law == Law::elastic ||
+                            (model.law == Law::constant && certainly(ScalarTraits<T>::is_zero(T(model.eps - 1))));
+  const bool quiet = c.cls == OrbitClass::quasiperiodic && !conservative;
+  if ((c.cls != OrbitClass::chaotic && !quiet) || opt.recheck_factor <= 0) {
     c.evidence += windows;
     return c;
   }
-  // 7. Re-check a chaotic verdict much later along the same orbit.
+  // 7. Re-check a chaotic (or dissipative quasiperiodic) verdict much later along the orbit.
   const long W = std::max(4L, opt.steps);
   const long N = std::max(0L, opt.transient) + W;
   const long R = opt.recheck_factor * std::max(opt.transient, opt.steps);
@@ -457,11 +469,13 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
   State<T> later_last = last;
   const Classification later = classify_window(map, last, ro, later_last);
   const std::string first = c.evidence;
-  // A conservative map (elastic, or eps = 1) preserves a measure and has no attractors: a
-  // chaotic orbit cannot settle, and a quiet later window is a sticky episode near an island.
-  const Model<T>& model = map.model();
-  const bool conservative = model.law == Law::elastic ||
-                            (model.law == Law::constant && certainly(ScalarTraits<T>::is_zero(T(model.eps - 1))));
+  if (quiet && (later.cls == OrbitClass::quasiperiodic || later.cls == OrbitClass::chaotic)) {
+    // Aperiodic then and later: the later window's label, the earlier one as evidence.
+    c.cls = later.cls;
+    c.lambda = later.lambda;
+    c.evidence = first + "; " + std::to_string(R) + " steps later: " + name(later.cls) + " (" + later.evidence + ")" + windows;
+    return c;
+  }
   switch (conservative && later.cls != OrbitClass::unbounded ? OrbitClass::chaotic : later.cls) {
     case OrbitClass::unbounded:
       // Bounded-looking chaos in the window, growth later (diffusive Fermi acceleration).

@@ -78,6 +78,16 @@ check classify.transient_chaos '.class + " " + .settled_class + " " + (.period |
 check classify.settled_at '.settled_at > 5500' true "$TMP/c6.json"
 "$BOUNCER" classify --model constant --a 28 --eps 0.96 --theta 0.5 --v 4 --recheck-factor 0 --json >"$TMP/c7.json"
 check classify.recheck_off '.class' chaotic "$TMP/c7.json"
+# basin uses the same rule, point by point (each basin label is classify's at that point),
+# and --recheck-factor 0 brings back the window-only labels there too.
+"$BOUNCER" basin --model constant --a 28 --eps 0.96 --v-range 4:40 --grid 4x3 --quiet >"$TMP/b.csv"
+"$BOUNCER" basin --model constant --a 28 --eps 0.96 --v-range 4:40 --grid 4x3 --recheck-factor 0 --quiet >"$TMP/b0.csv"
+grep -q ',transient_chaos,' "$TMP/b.csv" || fail basin.recheck "no transient_chaos point in the basin"
+grep -q ',transient_chaos,' "$TMP/b0.csv" && fail basin.recheck_off "transient_chaos with --recheck-factor 0"
+while IFS=, read -r theta v cls period; do
+  got=$("$BOUNCER" classify --model constant --a 28 --eps 0.96 --theta "$theta" --v "$v" --json | jq -r '.class + "," + (.period | tostring)')
+  [[ $got == "$cls,$period" ]] || fail basin.same_rule "($theta, $v): basin $cls,$period, classify $got"
+done < <(grep -v '^#' "$TMP/b.csv" | tail -n +2 | grep -E 'transient_chaos|chaotic' | head -4)
 # Accelerator mode: the exact orbit v_n = 8(n + 1), theta = 1/4 of a = 16.
 check classify.accelerator '[.growth_kind, .accelerator_period, .phase_branches] | @text' '["accelerator",1,1]' "$TMP/c3.json"
 # Scene file = command line.

@@ -369,7 +369,7 @@ Command add_lyapunov(CLI::App& app) {
   auto run = [opts, scene, json, flags](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "lyapunov", lyapunov_curve_keys()), opts->collected());
     if (o.has("vary")) return run_lyapunov_curve(o, run_flags_from(o, *flags, argv_text));
-    for (const char* k : {"range", "samples", "ics", "shard", "out", "threads"})
+    for (const char* k : {"range", "samples", "ics", "max-period", "recheck-factor", "shard", "out", "threads"})
       if (o.has(k)) throw InputError(k, "belongs to an exponent curve: give --vary a|eps|c with --range LO:HI");
     if (flags->quiet || flags->keep_tiles) throw InputError("vary", "--quiet/--keep-tiles belong to an exponent curve (--vary)");
     const ModelSpec spec = model_from(o);

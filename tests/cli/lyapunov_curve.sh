@@ -99,6 +99,8 @@ bad steps-0 lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 3 
 bad theta-1 lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 3 --theta 1 --v 6 $O
 bad v-below-wall lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 3 --theta 0.1 --v 3 $O
 bad out-without-vary lyapunov --model veldep --a 27 --c 1000 --theta 0.3 --v 6 $O
+bad recheck-without-vary lyapunov --model veldep --a 27 --c 1000 --theta 0.3 --v 6 --recheck-factor 0 $O
+bad recheck-negative lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 3 --recheck-factor -1 $O
 bad interval lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 3 --precision interval:64 $O
 
 if [[ $failures -gt 0 ]]; then

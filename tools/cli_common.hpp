@@ -99,12 +99,16 @@ inline InitialCondition start_from(const Options& o, const ModelSpec& spec) {
 }
 
 // The classifier's window (classify, basin, scan, lyapunov --vary): one help text, one validation.
-inline void add_classify_options(OptionSet& o) {
-  o.add("transient", "Steps discarded before classifying, integer in [0, 1e10] (default 5000, as the paper)");
-  o.add("steps", "Steps examined by the classifier, integer in [8, 1e9] (default 500, as the paper)");
+// lyapunov --vary has its own transient and steps (the exponent's), hence the split.
+inline void add_classify_period_options(OptionSet& o) {
   o.add("max-period", "Longest period looked for, integer in [1, steps/2] (default 64, or steps/2 if smaller)");
   o.add("recheck-factor", "A chaotic label is re-checked F x max(transient, steps) steps later (settled: transient_chaos); "
                           "integer in [0, 1000], 0 = off (default 20)");
+}
+inline void add_classify_options(OptionSet& o) {
+  o.add("transient", "Steps discarded before classifying, integer in [0, 1e10] (default 5000, as the paper)");
+  o.add("steps", "Steps examined by the classifier, integer in [8, 1e9] (default 500, as the paper)");
+  add_classify_period_options(o);
 }
 inline ClassifyOptions classify_options_from(const Options& o) {
   ClassifyOptions c;

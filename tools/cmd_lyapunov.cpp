@@ -363,6 +363,7 @@ Command add_lyapunov(CLI::App& app) {
   opts->add("samples", "With --vary: number of values K, 1..100000 (default 100)");
   opts->add("ics", "With --vary: starts per value N, 1..1000 (default 1): --theta/--v (default 0.1, wall speed + 2), "
                    "then an R2 low-discrepancy spread in the trapping region");
+  add_classify_period_options(*opts);  // with --vary: the classifier of each row (steps = 500 there)
   auto flags = add_run_options(sub, *opts);
   auto json = std::shared_ptr<bool>(flags, &flags->json);
 

@@ -23,6 +23,14 @@ rows() { grep -v '^#' "$1"; }
 C="lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 7 --ics 2 --theta 0.3 --v 6 --transient 300 --steps 1500"
 "$BOUNCER" $C --threads 1 --quiet --out "$TMP/t1" 2>"$TMP/t1.err" || fail curve.run "exit $? ($(head -c 300 "$TMP/t1.err"))"
 "$BOUNCER" $C --threads 2 --quiet --out "$TMP/t2" || fail curve.run2 "exit $?"
+# The classifier options reach the rows: eps = 0.96, a = 28 from (1/2, 4) is chaotic around
+# step 5000 and on a 2-cycle from step 10155 (test_classify), so the row is transient_chaos
+# with the re-check (20 x 500 steps) and chaotic without it.
+T="lyapunov --model constant --eps 0.96 --vary a --range 28:28.5 --samples 2 --theta 0.5 --v 4 --transient 0 --steps 5000 --quiet"
+"$BOUNCER" $T --out "$TMP/t3" || fail curve.classify_opts "exit $?"
+"$BOUNCER" $T --recheck-factor 0 --out "$TMP/t4" || fail curve.classify_opts "exit $?"
+[[ $(rows "$TMP/t3.csv" | grep '^28,' | cut -d, -f7,8) == "transient_chaos,2" ]] || fail curve.recheck "a = 28: $(rows "$TMP/t3.csv" | grep '^28,')"
+[[ $(rows "$TMP/t4.csv" | grep '^28,' | cut -d, -f7,8) == "chaotic,0" ]] || fail curve.recheck_off "a = 28: $(rows "$TMP/t4.csv" | grep '^28,')"
 for ext in csv png json; do [[ -s $TMP/t1.$ext ]] || fail curve.files "missing t1.$ext"; done
 [[ -e $TMP/t1.tiles ]] && fail curve.files "t1.tiles left behind"
 cmp -s <(rows "$TMP/t1.csv") <(rows "$TMP/t2.csv") || fail curve.threads "CSV differs between 1 and 2 threads"

@@ -176,3 +176,137 @@ TEST(Classify, LongPeriodBeyondMaxPeriod) {
   EXPECT_EQ(o.minimal_period, 103);
   EXPECT_LT(o.multipliers.modulus(0), 1);
 }
+
+namespace {
+
+double dist(const State<double>& x, const State<double>& y) {
+  double dt = std::fabs(x.theta - y.theta);
+  dt = std::min(dt, 1 - dt);
+  return std::max(dt, std::fabs(x.v - y.v) / std::max(1.0, std::fabs(x.v)));
+}
+
+}  // namespace
+
+TEST(Classify, TransientChaosIsRecheckedAndSettles) {
+  // eps = 0.96, a = 28 from the release state (1/2, 4): the paper's window (5000 + 500)
+  // sees a bounded aperiodic orbit with a positive exponent, but the orbit later falls onto
+  // a stable period-2 orbit. Facts checked here by direct iteration, not by classify: no
+  // period <= 64 in the window; period 2 from some step S on; the 2-cycle is a Newton
+  // solution (256 bits) with |mu_1 mu_2| = eps^4 (det J = eps^2 (v0-u0)/(v1-u1) per step).
+  const ModelSpec m = spec(Law::constant, "28", "0.96");
+  const ImpactMap<double> map(make_model<double>(m, 53));
+  std::vector<State<double>> orbit{{0.5, 4}};
+  for (int n = 1; n <= 120000; ++n) orbit.push_back(map.step(orbit.back()).next);
+  for (int q = 1; q <= 64; ++q) {
+    double worst = 0;
+    for (int n = 5250; n + q <= 5500; ++n) worst = std::max(worst, dist(orbit[n], orbit[n + q]));
+    ASSERT_GT(worst, 1e-3) << "the window is periodic with q = " << q;
+  }
+  long S = 0;
+  for (long n = 119990; n >= 5500; --n)
+    if (dist(orbit[n], orbit[n + 2]) > 1e-9) { S = n + 1; break; }
+  ASSERT_GT(S, 5500);
+  ASSERT_LT(S, 100000);
+  const Model<Mpfr> mm = make_model<Mpfr>(m, 256);
+  const PeriodicOrbit<Mpfr> po = find_periodic(
+      mm, 2, State<Mpfr>{ScalarTraits<Mpfr>::from_decimal(std::to_string(orbit[S + 10].theta), 256),
+                         ScalarTraits<Mpfr>::from_decimal(std::to_string(orbit[S + 10].v), 256)});
+  ASSERT_TRUE(po.converged) << po.note;
+  EXPECT_EQ(po.minimal_period, 2);
+  EXPECT_NEAR(po.multipliers.modulus(0) * po.multipliers.modulus(1), std::pow(0.96, 4), 1e-12);
+
+  const Classification c = run(m, 0.5, 4);
+  EXPECT_EQ(c.cls, OrbitClass::transient_chaos) << c.evidence;
+  EXPECT_EQ(c.settled_class, OrbitClass::periodic);
+  EXPECT_EQ(c.period, 2);
+  EXPECT_EQ(c.settled_at, S) << c.evidence;
+  EXPECT_NE(c.evidence.find("recheck 100000"), std::string::npos) << c.evidence;
+  // The re-check off: the old label of the window alone.
+  ClassifyOptions off;
+  off.recheck_factor = 0;
+  const Classification old = run(m, 0.5, 4, off);
+  EXPECT_EQ(old.cls, OrbitClass::chaotic) << old.evidence;
+  EXPECT_NE(old.evidence.find("recheck off"), std::string::npos) << old.evidence;
+
+  // From (0.0375, 4.6) the window's exponent is within its error of 0 (quasiperiodic by the
+  // window alone); in this dissipative map that is re-checked too, and the orbit is on the
+  // same 2-cycle from a step found here directly.
+  std::vector<State<double>> o2{{0.0375, 4.6}};
+  for (int n = 1; n <= 120000; ++n) o2.push_back(map.step(o2.back()).next);
+  long S2 = 0;
+  for (long n = 119990; n >= 5500; --n)
+    if (dist(o2[n], o2[n + 2]) > 1e-9) { S2 = n + 1; break; }
+  ASSERT_GT(S2, 5500);
+  auto on_cycle = [&](const State<double>& x) {
+    double d = 1;
+    for (const State<Mpfr>& p : po.points)
+      d = std::min(d, dist(x, State<double>{ScalarTraits<Mpfr>::to_double(p.theta), ScalarTraits<Mpfr>::to_double(p.v)}));
+    return d;
+  };
+  EXPECT_LT(on_cycle(o2[119000]), 1e-9);  // the same Newton 2-cycle as from the release state
+  EXPECT_EQ(run(m, 0.0375, 4.6, off).cls, OrbitClass::quasiperiodic);
+  const Classification q = run(m, 0.0375, 4.6);
+  EXPECT_EQ(q.cls, OrbitClass::transient_chaos) << q.evidence;
+  EXPECT_EQ(q.period, 2);
+  EXPECT_EQ(q.settled_at, S2) << q.evidence;
+}
+
+TEST(Classify, StartOnAnUnstableOrbitIsPeriodic) {
+  // Unstable orbits found by Newton at 256 bits (an independent code path), rounded to
+  // double: velocity-dependent a = 27, c = 1000, period 2 (inside the chaotic attractor),
+  // and constant eps = 0.96, a = 28, period 3. A start on them is periodic with their
+  // period; a start 1e-7 away is carried off (not periodic).
+  struct Case {
+    ModelSpec m;
+    long q;
+    double theta, v;
+  };
+  for (const Case& k : {Case{spec(Law::veldep, "27"), 2, 0.886, 2.3}, Case{spec(Law::constant, "28", "0.96"), 3, 0.687, -0.597}}) {
+    const Model<Mpfr> mm = make_model<Mpfr>(k.m, 256);
+    const PeriodicOrbit<Mpfr> po = find_periodic(
+        mm, k.q, State<Mpfr>{ScalarTraits<Mpfr>::from_decimal(std::to_string(k.theta), 256),
+                             ScalarTraits<Mpfr>::from_decimal(std::to_string(k.v), 256)});
+    ASSERT_TRUE(po.converged) << po.note;
+    ASSERT_EQ(po.minimal_period, k.q);
+    const double mu = po.multipliers.modulus(0);
+    ASSERT_GT(mu, 1.5);
+    const double th = static_cast<double>(ScalarTraits<Mpfr>::to_double(po.points[0].theta));
+    const double v = static_cast<double>(ScalarTraits<Mpfr>::to_double(po.points[0].v));
+    const Classification c = run(k.m, th, v);
+    EXPECT_EQ(c.cls, OrbitClass::periodic) << c.evidence;
+    EXPECT_EQ(c.period, k.q);
+    EXPECT_NEAR(c.lambda, std::log(mu) / k.q, 1e-6);
+    EXPECT_NE(c.evidence.find("unstable period-" + std::to_string(k.q)), std::string::npos) << c.evidence;
+    const Classification off = run(k.m, th, v + 1e-7);
+    EXPECT_EQ(off.evidence.find("start lies"), std::string::npos) << off.evidence;
+    EXPECT_FALSE(off.cls == OrbitClass::periodic && off.period == k.q) << off.evidence;
+  }
+}
+
+TEST(Classify, AcceleratorModeAndDiffusiveGrowth) {
+  // The exact accelerating orbit of a = 16: theta_n = 1/4, v_n = 8(n + 1) (see
+  // FermiAccelerationIsUnbounded): one branch, phases repeat every step, gain 8 per step.
+  const Classification a = run(spec(Law::elastic, "16"), 0.25, 8);
+  ASSERT_EQ(a.cls, OrbitClass::unbounded) << a.evidence;
+  EXPECT_EQ(a.growth_kind, "accelerator") << a.evidence;
+  EXPECT_EQ(a.accel_period, 1);
+  EXPECT_NEAR(a.accel_gain, 8, 1e-6);
+  EXPECT_NEAR(a.growth_rate, 8, 1e-6);
+  EXPECT_EQ(a.branches, 1);
+  // Elastic a = 19 from (0.8, 5): v grows like sqrt(n) with falls in between. Checked
+  // directly: in the window, for every Q <= 64 some v_{i+Q} < v_i, so no accelerator mode.
+  const ModelSpec m = spec(Law::elastic, "19");
+  const Classification d = run(m, 0.8, 5);
+  ASSERT_EQ(d.cls, OrbitClass::unbounded) << d.evidence;
+  EXPECT_NE(d.growth_kind, "accelerator") << d.evidence;
+  EXPECT_EQ(d.accel_period, 0);
+  EXPECT_LT(d.alpha, 0.7);
+  const ImpactMap<double> map(make_model<double>(m, 53));
+  std::vector<State<double>> w{{0.8, 5}};
+  for (int n = 1; n <= 5500; ++n) w.push_back(map.step(w.back()).next);
+  for (int q = 1; q <= 64; ++q) {
+    bool falls = false;
+    for (int n = 5250; n + q <= 5500 && !falls; ++n) falls = w[n + q].v < w[n].v;
+    EXPECT_TRUE(falls) << "q = " << q;
+  }
+}

@@ -94,11 +94,17 @@ inline InitialCondition start_from(const Options& o, const ModelSpec& spec) {
   return ic;
 }
 
-// The classifier's window (classify, basin, scan): one help text, one validation.
+// The classifier's window (classify, basin, scan, lyapunov --vary): one help text, one validation.
+// lyapunov --vary has its own transient and steps (the exponent's), hence the split.
+inline void add_classify_period_options(OptionSet& o) {
+  o.add("max-period", "Longest period looked for, integer in [1, steps/2] (default 64, or steps/2 if smaller)");
+  o.add("recheck-factor", "A chaotic label is re-checked F x max(transient, steps) steps later (settled: transient_chaos); "
+                          "integer in [0, 1000], 0 = off (default 20)");
+}
 inline void add_classify_options(OptionSet& o) {
   o.add("transient", "Steps discarded before classifying, integer in [0, 1e10] (default 5000, as the paper)");
   o.add("steps", "Steps examined by the classifier, integer in [8, 1e9] (default 500, as the paper)");
-  o.add("max-period", "Longest period looked for, integer in [1, steps/2] (default 64, or steps/2 if smaller)");
+  add_classify_period_options(o);
 }
 inline ClassifyOptions classify_options_from(const Options& o) {
   ClassifyOptions c;
@@ -107,6 +113,7 @@ inline ClassifyOptions classify_options_from(const Options& o) {
   c.max_period = integer_from(o, "max-period", 1, 1000000000LL, std::min<long>(64, c.steps / 2));
   if (c.max_period * 2 > c.steps)
     throw InputError("max-period", "must be at most steps/2 (" + std::to_string(c.steps / 2) + ")");
+  c.recheck_factor = integer_from(o, "recheck-factor", 0, 1000, 20);
   return c;
 }
 

@@ -1,7 +1,7 @@
 // bouncer basin: basins of attraction. Every point of an N x M grid of initial conditions
 // (cell centres of the theta and v ranges) is classified by bouncer::classify (fixed,
-// periodic q, sticking k, quasiperiodic, chaotic, unbounded, effective sticking,
-// undecided) and coloured by its attractor type: class and period. Black = fixed points and
+// periodic q, sticking k, quasiperiodic, chaotic, unbounded, effective sticking, transient
+// chaos, undecided) and coloured by its attractor type: class and period. Black = fixed points and
 // red = sticking, as in the paper's figs. basin1 and basin2; blue = unbounded. Grid
 // points below the wall's velocity are outside the phase space and are marked "outside".
 #include <cmath>
@@ -71,27 +71,13 @@ struct BasinGrid {
   }
 };
 
-// The colour of an attractor type; `rank` orders the periodic types by their share.
-Rgb attractor_color(const std::string& cls, int rank, int sticking_rank) {
-  if (cls == "fixed") return Rgb{0, 0, 0};
-  if (cls == "sticking") {
-    static const Rgb reds[] = {{215, 25, 28}, {150, 10, 20}, {250, 110, 100}, {100, 0, 30}, {240, 60, 120}, {190, 70, 40}};
-    return reds[sticking_rank % 6];
-  }
-  if (cls == "unbounded") return Rgb{30, 70, 210};
-  if (cls == "chaotic") return Rgb{0, 150, 40};
-  if (cls == "quasiperiodic") return Rgb{150, 60, 200};
-  if (cls == "effective_sticking") return Rgb{255, 170, 160};
-  if (cls == "undecided") return Rgb{150, 150, 150};
-  if (cls == "outside") return Rgb{238, 238, 238};
-  return category_color(rank);  // periodic
-}
-
 std::string attractor_label(const std::string& cls, long period) {
   if (cls == "fixed") return "fixed point";
   if (cls == "periodic") return "period " + std::to_string(period);
   if (cls == "sticking") return "sticking, k = " + std::to_string(period);
   if (cls == "effective_sticking") return "effective sticking";
+  if (cls == "transient_chaos")
+    return period ? "transient chaos, settles with period " + std::to_string(period) : std::string("transient chaos, settles (no period)");
   if (cls == "outside") return "outside (v < wall)";
   return cls;
 }
@@ -115,11 +101,12 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
     return x.second != y.second ? x.second > y.second : x.first < y.first;
   });
   std::map<std::pair<std::string, long>, Rgb> color;
-  int periodic_rank = 0, sticking_rank = 0;
+  int periodic_rank = 0, sticking_rank = 0, transient_rank = 0;
   for (const auto& [k, n] : order) {
-    color[k] = attractor_color(k.first, periodic_rank, sticking_rank);
+    color[k] = attractor_color(k.first, periodic_rank, k.first == "transient_chaos" ? transient_rank : sticking_rank);
     if (k.first == "periodic") ++periodic_rank;
     if (k.first == "sticking") ++sticking_rank;
+    if (k.first == "transient_chaos") ++transient_rank;
   }
   ImageFigure fig;
   Raster& ras = fig.raster;
@@ -172,7 +159,7 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
 const std::set<std::string>& basin_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "precision"});
+    k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "recheck-factor", "precision"});
     k.insert(run_keys().begin(), run_keys().end());
     return k;
   }();

@@ -13,7 +13,7 @@ namespace {
 const std::set<std::string>& classify_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"theta", "v", "transient", "steps", "max-period", "precision"});
+    k.insert({"theta", "v", "transient", "steps", "max-period", "recheck-factor", "precision"});
     return k;
   }();
   return keys;
@@ -29,10 +29,22 @@ nlohmann::ordered_json run_classify(const ModelSpec& spec, const Precision& prec
   j["period"] = c.period;
   j["lambda"] = json_number(c.lambda);
   j["evidence"] = c.evidence;
-  if (c.cls == OrbitClass::unbounded) j["growth_alpha"] = json_number(c.alpha);
+  if (c.cls == OrbitClass::unbounded) {
+    j["growth_alpha"] = json_number(c.alpha);
+    j["growth_per_step"] = json_number(c.growth_rate);
+    j["phase_branches"] = c.branches;
+    j["accelerator_period"] = c.accel_period;
+    j["accelerator_gain"] = json_number(c.accel_gain);
+    j["growth_kind"] = c.growth_kind;
+  }
+  if (c.cls == OrbitClass::transient_chaos) {
+    j["settled_class"] = name(c.settled_class);
+    j["settled_at"] = c.settled_at;
+  }
   j["transient"] = co.transient;
   j["steps"] = co.steps;
   j["max_period"] = co.max_period;
+  j["recheck_factor"] = co.recheck_factor;
   return j;
 }
 

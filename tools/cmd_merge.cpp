@@ -17,6 +17,7 @@ const std::map<std::string, PictureCommand>& picture_commands() {
       {"portrait", {&portrait_keys, &run_portrait}},
       {"basin", {&basin_keys, &run_basin}},
       {"scan", {&scan_keys, &run_scan}},
+      {"lyapunov", {&lyapunov_curve_keys, &run_lyapunov_curve}},
   };
   return m;
 }

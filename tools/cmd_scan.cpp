@@ -18,8 +18,9 @@ namespace {
 
 // Count columns, in CSV order.
 const std::vector<std::string>& count_names() {
-  static const std::vector<std::string> n{"fixed",   "periodic",  "sticking",           "quasiperiodic", "chaotic",
-                                          "unbounded", "effective_sticking", "undecided", "outside"};
+  static const std::vector<std::string> n{"fixed",     "periodic",           "sticking",        "quasiperiodic",
+                                          "chaotic",   "unbounded",          "effective_sticking", "transient_chaos",
+                                          "undecided", "outside"};
   return n;
 }
 
@@ -75,7 +76,7 @@ ScanRequest scan_request(const Options& given) {
   r.show = o.get_or("show", "regular");
   bool known = r.show == "regular";
   for (const auto& n : count_names()) known = known || n == r.show;
-  if (!known) throw InputError("show", "must be regular or one of fixed, periodic, sticking, quasiperiodic, chaotic, unbounded, effective_sticking, undecided");
+  if (!known) throw InputError("show", "must be regular or one of fixed, periodic, sticking, quasiperiodic, chaotic, unbounded, effective_sticking, transient_chaos, undecided");
   return r;
 }
 
@@ -123,7 +124,7 @@ struct ScanGrid {
       } else {
         const Classification c = classify<T>(map, State<T>{theta, v}, r.classify);
         slot = static_cast<size_t>(std::find(count_names().begin(), count_names().end(), name(c.cls)) - count_names().begin());
-        if (slot >= count.size()) slot = 7;  // unknown name: undecided
+        if (slot >= count.size() - 1) slot = count.size() - 2;  // unknown name: undecided
       }
       ++count[slot];
     }
@@ -206,7 +207,7 @@ const std::set<std::string>& scan_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"a-range", "eps-range", "c-range", "grid", "ics", "theta-range", "v-range", "transient", "steps",
-              "max-period", "precision", "show"});
+              "max-period", "recheck-factor", "precision", "show"});
     k.insert(run_keys().begin(), run_keys().end());
     return k;
   }();

@@ -267,6 +267,29 @@ inline Precision point_precision(const Options& o) {
   return p;
 }
 
+// The colour of an attractor type (basin, scan legends, exponent curves): black = fixed
+// points and red = sticking as in the paper; `rank` orders the periodic types by their share,
+// `sub_rank` the sticking periods (red shades) and the periods transient chaos settles on
+// (pale green shades).
+inline Rgb attractor_color(const std::string& cls, int rank, int sub_rank) {
+  if (cls == "fixed") return Rgb{0, 0, 0};
+  if (cls == "sticking") {
+    static const Rgb reds[] = {{215, 25, 28}, {150, 10, 20}, {250, 110, 100}, {100, 0, 30}, {240, 60, 120}, {190, 70, 40}};
+    return reds[sub_rank % 6];
+  }
+  if (cls == "unbounded") return Rgb{30, 70, 210};
+  if (cls == "chaotic") return Rgb{0, 150, 40};
+  if (cls == "transient_chaos") {  // pale greens: chaos that settled later
+    static const Rgb greens[] = {{150, 215, 110}, {200, 240, 160}, {105, 170, 75}, {175, 200, 60}};
+    return greens[sub_rank % 4];
+  }
+  if (cls == "quasiperiodic") return Rgb{150, 60, 200};
+  if (cls == "effective_sticking") return Rgb{255, 170, 160};
+  if (cls == "undecided") return Rgb{150, 150, 150};
+  if (cls == "outside") return Rgb{238, 238, 238};
+  return category_color(rank);  // periodic
+}
+
 // The registry used by `bouncer merge`: the command name -> its keys and its runner.
 struct PictureCommand {
   const std::set<std::string>& (*keys)();
@@ -283,6 +306,8 @@ const std::set<std::string>& basin_keys();
 int run_basin(const Options& o, const RunFlags& f);
 const std::set<std::string>& scan_keys();
 int run_scan(const Options& o, const RunFlags& f);
+const std::set<std::string>& lyapunov_curve_keys();
+int run_lyapunov_curve(const Options& o, const RunFlags& f);
 
 // A grid job whose items are computed by Grid<T> (T the point type of req.precision), in
 // tiles of about items/64 (at most max_tile) items; `finish(req, items, flags, provenance)`

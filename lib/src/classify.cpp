@@ -17,6 +17,26 @@
 //      10 * steps, beyond max_period)                          -> fixed/periodic
 //      not found and lambda < -3 stderr (contracting)          -> undecided
 //      otherwise (lambda ~ 0)                                  -> quasiperiodic
+// Around these window rules (classify()):
+//   0. before anything, the start itself: if the state returns to the start within
+//      max_period steps to ~machine precision (2^-(bits-10)) without sticking, and the
+//      q-step multipliers there are unstable (|mu| > 1 + 1e-6), the start lies on an
+//      unstable period-q orbit                                 -> fixed / periodic
+//      (rounding would carry a numerical orbit off it, and a window much later would
+//      report whatever the orbit falls to instead)
+//   7. a `chaotic` verdict (and in a dissipative model a `quasiperiodic` one: a chaotic
+//      transient whose exponent is within its error of 0) is re-checked after
+//      R = recheck_factor x max(transient, steps) further steps, with the same rules:
+//      settled on fixed/periodic/sticking/effective sticking (or, from chaotic,
+//      quasiperiodic) -> transient_chaos (with the step it settled at); still aperiodic ->
+//      the later label; growing -> unbounded; anything else -> undecided. In a conservative
+//      map (elastic, eps = 1) nothing settles: a quiet later window keeps `chaotic`. A
+//      window of 500 steps after 5000 can catch a long chaotic transient, so the label
+//      must not depend on that window.
+// Every evidence line ends with the windows used: [windows: transient N, steps M, recheck R].
+// For unbounded orbits the growth is described further (accelerator modes vs diffusion):
+// mean dv per step, phase clusters on the circle (the spokes of the polar portrait), and
+// the smallest Q <= max_period at which the phases repeat (to 0.01) while v grows.
 #include "bouncer/analysis/classify.hpp"
 
 #include <algorithm>
@@ -41,6 +61,7 @@ const char* name(OrbitClass c) {
     case OrbitClass::unbounded: return "unbounded";
     case OrbitClass::effective_sticking: return "effective_sticking";
     case OrbitClass::undecided: return "undecided";
+    case OrbitClass::transient_chaos: return "transient_chaos";
   }
   return "?";
 }
@@ -95,10 +116,72 @@ struct GrowthSamples {
   }
 };
 
-}  // namespace
+// Phase branches: the phases of the window as points on the circle, split at every gap
+// wider than max(0.02, 3 ln(L)/L) (L points spread uniformly leave a largest gap of about
+// ln(L)/L, so a wider gap is structure, not chance). 0 when no gap is that wide.
+int phase_branches(std::vector<double> th) {
+  const size_t L = th.size();
+  if (L < 8) return 0;
+  for (double& t : th) t -= std::floor(t);
+  std::sort(th.begin(), th.end());
+  const double gap = std::max(0.02, 3 * std::log(static_cast<double>(L)) / static_cast<double>(L));
+  int n = 0;
+  for (size_t i = 0; i < L; ++i) {
+    const double next = i + 1 < L ? th[i + 1] : th[0] + 1;
+    if (next - th[i] > gap) ++n;
+  }
+  return n;
+}
+
+double circle_distance(double a, double b) {
+  double d = std::fabs(a - b);
+  d -= std::floor(d);
+  return std::min(d, 1 - d);
+}
+
+// Accelerator modes: the smallest Q <= qmax such that over the second half of the window
+// theta_{i+Q} = theta_i to 0.01 (on the circle) and v_{i+Q} > v_i for every i; D is the
+// mean of v_{i+Q} - v_i. Fills growth_rate, branches, accel_period, accel_gain, growth_kind.
+void describe_growth(Classification& c, const std::vector<double>& th, const std::vector<double>& v, long qmax) {
+  const long L = static_cast<long>(v.size());
+  if (L < 2) return;
+  c.growth_rate = (v.back() - v.front()) / static_cast<double>(L - 1);
+  c.branches = phase_branches(th);
+  constexpr double kPhaseTol = 0.01;
+  for (long q = 1; q <= std::min(qmax, L / 2); ++q) {
+    bool ok = true;
+    double gain = 0;
+    long n = 0;
+    for (long i = L / 2; i + q < L && ok; ++i) {
+      ok = circle_distance(th[i], th[i + q]) <= kPhaseTol && v[i + q] > v[i];
+      gain += v[i + q] - v[i];
+      ++n;
+    }
+    if (ok && n > 0) {
+      c.accel_period = q;
+      c.accel_gain = gain / static_cast<double>(n);
+      break;
+    }
+  }
+  if (c.accel_period > 0 && c.alpha > 0.8) c.growth_kind = "accelerator";
+  else if (c.accel_period == 0 && c.alpha > 0.3 && c.alpha < 0.7) c.growth_kind = "diffusive";
+  else c.growth_kind = "irregular";
+}
 
 template <class T>
-Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptions& opt) {
+std::string windows_text(const ClassifyOptions& opt) {
+  const long R = opt.recheck_factor > 0 ? opt.recheck_factor * std::max(opt.transient, opt.steps) : 0;
+  return " [windows: transient " + std::to_string(opt.transient) + ", steps " + std::to_string(opt.steps) + ", recheck " +
+         (R > 0 ? std::to_string(R) : std::string("off")) + "]";
+}
+
+}  // namespace
+
+namespace {
+
+// Rules 1-6 on the window after the transient; `last` receives the window's last state.
+template <class T>
+Classification classify_window(const ImpactMap<T>& map, State<T> s, const ClassifyOptions& opt, State<T>& last) {
   using Tr = ScalarTraits<T>;
   Classification c;
   c.lambda = std::numeric_limits<double>::quiet_NaN();
@@ -137,6 +220,7 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
     c.evidence = "step " + std::to_string(n + 1) + " undecided: " + e.what();
     return c;
   }
+  last = win.back();
 
   // 2. Unbounded growth. Not with constant eps < 1: there every orbit enters the trapping
   //    region v <= 4(1 + 3 eps)/(1 - eps) (proofs/trapping_region), so growth is a transient.
@@ -149,6 +233,19 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
       c.alpha = alpha;
       c.evidence = "running max of v grows as n^" + fmt(alpha) + " (from " + fmt(early) + " at step " +
                    std::to_string(N / 16) + " to " + fmt(growth.runmax) + " at step " + std::to_string(N) + ")";
+      std::vector<double> th, v;
+      for (const State<T>& x : win) {
+        th.push_back(Tr::to_double(x.theta));
+        v.push_back(Tr::to_double(x.v));
+      }
+      describe_growth(c, th, v, std::max(opt.max_period, 64L));
+      c.evidence += "; " + fmt(c.growth_rate) + " per step, " +
+                    (c.branches ? std::to_string(c.branches) + " phase branch" + (c.branches == 1 ? "" : "es")
+                                : std::string("phases fill the circle")) +
+                    (c.accel_period ? ", phases repeat every " + std::to_string(c.accel_period) + " step" +
+                                          (c.accel_period == 1 ? "" : "s") + " with gain " + fmt(c.accel_gain, 4)
+                                    : std::string(", no phase recurrence")) +
+                    ": " + c.growth_kind;
       return c;
     }
   }
@@ -301,6 +398,147 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
   }
   c.cls = OrbitClass::quasiperiodic;
   c.evidence = "bounded, no period <= " + std::to_string(opt.max_period) + ", " + lam + " (~0)";
+  return c;
+}
+
+// The step from which an orbit stays on its period-q cycle: one past the last i with
+// |x_{i+q} - x_i| > tolerance in `run` (the states after the start, step 1 first).
+template <class T>
+long settle_step(const std::vector<State<T>>& run, long q) {
+  const long L = static_cast<long>(run.size());
+  for (long i = L - q - 1; i >= 0; --i)
+    if (!(state_distance(run[i], run[i + q]) <= kRepeatTol)) return i + 2;
+  return 1;
+}
+
+}  // namespace
+
+template <class T>
+Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptions& opt) {
+  const std::string windows = windows_text<T>(opt);
+  // 0. The start on an unstable periodic orbit.
+  const long qmax = std::max(1L, opt.max_period);
+  try {
+    const double tol = std::ldexp(1.0, -static_cast<int>(std::max(20L, map.model().bits - 10)));
+    State<T> x = s;
+    for (long q = 1; q <= qmax; ++q) {
+      StepResult<T> r = map.step(x);
+      if (r.kind != EventKind::impact) break;  // sticking/ride: the window rules decide
+      x = std::move(r.next);
+      const double d = state_distance(x, s);
+      if (!(d <= tol)) continue;
+      TangentMap<T> tm(map.model());
+      const LinearOrbit<T> lo = tm.steps(s, q);
+      const Eigen2<T> e = eigenvalues(lo.J);
+      const double m0 = e.modulus(0), m1 = e.modulus(1);
+      if (!(m0 > 1 + 1e-6)) break;  // stable or marginal: the window finds it
+      Classification c;
+      c.cls = q == 1 ? OrbitClass::fixed : OrbitClass::periodic;
+      c.period = q;
+      c.lambda = std::log(m0) / static_cast<double>(q);
+      c.evidence = "start lies on an unstable period-" + std::to_string(q) + " orbit: it returns after " +
+                   std::to_string(q) + " step" + (q == 1 ? "" : "s") + " to " + fmt(d, 2) + ", multipliers |mu| = " +
+                   fmt(m0, 6) + ", " + fmt(m1, 6) + " (rounding carries a numerical orbit off it)" + windows;
+      return c;
+    }
+  } catch (const Undecided&) {
+    // the window rules report the undecided step
+  }
+
+  State<T> last = s;
+  Classification c = classify_window(map, s, opt, last);
+  // A conservative map (elastic, or eps = 1) preserves a measure and has no attractors: a
+  // chaotic orbit cannot settle, and a quiet later window is a sticky episode near an island.
+  // In a dissipative map an invariant circle is rare and a chaotic transient whose exponent
+  // is within its error of 0 is common, so there `quasiperiodic` is re-checked too.
+  const Model<T>& model = map.model();
+  const bool conservative = model.law == Law::elastic ||
+                            (model.law == Law::constant && certainly(ScalarTraits<T>::is_zero(T(model.eps - 1))));
+  const bool quiet = c.cls == OrbitClass::quasiperiodic && !conservative;
+  if ((c.cls != OrbitClass::chaotic && !quiet) || opt.recheck_factor <= 0) {
+    c.evidence += windows;
+    return c;
+  }
+  // 7. Re-check a chaotic (or dissipative quasiperiodic) verdict much later along the orbit.
+  const long W = std::max(4L, opt.steps);
+  const long N = std::max(0L, opt.transient) + W;
+  const long R = opt.recheck_factor * std::max(opt.transient, opt.steps);
+  ClassifyOptions ro = opt;
+  ro.transient = R;
+  ro.recheck_factor = 0;
+  State<T> later_last = last;
+  const Classification later = classify_window(map, last, ro, later_last);
+  const std::string first = c.evidence;
+  if (quiet && (later.cls == OrbitClass::quasiperiodic || later.cls == OrbitClass::chaotic)) {
+    // Aperiodic then and later: the later window's label, the earlier one as evidence.
+    c.cls = later.cls;
+    c.lambda = later.lambda;
+    c.evidence = first + "; " + std::to_string(R) + " steps later: " + name(later.cls) + " (" + later.evidence + ")" + windows;
+    return c;
+  }
+  switch (conservative && later.cls != OrbitClass::unbounded ? OrbitClass::chaotic : later.cls) {
+    case OrbitClass::unbounded:
+      // Bounded-looking chaos in the window, growth later (diffusive Fermi acceleration).
+      c = later;
+      c.evidence = first + "; " + std::to_string(R) + " steps later: unbounded (" + later.evidence + ")";
+      break;
+    case OrbitClass::chaotic:
+      if (later.cls != OrbitClass::chaotic) {
+        c.evidence = first + "; a re-check " + std::to_string(R) + " steps later saw " + name(later.cls) + " (" +
+                     later.evidence + "), a sticky episode: the map is conservative and has no attractors";
+        break;
+      }
+      c.lambda = later.lambda;
+      c.evidence = first + "; still chaotic after " + std::to_string(R) + " further steps (" + later.evidence + ")";
+      break;
+    case OrbitClass::fixed:
+    case OrbitClass::periodic:
+    case OrbitClass::sticking:
+    case OrbitClass::effective_sticking:
+    case OrbitClass::quasiperiodic: {
+      c.cls = OrbitClass::transient_chaos;
+      c.settled_class = later.cls;
+      c.period = later.period;
+      c.lambda = later.lambda;
+      // When did it settle? Replay the re-check run (R + W steps after step N).
+      try {
+        const long E = R + W;
+        if (later.cls == OrbitClass::fixed || later.cls == OrbitClass::periodic) {
+          std::vector<State<T>> run;
+          run.reserve(E);
+          State<T> x = last;
+          for (long i = 0; i < E; ++i) {
+            x = map.step(x).next;
+            run.push_back(x);
+          }
+          c.settled_at = N + settle_step(run, later.period);
+        } else if (later.cls == OrbitClass::sticking) {
+          State<T> x = last;
+          for (long i = 0; i < E; ++i) {
+            StepResult<T> r = map.step(x);
+            x = std::move(r.next);
+            if (r.kind == EventKind::sticking) {
+              c.settled_at = N + i + 1;  // exactly periodic from the first release on
+              break;
+            }
+          }
+        }
+      } catch (const Undecided&) {
+      }
+      c.evidence = "transient chaos: " + first + "; then settled: " + std::string(name(later.cls)) +
+                   (later.period ? " " + std::to_string(later.period) : std::string()) +
+                   (c.settled_at ? " from step " + std::to_string(c.settled_at)
+                                 : " within steps " + std::to_string(N + 1) + ".." + std::to_string(N + R + W)) +
+                   " (" + later.evidence + ")";
+      break;
+    }
+    default:
+      c.cls = OrbitClass::undecided;
+      c.evidence = first + "; but " + std::to_string(R) + " steps later: " + std::string(name(later.cls)) + " (" +
+                   later.evidence + ")";
+      break;
+  }
+  c.evidence += windows;
   return c;
 }
 

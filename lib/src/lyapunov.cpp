@@ -67,7 +67,7 @@ double log_of(const S& x) {
 }  // namespace
 
 template <class T>
-LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions& opt) {
+LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions& opt, State<T>* end) {
   using Tr = ScalarTraits<T>;
   using std::sqrt;
   LyapunovResult r;
@@ -109,6 +109,7 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions
         os << name(st.kind) << " at step " << n + 1
            << ": the release state does not depend on the input (J = 0), the map contracts to a point";
         r.note = os.str();
+        if (end) *end = std::move(st.next);
         return r;
       }
       if (!Tr::is_finite(nrm)) throw Undecided(Reason::nonfinite);
@@ -138,8 +139,10 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions
     r.lambda = std::numeric_limits<double>::quiet_NaN();
     r.stderr_ = std::numeric_limits<double>::quiet_NaN();
     r.note = std::string("step ") + std::to_string(n + 1) + " undecided: " + e.what();
+    if (end) *end = s;
     return r;
   }
+  if (end) *end = s;
   r.alpha = g.alpha(n);
   r.unbounded = g.unbounded(n);
   if (r.unbounded) {
@@ -151,9 +154,9 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions
   return r;
 }
 
-template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&);
-template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&);
-template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&);
-template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&);
+template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&, State<double>*);
+template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&, State<Mpfr>*);
+template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&, State<long double>*);
+template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&, State<Quad>*);
 
 }  // namespace bouncer

@@ -581,6 +581,16 @@ void write_png(const std::string& path, const Figure& fig) {
     if (s.lines)
       for (size_t i = 1; i < n; ++i)
         if (ok(i - 1) && ok(i)) c.line(f.px(s.x[i - 1]), Y(i - 1), f.px(s.x[i]), Y(i), s.color, 2);
+    // Error bars under the markers, with short caps so that a bar shorter than the
+    // marker is still visible as a cap.
+    for (size_t i = 0; i < n && i < s.yerr.size(); ++i) {
+      const double e = s.yerr[i];
+      if (!ok(i) || !std::isfinite(e) || e <= 0 || fig.log_y) continue;
+      const double xp = f.px(s.x[i]), lo = f.py(s.y[i] - e), hi = f.py(s.y[i] + e);
+      c.line(xp, lo, xp, hi, s.color, 1);
+      c.line(xp - 3, lo, xp + 3, lo, s.color, 1);
+      c.line(xp - 3, hi, xp + 3, hi, s.color, 1);
+    }
     if (s.markers)
       for (size_t i = 0; i < n; ++i)
         if (ok(i)) c.disc(f.px(s.x[i]), Y(i), s.marker_size, s.color);

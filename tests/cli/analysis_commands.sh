@@ -71,6 +71,25 @@ check classify.sticking '.class + " " + (.period | tostring)' "sticking 1" "$TMP
 check classify.unbounded '.class' unbounded "$TMP/c3.json"
 "$BOUNCER" classify --model constant --a 19 --eps 0.9 --theta 0.17 --v 14.1 --precision mpfr:128 --json >"$TMP/c4.json"
 check classify.periodic '.class + " " + (.period | tostring)' "periodic 2" "$TMP/c4.json"
+# A chaotic window re-checked much later (eps = 0.96, a = 28: period 2 from step 10155, see
+# test_classify TransientChaosIsRecheckedAndSettles); --recheck-factor 0 keeps the window's label.
+"$BOUNCER" classify --model constant --a 28 --eps 0.96 --theta 0.5 --v 4 --json >"$TMP/c6.json"
+check classify.transient_chaos '.class + " " + .settled_class + " " + (.period | tostring)' "transient_chaos periodic 2" "$TMP/c6.json"
+check classify.settled_at '.settled_at > 5500' true "$TMP/c6.json"
+"$BOUNCER" classify --model constant --a 28 --eps 0.96 --theta 0.5 --v 4 --recheck-factor 0 --json >"$TMP/c7.json"
+check classify.recheck_off '.class' chaotic "$TMP/c7.json"
+# basin uses the same rule, point by point (each basin label is classify's at that point),
+# and --recheck-factor 0 brings back the window-only labels there too.
+"$BOUNCER" basin --model constant --a 28 --eps 0.96 --v-range 4:40 --grid 4x3 --quiet >"$TMP/b.csv"
+"$BOUNCER" basin --model constant --a 28 --eps 0.96 --v-range 4:40 --grid 4x3 --recheck-factor 0 --quiet >"$TMP/b0.csv"
+grep -q ',transient_chaos,' "$TMP/b.csv" || fail basin.recheck "no transient_chaos point in the basin"
+grep -q ',transient_chaos,' "$TMP/b0.csv" && fail basin.recheck_off "transient_chaos with --recheck-factor 0"
+while IFS=, read -r theta v cls period; do
+  got=$("$BOUNCER" classify --model constant --a 28 --eps 0.96 --theta "$theta" --v "$v" --json | jq -r '.class + "," + (.period | tostring)')
+  [[ $got == "$cls,$period" ]] || fail basin.same_rule "($theta, $v): basin $cls,$period, classify $got"
+done < <(grep -v '^#' "$TMP/b.csv" | tail -n +2 | grep -E 'transient_chaos|chaotic' | head -4)
+# Accelerator mode: the exact orbit v_n = 8(n + 1), theta = 1/4 of a = 16.
+check classify.accelerator '[.growth_kind, .accelerator_period, .phase_branches] | @text' '["accelerator",1,1]' "$TMP/c3.json"
 # Scene file = command line.
 cat >"$TMP/scene.toml" <<'TOML'
 command = "classify"
@@ -115,6 +134,8 @@ bad scan.transient 'transient' scan --model constant --a-range 18:26 --eps-range
   fail classify.short "--steps 100 without --max-period: $(head -c 300 "$TMP/cshort.json")"
 bad classify.precision 'precision.*allowed' classify --model elastic --a 20 --theta 0.3 --v 9 --precision interval:64
 bad classify.eps 'eps' classify --model elastic --a 20 --eps 0.5 --theta 0.3 --v 9
+bad classify.recheck 'recheck-factor.*\[0, 1000\]' classify --model elastic --a 20 --theta 0.3 --v 9 --recheck-factor -1
+bad basin.recheck 'recheck-factor' basin --model constant --a 24 --eps 0.5 --v-range 4:12 --grid 4x4 --recheck-factor x
 
 if [[ $failures -ne 0 ]]; then
   echo "analysis_commands: $failures failure(s)" >&2

@@ -5,11 +5,14 @@
 //   2. the same grid classified by bouncer::classify (S - 500 transient + 500 examined
 //      steps; what `bouncer basin` does), points per second;
 //   3. a bifurcation diagram at paper resolution (1000 values of a x (5000 + 500) steps);
-//   4. the basin iteration in MPFR at 128 bits on a smaller grid, extrapolated to N x N.
+//   4. the basin iteration in MPFR at 128 bits on a smaller grid, extrapolated to N x N;
+//   5. an exponent curve (`bouncer lyapunov --vary a`): K values of a in [20, 30] of the
+//      velocity-dependent model (c = 1000), each 5000 transient + 20000 tangent steps and
+//      the classification where the window ended, on 2 threads.
 // Peak memory (max RSS) is printed after each phase: it grows with the grid (one short
 // text per point), never with the number of steps. Results at 1 and 2 threads are compared
 // byte for byte. Timings are printed, never checked (not a test).
-//   bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick]
+//   bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only]
 #include <sys/resource.h>
 
 #include <chrono>
@@ -20,6 +23,7 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/grid.hpp"
+#include "bouncer/analysis/lyapunov.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 using namespace bouncer;
@@ -89,6 +93,7 @@ void print(const std::vector<Row>& rows) {
 
 int main(int argc, char** argv) {
   long n = 512, steps = 5000, mn = 48, bits = 128, samples = 1000;
+  bool curve_only = false;  // only workload 5 (the others take minutes)
   for (int i = 1; i < argc; ++i) {
     auto next = [&]() { return i + 1 < argc ? std::atol(argv[++i]) : 0L; };
     if (!std::strcmp(argv[i], "--size")) n = next();
@@ -97,8 +102,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--bits")) bits = next();
     else if (!std::strcmp(argv[i], "--samples")) samples = next();
     else if (!std::strcmp(argv[i], "--quick")) { n = 64; steps = 1000; mn = 12; samples = 50; }
+    else if (!std::strcmp(argv[i], "--curve-only")) curve_only = true;
     else {
-      std::fprintf(stderr, "usage: bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick]\n");
+      std::fprintf(stderr, "usage: bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only]\n");
       return 2;
     }
   }
@@ -114,113 +120,148 @@ int main(int argc, char** argv) {
   GridPlan plan{n * n, 256};
   const double total_steps = static_cast<double>(n) * n * steps;
 
-  // 1. Exactly `steps` steps per point, 1 and 2 threads.
-  std::vector<std::string> ref;
-  double t1 = 0;
-  for (unsigned threads : {1u, 2u}) {
-    GridOptions o;
-    o.threads = threads;
-    const auto t0 = std::chrono::steady_clock::now();
-    GridResult r = run_grid(plan, [&](long i) { return iterate(map, i, n, steps, 53); }, o);
-    const double t = seconds_since(t0);
-    std::string note = "peak RSS " + std::to_string(peak_rss_mb()) + " MB";
-    if (threads == 1) {
-      t1 = t;
-      ref = std::move(r.items);
-    } else {
-      char sp[64];
-      std::snprintf(sp, sizeof sp, "; speed-up %.2fx; %s", t1 / t, r.items == ref ? "identical" : "DIFFERENT");
-      note += sp;
-    }
-    rows.push_back({"basin " + std::to_string(n) + "^2 x " + std::to_string(steps) + " steps, double", threads, t,
-                    total_steps / t, "steps/s", note});
-    std::fflush(stdout);
-  }
-
-  // 2. The real basin: classify every point (transient steps - 500, then 500 examined).
-  {
-    ClassifyOptions co;
-    co.transient = steps - 500;
-    co.steps = 500;
-    co.max_period = 64;
-    std::vector<std::string> first;
-    double c1 = 0;
+  if (!curve_only) {
+    // 1. Exactly `steps` steps per point, 1 and 2 threads.
+    std::vector<std::string> ref;
+    double t1 = 0;
     for (unsigned threads : {1u, 2u}) {
       GridOptions o;
       o.threads = threads;
       const auto t0 = std::chrono::steady_clock::now();
-      GridResult r = run_grid(plan, [&](long i) {
-        const Classification c = classify<double>(map, grid_point<double>(i, n, 53), co);
-        return std::string(name(c.cls)) + "," + std::to_string(c.period);
-      }, o);
+      GridResult r = run_grid(plan, [&](long i) { return iterate(map, i, n, steps, 53); }, o);
       const double t = seconds_since(t0);
       std::string note = "peak RSS " + std::to_string(peak_rss_mb()) + " MB";
       if (threads == 1) {
-        c1 = t;
-        first = std::move(r.items);
+        t1 = t;
+        ref = std::move(r.items);
       } else {
         char sp[64];
-        std::snprintf(sp, sizeof sp, "; speed-up %.2fx; %s", c1 / t, r.items == first ? "identical" : "DIFFERENT");
+        std::snprintf(sp, sizeof sp, "; speed-up %.2fx; %s", t1 / t, r.items == ref ? "identical" : "DIFFERENT");
         note += sp;
       }
-      rows.push_back({"basin " + std::to_string(n) + "^2 classified (bouncer basin), double", threads, t,
-                      static_cast<double>(n) * n / t, "points/s", note});
+      rows.push_back({"basin " + std::to_string(n) + "^2 x " + std::to_string(steps) + " steps, double", threads, t,
+                      total_steps / t, "steps/s", note});
       std::fflush(stdout);
     }
-  }
 
-  // 3. Bifurcation diagram at paper resolution: K values of a in [28, 30], eps = 0.96.
+    // 2. The real basin: classify every point (transient steps - 500, then 500 examined).
+    {
+      ClassifyOptions co;
+      co.transient = steps - 500;
+      co.steps = 500;
+      co.max_period = 64;
+      std::vector<std::string> first;
+      double c1 = 0;
+      for (unsigned threads : {1u, 2u}) {
+        GridOptions o;
+        o.threads = threads;
+        const auto t0 = std::chrono::steady_clock::now();
+        GridResult r = run_grid(plan, [&](long i) {
+          const Classification c = classify<double>(map, grid_point<double>(i, n, 53), co);
+          return std::string(name(c.cls)) + "," + std::to_string(c.period);
+        }, o);
+        const double t = seconds_since(t0);
+        std::string note = "peak RSS " + std::to_string(peak_rss_mb()) + " MB";
+        if (threads == 1) {
+          c1 = t;
+          first = std::move(r.items);
+        } else {
+          char sp[64];
+          std::snprintf(sp, sizeof sp, "; speed-up %.2fx; %s", c1 / t, r.items == first ? "identical" : "DIFFERENT");
+          note += sp;
+        }
+        rows.push_back({"basin " + std::to_string(n) + "^2 classified (bouncer basin), double", threads, t,
+                        static_cast<double>(n) * n / t, "points/s", note});
+        std::fflush(stdout);
+      }
+    }
+
+    // 3. Bifurcation diagram at paper resolution: K values of a in [28, 30], eps = 0.96.
+    {
+      ModelSpec b = spec;
+      b.eps = *Decimal::parse("0.96");
+      const Model<double> base = make_model<double>(b, 53);
+      GridPlan bp{samples, 8};
+      GridOptions o;
+      o.threads = 2;
+      const auto t0 = std::chrono::steady_clock::now();
+      GridResult r = run_grid(bp, [&](long k) {
+        Model<double> m = base;
+        m.a = 28 + 2.0 * k / (samples - 1);
+        m.collapse = m.a * (1 - m.eps) / 2;
+        const ImpactMap<double> mp(m);
+        State<double> s{0.5, 4};
+        std::string out;
+        for (long i = 0; i < 5000; ++i) s = mp.step(s).next;
+        for (long i = 0; i < 500; ++i) {
+          s = mp.step(s).next;
+          out += ScalarTraits<double>::to_string(s.theta) + "," + ScalarTraits<double>::to_string(s.v) + "\n";
+        }
+        return out;
+      }, o);
+      const double t = seconds_since(t0);
+      rows.push_back({"bifurcation " + std::to_string(samples) + " values x (5000 + 500), double", 2, t,
+                      samples * 5500.0 / t, "steps/s", "peak RSS " + std::to_string(peak_rss_mb()) + " MB"});
+    }
+
+    // 4. MPFR: the basin iteration on an mn x mn grid, extrapolated to n x n.
+    {
+      const ImpactMap<Mpfr> mmap(make_model<Mpfr>(spec, bits));
+      GridPlan mp{mn * mn, 8};
+      std::vector<std::string> first;
+      double m1 = 0;
+      for (unsigned threads : {1u, 2u}) {
+        GridOptions o;
+        o.threads = threads;
+        const auto t0 = std::chrono::steady_clock::now();
+        GridResult r = run_grid(mp, [&](long i) { return iterate(mmap, i, mn, steps, bits); }, o);
+        const double t = seconds_since(t0);
+        const double rate = static_cast<double>(mn) * mn * steps / t;
+        char note[160];
+        std::snprintf(note, sizeof note, "%s%s%ld^2 would take ~%.0f s", threads == 1 ? "" : "speed-up ",
+                      threads == 1 ? "" : (std::to_string(m1 / t).substr(0, 4) + "x, " + (r.items == first ? "identical; " : "DIFFERENT; ")).c_str(),
+                      n, total_steps / rate);
+        if (threads == 1) {
+          m1 = t;
+          first = std::move(r.items);
+        }
+        rows.push_back({"basin " + std::to_string(mn) + "^2 x " + std::to_string(steps) + " steps, MPFR " + std::to_string(bits) + " bits",
+                        threads, t, rate, "steps/s", note});
+      }
+    }
+  }  // !curve_only
+
+  // 5. Exponent curve: what `bouncer lyapunov --vary a --samples K --transient 5000 --steps
+  //    20000` computes per value (lyapunov, then classify from the window's end).
   {
-    ModelSpec b = spec;
-    b.eps = *Decimal::parse("0.96");
-    const Model<double> base = make_model<double>(b, 53);
-    GridPlan bp{samples, 8};
+    ModelSpec v = spec;
+    v.law = Law::veldep;
+    v.c = *Decimal::parse("1000");
+    const Model<double> base = make_model<double>(v, 53);
+    LyapunovOptions lo;
+    lo.transient = 5000;
+    lo.steps = 20000;
+    ClassifyOptions co;
+    co.transient = 0;
+    GridPlan cp{samples, 16};
     GridOptions o;
     o.threads = 2;
     const auto t0 = std::chrono::steady_clock::now();
-    GridResult r = run_grid(bp, [&](long k) {
+    GridResult r = run_grid(cp, [&](long k) {
       Model<double> m = base;
-      m.a = 28 + 2.0 * k / (samples - 1);
+      m.a = 20 + 10.0 * k / (samples - 1);
       m.collapse = m.a * (1 - m.eps) / 2;
-      const ImpactMap<double> mp(m);
-      State<double> s{0.5, 4};
-      std::string out;
-      for (long i = 0; i < 5000; ++i) s = mp.step(s).next;
-      for (long i = 0; i < 500; ++i) {
-        s = mp.step(s).next;
-        out += ScalarTraits<double>::to_string(s.theta) + "," + ScalarTraits<double>::to_string(s.v) + "\n";
-      }
-      return out;
+      State<double> s{0.1, 6};
+      const LyapunovResult lr = lyapunov(m, s, lo, &s);
+      const Classification c = classify<double>(ImpactMap<double>(m), s, co);
+      return ScalarTraits<double>::to_string(lr.lambda) + "," + name(c.cls);
     }, o);
     const double t = seconds_since(t0);
-    rows.push_back({"bifurcation " + std::to_string(samples) + " values x (5000 + 500), double", 2, t,
-                    samples * 5500.0 / t, "steps/s", "peak RSS " + std::to_string(peak_rss_mb()) + " MB"});
-  }
-
-  // 4. MPFR: the basin iteration on an mn x mn grid, extrapolated to n x n.
-  {
-    const ImpactMap<Mpfr> mmap(make_model<Mpfr>(spec, bits));
-    GridPlan mp{mn * mn, 8};
-    std::vector<std::string> first;
-    double m1 = 0;
-    for (unsigned threads : {1u, 2u}) {
-      GridOptions o;
-      o.threads = threads;
-      const auto t0 = std::chrono::steady_clock::now();
-      GridResult r = run_grid(mp, [&](long i) { return iterate(mmap, i, mn, steps, bits); }, o);
-      const double t = seconds_since(t0);
-      const double rate = static_cast<double>(mn) * mn * steps / t;
-      char note[160];
-      std::snprintf(note, sizeof note, "%s%s%ld^2 would take ~%.0f s", threads == 1 ? "" : "speed-up ",
-                    threads == 1 ? "" : (std::to_string(m1 / t).substr(0, 4) + "x, " + (r.items == first ? "identical; " : "DIFFERENT; ")).c_str(),
-                    n, total_steps / rate);
-      if (threads == 1) {
-        m1 = t;
-        first = std::move(r.items);
-      }
-      rows.push_back({"basin " + std::to_string(mn) + "^2 x " + std::to_string(steps) + " steps, MPFR " + std::to_string(bits) + " bits",
-                      threads, t, rate, "steps/s", note});
-    }
+    long chaotic = 0;
+    for (const std::string& it : r.items) chaotic += it.find("chaotic") != std::string::npos;
+    rows.push_back({"lyapunov curve " + std::to_string(samples) + " values x (5000 + 20000), double", 2, t,
+                    samples * 25000.0 / t, "steps/s",
+                    std::to_string(chaotic) + " chaotic/transient-chaos values; peak RSS " + std::to_string(peak_rss_mb()) + " MB"});
   }
   print(rows);
   std::printf("\npeak RSS at the end: %ld MB (grid of %ld points)\n", peak_rss_mb(), n * n);

@@ -17,6 +17,7 @@ enum class OrbitClass {
   unbounded,           // Fermi acceleration (elastic)
   effective_sticking,  // velocity-dependent chatter to the wall's velocity within precision
   undecided,           // the evidence does not decide, or a step was undecided
+  transient_chaos,     // chaotic in the window, settled later (re-check): see settled_*
 };
 const char* name(OrbitClass c);
 
@@ -26,12 +27,27 @@ struct Classification {
   double lambda = 0;       // leading Lyapunov exponent per collision (NaN if not computed)
   std::string evidence;    // one line: what decided the class
   double alpha = 0;        // unbounded only: growth law v ~ n^alpha of the running max of v
+
+  // transient_chaos only: what the orbit settled on (class and period in `period`) and the
+  // step from which it stays there (0 when not sharp: effective sticking, quasiperiodic).
+  OrbitClass settled_class = OrbitClass::undecided;
+  long settled_at = 0;
+
+  // unbounded only: the shape of the growth (accelerator modes vs diffusion).
+  double growth_rate = 0;         // mean dv per step over the window
+  int branches = 0;               // phase clusters on the circle (spokes of the polar portrait); 0: no gap
+  long accel_period = 0;          // Q: phases repeat every Q steps while v grows (0: none)
+  double accel_gain = 0;          // D: mean velocity gain per Q steps
+  std::string growth_kind;        // accelerator | diffusive | irregular
 };
 
 struct ClassifyOptions {
   long transient = 5000;   // steps discarded first (paper: 5000)
   long steps = 500;        // steps examined (paper: 500)
   long max_period = 64;    // longest period looked for
+  // A `chaotic` verdict is re-checked after recheck_factor x max(transient, steps) further
+  // steps; an orbit that has settled by then is transient_chaos. 0 turns the re-check off.
+  long recheck_factor = 20;
 };
 
 template <class T>

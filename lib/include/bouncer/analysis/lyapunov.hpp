@@ -43,16 +43,19 @@ struct LyapunovResult {
   std::string note;         // the reason for the special outcomes, one line
 };
 
+// With `end`, the state after the last step taken is stored there (after transient + steps
+// steps, or where a contracting or undecided step stopped the run), so a caller can go on
+// along the same orbit (the exponent curves classify it there).
 template <class T>
-LyapunovResult lyapunov(const Model<T>& model, State<T> start, const LyapunovOptions& opt);
+LyapunovResult lyapunov(const Model<T>& model, State<T> start, const LyapunovOptions& opt, State<T>* end = nullptr);
 
 // Growth exponent of the running maximum of v: least-squares slope of log(max v) against
 // log n at logarithmically spaced n (the helper shared with classify).
 double growth_exponent(const std::vector<std::pair<double, double>>& n_vmax);
 
-extern template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&);
-extern template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&);
-extern template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&);
-extern template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&);
+extern template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&, State<double>*);
+extern template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&, State<Mpfr>*);
+extern template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&, State<long double>*);
+extern template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&, State<Quad>*);
 
 }  // namespace bouncer

@@ -24,6 +24,8 @@ struct Series {
   bool lines = false;          // connect the points
   bool markers = true;         // draw the points
   int marker_size = 2;         // marker radius in pixels (0: one pixel)
+  // Vertical error bars: y[i] +- yerr[i] (empty: none; non-finite entries: no bar).
+  std::vector<double> yerr = {};
 };
 
 struct Figure {

@@ -132,6 +132,10 @@ std::string class_words(const Classification& c) {
     case OrbitClass::sticking: s << "a sticking solution (sticking period " << c.period << ")"; break;
     case OrbitClass::quasiperiodic: s << "a quasiperiodic orbit"; break;
     case OrbitClass::chaotic: s << "a chaotic attractor (lambda " << std::setprecision(3) << c.lambda << ")"; break;
+    case OrbitClass::transient_chaos:
+      s << "transient chaos that settles on " << name(c.settled_class) << (c.period ? " of period " + std::to_string(c.period) : "")
+        << (c.settled_at ? " by step " + std::to_string(c.settled_at) : "");
+      break;
     case OrbitClass::unbounded: s << "unbounded growth (Fermi acceleration)"; break;
     case OrbitClass::effective_sticking: s << "effective sticking (chatter to the wall's velocity)"; break;
     case OrbitClass::undecided: s << "an undecided orbit (" << c.evidence << ")"; break;

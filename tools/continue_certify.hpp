@@ -1,6 +1,6 @@
 // bouncer continue --certify: the Krawczyk certifier (verify/periodic_certify.hpp) run on
 // the branch side of a located border collision. In its own translation unit
-// (cmd_continue_certify.cpp): the verify headers' Progress and the grid's Progress differ.
+// (cmd_continue_certify.cpp), so that cmd_continue.cpp needs no verify header.
 #pragma once
 
 #include <nlohmann/json.hpp>

@@ -148,7 +148,7 @@ long import_tiles(const std::string& from, const std::string& to, const GridPlan
 
 bool stderr_is_terminal() { return isatty(2) != 0; }
 
-struct Progress::State {
+struct ProgressBar::State {
   std::string label;
   long total = 0, done = 0;
   bool enabled = false, drawn = false;
@@ -173,7 +173,7 @@ struct Progress::State {
   }
 };
 
-Progress::Progress(std::string label, long total, bool enabled) : s_(new State) {
+ProgressBar::ProgressBar(std::string label, long total, bool enabled) : s_(new State) {
   s_->label = std::move(label);
   s_->total = total;
   s_->enabled = enabled;
@@ -181,18 +181,18 @@ Progress::Progress(std::string label, long total, bool enabled) : s_(new State) 
   s_->last = s_->start - std::chrono::seconds(1);
 }
 
-Progress::~Progress() {
+ProgressBar::~ProgressBar() {
   finish();
   delete s_;
 }
 
-void Progress::advance(long n) {
+void ProgressBar::advance(long n) {
   std::lock_guard<std::mutex> lock(s_->m);
   s_->done += n;
   if (s_->enabled) s_->draw(false);
 }
 
-void Progress::finish() {
+void ProgressBar::finish() {
   std::lock_guard<std::mutex> lock(s_->m);
   if (s_->enabled) {
     if (s_->total > 0) s_->draw(true);
@@ -225,7 +225,7 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
 
   long todo_items = 0;
   for (long t : todo) todo_items += plan.end(t) - plan.begin(t);
-  Progress progress(opt.label.empty() ? "bouncer" : opt.label, todo_items, opt.progress);
+  ProgressBar progress(opt.label.empty() ? "bouncer" : opt.label, todo_items, opt.progress);
   std::atomic<size_t> next{0};
   std::atomic<bool> failed{false};
   std::exception_ptr error;

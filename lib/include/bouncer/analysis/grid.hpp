@@ -82,10 +82,10 @@ std::string job_fingerprint(const std::string& text);
 unsigned worker_threads(unsigned requested);
 
 // A text progress bar on stderr, redrawn at most ~10 times a second; thread-safe.
-class Progress {
+class ProgressBar {
  public:
-  Progress(std::string label, long total, bool enabled);
-  ~Progress();
+  ProgressBar(std::string label, long total, bool enabled);
+  ~ProgressBar();
   void advance(long n);
   void finish();
 

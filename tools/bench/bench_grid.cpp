@@ -8,11 +8,14 @@
 //   4. the basin iteration in MPFR at 128 bits on a smaller grid, extrapolated to N x N;
 //   5. an exponent curve (`bouncer lyapunov --vary a`): K values of a in [20, 30] of the
 //      velocity-dependent model (c = 1000), each 5000 transient + 20000 tangent steps and
-//      the classification where the window ended, on 2 threads.
+//      the classification where the window ended, on 2 threads;
+//   6. a continuation with a located border collision (`bouncer continue`): the stable
+//      period-7 branch at c = 1000 over a in [27, 29], in double and at 128 bits.
 // Peak memory (max RSS) is printed after each phase: it grows with the grid (one short
 // text per point), never with the number of steps. Results at 1 and 2 threads are compared
 // byte for byte. Timings are printed, never checked (not a test).
 //   bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only]
+//              [--continue-only]
 #include <sys/resource.h>
 
 #include <chrono>
@@ -22,6 +25,7 @@
 #include <thread>
 
 #include "bouncer/analysis/classify.hpp"
+#include "bouncer/analysis/continuation.hpp"
 #include "bouncer/analysis/grid.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
 #include "bouncer/model/impact_map.hpp"
@@ -93,7 +97,8 @@ void print(const std::vector<Row>& rows) {
 
 int main(int argc, char** argv) {
   long n = 512, steps = 5000, mn = 48, bits = 128, samples = 1000;
-  bool curve_only = false;  // only workload 5 (the others take minutes)
+  bool curve_only = false;     // only workload 5 (the others take minutes)
+  bool continue_only = false;  // only workload 6
   for (int i = 1; i < argc; ++i) {
     auto next = [&]() { return i + 1 < argc ? std::atol(argv[++i]) : 0L; };
     if (!std::strcmp(argv[i], "--size")) n = next();
@@ -103,8 +108,9 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--samples")) samples = next();
     else if (!std::strcmp(argv[i], "--quick")) { n = 64; steps = 1000; mn = 12; samples = 50; }
     else if (!std::strcmp(argv[i], "--curve-only")) curve_only = true;
+    else if (!std::strcmp(argv[i], "--continue-only")) continue_only = true;
     else {
-      std::fprintf(stderr, "usage: bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only]\n");
+      std::fprintf(stderr, "usage: bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only] [--continue-only]\n");
       return 2;
     }
   }
@@ -120,7 +126,7 @@ int main(int argc, char** argv) {
   GridPlan plan{n * n, 256};
   const double total_steps = static_cast<double>(n) * n * steps;
 
-  if (!curve_only) {
+  if (!curve_only && !continue_only) {
     // 1. Exactly `steps` steps per point, 1 and 2 threads.
     std::vector<std::string> ref;
     double t1 = 0;
@@ -233,7 +239,7 @@ int main(int argc, char** argv) {
 
   // 5. Exponent curve: what `bouncer lyapunov --vary a --samples K --transient 5000 --steps
   //    20000` computes per value (lyapunov, then classify from the window's end).
-  {
+  if (!continue_only) {
     ModelSpec v = spec;
     v.law = Law::veldep;
     v.c = *Decimal::parse("1000");
@@ -262,6 +268,33 @@ int main(int argc, char** argv) {
     rows.push_back({"lyapunov curve " + std::to_string(samples) + " values x (5000 + 20000), double", 2, t,
                     samples * 25000.0 / t, "steps/s",
                     std::to_string(chaotic) + " chaotic/transient-chaos values; peak RSS " + std::to_string(peak_rss_mb()) + " MB"});
+  }
+  // 6. Continuation with a located border collision: the stable period-7 branch of the
+  //    velocity-dependent model at c = 1000 (data/scenes/continue-veldep-period7.toml) over
+  //    a in [27, 29], in double and at 128 bits; both ends are border collisions.
+  if (!curve_only) {
+    ModelSpec v = spec;
+    v.law = Law::veldep;
+    v.c = *Decimal::parse("1000");
+    v.a = *Decimal::parse("28");
+    const InitialCondition guess{*Decimal::parse("0.19204436106841707"), *Decimal::parse("26.916257785320354")};
+    std::string a_double;
+    auto run = [&](auto tag, long b, const char* label) {
+      using T = decltype(tag);
+      const Model<T> m = make_model<T>(v, b);
+      const auto t0 = std::chrono::steady_clock::now();
+      const Branch<T> br = continue_branch(m, Parameter::a, 7, make_state<T>(guess, b), ScalarTraits<T>::from_int(27, b),
+                                           ScalarTraits<T>::from_int(29, b));
+      const double t = seconds_since(t0);
+      const std::string lo = ScalarTraits<T>::to_string(br.low.param);
+      if (a_double.empty()) a_double = lo;
+      rows.push_back({std::string("continue period 7 (veldep c 1000), a in [27, 29], ") + label, 1, t,
+                      static_cast<double>(br.corrector_runs) / t, "Newton runs/s",
+                      std::to_string(br.points.size()) + " points, " + std::to_string(br.corrector_runs) +
+                          " Newton runs; low end " + name(br.low.reason) + " at a* = " + lo.substr(0, 22)});
+    };
+    run(0.0, 53, "double");
+    run(Mpfr(128), 128, "mpfr:128");
   }
   print(rows);
   std::printf("\npeak RSS at the end: %ld MB (grid of %ld points)\n", peak_rss_mb(), n * n);

@@ -11,9 +11,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
 #include <string>
+#include <tuple>
 
 #include "bouncer/analysis/periodic.hpp"
+#include "bouncer/verify/accelerator.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
 
 namespace bouncer {
@@ -270,6 +273,57 @@ TEST(CertifyPeriodic, NoOrbitMeansNothingIsClaimed) {
   EXPECT_FALSE(c.certified);
   EXPECT_EQ(c.outcome, PeriodicOutcome::not_found);
   EXPECT_NE(c.statement.find("Nothing is claimed"), std::string::npos);
+}
+
+// Accelerator ladders (verify/accelerator.hpp): the exact certificate is checked against the
+// impact map itself, iterated at 256 bits (a different code path: walking segments, roots).
+ModelSpec elastic_model(const char* a) {
+  ModelSpec m;
+  m.law = Law::elastic;
+  m.a = *Decimal::parse(a);
+  m.wall = parse_wall("wall", "triangle");
+  return m;
+}
+
+// The largest deviation of the map's orbit from the ladder (theta0, v0 + 8k) over n steps.
+double ladder_deviation(const ModelSpec& s, const char* theta, const char* v, int n) {
+  const ImpactMap<Mpfr> map(make_model<Mpfr>(s, 256));
+  const InitialCondition ic{*Decimal::parse(theta), *Decimal::parse(v)};
+  State<Mpfr> x = make_state<Mpfr>(ic, 256);
+  const double t0 = x.theta.to_double(), v0 = x.v.to_double();
+  double worst = 0;
+  for (int k = 1; k <= n; ++k) {
+    x = map.step(x).next;
+    worst = std::max({worst, std::fabs(x.theta.to_double() - t0), std::fabs(x.v.to_double() - (v0 + 8.0 * k)) / (v0 + 8.0 * k)});
+  }
+  return worst;
+}
+
+TEST(CertifyAccelerator, LaddersAreProvedAndTheMapFollowsThem) {
+  for (const auto& [a, theta, v] : {std::tuple{"16", "0.25", "8"}, std::tuple{"16", "0.05", "24"}, std::tuple{"8", "0.1", "8"}}) {
+    const LadderCertificate c = certify_ladder(elastic_model(a), {*Decimal::parse(theta), *Decimal::parse(v)}, Decimal::from_int(8));
+    ASSERT_TRUE(c.certified) << c.statement;
+    EXPECT_EQ(c.D, 8);
+    EXPECT_EQ(c.m0, 2 * mpq_class(v) / mpq_class(a));
+    EXPECT_LT(ladder_deviation(elastic_model(a), theta, v, 40), 1e-60) << "a = " << a;
+  }
+}
+
+TEST(CertifyAccelerator, StartsOffALadderAreNotModes) {
+  // a = 19: 2D/a = 16/19 is not whole; the map's orbit indeed leaves the ladder.
+  const LadderCertificate c19 = certify_ladder(elastic_model("19"), {*Decimal::parse("0.25"), *Decimal::parse("9.5")}, Decimal::from_int(8));
+  EXPECT_FALSE(c19.certified);
+  EXPECT_NE(c19.statement.find("16/19"), std::string::npos) << c19.statement;
+  EXPECT_GT(ladder_deviation(elastic_model("19"), "0.25", "9.5", 40), 1e-3);
+  // a = 16 but 2 v0 / a = 9/8: the first flight does not land at its phase.
+  EXPECT_FALSE(certify_ladder(elastic_model("16"), {*Decimal::parse("0.25"), Decimal::from_int(9)}, Decimal::from_int(8)).certified);
+  EXPECT_GT(ladder_deviation(elastic_model("16"), "0.25", "9", 40), 1e-3);
+  // The falling wall, and a wrong gain.
+  EXPECT_FALSE(certify_ladder(elastic_model("16"), {*Decimal::parse("0.75"), Decimal::from_int(8)}, Decimal::from_int(8)).certified);
+  EXPECT_FALSE(certify_ladder(elastic_model("16"), {*Decimal::parse("0.25"), Decimal::from_int(8)}, Decimal::from_int(4)).certified);
+  ModelSpec constant = elastic_model("16");
+  constant.law = Law::constant;
+  EXPECT_THROW(certify_ladder(constant, {*Decimal::parse("0.25"), Decimal::from_int(8)}, Decimal::from_int(8)), InputError);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 
+#include "bouncer/verify/accelerator.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
 #include "bouncer/verify/sticking.hpp"
 #include "cli_common.hpp"
@@ -21,7 +22,7 @@ const char* kRangeKeys[] = {"a-range", "eps-range", "c-range"};
 const std::set<std::string>& certify_periodic_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"period", "guess", "family", "max-bits", "start-bits", "max-depth", "max-pieces", "max-iter", "grid", "json",
+    k.insert({"period", "guess", "family", "lift", "max-bits", "start-bits", "max-depth", "max-pieces", "max-iter", "grid", "json",
               "out", "a-range", "eps-range", "c-range", "vary"});
     return k;
   }();
@@ -30,6 +31,7 @@ const std::set<std::string>& certify_periodic_keys() {
 
 struct Request {
   PeriodicQuestion q;
+  std::optional<Decimal> lift;  // accelerator ladder (verify/accelerator.hpp)
   bool json = false;
   std::optional<std::string> out;
 };
@@ -83,6 +85,14 @@ Request request_from(Options& o) {
     r.q.guess = ic;
   }
   r.q.family = parse_family_mode("family", o.get_or("family", "auto"));
+  if (o.has("lift")) {
+    r.lift = parse_decimal("lift", o.get("lift"));
+    if (r.q.model.law != Law::elastic) throw InputError("lift", "needs --model elastic (accelerator modes are elastic)");
+    if (r.q.period != 1)
+      throw InputError("lift", "needs --period 1 (exact accelerator modes are ladders of period 1: README, certify-periodic)");
+    if (!r.q.guess) throw InputError("lift", "needs --guess THETA,V (the start of the ladder)");
+    if (range) throw InputError("lift", "cannot be combined with a parameter range");
+  }
   if (r.q.family == FamilyMode::family && range)
     throw InputError("family", "on cannot be combined with a parameter range: a family exists at one parameter value "
                                "(its parameter is one of the unknowns)");
@@ -208,6 +218,8 @@ Command add_certify_periodic(CLI::App& app) {
   opts->add("vary", "The parameter of a family (its unknown) or of a range: a (default) | eps | c");
   opts->add("family", "auto (default: when Newton finds a multiplier 1) | on | off: certify a neutral family on the "
                       "quotient by theta, with the parameter as an unknown");
+  opts->add("lift", "D: prove an accelerator mode P(x) = x + (0, D) forever, in exact arithmetic (--model elastic, "
+                    "--period 1, --guess)");
   opts->add("max-bits", "Largest interval precision of the escalation schedule (default 1024)");
   opts->add("start-bits", "First precision of the schedule 64, 128, ... doubling (default 64)");
   opts->add("max-depth", "With a range: bisection depth limit, integer in [0, 40] (default 8)");
@@ -232,7 +244,22 @@ Command add_certify_periodic(CLI::App& app) {
     body["method"] =
         "Krawczyk operator on F(x) = P^Q(x) - x in mean-value form over the box and the parameter interval; interval "
         "Jacobian by Dual<Mpfi> through the same step; every branch decided for the whole box";
-    if (!r.q.range) {
+    if (r.lift) {
+      const LadderCertificate c = certify_ladder(r.q.model, *r.q.guess, *r.lift);
+      body["method"] = "exact rational arithmetic (GMP) on the ladder conditions of verify/accelerator.hpp";
+      body["inputs"]["lift"] = r.lift->text();
+      body["certified"] = c.certified;
+      body["outcome"] = c.certified ? "accelerator_mode" : "not_a_ladder";
+      body["statement"] = c.statement;
+      if (c.certified) {
+        body["gain_per_impact"] = exact_decimal(c.D);
+        body["first_flight_periods"] = exact_decimal(c.m0);
+        body["periods_added_per_impact"] = exact_decimal(c.J);
+        body["first_flight_least_gap"] = exact_decimal(c.min_gap);
+      }
+      p.precision = "exact (rational arithmetic)";
+      p.bits = 0;
+    } else if (!r.q.range) {
       const PeriodicCertificate c = certify_periodic(r.q);
       p.bits = c.bits;
       const json cj = certificate_json(c);  // named: items() must not outlive it

@@ -64,6 +64,12 @@ guess = ["0.3", "12"]
 TOML
 run scene certify-periodic --scene "$TMP/scene.toml" --json && check scene 'j["outcome"] == "family"'
 
+# Accelerator ladders (--lift): a = 16 is one, a = 19 is not.
+run ladder certify-periodic --model elastic --a 16 --period 1 --guess 0.25,8 --lift 8 --json &&
+  check ladder 'j["certified"] and j["outcome"] == "accelerator_mode" and j["gain_per_impact"] == "8" and j["first_flight_periods"] == "1"'
+run noladder certify-periodic --model elastic --a 19 --period 1 --guess 0.25,9.5 --lift 8 --json &&
+  check noladder 'not j["certified"] and j["outcome"] == "not_a_ladder" and "16/19" in j["statement"]'
+
 # Bad input: exit 2, one line naming the option, no file.
 bad() {  # bad NAME EXPECTED-WORD ARGS...
   local name=$1 word=$2 rc=0
@@ -85,6 +91,10 @@ bad family_word family --model constant --eps 0.5 --a 24 --period 1 --family may
 bad guess guess --model constant --eps 0.5 --a 24 --period 1 --guess 0.3
 bad inside_wall guess --model constant --eps 0.5 --a 24 --period 1 --guess 0.3,-10
 bad bits max-bits --model constant --eps 0.5 --a 24 --period 1 --max-bits 5
+bad lift_model lift --model constant --eps 0.5 --a 16 --period 1 --guess 0.25,8 --lift 8
+bad lift_period lift --model elastic --a 16 --period 2 --guess 0.25,8 --lift 8
+bad lift_guess lift --model elastic --a 16 --period 1 --lift 8
+bad lift_value lift --model elastic --a 16 --period 1 --guess 0.25,8 --lift x
 
 if [[ $failures -gt 0 ]]; then
   echo "$failures check(s) failed" >&2

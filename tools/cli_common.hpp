@@ -139,6 +139,35 @@ inline void print_key_values(std::ostream& out, const Provenance& p, const nlohm
   put("", j);
 }
 
+// Both ends of a varied parameter's range (bifurcation, lyapunov --vary, continue,
+// certify-periodic --a-range ...) must give a valid model; InputError names `field`.
+inline void validate_range_ends(const ModelSpec& m, Parameter p, const std::string& field, const Decimal& lo,
+                                const Decimal& hi) {
+  for (const Decimal& end : {lo, hi}) {
+    try {
+      validate(with_parameter(m, p, end));
+    } catch (const InputError& e) {
+      throw InputError(field, "end " + end.text() + " is outside the model's range (" + e.what() + ")");
+    }
+  }
+}
+
+// A certified command's result (certify-sticking, certify-periodic): JSON with the
+// provenance first, or the key: value text; to --out (atomically) or stdout.
+inline void write_result(const std::optional<std::string>& out, bool json, const Provenance& p,
+                         const nlohmann::ordered_json& body) {
+  write_atomically(out, [&](std::ostream& s) {
+    if (json) {
+      nlohmann::ordered_json doc;
+      doc["provenance"] = nlohmann::ordered_json::parse(p.as_json());
+      for (const auto& [k, v] : body.items()) doc[k] = v;
+      s << doc.dump(1) << "\n";
+    } else {
+      print_key_values(s, p, body);
+    }
+  });
+}
+
 inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,
                                  const std::string& argv_text) {
   Provenance pr;

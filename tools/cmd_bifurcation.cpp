@@ -42,15 +42,7 @@ BifurcationRequest bifurcation_request(const Options& given) {
   if (r.vary == "eps" && r.model.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
   if (r.vary == "c" && r.model.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
   std::tie(r.lo, r.hi) = parse_range("range", o.get("range"));
-  for (const Decimal& end : {r.lo, r.hi}) {
-    ModelSpec m = r.model;
-    (r.vary == "a" ? m.a : r.vary == "eps" ? m.eps : m.c) = end;
-    try {
-      validate(m);
-    } catch (const InputError& e) {
-      throw InputError("range", std::string("end ") + end.text() + " is outside the model's range (" + e.what() + ")");
-    }
-  }
+  validate_range_ends(r.model, parse_parameter("vary", r.vary), "range", r.lo, r.hi);
   r.samples = integer_from(o, "samples", 1, 100000, 200);
   r.transient = integer_from(o, "transient", 0, 100000000, 5000);
   r.record = integer_from(o, "record", 1, 1000000, 500);

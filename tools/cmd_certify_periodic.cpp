@@ -66,13 +66,7 @@ Request request_from(Options& o) {
   }
   r.q.model = model_from(parse);
   if (range) {
-    for (const Decimal& end : {range->first, range->second}) {
-      try {
-        validate(with_parameter(r.q.model, r.q.vary, end));
-      } catch (const InputError& e) {
-        throw InputError(*range_key, "end " + end.text() + " is outside the model's range (" + e.what() + ")");
-      }
-    }
+    validate_range_ends(r.q.model, r.q.vary, *range_key, range->first, range->second);
     r.q.range = std::make_pair(range->first.value(), range->second.value());
   }
   if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 1000])");
@@ -285,16 +279,7 @@ Command add_certify_periodic(CLI::App& app) {
       body["pieces"] = pieces;
       body["seconds"] = rep.seconds;
     }
-    write_atomically(r.out, [&](std::ostream& s) {
-      if (r.json) {
-        json outj;
-        outj["provenance"] = json::parse(p.as_json());
-        for (const auto& [k, v] : body.items()) outj[k] = v;
-        s << outj.dump(1) << "\n";
-      } else {
-        print_key_values(s, p, body);
-      }
-    });
+    write_result(r.out, r.json, p, body);
     return 0;
   };
   return {sub, run};

@@ -222,16 +222,7 @@ Command add_certify_sticking(CLI::App& app) {
       body["pieces"] = pieces;
       body["seconds"] = rep.seconds;
     }
-    write_atomically(r.out, [&](std::ostream& s) {
-      if (r.json) {
-        json outj;
-        outj["provenance"] = json::parse(p.as_json());
-        for (const auto& [k, v] : body.items()) outj[k] = v;
-        s << outj.dump(1) << "\n";
-      } else {
-        print_key_values(s, p, body);
-      }
-    });
+    write_result(r.out, r.json, p, body);
     return 0;
   };
   return {sub, run};

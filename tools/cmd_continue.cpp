@@ -67,15 +67,7 @@ ContinueRequest continue_request(const Options& given) {
   }
   r.model = model_from(o);
   std::tie(r.lo, r.hi) = parse_range("range", o.get("range"));
-  for (const Decimal& end : {r.lo, r.hi}) {
-    ModelSpec m = r.model;
-    (r.vary == Parameter::a ? m.a : r.vary == Parameter::eps ? m.eps : m.c) = end;
-    try {
-      validate(m);
-    } catch (const InputError& e) {
-      throw InputError("range", std::string("end ") + end.text() + " is outside the model's range (" + e.what() + ")");
-    }
-  }
+  validate_range_ends(r.model, r.vary, "range", r.lo, r.hi);
   const Decimal& start = r.vary == Parameter::a ? r.model.a : r.vary == Parameter::eps ? r.model.eps : r.model.c;
   if (start < r.lo || r.hi < start)
     throw InputError(r.vary_name, "the start value " + start.text() + " must lie in the range [" + r.lo.text() + ", " +

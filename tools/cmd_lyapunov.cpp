@@ -123,15 +123,7 @@ CurveRequest curve_request(const Options& given) {
   if (r.vary == "c" && r.model.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
   if (!o.has("range")) throw InputError("range", "is needed with --vary: LO:HI (decimals, LO < HI)");
   std::tie(r.lo, r.hi) = parse_range("range", o.get("range"));
-  for (const Decimal& end : {r.lo, r.hi}) {
-    ModelSpec m = r.model;
-    (r.vary == "a" ? m.a : r.vary == "eps" ? m.eps : m.c) = end;
-    try {
-      validate(m);
-    } catch (const InputError& e) {
-      throw InputError("range", std::string("end ") + end.text() + " is outside the model's range (" + e.what() + ")");
-    }
-  }
+  validate_range_ends(r.model, parse_parameter("vary", r.vary), "range", r.lo, r.hi);
   r.samples = integer_from(o, "samples", 1, 100000, 100);
   r.ics = integer_from(o, "ics", 1, 1000, 1);
   r.lyap.transient = integer_from(o, "transient", 0, 1000000000LL, 1000);

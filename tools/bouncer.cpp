@@ -12,6 +12,7 @@
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/model/spec.hpp"
 #include "cli_common.hpp"
+#include "command_line.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
@@ -22,11 +23,17 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", build_info().version + " (commit " + build_info().commit + ")");
   std::vector<Command> commands{add_orbit(app), add_certify_sticking(app), add_certify_periodic(app), add_sweep(app), add_audit(app), add_periodic(app), add_lyapunov(app), add_classify(app), add_bifurcation(app), add_portrait(app), add_basin(app), add_scan(app), add_merge(app), add_continue(app)};
 
+  const std::string version = build_info().version + " (commit " + build_info().commit + ")";
+  for (const Command& c : commands) c.app->set_version_flag("--version", version);
+  if (const std::string problem = check_command_line(app, argc, argv); !problem.empty()) {
+    std::cerr << "bouncer: " << one_line(problem) << "\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);
-    std::cerr << "bouncer: " << e.what() << " (see bouncer --help)\n";
+    std::cerr << "bouncer: " << one_line(e.what()) << " (see bouncer --help)\n";
     return 2;
   }
   try {
@@ -37,13 +44,13 @@ int main(int argc, char** argv) {
         return status;
       }
   } catch (const InputError& e) {
-    std::cerr << "bouncer: " << e.what() << "\n";
+    std::cerr << "bouncer: " << one_line(e.what()) << "\n";
     return 2;
   } catch (const OutputError& e) {
-    std::cerr << "bouncer: " << e.what() << "\n";
+    std::cerr << "bouncer: " << one_line(e.what()) << "\n";
     return 1;
   } catch (const std::exception& e) {
-    std::cerr << "bouncer: internal error: " << e.what() << "\n";
+    std::cerr << "bouncer: internal error: " << one_line(e.what()) << "\n";
     return 1;
   }
   return 0;

@@ -139,6 +139,16 @@ inline void print_key_values(std::ostream& out, const Provenance& p, const nlohm
   put("", j);
 }
 
+// A swept parameter needs no value of its own: the model is built at the range's start,
+// parsed here first so that a bad range is blamed on --range, not on the parameter.
+inline void default_to_range_start(Options& o, const std::string& vary) {
+  if (o.has(vary) || !o.has("range") || (vary != "a" && vary != "eps" && vary != "c")) return;
+  const std::string range = o.get("range");
+  const auto colon = range.find(':');
+  if (colon == std::string::npos) throw InputError("range", "must be LO:HI (got '" + range + "')");
+  o.set(vary, parse_decimal("range", range.substr(0, colon)).text());
+}
+
 // Both ends of a varied parameter's range (bifurcation, lyapunov --vary, continue,
 // certify-periodic --a-range ...) must give a valid model; InputError names `field`.
 inline void validate_range_ends(const ModelSpec& m, Parameter p, const std::string& field, const Decimal& lo,

@@ -32,11 +32,7 @@ BifurcationRequest bifurcation_request(const Options& given) {
   BifurcationRequest r;
   r.vary = given.get_or("vary", "a");
   Options o = given;
-  // The swept parameter needs no value of its own: the model is built at the range's start.
-  if (!o.has(r.vary) && o.has("range") && (r.vary == "a" || r.vary == "eps" || r.vary == "c")) {
-    const std::string range = o.get("range");
-    o.set(r.vary, range.substr(0, range.find(':')));
-  }
+  default_to_range_start(o, r.vary);
   r.model = model_from(o);
   if (r.vary != "a" && r.vary != "eps" && r.vary != "c") throw InputError("vary", "must be a, eps or c (got '" + r.vary + "')");
   if (r.vary == "eps" && r.model.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");

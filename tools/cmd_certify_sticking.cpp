@@ -65,7 +65,7 @@ Request request_from(Options& o) {
     parse.set("a", o.get("a-range").substr(0, o.get("a-range").find(':')));
   }
   r.q.model = model_from(parse);
-  if (r.q.model.law != Law::constant) throw InputError("model", "certify-sticking needs --model constant (sticking exists only there)");
+  if (r.q.model.law != Law::constant) throw InputError("model", "certify-sticking needs --model constant (its certified collapse test is the constant-restitution threshold; velocity-dependent collapse, which does occur: bouncer orbit --model veldep --veldep-collapse on)");
   const std::vector<InitialCondition> ic = initial_conditions_from(parse, r.q.model);
   if (ic.size() != 1) throw InputError("theta", "takes one initial condition");
   r.q.start = ic[0];

@@ -61,10 +61,7 @@ ContinueRequest continue_request(const Options& given) {
   if (r.vary == Parameter::c && law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
   Options o = given;
   // The varied parameter starts at the range's low end unless given.
-  if (!o.has(r.vary_name)) {
-    const std::string range = o.get("range");
-    o.set(r.vary_name, range.substr(0, range.find(':')));
-  }
+  default_to_range_start(o, r.vary_name);
   r.model = model_from(o);
   std::tie(r.lo, r.hi) = parse_range("range", o.get("range"));
   validate_range_ends(r.model, r.vary, "range", r.lo, r.hi);

@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <filesystem>
 #include <sstream>
 
 namespace bouncer {
@@ -61,6 +62,8 @@ std::string scalar_text(const std::string& key, const toml::node& n) {
 }  // namespace
 
 Options load_scene(const std::string& path, const std::string& command, const std::set<std::string>& allowed) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError("scene", "'" + path + "' is a directory, not a scene file (.toml)");
   toml::table table;
   try {
     table = toml::parse_file(path);

@@ -1,0 +1,49 @@
+#!/usr/bin/env bash
+# End-to-end: inputs that are not what they seem get bouncer's own one-line message and
+# exit status 2 (tools/command_line.hpp):
+#   * an unknown command names the commands, with a did-you-mean;
+#   * an unknown option names the command's help, with a did-you-mean (--epsilon -> --eps);
+#   * `--opt=` with no value is refused (it used to take the next option as its value);
+#   * a 100,000-character value is cut and a newline in a value is escaped: one short line;
+#   * a directory given as a scene is refused; a bad --range is blamed on --range;
+#   * --version works on every command.
+# Usage: bash input_edges.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash input_edges.sh <bouncer-binary> <source-dir>}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+
+refused() {  # refused NAME PATTERN ARGS... : exit 2, one line of at most 500 characters matching PATTERN
+  local name=$1 pattern=$2 rc=0
+  shift 2
+  "$BOUNCER" "$@" >"$TMP/out" 2>"$TMP/err" || rc=$?
+  [[ $rc -eq 2 ]] || fail "$name" "exit $rc, expected 2: $(head -c 300 "$TMP/err")"
+  [[ $(wc -l <"$TMP/err") -eq 1 ]] || fail "$name" "expected one line on stderr: $(head -c 300 "$TMP/err" | tr '\n' '|')"
+  [[ $(wc -c <"$TMP/err") -le 500 ]] || fail "$name" "the error line is $(wc -c <"$TMP/err") characters long"
+  [[ ! -s "$TMP/out" ]] || fail "$name" "something was written to stdout"
+  grep -qE -- "$pattern" "$TMP/err" || fail "$name" "message lacks '$pattern': $(head -c 300 "$TMP/err")"
+}
+M=(--model constant --eps 0.5 --a 24)
+refused unknown_command "unknown command 'orbti' \(did you mean 'orbit'\?\); commands: orbit, " orbti
+refused unknown_option "orbit: unknown option '--epsilon' \(did you mean --eps\?\)" orbit --epsilon 0.5 --a 24
+refused empty_value "^bouncer: steps: '--steps=' gives no value" orbit "${M[@]}" --theta 0.3 --v 12 --steps= --json
+long=$(printf 'x%.0s' $(seq 1 100000))
+refused long_value "characters cut" orbit "${M[@]}" --theta "$long" --v 12
+refused newline "\\\\n" orbit "${M[@]}" --theta $'0.3\nsecond line' --v 12
+mkdir "$TMP/scene.toml"
+refused scene_dir "scene: .* is a directory" orbit --scene "$TMP/scene.toml"
+refused range_blame "^bouncer: range:" bifurcation --model constant --eps 0.5 --range x:30 --samples 3
+refused range_blame_lyapunov "^bouncer: range:" lyapunov --model constant --eps 0.5 --vary a --range x:30 --samples 3
+for cmd in orbit certify-sticking certify-periodic sweep audit periodic continue lyapunov classify bifurcation portrait basin scan merge; do
+  rc=0
+  out=$("$BOUNCER" "$cmd" --version 2>&1) || rc=$?
+  [[ $rc -eq 0 && $out =~ commit ]] || fail "version_$cmd" "exit $rc: ${out:0:200}"
+done
+
+if [[ $failures -gt 0 ]]; then
+  echo "$failures check(s) failed" >&2
+  exit 1
+fi
+echo "input edges: all checks passed"

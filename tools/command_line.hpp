@@ -1,0 +1,107 @@
+// The command line before CLI11 sees it: bouncer's own one-line messages for what CLI11
+// would reject with a message that names no allowed values (unknown commands and options,
+// with a did-you-mean; `--opt=` with no value), and every error line made safe to print
+// (control characters escaped, long echoed values cut).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace bouncer::cli {
+
+// Edit distance (Levenshtein), for suggestions.
+inline size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diag = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// The closest of `names` to `word`, if it is close enough to be a typo. A name that is a
+// prefix of the word, or the word a prefix of it (--epsilon / --eps), counts as distance 1.
+inline std::optional<std::string> closest(const std::string& word, const std::vector<std::string>& names) {
+  std::optional<std::string> best;
+  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
+  for (const std::string& n : names) {
+    size_t d = edit_distance(word, n);
+    const size_t shorter = std::min(word.size(), n.size());
+    if (shorter >= 4 && (word.rfind(n, 0) == 0 || n.rfind(word, 0) == 0)) d = std::min<size_t>(d, 1);
+    if (d < best_d) {
+      best = n;
+      best_d = d;
+    }
+  }
+  return best;
+}
+
+// One printable line: control characters escaped, at most `limit` characters (an echoed
+// 100,000-character value becomes its start and end).
+inline std::string one_line(const std::string& s, size_t limit = 400) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20 || c == 0x7f) {
+      const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  if (out.size() > limit) out = out.substr(0, limit - 60) + " ... [" + std::to_string(out.size() - limit + 40) + " characters cut] ... " + out.substr(out.size() - 20);
+  return out;
+}
+
+// Checks argv against the registered commands and their options; returns the message of
+// the first problem ("" if none). Runs before CLI11, whose messages for these cases name
+// no allowed values.
+inline std::string check_command_line(CLI::App& app, int argc, char** argv) {
+  if (argc < 2) return "";
+  const std::string first = argv[1];
+  if (first.empty() || first[0] == '-') return "";  // --help, --version
+  std::vector<std::string> names;
+  for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  CLI::App* sub = nullptr;
+  for (CLI::App* c : app.get_subcommands({}))
+    if (c->get_name() == first) sub = c;
+  if (!sub) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    const auto guess = closest(first, names);
+    return "unknown command '" + first + "'" + (guess ? " (did you mean '" + *guess + "'?)" : "") + "; commands: " + list;
+  }
+  std::vector<std::string> options;
+  for (const CLI::Option* o : sub->get_options())
+    for (const std::string& n : o->get_lnames()) options.push_back("--" + n);
+  for (int i = 2; i < argc; ++i) {
+    const std::string tok = argv[i];
+    if (tok == "--") break;
+    if (tok.rfind("--", 0) != 0) continue;
+    const auto eq = tok.find('=');
+    const std::string name = tok.substr(0, eq);
+    if (eq != std::string::npos && eq + 1 == tok.size())
+      return name.substr(2) + ": '" + tok + "' gives no value (write " + name + " VALUE)";
+    if (name == "--help" || name == "--version") continue;
+    if (std::find(options.begin(), options.end(), name) == options.end()) {
+      const auto guess = closest(name, options);
+      return first + ": unknown option '" + name + "'" + (guess ? " (did you mean " + *guess + "?)" : "") +
+             "; see bouncer " + first + " --help";
+    }
+  }
+  return "";
+}
+
+}  // namespace bouncer::cli

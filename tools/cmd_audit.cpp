@@ -8,7 +8,8 @@
 // recorded inputs by this same binary, into a temporary directory, and the two outputs are
 // compared.
 //
-// Compared: everything, except these volatile fields:
+// Compared: everything, numbers as the exact text they hold (not as parsed doubles), except
+// these volatile fields:
 //   * timings: JSON keys named "seconds" (at any depth); text lines starting "# time:";
 //   * the invocation (binary path and command line): JSON provenance.invocation, text
 //     line "# invocation:";
@@ -25,7 +26,9 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -121,6 +124,34 @@ int run_to_file(const std::vector<std::string>& argv, const std::string& out_pat
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// The JSON text with every number token turned into a string holding its exact text (marked
+// by a leading U+0001), so that results are compared as the digits they hold: parsed as
+// doubles, an edit of the 17th digit of a 20-digit number would compare equal.
+std::string numbers_as_text(const std::string& in) {
+  std::string out;
+  out.reserve(in.size() + in.size() / 8);
+  bool in_string = false;
+  for (size_t i = 0; i < in.size(); ++i) {
+    const char c = in[i];
+    if (in_string) {
+      out += c;
+      if (c == '\\' && i + 1 < in.size()) out += in[++i];
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+      out += c;
+    } else if (c == '-' || (c >= '0' && c <= '9')) {
+      size_t j = i;
+      while (j < in.size() && (std::isdigit(static_cast<unsigned char>(in[j])) || std::strchr("+-.eE", in[j]))) ++j;
+      out += "\"\\u0001" + in.substr(i, j - i) + "\"";
+      i = j - 1;
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 // Volatile JSON fields removed before comparing.
 void strip_volatile(json& j, bool top) {
   if (j.is_object()) {
@@ -137,6 +168,11 @@ void strip_volatile(json& j, bool top) {
 
 std::string short_dump(const json& j) {
   std::string s = j.dump();
+  // Numbers were compared as their text (numbers_as_text): show them as numbers again.
+  for (size_t at; (at = s.find("\"\\u0001")) != std::string::npos;) {
+    const size_t end = s.find('"', at + 7);
+    s = s.substr(0, at) + s.substr(at + 7, end - at - 7) + s.substr(end + 1);
+  }
   return s.size() > 200 ? s.substr(0, 200) + "..." : s;
 }
 
@@ -270,7 +306,7 @@ int audit(const std::string& path) {
     return 1;
   }
   if (rec->is_json) {
-    json a = json::parse(text, nullptr, false), b = json::parse(again, nullptr, false);
+    json a = json::parse(numbers_as_text(text), nullptr, false), b = json::parse(numbers_as_text(again), nullptr, false);
     if (b.is_discarded()) {
       std::cout << "audit: DIFFERENT: the rerun's output is not JSON\n";
       return 1;

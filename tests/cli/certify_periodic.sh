@@ -54,6 +54,20 @@ run text certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0
 run out certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.944,-0.345 --json --out "$TMP/r.json"
 [[ -s "$TMP/r.json" && ! -s "$TMP/out.out" ]] || fail out "--out did not write the file (or also wrote stdout)"
 run audit audit "$TMP/r.json" && grep -q IDENTICAL "$TMP/audit.out" || fail audit "audit of a fresh result: $(cat "$TMP/audit.out")"
+# One more digit after the 17th of a number parses to the same double: audit compares the
+# text, so it must see the edit.
+python3 - "$TMP/r.json" "$TMP/r-edited.json" <<'PY'
+import re, sys
+s = open(sys.argv[1]).read()
+m = re.search(r'"double_distance": (-?[0-9.]+)(e-?[0-9]+)?', s)
+assert m, "no double_distance number"
+edited = '"double_distance": ' + m.group(1) + "1" + (m.group(2) or "")
+assert float(edited.split(": ")[1]) == float(m.group(0).split(": ")[1]), "the edit must not change the double"
+open(sys.argv[2], "w").write(s.replace(m.group(0), edited))
+PY
+rc=0; "$BOUNCER" audit "$TMP/r-edited.json" >"$TMP/audit2.out" 2>&1 || rc=$?
+[[ $rc -eq 1 ]] && grep -q "DIFFERENT: first difference at double_distance" "$TMP/audit2.out" ||
+  fail audit_digits "an edit beyond double precision passed: exit $rc, $(cat "$TMP/audit2.out")"
 cat > "$TMP/scene.toml" <<'TOML'
 command = "certify-periodic"
 model = "constant"

@@ -23,10 +23,18 @@ Command add_orbit(CLI::App& app) {
                       "much tighter enclosures, about 5x the cost per step)");
   opts->add("every", "Print every K-th step (and the last), integer >= 1 (default 1)");
   opts->add("out", "Write to FILE (atomically) instead of stdout");
+  auto force = std::make_shared<bool>(false);
+  sub->add_flag("--force", *force, "Write more than 1e8 rows (about 10 GB of CSV) all the same");
 
-  auto run = [opts, scene](const std::string& argv_text) {
+  auto run = [opts, scene, force](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "orbit", orbit_keys()), opts->collected());
     const OrbitRequest req = orbit_request(o);
+    // A guard against unbounded output (--steps 1e10 without --every wrote 32 GB before it
+    // was stopped): the rows are counted before anything is written.
+    const double rows = static_cast<double>(req.initial.size()) * (static_cast<double>(req.steps / req.every) + 1);
+    if (rows > 1e8 && !*force)
+      throw InputError("steps", "would print " + std::to_string(static_cast<long long>(rows)) +
+                                    " rows (more than 1e8, about 10 GB of CSV): raise --every, or give --force");
     Provenance p = provenance_for("orbit", o, req.precision, argv_text);
     std::optional<std::string> out;
     if (o.has("out")) out = o.get("out");

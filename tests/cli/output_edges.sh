@@ -5,7 +5,8 @@
 #   * --out /dev/full: exit 1, no PATH.partial left; --out /dev/null: written through, the
 #     device stays a device; --out a named pipe: written through (its reader gets the data);
 #   * --out a symlink to a regular file: the target is written, the link survives;
-#   * --out a directory or DIR/: exit 2, naming --out, nothing written.
+#   * --out a directory or DIR/: exit 2, naming --out, nothing written;
+#   * more than 1e8 rows without --force: exit 2 before anything is written.
 # Usage: bash output_edges.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 BOUNCER=${1:?usage: bash output_edges.sh <bouncer-binary> <source-dir>}
@@ -23,7 +24,7 @@ expect() {  # expect NAME STATUS ARGS... (stdout to /dev/full unless --out is gi
   [[ $(wc -l <"$TMP/$name.err") -eq 1 ]] || fail "$name" "expected one line on stderr, got: $(head -c 300 "$TMP/$name.err")"
 }
 expect orbit 1 orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10
-expect orbit_long 1 orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 100000000
+expect orbit_long 1 orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 100000000 --every 2
 expect sticking 1 certify-sticking --eps 0.5 --a 10
 expect periodic_certified 1 certify-periodic "${MODEL[@]}" --period 1 --guess 0.3,12
 expect periodic 1 periodic "${MODEL[@]}" --period 1 --guess 0.3,12
@@ -51,6 +52,11 @@ ln -s "$TMP/target" "$TMP/link"
 "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/link" || fail out_link "exit $?"
 [[ -L "$TMP/link" ]] || fail out_link "the symlink was replaced by a file"
 grep -q '^10,' "$TMP/target" || fail out_link "the link's target was not written"
+
+# Unbounded output is refused before anything is written (--force overrides; not run here).
+rc=0; "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10000000000 --out "$TMP/huge.csv" 2>"$TMP/huge.err" || rc=$?
+[[ $rc -eq 2 && ! -e "$TMP/huge.csv" ]] && grep -q '^bouncer: steps: would print' "$TMP/huge.err" ||
+  fail huge "exit $rc: $(head -c 300 "$TMP/huge.err")"
 
 # Directories: exit 2, nothing written.
 mkdir "$TMP/dir"

@@ -20,10 +20,10 @@ int main(int argc, char** argv) {
   using namespace bouncer::cli;
   CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", build_info().version + " (commit " + build_info().commit + ")");
   std::vector<Command> commands{add_orbit(app), add_certify_sticking(app), add_certify_periodic(app), add_sweep(app), add_audit(app), add_periodic(app), add_lyapunov(app), add_classify(app), add_bifurcation(app), add_portrait(app), add_basin(app), add_scan(app), add_merge(app), add_continue(app)};
 
   const std::string version = build_info().version + " (commit " + build_info().commit + ")";
+  app.set_version_flag("--version", version);
   for (const Command& c : commands) c.app->set_version_flag("--version", version);
   if (const std::string problem = check_command_line(app, argc, argv); !problem.empty()) {
     std::cerr << "bouncer: " << one_line(problem) << "\n";

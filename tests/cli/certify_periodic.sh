@@ -37,6 +37,10 @@ run iso certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.
              and inside("0.4096", j["multipliers"]["det"]) and len(j["points"]) == 2 and j["provenance"]["command"] == "certify-periodic"
              and F(j["krawczyk"]["box"][0][0]) < F(j["krawczyk"]["image"][0][0]) and F(j["krawczyk"]["image"][0][1]) < F(j["krawczyk"]["box"][0][1])'
 
+# Without --guess: Newton from a grid in the trapping region, then the same proof.
+run search certify-periodic --model constant --eps 0.8 --a 19 --period 2 --json &&
+  check search 'j["certified"] and j["inputs"]["guess"] is None and inside("0.4096", j["multipliers"]["det"])'
+
 run fam certify-periodic --model constant --eps 0.5 --a 24 --period 1 --guess 0.3,12 --json &&
   check fam 'j["outcome"] == "family" and inside(24, j["family"]["parameter_at_theta"]) and inside(12, j["points"][0]["v"])
              and inside(1, j["multipliers"]["mu1"]) and inside(F(1, 4), j["multipliers"]["mu2"]) and j["family"]["given_parameter"] == "inside"'

@@ -6,7 +6,7 @@
 #   * `--opt=` with no value is refused (it used to take the next option as its value);
 #   * a 100,000-character value is cut and a newline in a value is escaped: one short line;
 #   * a directory given as a scene is refused; a bad --range is blamed on --range;
-#   * --version works on every command.
+#   * --version works on every command; a proof program refuses --bits abc.
 # Usage: bash input_edges.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 BOUNCER=${1:?usage: bash input_edges.sh <bouncer-binary> <source-dir>}
@@ -41,6 +41,17 @@ for cmd in orbit certify-sticking certify-periodic sweep audit periodic continue
   out=$("$BOUNCER" "$cmd" --version 2>&1) || rc=$?
   [[ $rc -eq 0 && $out =~ commit ]] || fail "version_$cmd" "exit $rc: ${out:0:200}"
 done
+
+# Proof programs parse their options with CLI11: --bits abc used to run at 16 bits.
+PROOF="$(dirname "$BOUNCER")/../proofs/proof_veldep_collapse"
+if [[ -x $PROOF ]]; then
+  for bad in abc 5; do
+    rc=0; "$PROOF" --bits "$bad" >/dev/null 2>"$TMP/proof.err" || rc=$?
+    [[ $rc -eq 2 ]] && grep -q -- '--bits' "$TMP/proof.err" || fail "proof_bits_$bad" "exit $rc: $(head -c 200 "$TMP/proof.err")"
+  done
+else
+  fail proof_bits "no proof program at $PROOF"
+fi
 
 if [[ $failures -gt 0 ]]; then
   echo "$failures check(s) failed" >&2

@@ -232,13 +232,17 @@ template <class T>
 std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std::ostream& out) {
   const long bits = req.precision.bits;
   const ImpactMap<T> map(make_model<T>(req.model, bits));
+  // Every start is converted before anything is written (a theta that rounds to 1 is bad
+  // input, and bad input leaves no partial output).
+  std::vector<State<T>> starts;
+  for (const InitialCondition& ic : req.initial) starts.push_back(make_state<T>(map.model(), ic));
   RowWriter w(out, req.format, ScalarTraits<T>::is_interval, bits);
   w.begin(p);
   std::vector<OrbitOutcome> outcomes;
   for (size_t i = 0; i < req.initial.size(); ++i) {
     w.begin_orbit(i);
     OrbitOutcome o;
-    State<T> s = make_state<T>(map.model(), req.initial[i]);
+    State<T> s = starts[i];
     w.row(start_row(s, i));
     std::optional<OrbitEnclosure> lohner;
     if constexpr (ScalarTraits<T>::is_interval) {

@@ -6,6 +6,7 @@
 #   * `--opt=` with no value is refused (it used to take the next option as its value);
 #   * a 100,000-character value is cut and a newline in a value is escaped: one short line;
 #   * a directory given as a scene is refused; a bad --range is blamed on --range;
+#   * a theta that rounds to 1 in the chosen precision is refused (not wrapped);
 #   * --version works on every command; a proof program refuses --bits abc.
 # Usage: bash input_edges.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -32,6 +33,9 @@ refused empty_value "^bouncer: steps: '--steps=' gives no value" orbit "${M[@]}"
 long=$(printf 'x%.0s' $(seq 1 100000))
 refused long_value "characters cut" orbit "${M[@]}" --theta "$long" --v 12
 refused newline "\\\\n" orbit "${M[@]}" --theta $'0.3\nsecond line' --v 12
+refused theta_rounds_to_1 "theta: .* rounds to 1" orbit "${M[@]}" --theta 0.99999999999999999999 --v 12
+"$BOUNCER" orbit "${M[@]}" --theta 0.99999999999999999999 --v 12 --precision mpfr:256 >/dev/null ||
+  fail theta_mpfr "the same theta at 256 bits (it does not round to 1 there) was refused"
 mkdir "$TMP/scene.toml"
 refused scene_dir "scene: .* is a directory" orbit --scene "$TMP/scene.toml"
 refused range_blame "^bouncer: range:" bifurcation --model constant --eps 0.5 --range x:30 --samples 3

@@ -6,6 +6,7 @@
 // velocity at theta = 1/2 is -4 and at theta = 0 is +4.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "bouncer/model/spec.hpp"
@@ -103,10 +104,17 @@ struct State {
   int knot = -1;
 };
 
+// theta < 1 holds for the exact decimal (validated), but it may round to 1 in T (0.99999999
+// 999999999999 in double): that would be a different state (phase 0 of the next period), so
+// it is refused, naming the precision's limit, rather than wrapped silently.
 template <class T>
 State<T> make_state(const InitialCondition& ic, long bits) {
   using Tr = ScalarTraits<T>;
-  return {Tr::from_decimal(ic.theta.text(), bits), Tr::from_decimal(ic.v.text(), bits)};
+  State<T> s{Tr::from_decimal(ic.theta.text(), bits), Tr::from_decimal(ic.v.text(), bits)};
+  if (Tr::le(Tr::from_int(1, bits), s.theta) != Truth::no)
+    throw InputError("theta", "'" + ic.theta.text() + "' rounds to 1 (or may) at this precision (" +
+                                  std::to_string(Tr::bits(s.theta)) + " bits): give fewer nines or more bits");
+  return s;
 }
 
 // The same, recognising a start exactly at a wall knot (compared as exact rationals).

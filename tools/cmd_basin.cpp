@@ -5,12 +5,14 @@
 // red = sticking, as in the paper's figs. basin1 and basin2; blue = unbounded. Grid
 // points below the wall's velocity are outside the phase space and are marked "outside".
 #include <cmath>
+#include <iomanip>
 #include <map>
 #include <memory>
 #include <sstream>
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/verify/sticking.hpp"  // exact_decimal
 #include "commands.hpp"
 #include "picture_common.hpp"
 
@@ -26,6 +28,34 @@ struct BasinRequest {
   Precision precision;
 };
 
+// The default v range, as `scan` uses: from the wall's fastest upward velocity to the top of
+// the proved trapping region (README Claims row 5), rounded up to 4 decimals so that it is
+// an exact decimal that still covers the region. The elastic model has none.
+std::pair<Decimal, Decimal> trapping_v_range(const ModelSpec& m) {
+  mpq_class u = 0;
+  for (const Decimal& k : m.wall.knots) u = std::max(u, wall_velocity_exact(m.wall, k.value()));
+  std::ostringstream lo, hi;
+  lo << u.get_d();
+  double top = 0;
+  if (m.law == Law::constant) {
+    if (m.eps.value() == 1) throw InputError("v-range", "is needed when eps = 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
+    const mpq_class t = u * (1 + 3 * m.eps.value()) / (1 - m.eps.value()) * 10000;  // exact: ceiling below
+    mpz_class up;
+    mpz_cdiv_q(up.get_mpz_t(), t.get_num_mpz_t(), t.get_den_mpz_t());
+    hi << exact_decimal(mpq_class(up, 10000));
+    return {parse_decimal("v-range", lo.str()), parse_decimal("v-range", hi.str())};
+  } else if (m.law == Law::veldep) {
+    // max(V_c, 4 + c (5/3)^(5/3) e^(-5/3)), V_c = 4 [2 coth(2^(4/5) / c^(3/5)) - 1] (Claims row 5).
+    const double c = m.c.approx(), x = std::pow(2.0, 0.8) / std::pow(c, 0.6);
+    top = std::max(u.get_d() * (2 / std::tanh(x) - 1), u.get_d() + c * std::pow(5.0 / 3, 5.0 / 3) * std::exp(-5.0 / 3));
+  } else {
+    throw InputError("v-range", "is needed for --model elastic (no trapping region: velocities grow without bound)");
+  }
+  const double up = std::ceil(top * 1e4 * (1 + 1e-12)) / 1e4;  // rounded up, with a margin for double
+  hi << std::fixed << std::setprecision(4) << up;
+  return {parse_decimal("v-range", lo.str()), parse_decimal("v-range", hi.str())};
+}
+
 BasinRequest basin_request(const Options& o) {
   BasinRequest r;
   r.model = model_from(o);
@@ -33,8 +63,12 @@ BasinRequest basin_request(const Options& o) {
   std::tie(r.t0, r.t1) = parse_range("theta-range", o.get_or("theta-range", "0:1"));
   if (r.t0 < Decimal::from_int(0) || r.t1 > Decimal::from_int(1))
     throw InputError("theta-range", "must lie in [0, 1] (got '" + o.get_or("theta-range", "0:1") + "')");
-  std::tie(r.v0, r.v1) = parse_range("v-range", o.get("v-range"));
-  if (r.v1.approx() > 1e15 || r.v0.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
+  if (o.has("v-range")) {
+    std::tie(r.v0, r.v1) = parse_range("v-range", o.get("v-range"));
+    if (r.v1.approx() > 1e15 || r.v0.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
+  } else {
+    std::tie(r.v0, r.v1) = trapping_v_range(r.model);
+  }
   r.classify = classify_options_from(o);
   r.precision = point_precision(o);
   return r;
@@ -146,6 +180,8 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
   nlohmann::ordered_json s;
   s["command"] = "basin";
   s["grid"] = {r.nx, r.ny};
+  s["theta_range"] = {r.t0.text(), r.t1.text()};
+  s["v_range"] = {r.v0.text(), r.v1.text()};  // the default is the trapping region
   s["points"] = items.size();
   nlohmann::ordered_json types = nlohmann::ordered_json::array();
   for (const auto& [k, n] : order) types.push_back({{"class", k.first}, {"period", k.second}, {"points", n}, {"fraction", n / total}});
@@ -179,7 +215,7 @@ Command add_basin(CLI::App& app) {
   add_model_options(*opts);
   opts->add("grid", "NxM: N phases by M velocities (cell centres), 1..8192 each (default 100x100)");
   opts->add("theta-range", "T0:T1 within [0, 1] (default 0:1)");
-  opts->add("v-range", "V0:V1, the initial velocities (points below the wall velocity are 'outside')");
+  opts->add("v-range", "V0:V1, the initial velocities (default: the trapping region, as scan; needed for elastic; points below the wall velocity are 'outside')");
   add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
   auto flags = add_run_options(sub, *opts);

@@ -46,6 +46,12 @@ for cmd in orbit certify-sticking certify-periodic sweep audit periodic continue
   [[ $rc -eq 0 && $out =~ commit ]] || fail "version_$cmd" "exit $rc: ${out:0:200}"
 done
 
+# Defaults consistent across commands: basin, like scan, defaults --v-range to the trapping
+# region [4, 4(1+3eps)/(1-eps)] (eps = 1/2: exactly 20); elastic has none and needs it.
+v_range=$("$BOUNCER" basin "${M[@]}" --grid 4x4 --transient 10 --steps 16 --json --quiet | python3 -c 'import json,sys; print(json.load(sys.stdin)["summary"]["v_range"])')
+[[ $v_range == "['4', '20']" ]] || fail basin_v_range "default v range $v_range, expected ['4', '20']"
+refused basin_elastic "v-range: is needed for --model elastic" basin --model elastic --a 24 --grid 4x4
+
 # Proof programs parse their options with CLI11: --bits abc used to run at 16 bits.
 PROOF="$(dirname "$BOUNCER")/../proofs/proof_veldep_collapse"
 if [[ -x $PROOF ]]; then

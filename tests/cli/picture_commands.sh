@@ -206,7 +206,7 @@ bad below-wall portrait --model constant --a 24 --eps 0.5 --theta 0.1 --v 1 $O
 bad grid-zero $BA --grid 0x5 $O
 bad grid-form $BA --grid 5 $O
 bad theta-range basin --model constant --a 24 --eps 0.5 --theta-range 0:2 --v-range 4:10 $O
-bad no-v-range basin --model constant --a 24 --eps 0.5 --grid 4x4 $O
+bad no-v-range basin --model elastic --a 24 --grid 4x4 $O  # constant and veldep default to the trapping region
 bad max-period $BA --grid 8x6 --max-period 400 $O
 bad basin-interval basin --model constant --a 24 --eps 0.5 --v-range 4:10 --precision interval:64 $O
 bad scan-elastic scan --model elastic --a-range 18:20 --eps-range 0.1:0.2 $O

@@ -75,6 +75,35 @@ std::optional<Recorded> recorded_json(const std::string& text) {
   return r;
 }
 
+// The "# inputs:" line's k=v tokens; a value may be quoted (provenance's quote_input).
+// Empty on a malformed line.
+std::optional<std::vector<std::pair<std::string, std::string>>> input_tokens(const std::string& line) {
+  std::vector<std::pair<std::string, std::string>> out;
+  size_t i = 0;
+  while (true) {
+    while (i < line.size() && line[i] == ' ') ++i;
+    if (i >= line.size()) return out;
+    const size_t eq = line.find('=', i);
+    if (eq == std::string::npos) return std::nullopt;
+    const std::string key = line.substr(i, eq - i);
+    if (key.empty() || key.find(' ') != std::string::npos) return std::nullopt;
+    i = eq + 1;
+    std::string value;
+    if (i < line.size() && line[i] == '"') {
+      ++i;
+      while (i < line.size() && line[i] != '"') {
+        if (line[i] == '\\' && i + 1 < line.size()) ++i;
+        value += line[i++];
+      }
+      if (i >= line.size()) return std::nullopt;  // no closing quote
+      ++i;
+    } else {
+      while (i < line.size() && line[i] != ' ') value += line[i++];
+    }
+    out.emplace_back(key, value);
+  }
+}
+
 std::optional<Recorded> recorded_text(const std::string& text) {
   std::istringstream in(text);
   std::string first;
@@ -89,13 +118,9 @@ std::optional<Recorded> recorded_text(const std::string& text) {
   bool found = false;
   while (std::getline(in, line)) {
     if (line.rfind("# inputs:", 0) != 0) continue;
-    std::istringstream t(line.substr(9));
-    std::string tok;
-    while (t >> tok) {
-      const auto eq = tok.find('=');
-      if (eq == std::string::npos) return std::nullopt;
-      r.inputs.emplace_back(tok.substr(0, eq), tok.substr(eq + 1));
-    }
+    const auto tokens = input_tokens(line.substr(9));
+    if (!tokens) return std::nullopt;
+    r.inputs = *tokens;
     found = true;
     break;
   }
@@ -224,10 +249,9 @@ std::vector<std::string> normalized_lines(const std::string& text) {
   while (std::getline(in, line)) {
     if (line.rfind("# invocation:", 0) == 0 || line.rfind("# time:", 0) == 0) continue;
     if (line.rfind("# inputs:", 0) == 0) {
-      std::istringstream t(line.substr(9));
-      std::string tok, kept = "# inputs:";
-      while (t >> tok)
-        if (tok.rfind("out=", 0) != 0) kept += " " + tok;
+      std::string kept = "# inputs:";
+      for (const auto& [k, v] : input_tokens(line.substr(9)).value_or(std::vector<std::pair<std::string, std::string>>{}))
+        if (k != "out") kept += " " + k + "=" + quote_input(v);
       line = kept;
     }
     out.push_back(line);

@@ -17,13 +17,28 @@ std::string library_versions() {
   return s.str();
 }
 
+// An input value on the "# inputs:" line: as it is, or in double quotes (with \" and \\)
+// when it holds a space, a quote, a backslash or a control character, or is empty, so that
+// `audit` reads back exactly the value given (an --out path with a space, say).
+std::string quote_input(const std::string& v) {
+  bool plain = !v.empty();
+  for (unsigned char c : v) plain = plain && c > ' ' && c != '"' && c != '\\' && c != 0x7f;
+  if (plain) return v;
+  std::string q = "\"";
+  for (char c : v) {
+    if (c == '"' || c == '\\') q += '\\';
+    q += c;
+  }
+  return q + "\"";
+}
+
 std::string Provenance::as_comment_lines() const {
   const BuildInfo& b = build_info();
   std::ostringstream s;
   s << "# bouncer " << b.version << " (commit " << b.commit << ") " << command << "\n";
   if (!invocation.empty()) s << "# invocation: " << invocation << "\n";
   s << "# inputs:";
-  for (const auto& [k, v] : inputs) s << " " << k << "=" << v;
+  for (const auto& [k, v] : inputs) s << " " << k << "=" << quote_input(v);
   s << "\n# precision: " << precision << " (" << bits << " significand bits)\n";
   if (!decimal_note.empty()) s << "# decimals: " << decimal_note << "\n";
   s << "# libraries: " << library_versions() << "\n";

@@ -6,7 +6,8 @@
 #     device stays a device; --out a named pipe: written through (its reader gets the data);
 #   * --out a symlink to a regular file: the target is written, the link survives;
 #   * --out a directory or DIR/: exit 2, naming --out, nothing written;
-#   * more than 1e8 rows without --force: exit 2 before anything is written.
+#   * more than 1e8 rows without --force: exit 2 before anything is written;
+#   * a path with a space is quoted on the "# inputs:" line and audit reruns it.
 # Usage: bash output_edges.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 BOUNCER=${1:?usage: bash output_edges.sh <bouncer-binary> <source-dir>}
@@ -57,6 +58,13 @@ grep -q '^10,' "$TMP/target" || fail out_link "the link's target was not written
 rc=0; "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10000000000 --out "$TMP/huge.csv" 2>"$TMP/huge.err" || rc=$?
 [[ $rc -eq 2 && ! -e "$TMP/huge.csv" ]] && grep -q '^bouncer: steps: would print' "$TMP/huge.err" ||
   fail huge "exit $rc: $(head -c 300 "$TMP/huge.err")"
+
+# A path with a space round-trips through the "# inputs:" line: audit reruns it.
+mkdir "$TMP/with space"
+"$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 5 --out "$TMP/with space/o.csv" || fail space "orbit exit $?"
+grep -q "out=\"$TMP/with space/o.csv\"" "$TMP/with space/o.csv" || fail space "the inputs line does not quote the path"
+"$BOUNCER" audit "$TMP/with space/o.csv" >"$TMP/space.out" 2>&1 && grep -q IDENTICAL "$TMP/space.out" ||
+  fail space "audit of a result whose path has a space: $(head -c 300 "$TMP/space.out")"
 
 # Directories: exit 2, nothing written.
 mkdir "$TMP/dir"

@@ -15,6 +15,10 @@ const BuildInfo& build_info();  // generated at build time (cmake/BuildInfo.cmak
 
 std::string library_versions();  // "boost 1.74.0, mpfr 4.2.0, mpfi 1.5.3, gmp 6.2.1"
 
+// An input value as the "# inputs:" line writes it: plain, or quoted ("..." with \" and \\)
+// when it holds white space, quotes, backslashes or control characters, or is empty.
+std::string quote_input(const std::string& value);
+
 struct Provenance {
   std::string command;                                     // e.g. "orbit"
   std::vector<std::pair<std::string, std::string>> inputs; // exact option texts, in order

@@ -74,10 +74,7 @@ struct Sweep {
   T param(long k) const { return r.samples == 1 ? lo : T(lo + (hi - lo) * k / (r.samples - 1)); }
 
   Model<T> model_at(const T& p) const {
-    Model<T> m = base;
-    (r.vary == "a" ? m.a : r.vary == "eps" ? m.eps : m.c) = p;
-    m.collapse = m.a * (1 - m.eps) / 2;
-    return m;
+    return with_parameter(base, parse_parameter("vary", r.vary), p);
   }
 
   std::string item(long k) {

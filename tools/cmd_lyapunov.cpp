@@ -150,10 +150,7 @@ struct CurveGrid {
 
   // The model at p, exactly as make_model builds it from the decimal that prints p.
   Model<T> model_at(const T& p) const {
-    Model<T> m = base;
-    (r.vary == "a" ? m.a : r.vary == "eps" ? m.eps : m.c) = p;
-    m.collapse = m.a * (1 - m.eps) / 2;
-    return m;
+    return with_parameter(base, parse_parameter("vary", r.vary), p);
   }
 
   // Value k: one row per start (value, ic, theta0, v0, lambda, stderr, class, period).

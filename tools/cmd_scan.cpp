@@ -106,11 +106,8 @@ struct ScanGrid {
 
   // Item i: a index i mod P, y index i / P (cell centres).
   std::string item(long i) const {
-    Model<T> m = base;
     const T a = cell_centre(a0, a1, i % r.p, r.p), y = cell_centre(y0, y1, i / r.p, r.q);
-    m.a = a;
-    (r.y == "eps" ? m.eps : m.c) = y;
-    m.collapse = m.a * (1 - m.eps) / 2;
+    const Model<T> m = with_parameter(with_parameter(base, Parameter::a, a), parse_parameter("y", r.y), y);
     const ImpactMap<T> map(m);
     const T vlo = r.v_given ? v0 : Tr::from_int(4, r.precision.bits);
     const T vhi = r.v_given ? v1 : v_upper(m);

@@ -62,19 +62,6 @@ bool same_cycle(const std::vector<StepEvent>& x, const std::vector<StepEvent>& y
   return false;
 }
 
-template <class T>
-Model<T> with_parameter(const Model<T>& m, Parameter p, const T& value) {
-  Model<T> r = m;
-  (p == Parameter::a ? r.a : p == Parameter::eps ? r.eps : r.c) = value;
-  r.collapse = r.a * (1 - r.eps) / 2;  // as make_model: the threshold follows a and eps
-  return r;
-}
-
-template <class T>
-const T& parameter_of(const Model<T>& m, Parameter p) {
-  return p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c;
-}
-
 namespace {
 
 template <class T>
@@ -568,8 +555,6 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
 }
 
 #define BOUNCER_CONTINUATION_INSTANTIATE(T)                                                                  \
-  template Model<T> with_parameter<T>(const Model<T>&, Parameter, const T&);                              \
-  template const T& parameter_of<T>(const Model<T>&, Parameter);                                          \
   template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
                                         const T&, const ContinuationOptions&);                            \
   template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);

@@ -31,8 +31,7 @@ Mpfi enclose(const mpq_class& lo, const mpq_class& hi, long bits) {
 Model<Mpfi> interval_model(const ModelSpec& spec, long bits, const std::optional<std::pair<mpq_class, mpq_class>>& a_range) {
   Model<Mpfi> m = make_model<Mpfi>(spec, bits);
   if (a_range) {
-    m.a = enclose(a_range->first, a_range->second, bits);
-    m.collapse = m.a * (1 - m.eps) / 2;
+    m = with_parameter(m, Parameter::a, enclose(a_range->first, a_range->second, bits));
   }
   return m;
 }

@@ -63,11 +63,6 @@ bool disjoint(const Mpfi& x, const Mpfi& y) {
 }
 bool inside(const Mpfi& x, const Mpfi& y) { return y.contains(x); }
 
-template <class T>
-void set_parameter(Model<T>& m, Parameter p, const T& value) {
-  (p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c) = value;
-  m.collapse = m.a * (1 - m.eps) / 2;
-}
 
 // What a step was, in words ("impact(seg 1, corner)").
 std::string event_text(const StepResult<Mpfi>& r) {
@@ -111,7 +106,7 @@ Derivatives derivatives(const Model<Mpfi>& m, Parameter par, const Box3& b, long
   Derivatives out;
   for (int run = 0; run < 2; ++run) {
     Model<IDual> dm = convert_model<IDual>(m, [](const Mpfi& x) { return IDual(x); });
-    set_parameter(dm, par, run == 1 ? IDual::variable(b.x[2], 0) : IDual(b.x[2]));
+    dm = with_parameter(dm, par, run == 1 ? IDual::variable(b.x[2], 0) : IDual(b.x[2]));
     State<IDual> s = run == 0 ? State<IDual>{IDual::variable(b.x[0], 0), IDual::variable(b.x[1], 1)}
                               : State<IDual>{IDual(b.x[0]), IDual(b.x[1])};
     const ImpactMap<IDual> map(std::move(dm));
@@ -163,7 +158,7 @@ void residual(const Problem& P, Mpfi f[2]) {
   const Mpfi yh[2] = {thin(P.yhat[0]), thin(P.yhat[1])};
   const Box3 b = assemble(P, yh, thin(P.zhat));
   Model<Mpfi> m = P.model;
-  set_parameter(m, P.par, b.x[2]);
+  m = with_parameter(m, P.par, b.x[2]);
   const std::vector<StepResult<Mpfi>> orbit = interval_orbit(m, State<Mpfi>{b.x[0], b.x[1]}, P.q);
   f[0] = orbit.back().next.theta - b.x[0];
   f[1] = orbit.back().next.v - b.x[1];
@@ -182,7 +177,7 @@ struct KrawczykStep {
 KrawczykStep krawczyk(const Problem& P, const Mpfi f[2], const Mpfi Y[2]) {
   Model<Mpfi> m = P.model;
   const Box3 b = assemble(P, Y, P.Z);
-  set_parameter(m, P.par, b.x[2]);
+  m = with_parameter(m, P.par, b.x[2]);
   KrawczykStep out{{}, derivatives(m, P.par, b, P.q)};
   const Derivatives& d = out.d;
   Mpfi Fy[2][2], Fz[2];
@@ -279,7 +274,7 @@ KrawczykResult prove(const Problem& P) {
       // The final derivatives are over the tightened box (for the multipliers).
       Model<Mpfi> m = P.model;
       const Box3 b = assemble(P, T, P.Z);
-      set_parameter(m, P.par, b.x[2]);
+      m = with_parameter(m, P.par, b.x[2]);
       out.d = derivatives(m, P.par, b, P.q);
       return out;
     }
@@ -358,7 +353,7 @@ class Attempt1 {
  public:
   Attempt1(const PeriodicQuestion& q, long bits, const Mpfi& Z, const std::optional<State<Mpfr>>& guess)
       : q_(q), bits_(bits), Z_(Z), guess_(guess), model_(interval_model(q.model, bits)) {
-    set_parameter(model_, q.vary, Z_);
+    model_ = with_parameter(model_, q.vary, Z_);
   }
 
   PeriodicCertificate run() {
@@ -402,7 +397,7 @@ class Attempt1 {
 
   PeriodicOrbit<Mpfr> newton_orbit() const {
     Model<Mpfr> m = make_model<Mpfr>(q_.model, bits_);
-    set_parameter(m, q_.vary, Z_.mid());
+    m = with_parameter(m, q_.vary, Z_.mid());
     if (guess_) return find_periodic(m, q_.period, *guess_, q_.newton);
     if (q_.guess) return find_periodic(m, q_.period, make_state<Mpfr>(*q_.guess, bits_), q_.newton);
     return search_periodic(m, q_.period, q_.newton);
@@ -480,7 +475,7 @@ class Attempt1 {
     c.unknowns = std::string("v, ") + name(q_.vary);
     c.free_name = "theta";
     Model<Mpfi> m = model_;
-    set_parameter(m, q_.vary, k0.Y[1]);
+    m = with_parameter(m, q_.vary, k0.Y[1]);
     finish(c, at, k0, State<Mpfi>{thin(th), k0.Y[0]}, m, true);
     c.family_parameter = enclosure(k0.Y[1]);
     c.given_parameter = inside(Z_, k0.Y[1]) ? "inside" : disjoint(Z_, k0.Y[1]) ? "outside" : "overlaps";

@@ -192,9 +192,7 @@ int main(int argc, char** argv) {
       o.threads = 2;
       const auto t0 = std::chrono::steady_clock::now();
       GridResult r = run_grid(bp, [&](long k) {
-        Model<double> m = base;
-        m.a = 28 + 2.0 * k / (samples - 1);
-        m.collapse = m.a * (1 - m.eps) / 2;
+        const Model<double> m = with_parameter(base, Parameter::a, 28 + 2.0 * k / (samples - 1));
         const ImpactMap<double> mp(m);
         State<double> s{0.5, 4};
         std::string out;
@@ -254,9 +252,7 @@ int main(int argc, char** argv) {
     o.threads = 2;
     const auto t0 = std::chrono::steady_clock::now();
     GridResult r = run_grid(cp, [&](long k) {
-      Model<double> m = base;
-      m.a = 20 + 10.0 * k / (samples - 1);
-      m.collapse = m.a * (1 - m.eps) / 2;
+      const Model<double> m = with_parameter(base, Parameter::a, 20 + 10.0 * k / (samples - 1));
       State<double> s{0.1, 6};
       const LyapunovResult lr = lyapunov(m, s, lo, &s);
       const Classification c = classify<double>(ImpactMap<double>(m), s, co);

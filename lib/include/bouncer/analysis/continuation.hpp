@@ -31,11 +31,7 @@ namespace bouncer {
 // Parameter (a | eps | c) and name(Parameter): model/spec.hpp, shared with the certifier
 // (verify/periodic_certify.hpp), so that one enum names the varied parameter everywhere.
 
-// The model with `p` set to `value` (and the sticking threshold rebuilt from it).
-template <class T>
-Model<T> with_parameter(const Model<T>& m, Parameter p, const T& value);
-template <class T>
-const T& parameter_of(const Model<T>& m, Parameter p);
+// with_parameter / parameter_of on a Model<T>: model/model.hpp.
 
 // The margins of one impact that end a branch when they reach 0.
 //   knot:      distance of the impact phase to the nearest wall knot (= to the nearer end
@@ -161,8 +157,6 @@ template <class T>
 BranchPoint<T> analyse_orbit(const Model<T>& m, Parameter p, PeriodicOrbit<T> orbit);
 
 #define BOUNCER_CONTINUATION_EXTERN(T)                                                                             \
-  extern template Model<T> with_parameter<T>(const Model<T>&, Parameter, const T&);                              \
-  extern template const T& parameter_of<T>(const Model<T>&, Parameter);                                          \
   extern template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
                                                const T&, const ContinuationOptions&);                            \
   extern template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);

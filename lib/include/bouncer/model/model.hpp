@@ -94,6 +94,20 @@ Model<U> convert_model(const Model<T>& m, F&& to) {
   return r;
 }
 
+// The model with parameter p set to `value`. The sticking threshold `collapse` is derived
+// from a and eps (as make_model builds it), so it is rebuilt here and nowhere else.
+template <class T>
+Model<T> with_parameter(const Model<T>& m, Parameter p, const T& value) {
+  Model<T> r = m;
+  (p == Parameter::a ? r.a : p == Parameter::eps ? r.eps : r.c) = value;
+  r.collapse = r.a * (1 - r.eps) / 2;
+  return r;
+}
+template <class T>
+const T& parameter_of(const Model<T>& m, Parameter p) {
+  return p == Parameter::a ? m.a : p == Parameter::eps ? m.eps : m.c;
+}
+
 template <class T>
 struct State {
   T theta;

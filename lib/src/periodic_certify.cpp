@@ -690,8 +690,26 @@ void compare_with_double(const PeriodicQuestion& q, PeriodicCertificate& c) {
 }  // namespace
 
 PeriodicCertificate certify_periodic(const PeriodicQuestion& q) {
-  PeriodicCertificate c = certify_with_guess(q, std::nullopt, nullptr);
-  compare_with_double(q, c);
+  if (q.guess) {
+    PeriodicCertificate c = certify_with_guess(q, std::nullopt, nullptr);
+    compare_with_double(q, c);
+    return c;
+  }
+  // No guess: search the grid once, in double, and start every precision of the schedule
+  // (and the double comparison) from the orbit found, instead of a grid search per precision.
+  Decimal mid = parameter_of(q.model, q.vary);
+  if (q.range) mid = *Decimal::parse(exact_decimal((q.range->first + q.range->second) / 2));
+  const PeriodicOrbit<double> o =
+      search_periodic(make_model<double>(with_parameter(q.model, q.vary, mid), 53), q.period, q.newton);
+  if (!o.converged || o.points.empty()) {
+    PeriodicCertificate c = certify_with_guess(q, std::nullopt, nullptr);  // reports not_found at 64 bits
+    return c;
+  }
+  PeriodicQuestion found = q;
+  found.guess = InitialCondition{*Decimal::parse(ScalarTraits<double>::to_string(o.points[0].theta)),
+                                 *Decimal::parse(ScalarTraits<double>::to_string(o.points[0].v))};
+  PeriodicCertificate c = certify_with_guess(found, std::nullopt, nullptr);
+  compare_with_double(found, c);
   return c;
 }
 

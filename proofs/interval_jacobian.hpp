@@ -5,7 +5,7 @@
 // branch at every point of the input box. Used as an independent check of the Jacobians
 // derived by hand in each proof.
 //
-// ImpactMap<Dual<Mpfi>> is instantiated in the library (lib/src/enclosure.cpp, declared extern
+// ImpactMap<Dual<Mpfi>> is instantiated in the library (lib/src/verify/enclosure.cpp, declared extern
 // in verify/interval_dual.hpp); impact_map_impl.hpp is included so that this header still
 // works if that instantiation moves.
 #pragma once

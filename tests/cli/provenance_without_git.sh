@@ -25,7 +25,7 @@ first=$(info a)
 second=$(info b)
 [[ $first =~ ^tree-sha256:[0-9a-f]{64}$ ]] || fail tree "a copy without .git got '$first'"
 [[ $first == "$second" ]] || fail stable "two runs on the same tree differ: $first vs $second"
-echo "// one more byte" >>"$TMP/copy/lib/src/output.cpp"
+echo "// one more byte" >>"$TMP/copy/lib/src/io/output.cpp"
 third=$(info c)
 [[ $third != "$first" && $third =~ ^tree-sha256: ]] || fail change "a changed source file kept the hash $first"
 

@@ -1,5 +1,5 @@
 // Attractor types: what an orbit does in the long run, with the evidence.
-// (Implemented in lib/src/classify.cpp for double and Mpfr.)
+// (Implemented in lib/src/analysis/classify.cpp for double and Mpfr.)
 #pragma once
 
 #include <string>

@@ -15,7 +15,7 @@
 // first step, the end is located by bisection between the last accepted value and the
 // first refused one (the corrector runs at every trial value), down to the working
 // precision (2^-44 relative for double, 2^-(bits-12) for the others).
-// Implemented in lib/src/continuation.cpp for double, long double, Quad and Mpfr.
+// Implemented in lib/src/analysis/continuation.cpp for double, long double, Quad and Mpfr.
 #pragma once
 
 #include <array>

@@ -1,6 +1,6 @@
 // Jacobians of the impact map by forward-mode automatic differentiation through the same
 // templated step (ImpactMap<Dual<S>>), and stability multipliers of periodic orbits.
-// Implemented in lib/src/jacobian.cpp for S = double and S = Mpfr.
+// Implemented in lib/src/analysis/jacobian.cpp for S = double and S = Mpfr.
 //
 // Seeding: theta0 -> (1, 0), v0 -> (0, 1). The result's derivative components are the rows
 //     J = [ d theta1/d theta0   d theta1/d v0 ]

@@ -1,6 +1,6 @@
 // Leading Lyapunov exponent per collision, through the AD tangent map (TangentMap), with
 // renormalisation at every step, a transient, and an error estimate from blocks.
-// Implemented in lib/src/lyapunov.cpp for double and Mpfr.
+// Implemented in lib/src/analysis/lyapunov.cpp for double and Mpfr.
 //
 //   lambda = (1/M) sum_n log |J_n w_n|,   w_{n+1} = J_n w_n / |J_n w_n|,   |w_0| = 1,
 // over the M measured steps after the transient. The M steps are cut into `blocks` equal

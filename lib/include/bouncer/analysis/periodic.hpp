@@ -1,7 +1,7 @@
 // Periodic orbits: the paper's analytic families (as printed, to be checked against the
 // map: see tests/test_periodic.cpp and the report there) and a damped Newton solver for
 // period-q orbits of the impact map, with stability multipliers from the AD Jacobian.
-// The solver is implemented in lib/src/periodic.cpp for double and Mpfr.
+// The solver is implemented in lib/src/analysis/periodic.cpp for double and Mpfr.
 #pragma once
 
 #include <optional>

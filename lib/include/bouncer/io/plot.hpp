@@ -1,7 +1,7 @@
 // Pictures a person would put in a paper: line/scatter plots and density images with axes,
 // tick labels, title and a legend, written as PNG (libpng) with provenance in tEXt chunks.
 // Text is drawn with a built-in bitmap font, so no font package is needed.
-// (Implemented in lib/src/plot.cpp; the font is lib/src/plot_font.inc.)
+// (Implemented in lib/src/io/plot.cpp; the font is lib/src/io/plot_font.inc.)
 #pragma once
 
 #include <cmath>

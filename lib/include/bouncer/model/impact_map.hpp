@@ -51,7 +51,7 @@ class ImpactMap {
   Truth left_zone(const State<T>& s, int j0, const T& u, const T& q) const;
 };
 
-// Explicitly instantiated in lib/src/impact_map.cpp for the supported scalar set.
+// Explicitly instantiated in lib/src/model/impact_map.cpp for the supported scalar set.
 extern template class ImpactMap<double>;
 extern template class ImpactMap<long double>;
 extern template class ImpactMap<Quad>;

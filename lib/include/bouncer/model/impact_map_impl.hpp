@@ -1,4 +1,4 @@
-// Definitions of the impact map templates. Included by lib/src/impact_map.cpp, which
+// Definitions of the impact map templates. Included by lib/src/model/impact_map.cpp, which
 // instantiates them for the supported scalar set, and by code that instantiates the map
 // for further scalar types (dual numbers for Jacobians).
 //

@@ -58,7 +58,7 @@ inline Truth floor_certain(const IDual& x, IDual& out) {
   return t;
 }
 
-// The step for interval duals is instantiated once, in lib/src/enclosure.cpp.
+// The step for interval duals is instantiated once, in lib/src/verify/enclosure.cpp.
 extern template class ImpactMap<IDual>;
 
 }  // namespace bouncer

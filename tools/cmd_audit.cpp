@@ -13,8 +13,10 @@
 //   * timings: JSON keys named "seconds" (at any depth); text lines starting "# time:";
 //   * the invocation (binary path and command line): JSON provenance.invocation, text
 //     line "# invocation:";
-//   * the output location: JSON provenance.inputs.out, "out=..." in the text "# inputs:"
-//     line (the rerun writes elsewhere).
+//   * the output location: JSON provenance.inputs.out and the top-level "files" of a
+//     PREFIX.json, "out=..." in the text "# inputs:" line (the rerun writes elsewhere).
+// Pictures (PNG) and proof certificates are refused with exit 2, naming what to audit or
+// rerun instead.
 // The version, commit, compiler, flags and library versions ARE compared: a result from
 // another build is reported as different (with the field), even if its numbers agree.
 //
@@ -181,6 +183,7 @@ std::string numbers_as_text(const std::string& in) {
 void strip_volatile(json& j, bool top) {
   if (j.is_object()) {
     j.erase("seconds");
+    if (top) j.erase("files");  // where the outputs were written
     if (top && j.contains("provenance") && j["provenance"].is_object()) {
       j["provenance"].erase("invocation");
       if (j["provenance"].contains("inputs") && j["provenance"]["inputs"].is_object()) j["provenance"]["inputs"].erase("out");
@@ -272,6 +275,18 @@ int audit(const std::string& path) {
     std::cerr << "bouncer audit: cannot read '" << path << "'\n";
     return 2;
   }
+  // Kinds that carry no rerunnable provenance are refused up front, with what to do instead.
+  if (text.rfind("\x89PNG", 0) == 0) {
+    std::cerr << "bouncer audit: '" << path << "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
+                 "(same provenance, exact numbers)\n";
+    return 2;
+  }
+  if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("proof") && j.contains("claim")) {
+    std::cerr << "bouncer audit: '" << path << "' is a proof certificate; rerun its proof (build/proofs/proof_"
+              << (j["proof"].is_string() ? j["proof"].get<std::string>() : std::string("NAME"))
+              << " --json) and compare, as the README's proofs section shows\n";
+    return 2;
+  }
   std::optional<Recorded> rec = recorded_json(text);
   if (!rec) rec = recorded_text(text);
   if (!rec) {
@@ -302,6 +317,23 @@ int audit(const std::string& path) {
     if (k == "certify") { if (v == "true") argv.push_back("--certify"); continue; }  // a flag of continue
     argv.push_back("--" + k);
     argv.push_back(v);
+  }
+  // A JSON written with --out PREFIX lists its files; a picture command's JSON exists only
+  // that way (its --out is not an input: the job is the same wherever it is written).
+  bool prefix_json = false;
+  if (rec->is_json) {
+    const json j = json::parse(text, nullptr, false);
+    prefix_json = j.is_object() && j.contains("files") && j["files"].is_object();
+  }
+  if (prefix_json && !has_out) {
+    argv.push_back("--out");
+    argv.push_back(dir + "/result");
+    compare_path = dir + "/result.json";
+  } else if (rec->is_json && !has_out) {
+    // Commands that print JSON on stdout with --json; orbit chooses it with --format.
+    bool chosen = false;
+    for (const auto& [k, v] : rec->inputs) chosen = chosen || k == "json" || k == "format";
+    if (!chosen) argv.push_back("--json");
   }
   if (has_out) {
     if (rec->command == "sweep" || rec->command == "continue") {  // PREFIX.json / PREFIX.csv

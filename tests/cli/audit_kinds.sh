@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# End-to-end: `bouncer audit` supports every kind of result bouncer writes, or refuses it up
+# front with exit 2 and what to do instead.
+#   * every command's text/CSV and JSON outputs, on stdout or as PREFIX.csv / PREFIX.json,
+#     reproduce (exit 0), and a one-digit edit of a number in each is found (exit 1): a
+#     basin JSON used to give a false DIFFERENT (rerun without --out), and the JSON of
+#     periodic, lyapunov and classify could not be audited at all (rerun without --json);
+#   * a PNG and a proof certificate are refused with exit 2, naming what to audit instead.
+# Usage: bash audit_kinds.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash audit_kinds.sh <bouncer-binary> <source-dir>}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+cd "$TMP"
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+
+# audited FILE: exit 0 and IDENTICAL; then the same file with one digit of its last
+# number-bearing data line changed must be DIFFERENT (exit 1).
+audited() {
+  local f=$1 rc=0
+  "$BOUNCER" audit "$f" >"$f.audit" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] && grep -q "IDENTICAL" "$f.audit" || fail "$f" "exit $rc: $(tail -c 300 "$f.audit")"
+  # Tamper: change the last digit 1-8 on the last line (outside the provenance) that has one.
+  local ext=${f##*.} tampered="tampered-$f"
+  awk '{ lines[NR] = $0 }
+       END {
+         for (i = NR; i >= 1 && !done; --i)
+           if (lines[i] !~ /^#/ && lines[i] !~ /provenance|commit|version|invocation|seconds/)
+             for (j = length(lines[i]); j >= 1; --j) {
+               d = substr(lines[i], j, 1)
+               if (d ~ /[1-8]/ && substr(lines[i], j - 1, 1) ~ /[0-9.]/) {
+                 lines[i] = substr(lines[i], 1, j - 1) (d + 1) substr(lines[i], j + 1)
+                 done = 1
+                 break
+               }
+             }
+         for (i = 1; i <= NR; ++i) print lines[i]
+       }' "$f" >"$tampered"
+  if cmp -s "$f" "$tampered"; then fail "$f" "found no digit to change"; return; fi
+  rc=0
+  "$BOUNCER" audit "$tampered" >"$tampered.audit" 2>&1 || rc=$?
+  [[ $rc -eq 1 ]] && grep -q "DIFFERENT" "$tampered.audit" ||
+    fail "$f" "a changed digit was not found (exit $rc): $(tail -c 300 "$tampered.audit")"
+}
+
+S=(--model constant --eps 0.8 --a 24 --theta 0.1 --v 10)
+"$BOUNCER" orbit "${S[@]}" --steps 10 >orbit.csv
+"$BOUNCER" orbit "${S[@]}" --steps 10 --format json >orbit.json
+"$BOUNCER" certify-sticking --eps 0.5 --a 24 >sticking.txt
+"$BOUNCER" certify-sticking --eps 0.5 --a 24 --json >sticking.json
+"$BOUNCER" certify-periodic --model elastic --a 24 --period 1 --json >cperiodic.json
+"$BOUNCER" periodic --model elastic --a 24 --period 1 >periodic.txt
+"$BOUNCER" periodic --model elastic --a 24 --period 1 --json >periodic.json
+"$BOUNCER" lyapunov "${S[@]}" --steps 2000 --json >lyapunov.json
+"$BOUNCER" classify "${S[@]}" --json >classify.json
+"$BOUNCER" sweep "${S[@]}" --steps 10 --json >sweep.json
+"$BOUNCER" basin --model constant --eps 0.5 --a 24 --grid 16x12 --out basin --quiet
+"$BOUNCER" bifurcation --model constant --eps 0.5 --range 20:24 --samples 8 --transient 100 --record 20 --theta 0.1 --v 10 --out bif --quiet
+"$BOUNCER" scan --model constant --a-range 20:24 --eps-range 0.4:0.6 --grid 6x4 --out scan --quiet
+"$BOUNCER" lyapunov --model constant --eps 0.5 --vary a --range 20:24 --samples 4 --steps 300 --transient 50 --out curve --quiet
+for f in orbit.csv orbit.json sticking.txt sticking.json cperiodic.json periodic.txt periodic.json lyapunov.json \
+  classify.json sweep.json basin.json basin.csv bif.json scan.json curve.csv; do
+  audited "$f"
+done
+
+# Refused up front: exit 2, one line naming what to audit or rerun instead.
+refused() {
+  local f=$1 pattern=$2 rc=0
+  "$BOUNCER" audit "$f" >out 2>err || rc=$?
+  [[ $rc -eq 2 && $(wc -l <err) -eq 1 && ! -s out ]] || fail "$f" "exit $rc, expected 2 and one line: $(head -c 300 err)"
+  grep -q -- "$pattern" err || fail "$f" "message lacks '$pattern': $(head -c 300 err)"
+}
+refused basin.png "audit the PREFIX.json or PREFIX.csv"
+printf '{"proof": "elastic_period2", "claim": "eq. (33)", "verdict": "proved"}\n' >certificate.json
+refused certificate.json "proof_elastic_period2 --json"
+
+if ((failures > 0)); then
+  echo "$failures audit-kind check(s) failed" >&2
+  exit 1
+fi
+echo "audit_kinds: every result kind reproduces and a changed digit is found; pictures and certificates refused"

@@ -10,7 +10,12 @@ if(GIT AND EXISTS "${SRC}/.git")
   execute_process(COMMAND ${GIT} -C ${SRC} status --porcelain --untracked-files=no
                   OUTPUT_VARIABLE status ERROR_QUIET)
   if(status)
-    set(dirty "+dirty")
+    # Uncommitted changes: name them by a hash of the diff, so that two different dirty
+    # builds of one commit never share an identity (grid tiles, audit).
+    execute_process(COMMAND ${GIT} -C ${SRC} diff HEAD --binary OUTPUT_VARIABLE diff ERROR_QUIET)
+    string(SHA256 diff_hash "${diff}")
+    string(SUBSTRING "${diff_hash}" 0 16 diff_hash)
+    set(dirty "+dirty-${diff_hash}")
   endif()
 endif()
 # No git metadata (a tarball, a copy): identify the source by a hash of its files instead,

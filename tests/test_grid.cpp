@@ -5,6 +5,7 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 
 #include "bouncer/analysis/grid.hpp"
@@ -228,6 +229,46 @@ TEST(Grid, TilesOfAnotherJobAreNotUsed) {
   std::vector<std::string> items;
   EXPECT_TRUE(read_tile(o.tile_dir, 0, plan, "job-b", items));
   EXPECT_FALSE(read_tile(o.tile_dir, 0, GridPlan{20, 5}, "job-b", items));  // other item range
+}
+
+// A tile written by another build, or changed after it was written, is not loaded: the
+// run recomputes it and counts why (the outputs carry this build's provenance).
+TEST(Grid, TilesOfAnotherBuildOrWithABadChecksumAreRecomputed) {
+  TempDir tmp;
+  GridPlan plan{12, 4};
+  GridOptions o;
+  o.tile_dir = tmp.sub("t");
+  o.job_key = "job";
+  fs::create_directories(o.tile_dir);
+  write_tile(o.tile_dir, 0, plan, "job", {"x0", "x1", "x2", "x3"}, "another-build");
+  write_tile(o.tile_dir, 1, plan, "job", {"y4", "y5", "y6", "y7"});
+  write_tile(o.tile_dir, 2, plan, "job", {"z8", "z9", "z10", "z11"});
+  std::vector<std::string> items;
+  EXPECT_EQ(load_tile(o.tile_dir, 0, plan, "job", items), TileStatus::other_build);
+  EXPECT_EQ(load_tile(o.tile_dir, 0, plan, "job", items, "another-build"), TileStatus::ok);
+  EXPECT_EQ(load_tile(o.tile_dir, 1, plan, "job", items), TileStatus::ok);
+  EXPECT_EQ(load_tile(o.tile_dir, 1, plan, "other-job", items), TileStatus::other_job);
+  EXPECT_EQ(load_tile(o.tile_dir, 3, plan, "job", items), TileStatus::absent);
+  {  // one byte of tile 1 changed ("y5" -> "y6"), its checksum left as it was
+    std::fstream f(tile_path(o.tile_dir, 1), std::ios::in | std::ios::out | std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    const size_t at = text.find("y5");
+    ASSERT_NE(at, std::string::npos);
+    f.seekp(static_cast<std::streamoff>(at + 1));
+    f.put('6');
+  }
+  EXPECT_EQ(load_tile(o.tile_dir, 1, plan, "job", items), TileStatus::bad_checksum);
+  {  // a tile cut short
+    std::ofstream f(tile_path(o.tile_dir, 2), std::ios::binary | std::ios::trunc);
+    f << "bouncer-tile 2\nkey job\n";
+  }
+  EXPECT_EQ(load_tile(o.tile_dir, 2, plan, "job", items), TileStatus::bad_checksum);
+  const GridResult r = run_grid(plan, [](long i) { return "n" + std::to_string(i); }, o);
+  EXPECT_EQ(r.tiles_loaded, 0);
+  EXPECT_EQ(r.tiles_other_build, 1);
+  EXPECT_EQ(r.tiles_bad_checksum, 2);
+  EXPECT_EQ(r.tiles_computed, 3);
+  for (long i = 0; i < 12; ++i) EXPECT_EQ(r.items[static_cast<size_t>(i)], "n" + std::to_string(i));
 }
 
 TEST(Grid, ItemTextsWithNewlinesAndEmptyTextsRoundTripThroughTiles) {

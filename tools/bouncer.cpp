@@ -9,6 +9,7 @@
 #include <iostream>
 #include <vector>
 
+#include "bouncer/io/output.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/model/spec.hpp"
 #include "cli_common.hpp"
@@ -36,6 +37,7 @@ int main(int argc, char** argv) {
     std::cerr << "bouncer: " << one_line(e.what()) << " (see bouncer --help)\n";
     return 2;
   }
+  install_interrupt_cleanup();  // SIGINT/SIGTERM/SIGHUP remove partial files (io/output.hpp)
   try {
     for (const Command& c : commands)
       if (c.app->parsed()) {

@@ -17,6 +17,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <string>
@@ -120,6 +121,14 @@ inline std::string job_key(const PictureJob& j) {
                          " tile " + std::to_string(j.plan.tile_items) + "\n");
 }
 
+inline std::string missing_tiles_text(const std::vector<long>& miss, long tiles) {
+  std::string list;
+  for (size_t i = 0; i < miss.size() && i < 10; ++i) list += (i ? ", " : "") + std::to_string(miss[i]);
+  if (miss.size() > 10) list += ", ...";
+  return std::to_string(miss.size()) + " of " + std::to_string(tiles) + " tiles are missing (" + list +
+         "): run the remaining shards first";
+}
+
 // Runs the job's grid. Returns the item texts when every tile is available; nothing for a
 // shard run that leaves tiles for other shards (a message says so on stderr).
 inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, const RunFlags& f) {
@@ -141,12 +150,32 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
   if (f.out) {
     namespace fs = std::filesystem;
     g.tile_dir = tiles_dir(*f.out);
-    // Tiles of another job under the same prefix are stale: start afresh.
-    std::string old_key;
-    if (std::ifstream k(g.tile_dir + "/job.key"); k) std::getline(k, old_key);
+    const std::string field = f.merge_only ? "prefix" : "out";
+    if (f.merge_only) {
+      // Nothing is created (no folder, no lock) unless every tile is there to merge.
+      std::vector<long> miss;
+      std::vector<std::string> buf;
+      for (long t = 0; t < j.plan.tiles(); ++t) {
+        bool found = false;
+        for (const std::string& from : f.merge_from) found = found || read_tile(from, t, j.plan, g.job_key, buf);
+        found = found || read_tile(g.tile_dir, t, j.plan, g.job_key, buf);
+        if (!found) miss.push_back(t);
+      }
+      if (!miss.empty()) throw InputError("merge", missing_tiles_text(miss, j.plan.tiles()));
+    }
     if (world.rank == 0) {
-      if (!old_key.empty() && old_key != g.job_key && !f.merge_only) fs::remove_all(g.tile_dir);
-      fs::create_directories(g.tile_dir);
+      // Held until the process ends: the outputs are written after run_job returns.
+      static std::unique_ptr<PrefixLock> held;
+      held = std::make_unique<PrefixLock>(field, g.tile_dir, world.size > 1 ? Shard{} : f.shard);
+      // Tiles of another job under the same prefix are stale: start afresh (the lock stays).
+      std::string old_key;
+      if (std::ifstream k(g.tile_dir + "/job.key"); k) std::getline(k, old_key);
+      if (!old_key.empty() && old_key != g.job_key && !f.merge_only) {
+        if (!held->make_whole())
+          throw InputError(field, "'" + g.tile_dir + "' holds the tiles of another job whose shards are still running; choose another --out");
+        for (const auto& e : fs::directory_iterator(g.tile_dir))
+          if (e.path().filename() != "lock") fs::remove_all(e.path());
+      }
       if (old_key != g.job_key) {
         write_atomically(g.tile_dir + "/job.toml", [&](std::ostream& s) { s << j.job.as_toml(j.command); });
         write_atomically(g.tile_dir + "/job.key", [&](std::ostream& s) { s << g.job_key << "\n"; });
@@ -155,8 +184,14 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
     mpi_barrier();
     for (const std::string& from : f.merge_from)
       if (from != g.tile_dir) import_tiles(from, g.tile_dir, j.plan, g.job_key);
+    set_interrupt_hint("finished tiles are kept in " + g.tile_dir + "/: run the same command again to resume" +
+                       (f.shard.all() ? "" : " (shard " + f.shard.text() + ")"));
   }
   GridResult r = run_grid(j.plan, j.item, g);
+  if (r.tiles_other_build + r.tiles_bad_checksum > 0)
+    std::cerr << "bouncer " << j.command << ": " << r.tiles_other_build + r.tiles_bad_checksum
+              << " saved tile(s) in " << g.tile_dir << "/ recomputed: " << r.tiles_other_build << " from another build, "
+              << r.tiles_bad_checksum << " with a bad checksum (damaged or edited)\n";
   if (world.size > 1) {
     mpi_barrier();  // every rank's tiles are saved
     if (world.rank != 0) return std::nullopt;
@@ -169,13 +204,7 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
   // outputs, so a job array needs no "who finishes" logic.
   if (r.complete() && f.shard.all()) return std::move(r.items);
   const std::vector<long> miss = r.missing();
-  if (f.merge_only) {
-    std::string list;
-    for (size_t i = 0; i < miss.size() && i < 10; ++i) list += (i ? ", " : "") + std::to_string(miss[i]);
-    if (miss.size() > 10) list += ", ...";
-    throw InputError("merge", std::to_string(miss.size()) + " of " + std::to_string(j.plan.tiles()) +
-                                  " tiles are missing (" + list + "): run the remaining shards first");
-  }
+  if (f.merge_only) throw InputError("merge", missing_tiles_text(miss, j.plan.tiles()));
   if (!f.quiet)
     std::cerr << "bouncer " << j.command << ": shard " << f.shard.text() << " done (" << r.tiles_computed
               << " tiles computed; " << miss.size() << " of " << j.plan.tiles() << " tiles still missing). Run `bouncer merge "

@@ -79,6 +79,20 @@ for args in "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/dir" \
   [[ -z "$(ls -A "$TMP/dir")" ]] || fail out_dir "files written into the directory: $(ls -A "$TMP/dir")"
 done
 
+# SIGTERM during a long orbit: the .partial file is removed, nothing else is left, and the
+# process ends by the signal (143). (Grid jobs: tests/cli/grid_edges.sh.)
+"$BOUNCER" orbit --model constant --eps 0.9 --a 28.82 --theta 0.1 --v 10 --steps 50000000 \
+  --out "$TMP/long.csv" 2>"$TMP/long.err" &
+pid=$!
+for _ in $(seq 300); do [[ -s "$TMP/long.csv.partial" ]] && break; sleep 0.1; done
+[[ -s "$TMP/long.csv.partial" ]] || fail sigterm "the orbit never started writing"
+kill -TERM "$pid"
+rc=0
+wait "$pid" || rc=$?
+[[ $rc -eq 143 ]] || fail sigterm "exit $rc, expected 143"
+[[ ! -e "$TMP/long.csv.partial" && ! -e "$TMP/long.csv" ]] || fail sigterm "a partial or cut-off orbit was left"
+grep -q "interrupted by SIGTERM; partial files removed" "$TMP/long.err" || fail sigterm "message: $(head -c 300 "$TMP/long.err")"
+
 if [[ $failures -gt 0 ]]; then
   echo "$failures check(s) failed" >&2
   exit 1

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Provenance without git (cmake/BuildInfo.cmake): a source tree without git metadata (a
 # tarball, a copy) is identified by "tree-sha256:<64 hex>" over its files; with git, by the
-# 40-hex commit (+dirty). Checks: the binary's commit has exactly one of those two forms; a
+# 40-hex commit (+dirty-HASH16 for uncommitted changes, a hash of the diff). Checks: the binary's commit has exactly one of those two forms; a
 # copy without .git gets the tree form, the same for two runs, and a different one after a
 # one-byte change of a source file.
 # Usage: bash provenance_without_git.sh <bouncer-binary> <source-dir>
@@ -12,7 +12,7 @@ TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 failures=0
 fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-form='^([0-9a-f]{40}(\+dirty)?|tree-sha256:[0-9a-f]{64})$'
+form='^([0-9a-f]{40}(\+dirty-[0-9a-f]{16})?|tree-sha256:[0-9a-f]{64})$'
 
 commit=$("$BOUNCER" --version | sed -n 's/.*(commit \(.*\))$/\1/p')
 [[ $commit =~ $form ]] || fail version "commit '$commit' is neither a git commit nor a tree hash"

@@ -1,10 +1,15 @@
 #include "bouncer/analysis/grid.hpp"
 #include "bouncer/io/output.hpp"
+#include "bouncer/io/provenance.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -70,68 +75,82 @@ std::string tile_path(const std::string& dir, long tile) {
   return (fs::path(dir) / name).string();
 }
 
+const std::string& tile_build() {
+  static const std::string id = [] {
+    const BuildInfo& b = build_info();
+    return job_fingerprint(b.version + "\n" + b.commit + "\n" + b.compiler + "\n" + b.flags + "\n" + b.build_type);
+  }();
+  return id;
+}
+
 namespace {
 
-std::string tile_header(long tile, const GridPlan& plan, const std::string& key) {
+// Format 2: the header names the job, the build and the item range; the last line is
+// "end CHECKSUM", the FNV-1a fingerprint of every byte before it.
+std::string tile_header(const std::string& key) {
   std::ostringstream h;
-  h << "bouncer-tile 1\nkey " << key << "\ntile " << tile << " items " << plan.begin(tile) << " " << plan.end(tile) << "\n";
+  h << "bouncer-tile 2\nkey " << key << "\n";
   return h.str();
+}
+
+std::string tile_range(long tile, const GridPlan& plan) {
+  return "tile " + std::to_string(tile) + " items " + std::to_string(plan.begin(tile)) + " " + std::to_string(plan.end(tile)) + "\n";
 }
 
 }  // namespace
 
 void write_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
-                const std::vector<std::string>& items) {
-  std::string body = tile_header(tile, plan, key);
+                const std::vector<std::string>& items, const std::string& build) {
+  std::string body = tile_header(key) + "build " + build + "\n" + tile_range(tile, plan);
   for (long i = plan.begin(tile); i < plan.end(tile); ++i) {
     const std::string& s = items[static_cast<size_t>(i - plan.begin(tile))];
     body += "item " + std::to_string(i) + " " + std::to_string(s.size()) + "\n";
     body += s;
     body += "\n";
   }
-  body += "end\n";
-  const std::string path = tile_path(dir, tile), tmp = path + ".partial";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f << body;
-    f.close();
-    if (!f) {
-      std::error_code ec;
-      fs::remove(tmp, ec);
-      throw OutputError("cannot write tile '" + path + "'");
-    }
-  }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw OutputError("cannot rename tile '" + tmp + "': " + ec.message());
+  body += "end " + job_fingerprint(body) + "\n";
+  const std::string path = tile_path(dir, tile);
+  write_output(OutputTarget{OutputTarget::Kind::file, path}, [&](std::ostream& f) { f << body; });
 }
 
-bool read_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
-               std::vector<std::string>& items_out) {
+TileStatus load_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
+                     std::vector<std::string>& items_out, const std::string& build) {
   std::ifstream f(tile_path(dir, tile), std::ios::binary);
-  if (!f) return false;
+  if (!f) return TileStatus::absent;
   const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  const std::string header = tile_header(tile, plan, key);
-  if (text.compare(0, header.size(), header) != 0) return false;
+  // The checksum first: a damaged or edited tile is reported as such, whatever it claims.
+  const size_t end_at = text.rfind("end ");
+  if (end_at == std::string::npos || (end_at > 0 && text[end_at - 1] != '\n') ||
+      text.compare(end_at, std::string::npos, "end " + job_fingerprint(text.substr(0, end_at)) + "\n") != 0)
+    return TileStatus::bad_checksum;
+  const std::string header = tile_header(key);
+  if (text.compare(0, header.size(), header) != 0) return TileStatus::other_job;
   size_t pos = header.size();
+  const std::string build_line = "build " + build + "\n";
+  if (text.compare(pos, build_line.size(), build_line) != 0) return TileStatus::other_build;
+  pos += build_line.size();
+  const std::string range = tile_range(tile, plan);
+  if (text.compare(pos, range.size(), range) != 0) return TileStatus::other_job;
+  pos += range.size();
   std::vector<std::string> items;
   for (long i = plan.begin(tile); i < plan.end(tile); ++i) {
     const std::string tag = "item " + std::to_string(i) + " ";
-    if (text.compare(pos, tag.size(), tag) != 0) return false;
+    if (text.compare(pos, tag.size(), tag) != 0) return TileStatus::bad_checksum;
     pos += tag.size();
     const size_t nl = text.find('\n', pos);
-    if (nl == std::string::npos) return false;
+    if (nl == std::string::npos) return TileStatus::bad_checksum;
     const std::string len_text = text.substr(pos, nl - pos);
-    if (len_text.empty() || len_text.find_first_not_of("0123456789") != std::string::npos) return false;
+    if (len_text.empty() || len_text.size() > 12 || len_text.find_first_not_of("0123456789") != std::string::npos)
+      return TileStatus::bad_checksum;
     const size_t len = std::stoull(len_text);
     pos = nl + 1;
-    if (pos + len + 1 > text.size() || text[pos + len] != '\n') return false;
+    if (pos + len + 1 > text.size() || text[pos + len] != '\n') return TileStatus::bad_checksum;
     items.push_back(text.substr(pos, len));
     pos += len + 1;
   }
-  if (text.compare(pos, std::string::npos, "end\n") != 0) return false;
+  if (pos != end_at) return TileStatus::bad_checksum;
   items_out = std::move(items);
-  return true;
+  return TileStatus::ok;
 }
 
 long import_tiles(const std::string& from, const std::string& to, const GridPlan& plan, const std::string& key) {
@@ -145,6 +164,86 @@ long import_tiles(const std::string& from, const std::string& to, const GridPlan
   }
   return copied;
 }
+
+namespace {
+
+// Sets (F_SETLK) or tests (F_GETLK) a lock of `type` on [start, start + len) (len 0: to
+// the end of the file). Returns 0, or the pid holding a conflicting lock (-1 if unknown).
+long record_lock(int fd, short type, off_t start, off_t len) {
+  struct flock fl {};
+  fl.l_type = type;
+  fl.l_whence = SEEK_SET;
+  fl.l_start = start;
+  fl.l_len = len;
+  if (fcntl(fd, F_SETLK, &fl) == 0) return 0;
+  struct flock probe {};
+  probe.l_type = type;
+  probe.l_whence = SEEK_SET;
+  probe.l_start = start;
+  probe.l_len = len;
+  if (fcntl(fd, F_GETLK, &probe) == 0 && probe.l_type != F_UNLCK) return probe.l_pid;
+  return -1;
+}
+
+std::string holder_text(long pid) {
+  if (pid <= 0) return "another process";
+  std::string text = "process " + std::to_string(pid);
+  std::ifstream f("/proc/" + std::to_string(pid) + "/cmdline", std::ios::binary);
+  std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  for (char& c : cmd)
+    if (c == '\0') c = ' ';
+  while (!cmd.empty() && cmd.back() == ' ') cmd.pop_back();
+  if (cmd.size() > 200) cmd = cmd.substr(0, 200) + "...";
+  if (!cmd.empty()) text += " (" + cmd + ")";
+  return text;
+}
+
+}  // namespace
+
+PrefixLock::PrefixLock(const std::string& field, const std::string& dir, const Shard& shard) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw OutputError("cannot create '" + dir + "': " + ec.message());
+  const std::string path = (fs::path(dir) / "lock").string();
+  // The lock file may be removed by the holder as it finishes (with the tile directory):
+  // a lock taken on a file that is no longer at `path` is retried on the new file.
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) {
+      if (errno == ENOENT) {
+        fs::create_directories(dir, ec);
+        continue;
+      }
+      throw OutputError("cannot open lock file '" + path + "': " + std::strerror(errno));
+    }
+    long holder = 0;
+    if (shard.all()) {
+      holder = record_lock(fd_, F_WRLCK, 0, 0);
+    } else {
+      holder = record_lock(fd_, F_RDLCK, 0, 1);
+      if (holder == 0) holder = record_lock(fd_, F_WRLCK, 1 + shard.index, 1);
+    }
+    if (holder != 0) {
+      ::close(fd_);
+      fd_ = -1;
+      throw InputError(field, "'" + dir + "' is in use by " + holder_text(holder) +
+                                  (shard.all() ? "" : " for shard " + shard.text()) +
+                                  "; wait for it to finish, or choose another --out");
+    }
+    struct stat held {}, now {};
+    if (fstat(fd_, &held) == 0 && ::stat(path.c_str(), &now) == 0 && held.st_dev == now.st_dev && held.st_ino == now.st_ino)
+      return;
+    ::close(fd_);
+    fd_ = -1;
+  }
+  throw OutputError("cannot lock '" + path + "': it keeps being replaced");
+}
+
+PrefixLock::~PrefixLock() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+bool PrefixLock::make_whole() { return fd_ >= 0 && record_lock(fd_, F_WRLCK, 0, 0) == 0; }
 
 bool stderr_is_terminal() { return isatty(2) != 0; }
 
@@ -213,7 +312,10 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
   std::vector<long> todo;
   std::vector<std::string> buf;
   for (long t = 0; t < ntiles; ++t) {
-    if (saving && read_tile(opt.tile_dir, t, plan, opt.job_key, buf)) {
+    const TileStatus st = saving ? load_tile(opt.tile_dir, t, plan, opt.job_key, buf) : TileStatus::absent;
+    if (st == TileStatus::other_build) ++r.tiles_other_build;
+    if (st == TileStatus::bad_checksum) ++r.tiles_bad_checksum;
+    if (st == TileStatus::ok) {
       for (long i = plan.begin(t); i < plan.end(t); ++i) r.items[static_cast<size_t>(i)] = std::move(buf[static_cast<size_t>(i - plan.begin(t))]);
       r.have_tile[static_cast<size_t>(t)] = true;
       ++r.tiles_loaded;

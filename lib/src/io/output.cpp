@@ -2,8 +2,13 @@
 #include "bouncer/io/output.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
 
 #include <cerrno>
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -51,6 +56,7 @@ void write_output(const OutputTarget& target, const std::function<void(std::ostr
     return;
   }
   const std::string tmp = target.path + ".partial";
+  const PartialFile registered(tmp);
   try {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
     if (!f) throw OutputError("cannot write '" + target.path + "': " + std::strerror(errno));
@@ -66,6 +72,80 @@ void write_output(const OutputTarget& target, const std::function<void(std::ostr
     std::error_code ec;
     fs::remove(tmp, ec);
     throw;
+  }
+}
+
+namespace {
+
+// The partial-file registry: fixed slots, so that the signal handler reads it without
+// allocating or locking. A slot is 0 free, 1 being filled, 2 holding a path.
+constexpr int kSlots = 256;
+constexpr size_t kPathMax = 4096;
+std::atomic<int> slot_state[kSlots];
+char slot_path[kSlots][kPathMax];
+std::atomic<int> hint_state{0};
+char hint_text[2048];
+
+void on_interrupt(int sig) {
+  for (int i = 0; i < kSlots; ++i)
+    if (slot_state[i].load() == 2) ::unlink(slot_path[i]);
+  const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
+  auto say = [](const char* t) {
+    size_t n = 0;
+    while (t[n]) ++n;
+    ssize_t ignored = ::write(2, t, n);
+    (void)ignored;
+  };
+  say("\nbouncer: interrupted by ");
+  say(name);
+  say("; partial files removed");
+  if (hint_state.load() == 2) {
+    say("; ");
+    say(hint_text);
+  }
+  say("\n");
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+}  // namespace
+
+PartialFile::PartialFile(const std::string& path) {
+  if (path.size() >= kPathMax) return;  // no such path can be created anyway
+  for (int i = 0; i < kSlots; ++i) {
+    int free_slot = 0;
+    if (slot_state[i].compare_exchange_strong(free_slot, 1)) {
+      std::memcpy(slot_path[i], path.c_str(), path.size() + 1);
+      slot_state[i].store(2);
+      slot_ = i;
+      return;
+    }
+  }
+  // More than kSlots files written at once: this one is not cleaned up on an interrupt.
+}
+
+PartialFile::~PartialFile() {
+  if (slot_ >= 0) slot_state[slot_].store(0);
+}
+
+void set_interrupt_hint(const std::string& text) {
+  hint_state.store(1);
+  const size_t n = std::min(text.size(), sizeof hint_text - 1);
+  std::memcpy(hint_text, text.data(), n);
+  hint_text[n] = '\0';
+  hint_state.store(2);
+}
+
+void install_interrupt_cleanup() {
+  struct sigaction sa {};
+  sa.sa_handler = on_interrupt;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = 0;
+  for (int sig : {SIGINT, SIGTERM, SIGHUP}) {
+    // A signal ignored by whoever started us stays ignored (nohup, `cmd &` in a script).
+    struct sigaction old {};
+    if (sigaction(sig, nullptr, &old) == 0 && old.sa_handler == SIG_IGN) continue;
+    sigaction(sig, &sa, nullptr);
   }
 }
 

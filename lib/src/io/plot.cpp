@@ -218,6 +218,7 @@ void save(const std::string& path, const Canvas& c, std::vector<std::pair<std::s
     text[i].text_length = values[i].size();
   }
   const std::string tmp = path + ".partial";
+  const PartialFile registered(tmp);
   if (!encode_png(tmp.c_str(), c.width(), c.height(), c.bytes().data(), text.data(), static_cast<int>(text.size()))) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);

@@ -7,9 +7,13 @@
 // t mod N == i (round robin, so costly regions are shared out).
 //
 // Resume: with a tile directory, each finished tile is saved there as one small file
-// (written to NAME.partial and renamed), stamped with the job's key. A later run of the
-// same job loads the finished tiles and computes only the missing ones, so an interrupted
-// run resumes, and the tiles of several shards can be merged.
+// (written to NAME.partial and renamed), stamped with the job's key, the build that
+// computed it (tile_build()) and a checksum of its content. A later run of the same job
+// loads the finished tiles and computes only the missing ones, so an interrupted run
+// resumes, and the tiles of several shards can be merged. A tile from another build, or
+// whose checksum fails (damaged, or edited by hand), is recomputed and counted, so that
+// outputs never carry the current build's provenance over numbers another build made.
+// (The checksum, FNV-1a 64, detects accidents and edits; it is no defence against forgery.)
 //
 // MPFR: our Mpfr/Mpfi values carry their own precision (no process-wide default), and
 // MPFR keeps its caches per thread, so items may use MPFR in any worker.
@@ -55,6 +59,7 @@ struct GridResult {
   std::vector<std::string> items;  // one text per item ("" where no tile was available)
   std::vector<bool> have_tile;     // per tile: computed or loaded
   long tiles_loaded = 0, tiles_computed = 0;
+  long tiles_other_build = 0, tiles_bad_checksum = 0;  // found saved but recomputed
   bool complete() const;           // every tile is available
   std::vector<long> missing() const;
 };
@@ -67,13 +72,42 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
 
 // Tile files: PREFIX.tiles/tile-NNNNNN. Exposed for merge and for tests.
 std::string tile_path(const std::string& dir, long tile);
-// Reads one tile; false if absent, damaged, or from another job (key or item range).
-bool read_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
-               std::vector<std::string>& items_out);
+// This build's identity in tiles: a fingerprint of version, commit, compiler and flags.
+const std::string& tile_build();
+enum class TileStatus { ok, absent, other_job, other_build, bad_checksum };
+// Reads one tile into items_out when it is ok: present, of this job (key and item range),
+// of `build`, and its checksum holds.
+TileStatus load_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
+                     std::vector<std::string>& items_out, const std::string& build = tile_build());
+inline bool read_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
+                      std::vector<std::string>& items_out) {
+  return load_tile(dir, tile, plan, key, items_out) == TileStatus::ok;
+}
 void write_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
-                const std::vector<std::string>& items);
+                const std::vector<std::string>& items, const std::string& build = tile_build());
 // Copies the valid tiles of `from` that `to` lacks; returns how many were copied.
 long import_tiles(const std::string& from, const std::string& to, const GridPlan& plan, const std::string& key);
+
+// A lock on a tile directory (DIR/lock, POSIX record locks: released by the kernel when
+// the process ends, however it ends, so a crash leaves no stale lock). A whole run (no
+// shard, a merge, rank 0 under mpirun) locks the whole file; shard I/N shares byte 0 with
+// the other shards of the job and locks byte 1 + I alone, so the shards of a job array run
+// together, while a second run of the same shard, or a whole run, is refused. Creates DIR.
+// Throws InputError(field, ...) naming the process that holds the lock, and its command
+// line when it runs on this machine.
+class PrefixLock {
+ public:
+  PrefixLock(const std::string& field, const std::string& dir, const Shard& shard);
+  ~PrefixLock();
+  PrefixLock(const PrefixLock&) = delete;
+  PrefixLock& operator=(const PrefixLock&) = delete;
+  // Turns a shard's shared hold into a whole lock (needed to clear another job's tiles);
+  // false when other processes hold parts of it.
+  bool make_whole();
+
+ private:
+  int fd_ = -1;
+};
 
 // A stable 64-bit fingerprint of a job description (FNV-1a), as 16 hex digits.
 std::string job_fingerprint(const std::string& text);

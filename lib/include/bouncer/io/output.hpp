@@ -39,4 +39,27 @@ void write_output(const OutputTarget& target, const std::function<void(std::ostr
 // Flushes std::cout and throws OutputError if anything written to it failed.
 void check_stdout();
 
+// Interrupts. install_interrupt_cleanup() makes SIGINT, SIGTERM and SIGHUP remove every
+// partial file being written at that moment (PATH.partial of write_output, PNGs, tiles:
+// never a finished file or a saved tile), print one line on stderr (with the hint set by
+// set_interrupt_hint, e.g. how to resume), and end the process by the same signal (exit
+// status 128 + N in a shell). The handler only unlinks and writes: async-signal-safe.
+// A signal that was ignored when the process started (nohup, a background job of a
+// script) stays ignored. A front end calls it once; the library never installs handlers.
+void install_interrupt_cleanup();
+void set_interrupt_hint(const std::string& text);
+
+// Registers a partial file for that cleanup while it exists (write_output and the PNG
+// writer use it; so should any other writer of PATH.partial files).
+class PartialFile {
+ public:
+  explicit PartialFile(const std::string& path);
+  ~PartialFile();
+  PartialFile(const PartialFile&) = delete;
+  PartialFile& operator=(const PartialFile&) = delete;
+
+ private:
+  int slot_ = -1;
+};
+
 }  // namespace bouncer

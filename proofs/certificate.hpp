@@ -11,8 +11,10 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
@@ -41,6 +43,13 @@ struct SubClaim {
   Verdict verdict = Verdict::not_proved;
   std::string statement;  // what was proved (the corrected statement when corrected)
   std::vector<std::string> evidence;
+
+  // The check's result: the verdict and what was proved (the corrected statement when
+  // corrected). A check that did not succeed leaves the sub-claim `not proved`.
+  void settle(Verdict v, std::string proved) {
+    verdict = v;
+    statement = std::move(proved);
+  }
 };
 
 class Certificate {
@@ -83,7 +92,8 @@ class Certificate {
     overall_statement_ = std::move(statement);
   }
 
-  // Prints the certificate and returns the process exit status (0 iff certified).
+  // Prints the certificate and returns the process exit status (0 iff certified and
+  // written).
   int finish() {
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -92,6 +102,10 @@ class Certificate {
     const Verdict v = ok ? overall_ : Verdict::not_proved;
     if (json_) print_json(v, secs);
     else print_text(v, secs);
+    if (!std::cout) {  // e.g. stdout on a full disk: the certificate was not written
+      std::cerr << id_ << ": could not write the certificate to stdout\n";
+      return 1;
+    }
     return ok ? 0 : 1;
   }
 
@@ -133,55 +147,36 @@ class Certificate {
     std::cout << o.str() << std::flush;
   }
 
-  static std::string esc(const std::string& s) {
-    std::string r;
-    for (char ch : s) {
-      switch (ch) {
-        case '"': r += "\\\""; break;
-        case '\\': r += "\\\\"; break;
-        case '\n': r += "\\n"; break;
-        case '\t': r += "\\t"; break;
-        default:
-          if (static_cast<unsigned char>(ch) < 0x20) {
-            char b[8];
-            std::snprintf(b, sizeof b, "\\u%04x", ch);
-            r += b;
-          } else {
-            r += ch;
-          }
-      }
+  // The certificate as JSON (nlohmann, keys in this order). Enclosures and exact values
+  // are inside the text fields (statement, evidence) exactly as printed by MPFI/GMP, so they
+  // round-trip as text; only `bits` and `seconds` are JSON numbers.
+  nlohmann::ordered_json to_json(Verdict v, double secs) const {
+    nlohmann::ordered_json j;
+    j["proof"] = id_;
+    j["claim"] = claim_;
+    j["method"] = method_;
+    j["bits"] = bits_;
+    j["mode"] = mode();
+    j["notes"] = notes_;
+    j["subclaims"] = nlohmann::ordered_json::array();
+    for (const auto& s : subs_) {
+      j["subclaims"].push_back({{"name", s.name},
+                                {"paper", s.paper},
+                                {"verdict", verdict_name(s.verdict)},
+                                {"statement", s.statement},
+                                {"evidence", s.evidence}});
     }
-    return r;
-  }
-  static std::string str(const std::string& s) {
-    std::string r(1, '"');  // appended, not "..." + string (avoids a GCC 12 -Wrestrict false positive)
-    r += esc(s);
-    r += '"';
-    return r;
+    j["seconds"] = std::round(secs * 1000) / 1000;  // milliseconds, as the text certificate
+    j["verdict"] = v == Verdict::not_proved ? "not proved at " + std::to_string(bits_) + " bits"
+                                            : std::string(verdict_name(v));
+    j["statement"] = overall_statement_;
+    return j;
   }
 
   void print_json(Verdict v, double secs) const {
-    std::ostringstream o;
-    o << "{\n  \"proof\": " << str(id_) << ",\n  \"claim\": " << str(claim_)
-      << ",\n  \"method\": " << str(method_) << ",\n  \"bits\": " << bits_
-      << ",\n  \"mode\": " << str(mode()) << ",\n  \"notes\": [";
-    for (size_t i = 0; i < notes_.size(); ++i) o << (i ? ", " : "") << str(notes_[i]);
-    o << "],\n  \"subclaims\": [";
-    for (size_t i = 0; i < subs_.size(); ++i) {
-      const auto& s = subs_[i];
-      o << (i ? "," : "") << "\n    {\"name\": " << str(s.name) << ", \"paper\": " << str(s.paper)
-        << ", \"verdict\": " << str(verdict_name(s.verdict)) << ", \"statement\": "
-        << str(s.statement) << ", \"evidence\": [";
-      for (size_t k = 0; k < s.evidence.size(); ++k) o << (k ? ", " : "") << str(s.evidence[k]);
-      o << "]}";
-    }
-    char t[64];
-    std::snprintf(t, sizeof t, "%.3f", secs);
-    o << "\n  ],\n  \"seconds\": " << t << ",\n  \"verdict\": "
-      << str(v == Verdict::not_proved ? "not proved at " + std::to_string(bits_) + " bits"
-                                      : std::string(verdict_name(v)))
-      << ",\n  \"statement\": " << str(overall_statement_) << "\n}\n";
-    std::cout << o.str() << std::flush;
+    // Invalid UTF-8 (none is expected: all text is ASCII) is replaced, not thrown.
+    std::cout << to_json(v, secs).dump(2, ' ', false, nlohmann::json::error_handler_t::replace) << "\n"
+              << std::flush;
   }
 };
 

@@ -34,6 +34,17 @@ using bouncer::StickingQuestion;
 
 namespace {
 
+const char* const kClaim =
+    "eps = 0.96, a = 28.82: the solution from the release state (1/2, 4) is a sticking solution of "
+    "period k > 1000 (paper sec. IV.B, Fig. 4(b))";
+const char* const kMethod =
+    "MPFI enclosure of the orbit (Lohner QR mean-value form, interval Jacobian by Dual<Mpfi>), every "
+    "branch decided for the whole enclosure, precision escalation 64, 128, ...; never-sticking by a "
+    "trapping set K with F^q(K) inside K; parameter intervals by adaptive bisection";
+const char* const kModelNote =
+    "model: constant restitution, symmetric triangle wall, paper convention for downward sticking; decimals "
+    "0.96 and 28.82 enclosed exactly (outward rounding)";
+
 StickingQuestion question(const char* a, long long max_steps, long max_bits) {
   StickingQuestion q;
   q.model.law = bouncer::Law::constant;
@@ -57,103 +68,109 @@ std::string attempts_text(const StickingCertificate& c) {
   return s;
 }
 
+// The a-interval around 28.82 whose sticking-period map is certified: +-1e-12, or +-1e-9 (--full).
+struct Near {
+  const char* lo;
+  const char* hi;
+};
+Near near_28_82(bool full) {
+  return full ? Near{"28.819999999", "28.820000001"} : Near{"28.819999999999", "28.820000000001"};
+}
+
+// At a = 28.82: certify_sticking either finds the sticking step (confirmed if > 1000, refuted
+// if <= 1000) or proves the orbit never sticks (refuted): no sticking in steps 1..N, then a
+// trapping set K with F^q(K) inside K on which no point sticks. Plain double is recorded for
+// comparison. Returns the attractor's period (0 if none was certified).
+long check_period_at_28_82(SubClaim& sub, long long steps, long max_bits) {
+  const StickingQuestion q = question("28.82", steps, max_bits);
+  const StickingCertificate c = bouncer::certify_sticking(q);
+  const bouncer::PlainSticking d = bouncer::plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
+  sub.evidence.push_back("certified: " + bouncer::describe(c, q.max_steps) + " (" + std::to_string(c.bits) + " bits)");
+  sub.evidence.push_back("escalation: " + attempts_text(c));
+  if (c.attractor) sub.evidence.push_back("trapping set K = " + c.attractor->box);
+  sub.evidence.push_back(std::string("plain double, same question: ") +
+                         (d.period ? "sticks at step " + std::to_string(*d.period)
+                                   : "no sticking within " + std::to_string(q.max_steps) + " steps"));
+  if (c.outcome == StickingOutcome::never_sticks) {
+    sub.settle(Verdict::refuted, "the orbit from (1/2, 4) never sticks: it falls onto a periodic attractor of period " +
+                                     std::to_string(c.attractor->period) + " (no sticking in steps 1.." +
+                                     std::to_string(q.max_steps) + ", then trapped in K with F^" +
+                                     std::to_string(c.attractor->iterate) + "(K) inside K)");
+    return c.attractor->period;
+  }
+  if (c.outcome == StickingOutcome::sticks && *c.period > 1000)
+    sub.settle(Verdict::confirmed, "sticking period " + std::to_string(*c.period));
+  else if (c.outcome == StickingOutcome::sticks)
+    sub.settle(Verdict::refuted, "sticking period " + std::to_string(*c.period) + " <= 1000");
+  return 0;  // else: not proved
+}
+
+// On the whole a-interval `near` (adaptive bisection, certify_sticking_range): refuted if every
+// piece never sticks; corrected (weaker, still certified) if every piece at least does not
+// stick within the step budget; not proved if any part of the interval is uncertified.
+void check_period_map_near_28_82(SubClaim& sub, const Near& near, bool full, long long steps, long max_bits) {
+  StickingQuestion q = question("28.82", steps, max_bits);
+  q.a_range = std::make_pair(Decimal::parse(near.lo)->value(), Decimal::parse(near.hi)->value());
+  const bouncer::RangeReport r = bouncer::certify_sticking_range(q, bouncer::RangeOptions{full ? 8 : 3, 200});
+  sub.evidence.push_back("Theorem (computer-assisted). " + r.theorem);
+  bool all_never = r.uncertified_length == 0, none_sticks = r.uncertified_length == 0;
+  for (const auto& p : r.pieces) {
+    all_never = all_never && p.cert.outcome == StickingOutcome::never_sticks;
+    none_sticks = none_sticks && (p.cert.outcome == StickingOutcome::never_sticks ||
+                                  p.cert.outcome == StickingOutcome::no_sticking_within_max_steps);
+  }
+  char buf[120];
+  std::snprintf(buf, sizeof buf, "%zu pieces, %.2f s", r.pieces.size(), r.seconds);
+  sub.evidence.push_back(buf);
+  const std::string every_a = std::string("for every a in [") + near.lo + ", " + near.hi + "] the orbit from (1/2, 4) ";
+  if (all_never)
+    sub.settle(Verdict::refuted, every_a + "never sticks");
+  else if (none_sticks)
+    sub.settle(Verdict::corrected, every_a + "does not stick in steps 1.." + std::to_string(q.max_steps) +
+                                       " (never sticks on the pieces listed as infinite)");
+}
+
+// At a = 31 plain double reports a sticking period that the certified run contradicts: steps
+// 1..steps_checked are certified free of sticking even when a later step was undecided, so a
+// double sticking step within them is a rounding artefact (corrected); if both agree and the
+// run is certified, confirmed.
+void check_double_artefact_at_31(SubClaim& sub, bool full, long max_bits) {
+  const StickingQuestion q = question("31", full ? 50000 : 25000, full ? std::max(max_bits, 4096L) : max_bits);
+  const bouncer::PlainSticking d = bouncer::plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
+  const StickingCertificate c = bouncer::certify_sticking(q);
+  sub.evidence.push_back(std::string("plain double: ") +
+                         (d.period ? "sticks at step " + std::to_string(*d.period)
+                                   : "no sticking within " + std::to_string(q.max_steps)));
+  sub.evidence.push_back("certified: " + bouncer::describe(c, q.max_steps) + " (" + std::to_string(c.bits) + " bits)");
+  sub.evidence.push_back("escalation: " + attempts_text(c));
+  if (c.outcome != StickingOutcome::sticks && d.period && *d.period <= c.steps_checked)
+    sub.settle(Verdict::corrected, "double's sticking period " + std::to_string(*d.period) +
+                                       " is a rounding artefact: the exact orbit does not stick in steps 1.." +
+                                       std::to_string(c.steps_checked));
+  else if (c.certified)
+    sub.settle(Verdict::confirmed, "certified and double agree: " + bouncer::describe(c, q.max_steps));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  Certificate cert("sticking_period",
-                   "eps = 0.96, a = 28.82: the solution from the release state (1/2, 4) is a sticking solution of "
-                   "period k > 1000 (paper sec. IV.B, Fig. 4(b))",
-                   "MPFI enclosure of the orbit (Lohner QR mean-value form, interval Jacobian by Dual<Mpfi>), every "
-                   "branch decided for the whole enclosure, precision escalation 64, 128, ...; never-sticking by a "
-                   "trapping set K with F^q(K) inside K; parameter intervals by adaptive bisection",
-                   64, argc, argv);
+  Certificate cert("sticking_period", kClaim, kMethod, 64, argc, argv);
   const long max_bits = std::max(cert.bits(), 1024L);
   const long long steps = cert.full() ? 100000 : 20000;
-  cert.note("model: constant restitution, symmetric triangle wall, paper convention for downward sticking; decimals "
-            "0.96 and 28.82 enclosed exactly (outward rounding)");
+  const Near near = near_28_82(cert.full());
+  cert.note(kModelNote);
+  SubClaim& point = cert.add("period at a = 28.82", "Fig. 4(b): sticking solution of period k > 1000");
+  SubClaim& range = cert.add(std::string("period map on [") + near.lo + ", " + near.hi + "]",
+                             "Fig. 4: the solutions near a = 28.82 are sticking solutions of high period");
+  SubClaim& artefact = cert.add("a = 31 (eps = 0.96)", "sec. IV.B: apparently chaotic orbits are sticking orbits of high period");
 
-  long attractor_period = 0;
-  // 1. The point a = 28.82.
-  {
-    const StickingQuestion q = question("28.82", steps, max_bits);
-    const StickingCertificate c = bouncer::certify_sticking(q);
-    const bouncer::PlainSticking d = bouncer::plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
-    SubClaim& s = cert.add("period at a = 28.82", "Fig. 4(b): sticking solution of period k > 1000");
-    s.evidence.push_back("certified: " + bouncer::describe(c, q.max_steps) + " (" + std::to_string(c.bits) + " bits)");
-    s.evidence.push_back("escalation: " + attempts_text(c));
-    if (c.attractor) s.evidence.push_back("trapping set K = " + c.attractor->box);
-    s.evidence.push_back(std::string("plain double, same question: ") +
-                         (d.period ? "sticks at step " + std::to_string(*d.period) : "no sticking within " + std::to_string(q.max_steps) + " steps"));
-    if (c.outcome == StickingOutcome::never_sticks) {
-      attractor_period = c.attractor->period;
-      s.verdict = Verdict::refuted;
-      s.statement = "the orbit from (1/2, 4) never sticks: it falls onto a periodic attractor of period " +
-                    std::to_string(c.attractor->period) + " (no sticking in steps 1.." + std::to_string(q.max_steps) +
-                    ", then trapped in K with F^" + std::to_string(c.attractor->iterate) + "(K) inside K)";
-    } else if (c.outcome == StickingOutcome::sticks && *c.period > 1000) {
-      s.verdict = Verdict::confirmed;
-      s.statement = "sticking period " + std::to_string(*c.period);
-    } else if (c.outcome == StickingOutcome::sticks) {
-      s.verdict = Verdict::refuted;
-      s.statement = "sticking period " + std::to_string(*c.period) + " <= 1000";
-    }  // else: not proved
-  }
-
-  // 2. The sticking-period map on a small interval around 28.82.
-  {
-    StickingQuestion q = question("28.82", steps, max_bits);
-    const char* lo = cert.full() ? "28.819999999" : "28.819999999999";
-    const char* hi = cert.full() ? "28.820000001" : "28.820000000001";
-    q.a_range = std::make_pair(Decimal::parse(lo)->value(), Decimal::parse(hi)->value());
-    const bouncer::RangeReport r = bouncer::certify_sticking_range(q, bouncer::RangeOptions{cert.full() ? 8 : 3, 200});
-    SubClaim& s = cert.add(std::string("period map on [") + lo + ", " + hi + "]",
-                           "Fig. 4: the solutions near a = 28.82 are sticking solutions of high period");
-    s.evidence.push_back("Theorem (computer-assisted). " + r.theorem);
-    bool all_never = r.uncertified_length == 0, none_sticks = r.uncertified_length == 0;
-    for (const auto& p : r.pieces) {
-      all_never = all_never && p.cert.outcome == StickingOutcome::never_sticks;
-      none_sticks = none_sticks && (p.cert.outcome == StickingOutcome::never_sticks ||
-                                    p.cert.outcome == StickingOutcome::no_sticking_within_max_steps);
-    }
-    char buf[120];
-    std::snprintf(buf, sizeof buf, "%zu pieces, %.2f s", r.pieces.size(), r.seconds);
-    s.evidence.push_back(buf);
-    if (all_never) {
-      s.verdict = Verdict::refuted;
-      s.statement = std::string("for every a in [") + lo + ", " + hi + "] the orbit from (1/2, 4) never sticks";
-    } else if (none_sticks) {
-      // Weaker, still certified: no sticking within max_steps anywhere in the interval.
-      s.verdict = Verdict::corrected;
-      s.statement = std::string("for every a in [") + lo + ", " + hi + "] the orbit from (1/2, 4) does not stick in steps 1.." +
-                    std::to_string(q.max_steps) + " (never sticks on the pieces listed as infinite)";
-    }
-  }
-
-  // 3. A long sticking period seen by plain double that the certified run contradicts.
-  {
-    const StickingQuestion q = question("31", cert.full() ? 50000 : 25000, cert.full() ? std::max(max_bits, 4096L) : max_bits);
-    const bouncer::PlainSticking d = bouncer::plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
-    const StickingCertificate c = bouncer::certify_sticking(q);
-    SubClaim& s = cert.add("a = 31 (eps = 0.96)", "sec. IV.B: apparently chaotic orbits are sticking orbits of high period");
-    s.evidence.push_back(std::string("plain double: ") +
-                         (d.period ? "sticks at step " + std::to_string(*d.period) : "no sticking within " + std::to_string(q.max_steps)));
-    s.evidence.push_back("certified: " + bouncer::describe(c, q.max_steps) + " (" + std::to_string(c.bits) + " bits)");
-    s.evidence.push_back("escalation: " + attempts_text(c));
-    // Steps 1..steps_checked are certified free of sticking even when a later step was
-    // undecided, so double's sticking within them is refuted either way.
-    if (c.outcome != StickingOutcome::sticks && d.period && *d.period <= c.steps_checked) {
-      s.verdict = Verdict::corrected;
-      s.statement = "double's sticking period " + std::to_string(*d.period) +
-                    " is a rounding artefact: the exact orbit does not stick in steps 1.." + std::to_string(c.steps_checked);
-    } else if (c.certified) {
-      s.verdict = Verdict::confirmed;
-      s.statement = "certified and double agree: " + bouncer::describe(c, q.max_steps);
-    }
-  }
+  const long period = check_period_at_28_82(point, steps, max_bits);
+  check_period_map_near_28_82(range, near, cert.full(), steps, max_bits);
+  check_double_artefact_at_31(artefact, cert.full(), max_bits);
 
   cert.conclude(Verdict::refuted,
                 "At eps = 0.96, a = 28.82 the orbit from the release state (1/2, 4) never sticks (period-" +
-                    std::to_string(attractor_period) +
+                    std::to_string(period) +
                     " periodic attractor under the paper's map and conventions), and the same holds on a certified "
                     "a-interval around 28.82; a high sticking period can be a floating-point artefact (a = 31).");
   return cert.finish();

@@ -50,6 +50,17 @@ using bouncer::StepResult;
 
 namespace {
 
+const char* const kClaim =
+    "sec. II.C: constant eps: fdot <= v <= 4(1+3eps)/(1-eps) is a trapping region; eps(v) model: "
+    "v <= 4[(1+3E)/(1-E)] = 4[2coth(2^(4/5)/c^(3/5)) - 1], E = exp(-(8/c)^(3/5)), so M = {fdot <= v <= that}";
+const char* const kMethod =
+    "Lipschitz lemma v^- >= -(v+8) (by hand) with its inequalities checked exactly/in intervals; top band "
+    "[V-1, V] covered by 2-D boxes stepped with ImpactMap<Mpfi> (adaptive bisection); certified counterexamples";
+const char* const kConclusion =
+    "Constant eps: 4(1+3eps)/(1-eps) is a sharp forward-invariant, attracting bound for every a (confirmed, via "
+    "v^- >= -(v+8)). Velocity-dependent: M is invariant when 4 + h(min(12 + V_c, w_m)) <= V_c (true for c >= 1 "
+    "in the tested cases), but fails for small c (certified at c = 1/2, 1/10); a valid bound is max(V_c, 4 + h_max).";
+
 struct Band {
   long certified = 0, failed = 0, evaluations = 0;
   Mpfr max_v{-1000000, 128};  // largest certified upper bound of v'
@@ -127,8 +138,20 @@ std::string describe(const Band& b, const Mpfi& V) {
   return r;
 }
 
+// How finely the top band is covered: corner strips of width 2^-k, nt x nv initial boxes per
+// segment, bisection depth; the default mode or the finer --full one.
+struct BandPlan {
+  int k, nt, nv, depth;
+  std::string text() const {
+    return "band cover: corner strips 2^-" + std::to_string(k) + ", " + std::to_string(nt) + " x " + std::to_string(nv) +
+           " initial boxes per segment, bisection depth <= " + std::to_string(depth);
+  }
+};
+BandPlan band_plan(bool full) { return full ? BandPlan{30, 256, 16, 18} : BandPlan{16, 32, 4, 12}; }
+
 // Cover the band [V - 1, V] of the triangle's two segments, minus corner strips of width 2^-k.
-Band cover_top_band(const ImpactMap<Mpfi>& map, const Mpfi& V, int k, int nt, int nv, int depth) {
+Band cover_top_band(const ImpactMap<Mpfi>& map, const Mpfi& V, const BandPlan& plan) {
+  const auto [k, nt, nv, depth] = plan;
   const long bits = 192;
   Band b;
   Mpfr strip(1, bits);
@@ -143,116 +166,132 @@ Band cover_top_band(const ImpactMap<Mpfi>& map, const Mpfi& V, int k, int nt, in
 
 Mpfi h_of(const Mpfi& w, const Mpfi& c) { return w * exp(-Tr::pow_3_5(w / c)); }
 
+// Constant eps: the lemma's invariance inequality 4 + eps(12 + V) <= V holds, with equality,
+// exactly in rationals (so {v <= V} is forward invariant for every a); the top band [V-1, V]
+// is covered by boxes whose certified images have v' <= V (supporting evidence; leftover
+// boxes are counted, they are covered by the lemma only).
+bool check_constant_eps_case(SubClaim& sub, const mpq_class& eps, const char* a, const BandPlan& band, long bits) {
+  const mpq_class V = 4 * (1 + 3 * eps) / (1 - eps);
+  const bool lemma = 4 + eps * (12 + V) == V;  // exact: the invariance inequality is an equality at V
+  const Mpfi Vi = qi(V, bits);
+  ImpactMap<Mpfi> map(triangle_model(Law::constant, dec(a, bits), qi(eps, bits), Mpfi(1, bits), bits));
+  Band b = cover_top_band(map, Vi, band);
+  sub.evidence.push_back("eps=" + qs(eps) + " a=" + a + ": V = " + qs(V) + ", 4 + eps(12 + V) = V exactly; band [V-1, V]: " +
+                         describe(b, Vi));
+  return lemma && b.certified > 0;
+}
+
+// Sharpness: (1/2, 20) -> (0, 20) at eps = 1/2, a = 96 (an impact exactly at the corner; exact
+// argument in the header). The interval step is reported as it comes (evidence only).
+void record_sharpness(SubClaim& sub, long bits) {
+  ImpactMap<Mpfi> map(triangle_model(Law::constant, Mpfi(96, bits), q(1, 2, bits), Mpfi(1, bits), bits));
+  StepResult<Mpfi> r;
+  const std::string why = try_step(map, State<Mpfi>{q(1, 2, bits), Mpfi(20, bits)}, r);
+  const bool sharp = why.empty() && r.next.theta.contains(Mpfi(0, bits)) && r.next.v.contains(Mpfi(20, bits));
+  sub.evidence.push_back("sharpness, eps=1/2 a=96: exact (1/2, 20) -> (0, 20) = V (corner impact); interval step: " +
+                         (why.empty() ? "(" + s(r.next.theta) + ", " + s(r.next.v) + ")" : why) +
+                         (sharp ? " (certified: the exact arithmetic decides the corner)" : ""));
+}
+
+// Confirms the constant-eps bound: the lemma v^- >= -(v+8) gives invariance and attraction
+// for every a; checked exactly at four (eps, a), with band covers and the sharp corner case.
+void check_constant_eps_bound(SubClaim& sub, const BandPlan& band, long bits) {
+  struct CE { mpq_class eps; const char* a; };
+  const std::vector<CE> cases = {{mpq_class(1, 2), "24"}, {mpq_class(1, 2), "96"}, {mpq_class(9, 10), "19"}, {mpq_class(24, 25), "28.82"}};
+  bool ok = true;
+  for (const CE& e : cases) ok = check_constant_eps_case(sub, e.eps, e.a, band, bits) && ok;
+  record_sharpness(sub, bits);
+  if (ok)
+    sub.settle(Verdict::confirmed,
+               "for every a > 0 and 0 <= eps < 1, {fdot <= v <= V}, V = 4(1+3eps)/(1-eps), is forward invariant and "
+               "attracting (v' - V <= eps (v - V)), by the lemma v^- >= -(v + 8); sharp (equality at corner impacts, "
+               "e.g. eps = 1/2, a = 96); the band covers agree (no certified box exceeds V)");
+}
+
+// One velocity-dependent case: c, a, and optionally a start state (th, v0) in M.
+struct VE { const char* c; const char* a; const char* th; const char* v0; };
+
+// The velocity-dependent region at one c: the paper's two forms of V_c must agree; M is
+// invariant (for every a) by the lemma when 4 + h(min(12 + V_c, w_m)) <= V_c, decided on the
+// side of w_m that 12 + V_c certainly lies (at c = 1000 the top band is also covered); for a
+// case with a start state, that state of M is certified to leave M (v' > V_c): M is NOT
+// invariant. Appends one evidence line; returns false if the case's check did not succeed,
+// and sets `escaped` when the counterexample is certified.
+bool check_veldep_case(SubClaim& sub, const VE& e, const BandPlan& band, long bits, bool& escaped) {
+  const Mpfi c = dec(e.c, bits), a = dec(e.a, bits);
+  const Mpfi E = exp(-Tr::pow_3_5(Mpfi(8, bits) / c));
+  const Mpfi Vc = 4 * (3 * E + 1) / (1 - E);
+  const Mpfi x = exp(Mpfi(4, bits) / 5 * log(Mpfi(2, bits))) / exp(Mpfi(3, bits) / 5 * log(c));
+  const Mpfi coth = (exp(2 * x) + 1) / (exp(2 * x) - 1);
+  const Mpfi Vc2 = 4 * (2 * coth - 1);
+  const bool same = !disjoint(Vc, Vc2);
+  const Mpfi wm = c * exp(Mpfi(5, bits) / 3 * log(Mpfi(5, bits) / 3));
+  const Mpfi hmax = h_of(wm, c);
+  std::string line = "c=" + std::string(e.c) + " a=" + e.a + ": V_c in " + s(Vc) +
+                     (same ? " (both paper forms agree)" : " (FORMS DISAGREE)") + ", 4 + h_max in " + s(hmax + 4);
+  bool ok = true;
+  bool invariant = false;
+  if (lt(Vc + 12, wm)) {
+    invariant = le(h_of(Vc + 12, c) + 4, Vc);
+    line += "; 12 + V_c < w_m and 4 + h(12 + V_c) in " + s(h_of(Vc + 12, c) + 4) + (invariant ? " <= V_c: invariant (lemma)" : "");
+  } else if (lt(wm, Vc + 12)) {
+    invariant = le(hmax + 4, Vc);
+    line += std::string("; w_m < 12 + V_c and 4 + h_max ") + (invariant ? "<= V_c: invariant for every a (lemma)" : "> V_c possible");
+  }
+  if (invariant && std::string(e.c) == "1000") {
+    ImpactMap<Mpfi> map(triangle_model(Law::veldep, a, Mpfi(1, bits), c, bits));
+    Band b = cover_top_band(map, Vc, band);
+    line += "; band [V_c-1, V_c]: " + describe(b, Vc);
+    if (b.certified == 0) ok = false;
+  }
+  if (e.th) {
+    ImpactMap<Mpfi> map(triangle_model(Law::veldep, a, Mpfi(1, bits), c, bits));
+    const Mpfi th = dec(e.th, bits), v0 = dec(e.v0, bits);
+    StepResult<Mpfi> r;
+    const std::string why = try_step(map, State<Mpfi>{th, v0}, r);
+    const bool in_region = le(v0, Vc) && le(Mpfi(-4, bits), v0);
+    const bool escapes = why.empty() && lt(Vc, r.next.v);
+    line += "; counterexample (" + std::string(e.th) + ", " + e.v0 + ") in M -> " +
+            (why.empty() ? "(" + s(r.next.theta) + ", " + s(r.next.v) + ")" : why) +
+            (in_region && escapes ? ": v' > V_c certified, M is NOT forward invariant" : " NOT CERTIFIED");
+    if (in_region && escapes) escaped = true;
+    else ok = false;
+  } else if (!invariant || !same) {
+    ok = false;
+  }
+  sub.evidence.push_back(line);
+  return ok;
+}
+
+// Corrects the velocity-dependent bound: invariant at c = 1000, 10, 1 (for every a), but
+// certified counterexamples at c = 1/2 and 1/10; needs every case checked and at least one
+// counterexample certified.
+void check_veldep_bound(SubClaim& sub, const BandPlan& band, long bits) {
+  const std::vector<VE> cases = {{"1000", "25", nullptr, nullptr}, {"10", "24", nullptr, nullptr}, {"1", "25", nullptr, nullptr},
+                                 {"0.5", "25", "0.9965", "4"}, {"0.1", "10", "0.9995", "4"}};
+  bool ok = true, escaped = false;
+  for (const VE& e : cases) ok = check_veldep_case(sub, e, band, bits, escaped) && ok;
+  if (ok && escaped)
+    sub.settle(Verdict::corrected,
+               "every impact gives v' <= 4 + h(min(12 + v, w_m)) <= 4 + c(5/3)^(5/3)e^(-5/3) (h(w) = w eps(w)), so "
+               "{fdot <= v <= V} is forward invariant iff-sufficient 4 + h(min(12 + V, w_m)) <= V. The paper's V_c "
+               "(eps at relative speed 8) satisfies this for c = 1, 10, 1000 (certified; for every a) but NOT for small "
+               "c: at c = 1/2 and c = 1/10 states of M are certified to leave M. Correct bound: V* solving "
+               "V = 4 + h(min(12 + V, w_m)), or simply V = max(V_c, 4 + h_max)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  Certificate cert(
-      "trapping_region",
-      "sec. II.C: constant eps: fdot <= v <= 4(1+3eps)/(1-eps) is a trapping region; eps(v) model: "
-      "v <= 4[(1+3E)/(1-E)] = 4[2coth(2^(4/5)/c^(3/5)) - 1], E = exp(-(8/c)^(3/5)), so M = {fdot <= v <= that}",
-      "Lipschitz lemma v^- >= -(v+8) (by hand) with its inequalities checked exactly/in intervals; top band "
-      "[V-1, V] covered by 2-D boxes stepped with ImpactMap<Mpfi> (adaptive bisection); certified counterexamples",
-      128, argc, argv);
-  const long bits = cert.bits();
-  const int k = cert.full() ? 30 : 16;
-  const int nt = cert.full() ? 256 : 32, nv = cert.full() ? 16 : 4, depth = cert.full() ? 18 : 12;
-  cert.note("band cover: corner strips 2^-" + std::to_string(k) + ", " + std::to_string(nt) + " x " +
-            std::to_string(nv) + " initial boxes per segment, bisection depth <= " + std::to_string(depth));
+  Certificate cert("trapping_region", kClaim, kMethod, 128, argc, argv);
+  const BandPlan band = band_plan(cert.full());
+  cert.note(band.text());
+  SubClaim& constant = cert.add("constant-eps", "fdot <= v <= 4(1+3eps)/(1-eps) traps the long-term velocity (eps < 1)");
+  SubClaim& veldep = cert.add("veldep", "M = {fdot <= v <= 4[2coth(2^(4/5)/c^(3/5)) - 1]} contains the velocity-dependent phase portrait");
 
-  SubClaim& sc = cert.add("constant-eps", "fdot <= v <= 4(1+3eps)/(1-eps) traps the long-term velocity (eps < 1)");
-  SubClaim& sv = cert.add("veldep", "M = {fdot <= v <= 4[2coth(2^(4/5)/c^(3/5)) - 1]} contains the velocity-dependent phase portrait");
+  check_constant_eps_bound(constant, band, cert.bits());
+  check_veldep_bound(veldep, band, cert.bits());
 
-  // ---- constant eps ----
-  bool c_ok = true;
-  struct CE { mpq_class eps; const char* a; };
-  const std::vector<CE> ce = {{mpq_class(1, 2), "24"}, {mpq_class(1, 2), "96"}, {mpq_class(9, 10), "19"}, {mpq_class(24, 25), "28.82"}};
-  for (const CE& e : ce) {
-    const mpq_class V = 4 * (1 + 3 * e.eps) / (1 - e.eps);
-    const bool lemma = 4 + e.eps * (12 + V) == V;  // exact: the invariance inequality is an equality at V
-    const Mpfi Vi = qi(V, bits);
-    ImpactMap<Mpfi> map(triangle_model(Law::constant, dec(e.a, bits), qi(e.eps, bits), Mpfi(1, bits), bits));
-    Band b = cover_top_band(map, Vi, k, nt, nv, depth);
-    if (!lemma || b.certified == 0) c_ok = false;
-    sc.evidence.push_back("eps=" + qs(e.eps) + " a=" + e.a + ": V = " + qs(V) + ", 4 + eps(12 + V) = V exactly; band [V-1, V]: " +
-                          describe(b, Vi));
-  }
-  // Sharpness: (1/2, 20) -> (0, 20) at eps = 1/2, a = 96 (an impact exactly at the corner;
-  // exact argument in the header comment). The interval step is reported as it comes.
-  {
-    ImpactMap<Mpfi> map(triangle_model(Law::constant, Mpfi(96, bits), q(1, 2, bits), Mpfi(1, bits), bits));
-    StepResult<Mpfi> r;
-    const std::string why = try_step(map, State<Mpfi>{q(1, 2, bits), Mpfi(20, bits)}, r);
-    const bool sharp = why.empty() && r.next.theta.contains(Mpfi(0, bits)) && r.next.v.contains(Mpfi(20, bits));
-    sc.evidence.push_back("sharpness, eps=1/2 a=96: exact (1/2, 20) -> (0, 20) = V (corner impact); interval step: " +
-                          (why.empty() ? "(" + s(r.next.theta) + ", " + s(r.next.v) + ")" : why) +
-                          (sharp ? " (certified: the exact arithmetic decides the corner)" : ""));
-  }
-  if (c_ok) {
-    sc.verdict = Verdict::confirmed;
-    sc.statement = "for every a > 0 and 0 <= eps < 1, {fdot <= v <= V}, V = 4(1+3eps)/(1-eps), is forward invariant and "
-                   "attracting (v' - V <= eps (v - V)), by the lemma v^- >= -(v + 8); sharp (equality at corner impacts, "
-                   "e.g. eps = 1/2, a = 96); the band covers agree (no certified box exceeds V)";
-  }
-
-  // ---- velocity-dependent ----
-  bool v_ok = true, refuted_somewhere = false;
-  struct VE { const char* c; const char* a; const char* th; const char* v0; };
-  const std::vector<VE> ve = {{"1000", "25", nullptr, nullptr}, {"10", "24", nullptr, nullptr}, {"1", "25", nullptr, nullptr},
-                              {"0.5", "25", "0.9965", "4"}, {"0.1", "10", "0.9995", "4"}};
-  for (const VE& e : ve) {
-    const Mpfi c = dec(e.c, bits), a = dec(e.a, bits);
-    const Mpfi E = exp(-Tr::pow_3_5(Mpfi(8, bits) / c));
-    const Mpfi Vc = 4 * (3 * E + 1) / (1 - E);
-    const Mpfi x = exp(Mpfi(4, bits) / 5 * log(Mpfi(2, bits))) / exp(Mpfi(3, bits) / 5 * log(c));
-    const Mpfi coth = (exp(2 * x) + 1) / (exp(2 * x) - 1);
-    const Mpfi Vc2 = 4 * (2 * coth - 1);
-    const bool same = !disjoint(Vc, Vc2);
-    const Mpfi wm = c * exp(Mpfi(5, bits) / 3 * log(Mpfi(5, bits) / 3));
-    const Mpfi hmax = h_of(wm, c);
-    std::string line = "c=" + std::string(e.c) + " a=" + e.a + ": V_c in " + s(Vc) + (same ? " (both paper forms agree)" : " (FORMS DISAGREE)") +
-                       ", 4 + h_max in " + s(hmax + 4);
-    bool invariant = false;
-    if (lt(Vc + 12, wm)) {
-      invariant = le(h_of(Vc + 12, c) + 4, Vc);
-      line += "; 12 + V_c < w_m and 4 + h(12 + V_c) in " + s(h_of(Vc + 12, c) + 4) + (invariant ? " <= V_c: invariant (lemma)" : "");
-    } else if (lt(wm, Vc + 12)) {
-      invariant = le(hmax + 4, Vc);
-      line += std::string("; w_m < 12 + V_c and 4 + h_max ") + (invariant ? "<= V_c: invariant for every a (lemma)" : "> V_c possible");
-    }
-    if (invariant && std::string(e.c) == "1000") {
-      ImpactMap<Mpfi> map(triangle_model(Law::veldep, a, Mpfi(1, bits), c, bits));
-      Band b = cover_top_band(map, Vc, k, nt, nv, depth);
-      line += "; band [V_c-1, V_c]: " + describe(b, Vc);
-      if (b.certified == 0) v_ok = false;
-    }
-    if (e.th) {
-      ImpactMap<Mpfi> map(triangle_model(Law::veldep, a, Mpfi(1, bits), c, bits));
-      const Mpfi th = dec(e.th, bits), v0 = dec(e.v0, bits);
-      StepResult<Mpfi> r;
-      const std::string why = try_step(map, State<Mpfi>{th, v0}, r);
-      const bool in_region = le(v0, Vc) && le(Mpfi(-4, bits), v0);
-      const bool escapes = why.empty() && lt(Vc, r.next.v);
-      line += "; counterexample (" + std::string(e.th) + ", " + e.v0 + ") in M -> " +
-              (why.empty() ? "(" + s(r.next.theta) + ", " + s(r.next.v) + ")" : why) +
-              (in_region && escapes ? ": v' > V_c certified, M is NOT forward invariant" : " NOT CERTIFIED");
-      if (in_region && escapes) refuted_somewhere = true;
-      else v_ok = false;
-    } else if (!invariant || !same) {
-      v_ok = false;
-    }
-    sv.evidence.push_back(line);
-  }
-  if (v_ok && refuted_somewhere) {
-    sv.verdict = Verdict::corrected;
-    sv.statement = "every impact gives v' <= 4 + h(min(12 + v, w_m)) <= 4 + c(5/3)^(5/3)e^(-5/3) (h(w) = w eps(w)), so "
-                   "{fdot <= v <= V} is forward invariant iff-sufficient 4 + h(min(12 + V, w_m)) <= V. The paper's V_c "
-                   "(eps at relative speed 8) satisfies this for c = 1, 10, 1000 (certified; for every a) but NOT for small "
-                   "c: at c = 1/2 and c = 1/10 states of M are certified to leave M. Correct bound: V* solving "
-                   "V = 4 + h(min(12 + V, w_m)), or simply V = max(V_c, 4 + h_max)";
-  }
-  cert.conclude(Verdict::corrected,
-                "Constant eps: 4(1+3eps)/(1-eps) is a sharp forward-invariant, attracting bound for every a (confirmed, via "
-                "v^- >= -(v+8)). Velocity-dependent: M is invariant when 4 + h(min(12 + V_c, w_m)) <= V_c (true for c >= 1 "
-                "in the tested cases), but fails for small c (certified at c = 1/2, 1/10); a valid bound is max(V_c, 4 + h_max).");
+  cert.conclude(Verdict::corrected, kConclusion);
   return cert.finish();
 }

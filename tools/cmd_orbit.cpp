@@ -19,8 +19,8 @@ Command add_orbit(CLI::App& app) {
   opts->add("steps", "Number of impact-map steps, integer >= 0 (default 10)");
   opts->add("precision", "double | long | quad | mpfr:BITS | interval:BITS (16 <= BITS <= 1048576)");
   opts->add("format", "csv (default) | json | table");
-  opts->add("method", "Interval runs: naive (default, iterate the box) | lohner (Lohner's QR method: "
-                      "much tighter enclosures, about 5x the cost per step)");
+  opts->add("method", "Interval runs: lohner (default, as the certified commands: Lohner's QR method, "
+                      "tight enclosures, about 5x the cost per step) | naive (iterate the box)");
   opts->add("every", "Print every K-th step (and the last), integer >= 1 (default 1)");
   opts->add("out", "Write to FILE (atomically) instead of stdout");
   auto force = std::make_shared<bool>(false);

@@ -167,7 +167,7 @@ good_scene | sed 's/^steps = 2$/steps = -2/' >"$S/steps.toml"
 bad "scene: steps < 0" '^bouncer: steps: .*integer in \[0, ' orbit --scene "$S/steps.toml"
 good_scene | sed '/^model = /d' >"$S/nomodel.toml"
 bad "scene: missing model" '^bouncer: model: .*required' orbit --scene "$S/nomodel.toml"
-bad "scene: file does not exist" '^bouncer: scene: .*cannot read' orbit --scene "$S/does-not-exist.toml"
+bad "scene: file does not exist" '^bouncer: scene: .*not found' orbit --scene "$S/does-not-exist.toml"
 
 if [[ $failures -ne 0 ]]; then
   echo "bad_input.sh: $failures of $cases bad-input cases misbehaved" >&2

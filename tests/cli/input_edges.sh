@@ -7,7 +7,8 @@
 #   * a 100,000-character value is cut and a newline in a value is escaped: one short line;
 #   * a directory given as a scene is refused; a bad --range is blamed on --range;
 #   * a theta that rounds to 1 in the chosen precision is refused (not wrapped);
-#   * --version works on every command; a proof program refuses --bits abc.
+#   * --version works on every command; a proof program refuses --bits abc;
+#   * `bouncer help CMD` and `bouncer --scene FILE` (the scene's command) work.
 # Usage: bash input_edges.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 BOUNCER=${1:?usage: bash input_edges.sh <bouncer-binary> <source-dir>}
@@ -45,6 +46,20 @@ for cmd in orbit certify-sticking certify-periodic sweep audit periodic continue
   out=$("$BOUNCER" "$cmd" --version 2>&1) || rc=$?
   [[ $rc -eq 0 && $out =~ commit ]] || fail "version_$cmd" "exit $rc: ${out:0:200}"
 done
+
+# `bouncer help CMD` is `bouncer CMD --help`; `bouncer --scene FILE` runs the scene's command.
+for cmd in orbit basin merge; do
+  cmp -s <("$BOUNCER" help "$cmd") <("$BOUNCER" "$cmd" --help) || fail "help_$cmd" "bouncer help $cmd differs from bouncer $cmd --help"
+done
+refused help_unknown "unknown command 'orbti' \(did you mean 'orbit'\?\)" help orbti
+printf 'command = "orbit"\nmodel = "constant"\neps = "0.5"\na = "24"\ntheta = "0.3"\nv = "12"\nsteps = 5\n' >"$TMP/run.toml"
+cmp -s <("$BOUNCER" --scene "$TMP/run.toml" --steps 3 | grep -v '^# invocation') \
+  <("$BOUNCER" orbit --scene "$TMP/run.toml" --steps 3 | grep -v '^# invocation') ||
+  fail scene_dispatch "bouncer --scene FILE did not run the scene's command with the same result"
+printf 'model = "constant"\n' >"$TMP/nocommand.toml"
+refused scene_no_command "scene: .* has no command" --scene "$TMP/nocommand.toml"
+refused scene_missing "scene: .* not found" --scene "$TMP/missing.toml"
+refused scene_dispatch_dir "scene: .* is a directory" --scene "$TMP"
 
 # Defaults consistent across commands: basin, like scan, defaults --v-range to the trapping
 # region [4, 4(1+3eps)/(1-eps)] (eps = 1/2: exactly 20); elastic has none and needs it.

@@ -53,8 +53,12 @@ PY
 
 # 1. Chaotic elastic orbit: Lohner against iterated boxes, and enclosure of the reference.
 chaos=(--model elastic --a 19 --theta 0.1 --v 5)
-"$BOUNCER" orbit "${chaos[@]}" --steps 1000 --precision interval:64 >"$TMP/naive.csv" 2>/dev/null
+"$BOUNCER" orbit "${chaos[@]}" --steps 1000 --precision interval:64 --method naive >"$TMP/naive.csv" 2>/dev/null
 "$BOUNCER" orbit "${chaos[@]}" --steps 1000 --precision interval:64 --method lohner >"$TMP/lohner.csv" 2>/dev/null
+# Interval runs default to Lohner's method, as the certified commands do.
+"$BOUNCER" orbit "${chaos[@]}" --steps 1000 --precision interval:64 >"$TMP/default.csv" 2>/dev/null
+cmp -s <(grep -v '^# invocation' "$TMP/default.csv" | grep -v '^# inputs') <(grep -v '^# invocation' "$TMP/lohner.csv" | grep -v '^# inputs') ||
+  fail default "an interval run without --method is not the lohner run"
 n_naive=$(undecided_step "$TMP/naive.csv")
 n_lohner=$(undecided_step "$TMP/lohner.csv")
 if [[ $n_naive == none || $n_lohner == none ]]; then

@@ -87,7 +87,14 @@ assert "undecided at step %d" % n in e["message"], e
   echo "$name: undecided at step $n ($reason)"
 }
 
-check default-chaotic --model constant --a 24 --eps 0.5 --theta 0.05 --v 10.5
+# Iterated boxes (--method naive) lose this sticking orbit to the wrapping effect; Lohner's
+# method (the default for interval runs) carries it through all 2000 steps at 20 bits,
+# since every sticking episode releases at a state that does not depend on the input.
+check default-sticking-naive --model constant --a 24 --eps 0.5 --theta 0.05 --v 10.5 --method naive
+"$BOUNCER" orbit --model constant --a 24 --eps 0.5 --theta 0.05 --v 10.5 --steps 2000 --precision interval:20 \
+  >"$TMP/lohner-sticking.csv" 2>/dev/null
+[[ $(tail -n 1 "$TMP/lohner-sticking.csv") == "# end: orbit 0 completed 2000 steps" ]] ||
+  fail lohner-sticking "the default (lohner) run did not complete: $(tail -n 1 "$TMP/lohner-sticking.csv")"
 check elastic-19 --model elastic --a 19 --theta 0.1 --v 7
 
 if [[ $failures -ne 0 ]]; then

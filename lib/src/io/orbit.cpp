@@ -31,6 +31,9 @@ OrbitRequest orbit_request(const Options& o) {
   else if (f == "json") r.format = Format::json;
   else if (f == "table") r.format = Format::table;
   else throw InputError("format", "unknown format '" + f + "' (allowed: csv, json, table)");
+  // Interval runs default to Lohner's method, as the certified commands do: the same
+  // exact orbit, enclosed in sets that grow with the dynamics, not with the wrapping effect.
+  r.method = r.precision.is_interval() ? EnclosureMethod::lohner : EnclosureMethod::naive;
   if (o.has("method")) {
     r.method = parse_enclosure_method("method", o.get("method"));
     if (r.method == EnclosureMethod::lohner && !r.precision.is_interval())
@@ -147,11 +150,12 @@ class RowWriter {
       if (o.fallbacks >= 0) out_ << ", \"lohner_fallbacks\": " << o.fallbacks;
       out_ << "}}";
     } else {
-      out_ << "# end: orbit " << index << " " << end.str() << "\n";
+      // The "# end:" line comes last: a file without it was cut off.
       if (!warn.empty()) out_ << "# warning: orbit " << index << " " << warn << "\n";
       if (o.fallbacks >= 0)
         out_ << "# lohner: orbit " << index << " " << o.fallbacks << " of " << o.steps_done
              << " steps fell back to the interval box image\n";
+      out_ << "# end: orbit " << index << " " << end.str() << "\n";
     }
   }
   void finish() {

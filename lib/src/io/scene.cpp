@@ -64,6 +64,7 @@ std::string scalar_text(const std::string& key, const toml::node& n) {
 Options load_scene(const std::string& path, const std::string& command, const std::set<std::string>& allowed) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError("scene", "'" + path + "' is a directory, not a scene file (.toml)");
+  if (!std::filesystem::exists(path, ec)) throw InputError("scene", "'" + path + "' not found (give a scene file, .toml)");
   toml::table table;
   try {
     table = toml::parse_file(path);
@@ -92,6 +93,24 @@ Options load_scene(const std::string& path, const std::string& command, const st
     }
   }
   return o;
+}
+
+std::string scene_command(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError("scene", "'" + path + "' is a directory, not a scene file (.toml)");
+  if (!std::filesystem::exists(path, ec)) throw InputError("scene", "'" + path + "' not found (give a scene file, .toml)");
+  toml::table table;
+  try {
+    table = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << "cannot read scene '" << path << "': " << e.description() << " (line " << e.source().begin.line << ")";
+    throw InputError("scene", msg.str());
+  }
+  const auto command = table["command"].value<std::string>();
+  if (!command || command->empty())
+    throw InputError("scene", "'" + path + "' has no command = \"...\" line: give the command (bouncer COMMAND --scene FILE)");
+  return *command;
 }
 
 Options merge(Options scene, const Options& command_line) {

@@ -24,7 +24,8 @@ struct OrbitRequest {
   Precision precision;
   Format format = Format::csv;
   // Interval runs only: naive iterates the interval box with ImpactMap<Mpfi>; lohner
-  // follows Lohner's set c + B r (verify/enclosure.hpp) and prints the box around it.
+  // (the default for interval runs, as in the certified commands) follows Lohner's set
+  // c + B r (verify/enclosure.hpp) and prints the box around it.
   EnclosureMethod method = EnclosureMethod::naive;
 };
 

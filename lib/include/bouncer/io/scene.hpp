@@ -42,6 +42,9 @@ struct Options {
 // Reads a scene file. Keys must be in `allowed`; decimals must be TOML strings or
 // integers (a TOML float has already lost the exact decimal). Throws InputError.
 Options load_scene(const std::string& path, const std::string& command, const std::set<std::string>& allowed);
+// The `command` key of a scene (for `bouncer --scene FILE`); throws InputError("scene", ...)
+// when the file is unreadable, a directory, not TOML, or names no command.
+std::string scene_command(const std::string& path);
 
 // Scene values first, then command-line values on top.
 Options merge(Options scene, const Options& command_line);

@@ -79,6 +79,26 @@ for args in "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/dir" \
   [[ -z "$(ls -A "$TMP/dir")" ]] || fail out_dir "files written into the directory: $(ls -A "$TMP/dir")"
 done
 
+# A folder without write permission: exit 1 (the output failed, not the input), one line
+# naming the path, never "internal error", for a plain output and for a grid job alike.
+# As root permissions do not apply, so the check runs as nobody when the binary allows it.
+as_user=()
+[[ $(id -u) -eq 0 ]] && as_user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+mkdir -p "$TMP/ro" && chmod 755 "$TMP" && chmod 555 "$TMP/ro"
+if "${as_user[@]}" "$BOUNCER" --version >/dev/null 2>&1 && ! "${as_user[@]}" test -w "$TMP/ro"; then
+  for args in "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/ro/o.csv" \
+              "basin ${MODEL[*]} --grid 4x4 --transient 10 --steps 16 --quiet --out $TMP/ro/b"; do
+    rc=0
+    # shellcheck disable=SC2086
+    "${as_user[@]}" "$BOUNCER" $args >/dev/null 2>"$TMP/ro.err" || rc=$?
+    [[ $rc -eq 1 && $(wc -l <"$TMP/ro.err") -eq 1 ]] && grep -q 'Permission denied' "$TMP/ro.err" &&
+      ! grep -q 'internal error' "$TMP/ro.err" || fail read_only "exit $rc for '${args%% *}': $(head -c 300 "$TMP/ro.err")"
+  done
+  [[ -z "$(ls -A "$TMP/ro")" ]] || fail read_only "something was written: $(ls -A "$TMP/ro")"
+else
+  echo "read-only folder check skipped: cannot run the binary as an unprivileged user here"
+fi
+
 # SIGTERM during a long orbit: the .partial file is removed, nothing else is left, and the
 # process ends by the signal (143). (Grid jobs: tests/cli/grid_edges.sh.)
 "$BOUNCER" orbit --model constant --eps 0.9 --a 28.82 --theta 0.1 --v 10 --steps 50000000 \

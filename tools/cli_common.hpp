@@ -14,6 +14,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,6 +61,58 @@ inline void write_atomically(const std::optional<std::string>& path, const std::
     return;
   }
   write_output(output_target("out", *path), body);
+}
+
+// One file of an output set: its path, and how to write it in full to a target.
+struct OutputFile {
+  std::string path;
+  std::function<void(const OutputTarget& to)> write;
+};
+inline std::function<void(const OutputTarget&)> text_file(std::function<void(std::ostream&)> body) {
+  return [body = std::move(body)](const OutputTarget& to) { write_output(to, body); };
+}
+
+// Writes a set of outputs (PREFIX.csv, PREFIX.png, PREFIX.json) all or none: every path is
+// checked before anything is written (a directory or a missing folder: exit 2), each file is
+// written in full to PATH.partial, and only when all are complete are they renamed into
+// place. A failure (disk full after the CSV, say) removes every partial file and leaves the
+// previous outputs as they were: never a CSV without its JSON. Devices and pipes are
+// written through, as by write_output.
+inline void write_output_set(const std::vector<OutputFile>& files) {
+  std::vector<OutputTarget> targets;
+  for (const OutputFile& f : files) targets.push_back(output_target("out", f.path));
+  std::vector<std::pair<std::string, std::string>> staged;  // PATH.partial -> PATH
+  std::vector<std::unique_ptr<PartialFile>> registered;
+  auto remove_staged = [&] {
+    std::error_code ec;
+    for (const auto& [from, to] : staged) std::filesystem::remove(from, ec);
+  };
+  try {
+    for (size_t i = 0; i < files.size(); ++i) {
+      if (targets[i].kind == OutputTarget::Kind::stream) {
+        files[i].write(targets[i]);
+        continue;
+      }
+      const std::string part = targets[i].path + ".partial";
+      registered.push_back(std::make_unique<PartialFile>(part));
+      staged.emplace_back(part, targets[i].path);
+      files[i].write(OutputTarget{OutputTarget::Kind::file, part});
+    }
+    for (const auto& [from, to] : staged) {
+      std::error_code ec;
+      std::filesystem::rename(from, to, ec);
+      if (ec) throw OutputError("cannot rename '" + from + "' to '" + to + "': " + ec.message());
+    }
+  } catch (const OutputError& e) {
+    remove_staged();
+    std::string message = e.what();  // name the output, not its staging file
+    for (const auto& [from, to] : staged)
+      for (size_t at; (at = message.find(from)) != std::string::npos;) message.replace(at, from.size(), to);
+    throw OutputError(message);
+  } catch (...) {
+    remove_staged();
+    throw;
+  }
 }
 
 // The command line as one string, for provenance.

@@ -309,7 +309,6 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     text << name(x.kind) << " at " << par << "* = " << Tr::to_string(x.param) << "\n";
 
   if (r.out) {
-    write_atomically(*r.out + ".csv", [&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); });
     // Branch diagram: the shown coordinate of every orbit point against the parameter.
     Figure fig;
     const bool show_theta = r.show == "theta";
@@ -379,8 +378,9 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     fig.xlabel = r.vary == Parameter::eps ? "ε" : par;
     fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
     fig.metadata = png_metadata(prov, fig.title);
-    write_png(*r.out + ".png", fig);
-    write_atomically(*r.out + ".json", [&](std::ostream& f) { f << doc.dump(2) << "\n"; });
+    write_output_set({{*r.out + ".csv", text_file([&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); })},
+                      {*r.out + ".png", [&](const OutputTarget& to) { write_png(to.path, fig); }},
+                      {*r.out + ".json", text_file([&](std::ostream& f) { f << doc.dump(2) << "\n"; })}});
   }
   if (print_json) std::cout << doc.dump(2) << "\n";
   else std::cout << text.str();

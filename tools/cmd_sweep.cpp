@@ -209,9 +209,9 @@ Command add_sweep(CLI::App& app) {
     p.bits = rep.reference_bits;
     const json j = report_json(r, rep, p);
     if (r.prefix) {
-      write_atomically(*r.prefix + ".json", [&](std::ostream& s) { s << j.dump(1) << "\n"; });
-      write_atomically(*r.prefix + ".csv", [&](std::ostream& s) { s << csv_text(rep, p); });
-      write_png(*r.prefix + ".png", divergence_figure(rep, p, r.q.steps));
+      write_output_set({{*r.prefix + ".json", text_file([&](std::ostream& s) { s << j.dump(1) << "\n"; })},
+                        {*r.prefix + ".csv", text_file([&](std::ostream& s) { s << csv_text(rep, p); })},
+                        {*r.prefix + ".png", [&](const OutputTarget& to) { write_png(to.path, divergence_figure(rep, p, r.q.steps)); }}});
     }
     if (r.json) std::cout << j.dump(1) << "\n";
     else std::cout << p.as_comment_lines() << text_table(rep, r.q.steps);

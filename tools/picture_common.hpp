@@ -232,9 +232,9 @@ inline void write_outputs(const RunFlags& f, const Provenance& p, const std::str
   doc["summary"] = summary;
   if (f.out) {
     doc["files"] = {{"csv", *f.out + ".csv"}, {"png", *f.out + ".png"}, {"json", *f.out + ".json"}};
-    write_atomically(*f.out + ".csv", [&](std::ostream& s) { s << p.as_comment_lines() << csv_body; });
-    draw(*f.out + ".png");
-    write_atomically(*f.out + ".json", [&](std::ostream& s) { s << doc.dump(2) << "\n"; });
+    write_output_set({{*f.out + ".csv", text_file([&](std::ostream& s) { s << p.as_comment_lines() << csv_body; })},
+                      {*f.out + ".png", [&](const OutputTarget& to) { draw(to.path); }},
+                      {*f.out + ".json", text_file([&](std::ostream& s) { s << doc.dump(2) << "\n"; })}});
     if (!f.keep_tiles) {
       std::error_code ec;
       std::filesystem::remove_all(tiles_dir(*f.out), ec);

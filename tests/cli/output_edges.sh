@@ -99,6 +99,17 @@ else
   echo "read-only folder check skipped: cannot run the binary as an unprivileged user here"
 fi
 
+# A full disk in the middle of an output set (RLIMIT_FSIZE of 4 KB, SIGXFSZ ignored: the
+# 0.9 KB CSV fits, the 8 KB PNG does not): exit 1 and no file of the set, never a CSV
+# without its PNG and JSON (it used to leave PREFIX.csv).
+rc=0
+(trap '' XFSZ; ulimit -f 4; "$BOUNCER" basin "${MODEL[@]}" --grid 4x4 --transient 10 --steps 16 --quiet \
+  --out "$TMP/set" 2>"$TMP/set.err") || rc=$?
+[[ $rc -eq 1 && $(wc -l <"$TMP/set.err") -eq 1 ]] || fail output_set "exit $rc: $(head -c 300 "$TMP/set.err")"
+for ext in csv png json csv.partial png.partial json.partial; do
+  [[ ! -e "$TMP/set.$ext" ]] || fail output_set "set.$ext was left behind"
+done
+
 # SIGTERM during a long orbit: the .partial file is removed, nothing else is left, and the
 # process ends by the signal (143). (Grid jobs: tests/cli/grid_edges.sh.)
 "$BOUNCER" orbit --model constant --eps 0.9 --a 28.82 --theta 0.1 --v 10 --steps 50000000 \

@@ -160,11 +160,15 @@ std::string format_number(double v, double step) {
   return buf;
 }
 
+// libpng's default handlers print to stderr; ours stay silent (the caller reports one line).
+void png_silent_error(png_structp png, png_const_charp) { png_longjmp(png, 1); }
+void png_silent_warning(png_structp, png_const_charp) {}
+
 // Bits of a PNG writer that must not hold C++ objects across setjmp.
 bool encode_png(const char* path, int w, int h, const std::uint8_t* rgb, png_text* text, int ntext) {
   FILE* fp = std::fopen(path, "wb");
   if (!fp) return false;
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_silent_error, png_silent_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
     png_destroy_write_struct(&png, &info);

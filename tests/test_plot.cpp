@@ -345,6 +345,15 @@ TEST(Zoom, HandDerivedOffsetsAndTitles) {
   EXPECT_EQ(axis_title("x", g.offset()), "x - 10000000000");
   const AxisZoom h(q("12.5"), q("12.50000000005"));  // unit 1e-11, origin 12.5
   EXPECT_EQ(axis_title("x", h.offset()), "x - 12.5, in units of 1e-11");
+
+  // Values printed with the digits a zoom resolves: rounded to a multiple of 10^e.
+  EXPECT_EQ(decimal_rounded(q("26.0000000000000000000051234"), -23), "26.00000000000000000000512");
+  EXPECT_EQ(decimal_rounded(q("26.0000000000000000000051256"), -23), "26.00000000000000000000513");
+  EXPECT_EQ(decimal_rounded(q("26.0000000000000000000051234"), -20), "26.00000000000000000001");
+  EXPECT_EQ(decimal_rounded(q("0.125"), -2), "0.13");
+  EXPECT_EQ(decimal_rounded(q("-0.125"), -2), "-0.12");  // halves up
+  EXPECT_EQ(decimal_rounded(q("1234.5"), 2), "1200");
+  EXPECT_EQ(decimal_rounded(q("3.0000000000000000000000001e-30"), -56), "3.0000000000000000000000001e-30");
 }
 
 TEST(Zoom, TicksOfRandomWindowsAreExactDistinctAndInside) {

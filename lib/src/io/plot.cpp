@@ -449,9 +449,21 @@ struct Frame {
   double py(double y) const { return bottom - (y - y0) / (y1 - y0) * (bottom - top); }
 };
 
+// The lines of a y axis title (drawn upward beside the frame): one, or for an offset axis
+// whose title is longer than the frame is tall, the label and then the offset note
+// ("- 4, in units of 1e-26") on a second line.
+std::vector<std::string> y_title_lines(const std::string& label, const AxisOffset& o, int frame_height, int scale) {
+  const std::string whole = axis_title(label, o);
+  if (!o.active() || label.empty() || Canvas::text_width(whole, scale) <= frame_height) return {whole};
+  return {label, axis_title("", o).substr(1)};
+}
+int y_title_extra(const std::vector<std::string>& lines, int scale) {
+  return static_cast<int>(lines.size() - 1) * (Canvas::text_height(scale) + 4);
+}
+
 // Axes: frame, ticks, tick labels, grid lines (optional) and axis labels.
 void draw_axes(Canvas& c, const Frame& f, const Ticks& tx, const Ticks& ty, bool log_y, const std::string& xlabel,
-               const std::string& ylabel, bool grid, const Style& st) {
+               const std::vector<std::string>& ylines, bool grid, const Style& st) {
   const int tick = 6;
   if (grid) {
     c.clip(f.left + 1, f.top + 1, f.right, f.bottom);
@@ -476,12 +488,15 @@ void draw_axes(Canvas& c, const Frame& f, const Ticks& tx, const Ticks& ty, bool
   const int cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
   if (!xlabel.empty())
     c.text(cx - Canvas::text_width(xlabel, st.small) / 2, f.bottom + tick + 4 + Canvas::text_height(st.small) + 10, xlabel, st.small, kBlack);
-  if (!ylabel.empty() && glyphs(ylabel).size() <= 2)  // a symbol reads better upright
+  const std::string& ylabel = ylines.front();
+  if (ylines.size() == 1 && !ylabel.empty() && glyphs(ylabel).size() <= 2)  // a symbol reads better upright
     c.text(f.left - tick - 4 - widest - 10 - Canvas::text_width(ylabel, st.small), cy - Canvas::text_height(st.small) / 2, ylabel,
            st.small, kBlack);
   else if (!ylabel.empty())
-    c.text_up(f.left - tick - 4 - widest - 10 - Canvas::text_height(st.small), cy + Canvas::text_width(ylabel, st.small) / 2, ylabel,
-              st.small, kBlack);
+    for (size_t i = 0; i < ylines.size(); ++i)  // the first line outermost
+      c.text_up(f.left - tick - 4 - widest - 10 - Canvas::text_height(st.small) -
+                    static_cast<int>(ylines.size() - 1 - i) * (Canvas::text_height(st.small) + 4),
+                cy + Canvas::text_width(ylines[i], st.small) / 2, ylines[i], st.small, kBlack);
 }
 
 int max_label_width(const Ticks& t, int scale) {
@@ -552,6 +567,13 @@ std::string axis_title(const std::string& label, const AxisOffset& o) {
   out += o.origin[0] == '-' ? " + " + o.origin.substr(1) : " - " + o.origin;
   if (o.exponent != 0) out += ", in units of " + unit_text(o.exponent);
   return out;
+}
+
+std::string decimal_rounded(const mpq_class& x, int exponent) {
+  const mpq_class grain = pow10(exponent), t = x / grain + mpq_class(1, 2);
+  mpz_class m;
+  mpz_fdiv_q(m.get_mpz_t(), t.get_num_mpz_t(), t.get_den_mpz_t());
+  return decimal_text(m, exponent);
 }
 
 std::string tick_value(const std::string& label, const AxisOffset& o) {
@@ -679,7 +701,7 @@ void write_png(const std::string& path, const Figure& fig) {
       if (zy.active()) y_offset = zy.offset();
     }
   }
-  const std::string xlabel = axis_title(fig.xlabel, x_offset), ylabel = axis_title(fig.ylabel, y_offset);
+  const std::string xlabel = axis_title(fig.xlabel, x_offset);
 
   std::vector<LegendEntry> legend;
   for (const auto& s : *series)
@@ -689,13 +711,15 @@ void write_png(const std::string& path, const Figure& fig) {
   const Ticks ty0 = fig.log_y ? log_ticks(std::pow(10.0, y0), std::pow(10.0, y1)) : nice_ticks(y0, y1);
   const int title_h = title_height(fig.title, fig.subtitle, fig.width, st) + 8;
   Frame f{};
-  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10;
   f.top = title_h;
   const int below = fig.legend_below ? legend_below_height(legend, st.small, fig.width - 40) : 0;
+  const int frame_bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  const std::vector<std::string> ylines = y_title_lines(fig.ylabel, y_offset, frame_bottom - f.top, st.small);
+  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10 + y_title_extra(ylines, st.small);
   // Room at the right for half of the last x tick label (it is centred on its tick).
   const int x_overhang = Canvas::text_width(nice_ticks(x0, x1).labels.empty() ? "" : nice_ticks(x0, x1).labels.back(), st.small) / 2 + 6;
   f.right = fig.width - std::max(20, x_overhang) - (legend.empty() || fig.legend_below ? 0 : legend_width(legend, st.small) + 16);
-  f.bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  f.bottom = frame_bottom;
   if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
 
   if (fig.equal_aspect) {
@@ -714,7 +738,7 @@ void write_png(const std::string& path, const Figure& fig) {
   const Ticks ty = fig.log_y ? log_ticks(std::pow(10.0, y0), std::pow(10.0, y1)) : nice_ticks(y0, y1, std::max(3, (f.bottom - f.top) / 80));
 
   draw_title(c, fig.title, fig.subtitle, fig.width / 2, st);
-  draw_axes(c, f, tx, ty, fig.log_y, xlabel, ylabel, true, st);
+  draw_axes(c, f, tx, ty, fig.log_y, xlabel, ylines, true, st);
 
   c.clip(f.left + 1, f.top + 1, f.right, f.bottom);
   for (const auto& s : *series) {
@@ -777,12 +801,14 @@ void write_png(const std::string& path, const ImageFigure& fig) {
   const int below = r.legend_below ? legend_below_height(legend, st.small, fig.width - 40) : 0;
   const int title_h = title_height(fig.title, fig.subtitle, fig.width, st) + 8;
   Frame f{};
-  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10;
   f.top = title_h;
+  const int frame_bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  const std::vector<std::string> ylines = y_title_lines(fig.ylabel, y_offset, frame_bottom - f.top, st.small);
+  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10 + y_title_extra(ylines, st.small);
   const Ticks tx0 = nice_ticks(x0, x1);
   const int x_overhang = Canvas::text_width(tx0.labels.empty() ? "" : tx0.labels.back(), st.small) / 2 + 6;
   f.right = fig.width - (panel ? 20 + panel + 16 : std::max(20, x_overhang));
-  f.bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  f.bottom = frame_bottom;
   if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
   f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
 
@@ -799,7 +825,7 @@ void write_png(const std::string& path, const ImageFigure& fig) {
   const Ticks tx = nice_ticks(f.x0, f.x1, std::max(3, (f.right - f.left) / 110));
   const Ticks ty = nice_ticks(f.y0, f.y1, std::max(3, (f.bottom - f.top) / 80));
   draw_title(c, fig.title, fig.subtitle, fig.width / 2, st);
-  draw_axes(c, f, tx, ty, false, axis_title(fig.xlabel, x_offset), axis_title(fig.ylabel, y_offset), false, st);
+  draw_axes(c, f, tx, ty, false, axis_title(fig.xlabel, x_offset), ylines, false, st);
 
   int y = f.top;
   if (r.legend_below) draw_legend_below(c, 20, fig.height - below, fig.width - 40, legend, st.small);

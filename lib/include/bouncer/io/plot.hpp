@@ -56,6 +56,9 @@ class AxisZoom {
 // ("+ 3" for the origin -3; UNIT as 1e-20, or 0.01 ... 1000 for exponents -3 ... 3; no
 // "in units" when the unit is 1).
 std::string axis_title(const std::string& label, const AxisOffset& offset);
+// x rounded to a multiple of 10^exponent (halves up), as decimal text: a value on a zoomed
+// axis printed with the digits the zoom resolves ("26.00000000000000000000512").
+std::string decimal_rounded(const mpq_class& x, int exponent);
 // The value a tick label t of an offset axis stands for, origin + t * 10^exponent, as an
 // exact decimal text (the identity's labels stand for themselves).
 std::string tick_value(const std::string& label, const AxisOffset& offset);

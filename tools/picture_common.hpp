@@ -203,8 +203,9 @@ inline void write_outputs(const RunFlags& f, const Provenance& p, const std::str
   doc["summary"] = summary;
   if (f.out) {
     doc["files"] = {{"csv", *f.out + ".csv"}, {"png", *f.out + ".png"}, {"json", *f.out + ".json"}};
-    write_atomically(*f.out + ".csv", [&](std::ostream& s) { s << p.as_comment_lines() << csv_body; });
+    // The picture first: a picture that cannot be drawn leaves no CSV that looks finished.
     draw(*f.out + ".png");
+    write_atomically(*f.out + ".csv", [&](std::ostream& s) { s << p.as_comment_lines() << csv_body; });
     write_atomically(*f.out + ".json", [&](std::ostream& s) { s << doc.dump(2) << "\n"; });
     if (!f.keep_tiles) {
       std::error_code ec;
@@ -227,6 +228,19 @@ inline std::vector<std::pair<std::string, std::string>> png_metadata(const Prove
           {"bouncer:inputs", inputs},
           {"bouncer:precision", p.precision + " (" + std::to_string(p.bits) + " bits)"},
           {"bouncer:provenance", p.as_json()}};
+}
+
+// Zoomed axes (AxisZoom in bouncer/io/plot.hpp) place values exactly: the rational of a
+// number as a command prints it, a decimal with the digits of its precision (Mpfr: enough
+// to read back the same value), so a window 1e-20 wide at mpfr:256 keeps its detail.
+inline mpq_class exact_value(const std::string& text) {
+  const auto d = Decimal::parse(text);
+  if (!d) throw std::runtime_error("not a finite decimal: '" + text + "'");
+  return d->value();
+}
+template <class T>
+mpq_class exact_value(const T& x) {
+  return exact_value(ScalarTraits<T>::to_string(x));
 }
 
 // "A:B" with two decimals, A < B (or A <= B when `allow_equal`).

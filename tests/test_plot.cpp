@@ -1,5 +1,6 @@
 // PNG figures decoded back with libpng (size, colours where they belong, tEXt provenance,
-// atomic writes) and the properties of the tick generator.
+// atomic writes), the properties of the tick generator, and zoomed axes (offsets and their
+// labels against hand-derived cases and exact rational arithmetic).
 #include <gtest/gtest.h>
 #include <png.h>
 
@@ -10,6 +11,7 @@
 #include <set>
 
 #include "bouncer/io/plot.hpp"
+#include "bouncer/scalar/decimal.hpp"
 
 using namespace bouncer;
 namespace fs = std::filesystem;
@@ -81,6 +83,23 @@ struct TempDir {
 };
 
 bool same(Rgb a, Rgb b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+
+mpq_class q(const std::string& decimal) {
+  const auto d = Decimal::parse(decimal);
+  EXPECT_TRUE(d.has_value()) << decimal;
+  return d ? d->value() : mpq_class(0);
+}
+
+mpq_class pow10q(int e) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(std::abs(e)));
+  return e < 0 ? mpq_class(mpz_class(1), p) : mpq_class(p);
+}
+
+// The ticks of an axis window [lo, hi] as the picture labels them.
+Ticks zoomed_ticks(const AxisZoom& z, const mpq_class& lo, const mpq_class& hi, int target = 6) {
+  return nice_ticks(z(lo), z(hi), target);
+}
 
 }  // namespace
 
@@ -262,4 +281,192 @@ TEST(Colors, CategoriesAreDistinctAndAvoidTheReservedRedAndBlue) {
     const Rgb a = ramp_color((i - 1) / 100.0), b = ramp_color(i / 100.0);
     EXPECT_LE(b.r + b.g + b.b, a.r + a.g + a.b);
   }
+}
+
+// ---- zoomed axes ---------------------------------------------------------------------------
+
+TEST(Zoom, OrdinaryWindowsKeepPlainCoordinates) {
+  // Plain labels need at most about 8 digits: no offset, t is the value itself.
+  for (const auto& [lo, hi] : std::vector<std::pair<std::string, std::string>>{
+           {"0", "1"}, {"28", "29"}, {"-1e-20", "1e-20"}, {"1e-20", "2e-20"}, {"28", "28.000003"}, {"4", "20"}}) {
+    const AxisZoom z(q(lo), q(hi));
+    EXPECT_FALSE(z.active()) << lo << ":" << hi;
+    EXPECT_EQ(z(q(lo)), q(lo).get_d());
+    EXPECT_EQ(z(2.5), 2.5);
+    EXPECT_EQ(axis_title("a", z.offset()), "a");
+    EXPECT_EQ(tick_value("0.25", z.offset()), "0.25");
+  }
+  // Just past the threshold (width < 1e-7 of the magnitude) an offset appears.
+  EXPECT_TRUE(AxisZoom(q("28"), q("28.0000027")).active());
+}
+
+TEST(Zoom, HandDerivedOffsetsAndTitles) {
+  // [0.3, 0.3 + 1e-20]: width 1e-20 -> unit 1e-20; the middle 0.3 + 5e-21 rounded to a
+  // multiple of 1e-19 is 0.3; t runs over [0, 1].
+  const AxisZoom a(q("0.3"), q("0.30000000000000000001"));
+  ASSERT_TRUE(a.active());
+  EXPECT_EQ(a.offset().origin, "0.3");
+  EXPECT_EQ(a.offset().exponent, -20);
+  EXPECT_EQ(a(q("0.3")), 0.0);
+  EXPECT_EQ(a(q("0.30000000000000000001")), 1.0);
+  EXPECT_EQ(a(q("0.300000000000000000005")), 0.5);
+  EXPECT_EQ(axis_title("θ0 (initial phase)", a.offset()), "θ0 (initial phase) - 0.3, in units of 1e-20");
+  const Ticks t = zoomed_ticks(a, q("0.3"), q("0.30000000000000000001"), 5);
+  EXPECT_EQ(t.labels, (std::vector<std::string>{"0.0", "0.2", "0.4", "0.6", "0.8", "1.0"}));
+  EXPECT_EQ(tick_value("0.2", a.offset()), "0.300000000000000000002");
+  EXPECT_EQ(tick_value("1.0", a.offset()), "0.30000000000000000001");
+
+  // The bifurcation range 28 : 28 + 1e-15.
+  const AxisZoom b(q("28"), q("28.000000000000001"));
+  EXPECT_EQ(b.offset().origin, "28");
+  EXPECT_EQ(b.offset().exponent, -15);
+  EXPECT_EQ(axis_title("a", b.offset()), "a - 28, in units of 1e-15");
+
+  // Negative values: [-3 - 2e-20, -3 - 1e-20] -> origin -3, t in [-2, -1], "+ 3".
+  const AxisZoom c(q("-3.00000000000000000002"), q("-3.00000000000000000001"));
+  EXPECT_EQ(c.offset().origin, "-3");
+  EXPECT_EQ(c(q("-3.00000000000000000002")), -2.0);
+  EXPECT_EQ(c(q("-3.00000000000000000001")), -1.0);
+  EXPECT_EQ(axis_title("v", c.offset()), "v + 3, in units of 1e-20");
+  EXPECT_EQ(tick_value("-1.5", c.offset()), "-3.000000000000000000015");
+
+  // A window across a multiple of 1e-19: the origin takes the digit it needs.
+  const AxisZoom d(q("0.300000000000000000095"), q("0.300000000000000000105"));
+  EXPECT_EQ(d.offset().origin, "0.3000000000000000001");
+  EXPECT_EQ(d(q("0.300000000000000000095")), -0.5);
+  EXPECT_EQ(tick_value("-0.5", d.offset()), "0.300000000000000000095");
+
+  // Tiny and huge magnitudes: scientific origins; units 1000 and 1 read plainly.
+  const AxisZoom e(q("1e-30"), q("1.000000000000001e-30"));
+  EXPECT_EQ(axis_title("x", e.offset()), "x - 1e-30, in units of 1e-45");
+  const AxisZoom f(q("1e20"), q("100000000000000001000"));
+  EXPECT_EQ(axis_title("x", f.offset()), "x - 1e20, in units of 1000");
+  const AxisZoom g(q("10000000000"), q("10000000005"));
+  EXPECT_EQ(axis_title("x", g.offset()), "x - 10000000000");
+  const AxisZoom h(q("12.5"), q("12.50000000005"));  // unit 1e-11, origin 12.5
+  EXPECT_EQ(axis_title("x", h.offset()), "x - 12.5, in units of 1e-11");
+
+  // Values printed with the digits a zoom resolves: rounded to a multiple of 10^e.
+  EXPECT_EQ(decimal_rounded(q("26.0000000000000000000051234"), -23), "26.00000000000000000000512");
+  EXPECT_EQ(decimal_rounded(q("26.0000000000000000000051256"), -23), "26.00000000000000000000513");
+  EXPECT_EQ(decimal_rounded(q("26.0000000000000000000051234"), -20), "26.00000000000000000001");
+  EXPECT_EQ(decimal_rounded(q("0.125"), -2), "0.13");
+  EXPECT_EQ(decimal_rounded(q("-0.125"), -2), "-0.12");  // halves up
+  EXPECT_EQ(decimal_rounded(q("1234.5"), 2), "1200");
+  EXPECT_EQ(decimal_rounded(q("3.0000000000000000000000001e-30"), -56), "3.0000000000000000000000001e-30");
+}
+
+TEST(Zoom, TicksOfRandomWindowsAreExactDistinctAndInside) {
+  // Windows of width 1e-8 .. 1e-61 of their magnitude, magnitudes 1e-30 .. 1e30, both signs.
+  // Every tick label, read through the offset, is a value inside the window, exactly, and
+  // adjacent ticks differ by exactly the step in value units.
+  std::mt19937_64 rng(2026);
+  std::uniform_int_distribution<int> digit(0, 9), mag(-30, 30), depth(9, 60), sign(0, 1);
+  for (int trial = 0; trial < 400; ++trial) {
+    std::string lo_text = sign(rng) ? "-0." : "0.";
+    lo_text += std::to_string(1 + digit(rng) % 9);
+    for (int i = 0; i < 70; ++i) lo_text += std::to_string(digit(rng));
+    const int m = mag(rng), d = depth(rng);
+    lo_text += "e" + std::to_string(m);
+    const mpq_class lo = q(lo_text);
+    const mpq_class width = mpq_class(1 + digit(rng) % 9) * pow10q(m - d);
+    const mpq_class hi = lo + width;
+    const AxisZoom z(lo, hi);
+    ASSERT_TRUE(z.active()) << lo_text << " width 1e" << m - d;
+    const mpq_class unit = pow10q(z.offset().exponent);
+    EXPECT_TRUE(unit <= width && width < unit * 10) << lo_text;
+    // Short tick labels: |t| stays small.
+    EXPECT_LT(std::fabs(z(lo)), 11.0) << lo_text;
+    EXPECT_LT(std::fabs(z(hi)), 21.0) << lo_text;
+    const Ticks t = zoomed_ticks(z, lo, hi, 3 + trial % 6);
+    ASSERT_GE(t.values.size(), 2u) << lo_text;
+    std::set<std::string> distinct(t.labels.begin(), t.labels.end());
+    EXPECT_EQ(distinct.size(), t.labels.size()) << lo_text;
+    const mpq_class origin = q(z.offset().origin);
+    std::vector<mpq_class> values;
+    for (const std::string& label : t.labels) {
+      const mpq_class v = q(tick_value(label, z.offset()));
+      EXPECT_EQ(v, origin + q(label) * unit) << label;
+      // Inside the window (t rounded to a double: 1e-9 of a step of slack, as nice_ticks).
+      EXPECT_GE(v, lo - width * mpq_class(1, 1000000)) << label << " " << lo_text;
+      EXPECT_LE(v, hi + width * mpq_class(1, 1000000)) << label << " " << lo_text;
+      values.push_back(v);
+    }
+    const mpq_class step = q(tick_value(t.labels[1], z.offset())) - q(tick_value(t.labels[0], z.offset()));
+    EXPECT_GT(step, 0);
+    for (size_t i = 1; i < values.size(); ++i) EXPECT_EQ(values[i] - values[i - 1], step) << lo_text;
+  }
+}
+
+TEST(Zoom, DoubleCoordinatesAgreeWithExactOnes) {
+  // A window of a few hundred ulps of 12 (a degenerate plot range in double).
+  const double lo = 12, hi = 12 + 300 * std::ldexp(1.0, -49);
+  const AxisZoom z{mpq_class(lo), mpq_class(hi)};
+  ASSERT_TRUE(z.active());
+  for (int k = 0; k <= 300; k += 7) {
+    const double x = 12 + k * std::ldexp(1.0, -49);
+    EXPECT_NEAR(z(x), z(mpq_class(x)), 1e-12 * std::max(1.0, std::fabs(z(mpq_class(x))))) << k;
+  }
+}
+
+TEST(Zoom, PicturesOfAWindow1e20WideDraw) {
+  TempDir tmp;
+  const mpq_class lo = q("0.3"), hi = q("0.30000000000000000001"), vlo = q("7"), vhi = q("7.00000000000000000003");
+  const AxisZoom zx(lo, hi), zy(vlo, vhi);
+  // A raster in t coordinates: the four quadrant colours land as in an ordinary window.
+  ImageFigure f;
+  f.width = 500;
+  f.height = 400;
+  f.xlabel = "θ0";
+  f.ylabel = "v0";
+  Raster& r = f.raster;
+  r.nx = r.ny = 2;
+  const Rgb tl{250, 0, 0}, tr{0, 250, 0};
+  r.pixels = {tl, tr, Rgb{0, 0, 250}, Rgb{250, 250, 0}};
+  r.x_min = zx(lo);
+  r.x_max = zx(hi);
+  r.y_min = zy(vlo);
+  r.y_max = zy(vhi);
+  r.x_offset = zx.offset();
+  r.y_offset = zy.offset();
+  const std::string path = (tmp.path / "zoom.png").string();
+  ASSERT_NO_THROW(write_png(path, f));
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 500);
+  EXPECT_EQ(d.height, 400);
+  long left = 0, right = 0;
+  for (int y = 0; y < d.height; ++y)
+    for (int x = 0; x < d.width; ++x) {
+      left += same(d.at(x, y), tl) && x < d.width / 2;
+      right += same(d.at(x, y), tr) && x > d.width / 3;
+    }
+  EXPECT_GT(left, 1000);
+  EXPECT_GT(right, 1000);
+  // The same window in plain doubles is empty (both ends are the double 0.3): an error,
+  // not a picture of the wrong window.
+  r.x_offset = r.y_offset = AxisOffset{};
+  r.x_min = lo.get_d();
+  r.x_max = hi.get_d();
+  EXPECT_THROW(write_png(path, f), std::runtime_error);
+
+  // A line plot whose data span 2e-15 around 12 in double gets an offset by itself and draws
+  // its points inside the frame.
+  Figure g;
+  Series s;
+  s.color = Rgb{200, 0, 0};
+  s.marker_size = 3;
+  for (int k = 0; k <= 8; ++k) {
+    s.x.push_back(k);
+    s.y.push_back(12 + k * std::ldexp(1.0, -49));
+  }
+  g.series.push_back(s);
+  const std::string gp = (tmp.path / "flat.png").string();
+  ASSERT_NO_THROW(write_png(gp, g));
+  ASSERT_TRUE(decode(gp, d));
+  int ymin = d.height, ymax = 0;
+  for (int y = 0; y < d.height; ++y)
+    for (int x = 0; x < d.width; ++x)
+      if (same(d.at(x, y), Rgb{200, 0, 0})) { ymin = std::min(ymin, y); ymax = std::max(ymax, y); }
+  EXPECT_GT(ymax - ymin, d.height / 2);  // the 2e-15 spread fills the frame's height
 }

@@ -154,7 +154,6 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
     y0 -= pad;
     y1 += pad;
   }
-  const double p0 = r.lo.approx(), p1 = r.hi.approx();
   const int nx = static_cast<int>(std::min<long>(r.samples, 1600));
   const int ny = static_cast<int>(r.bins);
   std::vector<long> count(static_cast<size_t>(nx) * ny, 0);
@@ -176,8 +175,14 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   Raster& ras = fig.raster;
   ras.nx = nx;
   ras.ny = ny;
-  ras.x_min = r.samples == 1 ? p0 - 0.5 : p0 - (p1 - p0) / (2.0 * (r.samples - 1));
-  ras.x_max = r.samples == 1 ? p0 + 0.5 : p1 + (p1 - p0) / (2.0 * (r.samples - 1));
+  // Each value's column is centred on it: the window reaches half a sample beyond the ends,
+  // exactly, and is drawn relative to an offset when a double cannot resolve it (a zoom).
+  const mpq_class half = r.samples == 1 ? mpq_class(1, 2) : mpq_class((r.hi.value() - r.lo.value()) / (2 * (r.samples - 1)));
+  const mpq_class x_lo = r.lo.value() - half, x_hi = (r.samples == 1 ? r.lo.value() : r.hi.value()) + half;
+  const AxisZoom zx(x_lo, x_hi);
+  ras.x_min = zx(x_lo);
+  ras.x_max = zx(x_hi);
+  ras.x_offset = zx.offset();
   ras.y_min = y0;
   ras.y_max = y1;
   const Rgb red{215, 25, 28};

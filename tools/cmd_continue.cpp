@@ -316,16 +316,38 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     Series un{"unstable", {}, {}, Rgb{230, 97, 1}, false, true, 2};
     Series mg{"marginal", {}, {}, Rgb{150, 150, 150}, false, true, 1};
     double y0 = show_theta ? 0 : INFINITY, y1 = show_theta ? 1 : -INFINITY;
+    // A range a double cannot resolve (a zoom) is drawn relative to an offset, from the
+    // exact values; so is v then, whose spread over such a range is as small.
+    const AxisZoom zx(r.lo.value(), r.hi.value());
+    AxisZoom zy;
+    if (zx.active() && !show_theta) {
+      const T* lo_v = nullptr;
+      const T* hi_v = nullptr;
+      for (const BranchPoint<T>& p : b.points)
+        for (const State<T>& x : p.orbit.points) {
+          if (!lo_v || x.v < *lo_v) lo_v = &x.v;
+          if (!hi_v || *hi_v < x.v) hi_v = &x.v;
+        }
+      const mpq_class v_lo = exact_value(*lo_v), v_hi = exact_value(*hi_v);
+      // 6% beyond the data, at least 1e-6 of the range's width (1e-6 for ordinary ranges).
+      const mpq_class pad = std::max(mpq_class((v_hi - v_lo) * 6 / 100), mpq_class((r.hi.value() - r.lo.value()) / 1000000));
+      zy = AxisZoom(v_lo - pad, v_hi + pad);
+      y0 = zy(mpq_class(v_lo - pad));
+      y1 = zy(mpq_class(v_hi + pad));
+    }
+    auto X = [&](const T& p) { return zx.active() ? zx(exact_value(p)) : Tr::to_double(p); };
+    auto Y = [&](const T& y) { return zy.active() ? zy(exact_value(y)) : Tr::to_double(y); };
     for (const BranchPoint<T>& p : b.points) {
       Series& s = p.stability == "stable" ? st : p.stability == "unstable" ? un : mg;
-      for (const State<T>& x : p.orbit.points) {
-        const double y = Tr::to_double(show_theta ? x.theta : x.v);
-        s.x.push_back(Tr::to_double(p.param));
+      const double x = X(p.param);
+      for (const State<T>& pt : p.orbit.points) {
+        const double y = Y(show_theta ? pt.theta : pt.v);
+        s.x.push_back(x);
         s.y.push_back(y);
-        if (!show_theta) { y0 = std::min(y0, y); y1 = std::max(y1, y); }
+        if (!show_theta && !zx.active()) { y0 = std::min(y0, y); y1 = std::max(y1, y); }
       }
     }
-    if (!show_theta) {
+    if (!show_theta && !zx.active()) {
       const double pad = std::max(1e-6, (y1 - y0) * 0.06);
       y0 -= pad;
       y1 += pad;
@@ -333,10 +355,12 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     for (Series* s : {&st, &un, &mg})
       if (!s->x.empty()) fig.series.push_back(*s);
     auto vline = [&](const T& at, const std::string& label, Rgb colour) {
-      const double x = Tr::to_double(at);
+      const double x = X(at);
       fig.series.push_back(Series{label, {x, x}, {y0, y1}, colour, true, false, 0});
     };
-    auto short_num = [](const T& x) {
+    auto short_num = [&](const T& x) {
+      // In a zoom: the digits that resolve 1e-4 of the range.
+      if (zx.active()) return decimal_rounded(exact_value(x), zx.offset().exponent - 4);
       std::ostringstream s;
       s << std::setprecision(8) << Tr::to_double(x);
       return s.str();
@@ -363,10 +387,12 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
       vline(x.param, par + "* = " + short_num(x.param) + ": " +
                          (x.kind == SmoothKind::fold ? "fold (+1)" : x.kind == SmoothKind::period_doubling ? "period doubling (-1)" : "Neimark-Sacker"),
             Rgb{27, 120, 55});
-    fig.x_min = r.lo.approx();
-    fig.x_max = r.hi.approx();
+    fig.x_min = zx(r.lo.value());
+    fig.x_max = zx(r.hi.value());
     fig.y_min = y0;
     fig.y_max = y1;
+    fig.x_offset = zx.offset();
+    fig.y_offset = zy.offset();
     fig.legend_below = true;
     fig.title = "Period-" + std::to_string(r.period) + " branch, " + std::string(name(r.model.law)) + " model";
     std::string fixed;

@@ -192,6 +192,12 @@ struct CurveRow {
 
 void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, const RunFlags& f, const Provenance& prov) {
   std::string csv = "value,ic,theta0,v0,lambda,stderr,class,period\n";
+  // The x window: the range and 2% beyond each end, exactly; relative to an offset when a
+  // double cannot resolve it (a zoom), and then each value is placed from its exact text.
+  const mpq_class lo = r.lo.value(), hi = r.hi.value();
+  const mpq_class margin = r.samples == 1 ? mpq_class(1, 2) : mpq_class((hi - lo) / 50);
+  const mpq_class x_lo = lo - margin, x_hi = (r.samples == 1 ? lo : hi) + margin;
+  const AxisZoom zx(x_lo, x_hi);
   std::vector<CurveRow> rows;
   std::map<std::string, long> counts;
   nlohmann::ordered_json per_value = nlohmann::ordered_json::array();
@@ -207,8 +213,8 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
       std::istringstream ls(line);
       std::string cell[8];
       for (auto& c : cell) std::getline(ls, c, ',');
-      CurveRow row{std::strtod(cell[0].c_str(), nullptr), std::strtod(cell[4].c_str(), nullptr),
-                   std::strtod(cell[5].c_str(), nullptr), cell[6]};
+      CurveRow row{zx.active() ? zx(exact_value(cell[0])) : std::strtod(cell[0].c_str(), nullptr),
+                   std::strtod(cell[4].c_str(), nullptr), std::strtod(cell[5].c_str(), nullptr), cell[6]};
       value_text = cell[0];
       mx = std::max(mx, row.lambda);  // NaN (undecided) is skipped by max
       sum += row.lambda;
@@ -231,10 +237,9 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
     return x.second != y.second ? x.second > y.second : x.first < y.first;
   });
   Figure fig;
-  const double p0 = r.lo.approx(), p1 = r.hi.approx();
   {
     Series zero;
-    zero.x = {p0, p1};
+    zero.x = {zx(lo), zx(hi)};
     zero.y = {0, 0};
     zero.lines = true;
     zero.markers = false;
@@ -271,8 +276,9 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   fig.xlabel = par;
   fig.ylabel = "lambda per collision (+- stderr)";  // the font has no lambda or +-
   fig.legend_below = true;
-  fig.x_min = r.samples == 1 ? p0 - 0.5 : p0 - (p1 - p0) * 0.02;
-  fig.x_max = r.samples == 1 ? p0 + 0.5 : p1 + (p1 - p0) * 0.02;
+  fig.x_min = zx(x_lo);
+  fig.x_max = zx(x_hi);
+  fig.x_offset = zx.offset();
   fig.metadata = png_metadata(prov, fig.title);
 
   nlohmann::ordered_json s;

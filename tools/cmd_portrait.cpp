@@ -1,6 +1,8 @@
 // bouncer portrait: phase portraits (theta_n, v_n) of several orbits, one colour each;
 // --polar draws (phi = 2 pi theta, radius v), where the elastic model's branched Fermi
-// acceleration (paper sec. III, a = 19) shows as straight branches.
+// acceleration (paper sec. III, a = 19) shows as straight branches. --theta-range and
+// --v-range choose the window shown (a zoom, at any precision: points are placed from their
+// exact values when a double cannot resolve the window).
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -19,6 +21,7 @@ struct PortraitRequest {
   long steps = 1000, transient = 0;
   bool polar = false;
   Precision precision;
+  std::optional<std::pair<Decimal, Decimal>> theta_window, v_window;  // the picture's window
 };
 
 PortraitRequest portrait_request(const Options& o) {
@@ -33,6 +36,17 @@ PortraitRequest portrait_request(const Options& o) {
   const std::string polar = o.get_or("polar", "false");
   if (polar != "true" && polar != "false") throw InputError("polar", "must be true or false");
   r.polar = polar == "true";
+  for (const char* k : {"theta-range", "v-range"})
+    if (r.polar && o.has(k)) throw InputError(k, "chooses the window of the (theta, v) picture, not of --polar");
+  if (o.has("theta-range")) {
+    r.theta_window = parse_range("theta-range", o.get("theta-range"));
+    if (r.theta_window->first < Decimal::from_int(0) || r.theta_window->second > Decimal::from_int(1))
+      throw InputError("theta-range", "must lie in [0, 1] (got '" + o.get("theta-range") + "')");
+  }
+  if (o.has("v-range")) {
+    r.v_window = parse_range("v-range", o.get("v-range"));
+    if (r.v_window->second.approx() > 1e15 || r.v_window->first.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
+  }
   r.precision = point_precision(o);
   return r;
 }
@@ -57,12 +71,32 @@ std::string orbit_rows(const PortraitRequest& r, const ImpactMap<T>& map, long k
   return out.str();
 }
 
+// One axis of the (theta, v) picture: its window when given, and how values are placed.
+struct PortraitAxis {
+  AxisZoom zoom;
+  double lo = -INFINITY, hi = INFINITY;  // a little beyond the window, in double
+  explicit PortraitAxis(const std::optional<std::pair<Decimal, Decimal>>& w) {
+    if (!w) return;
+    zoom = AxisZoom(w->first.value(), w->second.value());
+    lo = std::nextafter(std::nextafter(w->first.approx(), -INFINITY), -INFINITY);
+    hi = std::nextafter(std::nextafter(w->second.approx(), INFINITY), INFINITY);
+  }
+  // The coordinate of a printed value; NaN when it lies outside a zoomed window (a zoom
+  // places each point from its exact value, so points far outside are not converted).
+  double operator()(const std::string& text, double approx) const {
+    if (!zoom.active()) return approx;
+    if (!(approx >= lo && approx <= hi)) return NAN;
+    return zoom(exact_value(text));
+  }
+};
+
 void finish(const PortraitRequest& r, const std::vector<std::string>& items, const RunFlags& f, const Provenance& prov) {
   std::string csv = "orbit,n,theta,v,event\n";
   Figure fig;
   long points = 0, undecided = 0;
   double vmax = 0;
   const double two_pi = 2 * std::acos(-1.0);
+  const PortraitAxis ax(r.theta_window), ay(r.v_window);
   for (size_t k = 0; k < items.size(); ++k) {
     csv += items[k];
     Series s;
@@ -83,13 +117,18 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
         s.x.push_back(v * std::cos(two_pi * th));
         s.y.push_back(v * std::sin(two_pi * th));
       } else {
-        s.x.push_back(th);
-        s.y.push_back(v);
+        const double x = ax(cell[2], th), y = ay(cell[3], v);
+        if (!std::isnan(x) && !std::isnan(y)) {
+          s.x.push_back(x);
+          s.y.push_back(y);
+        }
       }
       ++points;
     }
     fig.series.push_back(std::move(s));
   }
+  // Labels of starts with many digits (a zoom) need the width of the picture: legend below.
+  for (const Series& s : fig.series) fig.legend_below = fig.legend_below || s.label.size() > 40;
   if (items.size() > 12) {
     Series more;
     more.label = "... " + std::to_string(items.size() - 12) + " more orbits";
@@ -114,6 +153,16 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
     fig.ylabel = "v (velocity after impact)";
     fig.x_min = 0;
     fig.x_max = 1;
+    if (r.theta_window) {
+      fig.x_min = ax.zoom(r.theta_window->first.value());
+      fig.x_max = ax.zoom(r.theta_window->second.value());
+      fig.x_offset = ax.zoom.offset();
+    }
+    if (r.v_window) {
+      fig.y_min = ay.zoom(r.v_window->first.value());
+      fig.y_max = ay.zoom(r.v_window->second.value());
+      fig.y_offset = ay.zoom.offset();
+    }
   }
   fig.metadata = png_metadata(prov, fig.title);
   nlohmann::ordered_json s;
@@ -123,6 +172,8 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
   s["undecided_orbits"] = undecided;
   s["max_v"] = vmax;
   s["polar"] = r.polar;
+  if (r.theta_window) s["theta_range"] = {r.theta_window->first.text(), r.theta_window->second.text()};
+  if (r.v_window) s["v_range"] = {r.v_window->first.text(), r.v_window->second.text()};
   s["precision"] = r.precision.text();
   write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
 }
@@ -132,7 +183,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
 const std::set<std::string>& portrait_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"theta", "v", "steps", "transient", "polar", "precision"});
+    k.insert({"theta", "v", "steps", "transient", "polar", "precision", "theta-range", "v-range"});
     k.insert(run_keys().begin(), run_keys().end());
     return k;
   }();
@@ -173,6 +224,8 @@ Command add_portrait(CLI::App& app) {
   opts->add("steps", "Steps drawn per orbit (default 1000)");
   opts->add("transient", "Steps discarded first (default 0)");
   opts->add("precision", kPointPrecisionHelp);
+  opts->add("theta-range", "Window T0:T1 within [0, 1] of the picture (default 0:1); any width, e.g. 1e-20 at mpfr:256");
+  opts->add("v-range", "Window V0:V1 of the picture (default: the data)");
   sub->add_flag("--polar", *polar, "Polar picture: angle 2 pi theta, radius v");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, polar, flags](const std::string& argv_text) {

@@ -163,10 +163,14 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
   Raster& ras = fig.raster;
   ras.nx = static_cast<int>(r.p);
   ras.ny = static_cast<int>(r.q);
-  ras.x_min = r.a0.approx();
-  ras.x_max = r.a1.approx();
-  ras.y_min = r.y0.approx();
-  ras.y_max = r.y1.approx();
+  // The window in the coordinates of its axes (relative to an offset for a zoom).
+  const AxisZoom zx(r.a0.value(), r.a1.value()), zy(r.y0.value(), r.y1.value());
+  ras.x_min = zx(r.a0.value());
+  ras.x_max = zx(r.a1.value());
+  ras.y_min = zy(r.y0.value());
+  ras.y_max = zy(r.y1.value());
+  ras.x_offset = zx.offset();
+  ras.y_offset = zy.offset();
   ras.pixels.resize(items.size());
   for (size_t i = 0; i < items.size(); ++i) {
     const long col = static_cast<long>(i) % r.p, row = r.q - 1 - static_cast<long>(i) / r.p;

@@ -258,6 +258,19 @@ inline std::vector<std::pair<std::string, std::string>> png_metadata(const Prove
           {"bouncer:provenance", p.as_json()}};
 }
 
+// Zoomed axes (AxisZoom in bouncer/io/plot.hpp) place values exactly: the rational of a
+// number as a command prints it, a decimal with the digits of its precision (Mpfr: enough
+// to read back the same value), so a window 1e-20 wide at mpfr:256 keeps its detail.
+inline mpq_class exact_value(const std::string& text) {
+  const auto d = Decimal::parse(text);
+  if (!d) throw std::runtime_error("not a finite decimal: '" + text + "'");
+  return d->value();
+}
+template <class T>
+mpq_class exact_value(const T& x) {
+  return exact_value(ScalarTraits<T>::to_string(x));
+}
+
 // "A:B" with two decimals, A < B (or A <= B when `allow_equal`).
 inline std::pair<Decimal, Decimal> parse_range(const std::string& field, const std::string& text, bool allow_equal = false) {
   const auto colon = text.find(':');

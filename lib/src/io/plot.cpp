@@ -13,6 +13,7 @@
 
 #include "bouncer/io/output.hpp"
 #include "bouncer/io/provenance.hpp"
+#include "bouncer/scalar/decimal.hpp"
 
 namespace bouncer {
 
@@ -54,6 +55,7 @@ std::vector<int> glyphs(const std::string& s) {
 
 class Canvas {
  public:
+  static constexpr double kFar = 1e9;  // pixel coordinates beyond this are not drawn
   Canvas(int w, int h) : w_(w), h_(h), px_(static_cast<size_t>(w) * h * 3, 255) {}
   int width() const { return w_; }
   int height() const { return h_; }
@@ -80,6 +82,7 @@ class Canvas {
   }
   void line(double fx0, double fy0, double fx1, double fy1, Rgb c, int thick = 1) {
     // Bresenham on rounded ends; `thick` > 1 draws a small square brush.
+    if (!(std::fabs(fx0) < kFar && std::fabs(fy0) < kFar && std::fabs(fx1) < kFar && std::fabs(fy1) < kFar)) return;
     int x0 = static_cast<int>(std::lround(fx0)), y0 = static_cast<int>(std::lround(fy0));
     const int x1 = static_cast<int>(std::lround(fx1)), y1 = static_cast<int>(std::lround(fy1));
     const int dx = std::abs(x1 - x0), sx = x0 < x1 ? 1 : -1;
@@ -96,6 +99,7 @@ class Canvas {
     }
   }
   void disc(double fx, double fy, int r, Rgb c) {
+    if (!(std::fabs(fx) < kFar && std::fabs(fy) < kFar)) return;  // far outside (and no int overflow)
     const int x = static_cast<int>(std::lround(fx)), y = static_cast<int>(std::lround(fy));
     for (int a = -r; a <= r; ++a)
       for (int b = -r; b <= r; ++b)
@@ -163,6 +167,75 @@ std::string format_number(double v, double step) {
 // libpng's default handlers print to stderr; ours stay silent (the caller reports one line).
 void png_silent_error(png_structp png, png_const_charp) { png_longjmp(png, 1); }
 void png_silent_warning(png_structp, png_const_charp) {}
+
+// ---- exact decimals for zoomed axes ----
+mpq_class pow10(long e) {
+  mpz_class p;
+  mpz_ui_pow_ui(p.get_mpz_t(), 10, static_cast<unsigned long>(e < 0 ? -e : e));
+  return e < 0 ? mpq_class(mpz_class(1), p) : mpq_class(p);
+}
+
+// The decimal m * 10^k with the fewest digits: plain from 1e-5 to below 1e15, else
+// scientific ("3.000000000000000000001e-25").
+std::string decimal_text(mpz_class m, long k) {
+  if (m == 0) return "0";
+  while (mpz_divisible_ui_p(m.get_mpz_t(), 10)) {
+    m /= 10;
+    ++k;
+  }
+  const bool negative = m < 0;
+  const std::string digits = mpz_class(abs(m)).get_str();
+  const long n = static_cast<long>(digits.size()), magnitude = n - 1 + k;
+  std::string out = negative ? "-" : "";
+  if (magnitude >= -5 && magnitude < 15) {
+    if (k >= 0) {
+      out += digits;
+      out.append(static_cast<size_t>(k), '0');
+    } else if (n + k > 0) {
+      out.append(digits, 0, static_cast<size_t>(n + k));
+      out += '.';
+      out.append(digits, static_cast<size_t>(n + k));
+    } else {
+      out += "0.";
+      out.append(static_cast<size_t>(-(n + k)), '0');
+      out += digits;
+    }
+  } else {
+    out += digits[0];
+    if (n > 1) {
+      out += '.';
+      out.append(digits, 1);
+    }
+    out += 'e';
+    out += std::to_string(magnitude);
+  }
+  return out;
+}
+
+// A rational with a terminating decimal expansion as decimal text.
+std::string decimal_text(const mpq_class& q) {
+  mpq_class x = q;
+  long k = 0;
+  while (x.get_den() != 1) {
+    if (k < -100000) throw std::logic_error("decimal_text: not a terminating decimal");
+    x *= 10;
+    --k;
+  }
+  return decimal_text(x.get_num(), k);
+}
+
+// floor(log10(w)) for w > 0, exactly.
+long floor_log10(const mpq_class& w) {
+  long e = static_cast<long>(mpz_sizeinbase(w.get_num_mpz_t(), 10)) - static_cast<long>(mpz_sizeinbase(w.get_den_mpz_t(), 10));
+  while (pow10(e) > w) --e;
+  while (pow10(e + 1) <= w) ++e;
+  return e;
+}
+
+std::string unit_text(int exponent) {
+  if (exponent >= -3 && exponent <= 3) return decimal_text(mpz_class(1), exponent);
+  return "1e" + std::to_string(exponent);
+}
 
 // Bits of a PNG writer that must not hold C++ objects across setjmp.
 bool encode_png(const char* path, int w, int h, const std::uint8_t* rgb, png_text* text, int ntext) {
@@ -381,9 +454,21 @@ struct Frame {
   double py(double y) const { return bottom - (y - y0) / (y1 - y0) * (bottom - top); }
 };
 
+// The lines of a y axis title (drawn upward beside the frame): one, or for an offset axis
+// whose title is longer than the frame is tall, the label and then the offset note
+// ("- 4, in units of 1e-26") on a second line.
+std::vector<std::string> y_title_lines(const std::string& label, const AxisOffset& o, int frame_height, int scale) {
+  const std::string whole = axis_title(label, o);
+  if (!o.active() || label.empty() || Canvas::text_width(whole, scale) <= frame_height) return {whole};
+  return {label, axis_title("", o).substr(1)};
+}
+int y_title_extra(const std::vector<std::string>& lines, int scale) {
+  return static_cast<int>(lines.size() - 1) * (Canvas::text_height(scale) + 4);
+}
+
 // Axes: frame, ticks, tick labels, grid lines (optional) and axis labels.
 void draw_axes(Canvas& c, const Frame& f, const Ticks& tx, const Ticks& ty, bool log_y, const std::string& xlabel,
-               const std::string& ylabel, bool grid, const Style& st) {
+               const std::vector<std::string>& ylines, bool grid, const Style& st) {
   const int tick = 6;
   if (grid) {
     c.clip(f.left + 1, f.top + 1, f.right, f.bottom);
@@ -408,12 +493,15 @@ void draw_axes(Canvas& c, const Frame& f, const Ticks& tx, const Ticks& ty, bool
   const int cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
   if (!xlabel.empty())
     c.text(cx - Canvas::text_width(xlabel, st.small) / 2, f.bottom + tick + 4 + Canvas::text_height(st.small) + 10, xlabel, st.small, kBlack);
-  if (!ylabel.empty() && glyphs(ylabel).size() <= 2)  // a symbol reads better upright
+  const std::string& ylabel = ylines.front();
+  if (ylines.size() == 1 && !ylabel.empty() && glyphs(ylabel).size() <= 2)  // a symbol reads better upright
     c.text(f.left - tick - 4 - widest - 10 - Canvas::text_width(ylabel, st.small), cy - Canvas::text_height(st.small) / 2, ylabel,
            st.small, kBlack);
   else if (!ylabel.empty())
-    c.text_up(f.left - tick - 4 - widest - 10 - Canvas::text_height(st.small), cy + Canvas::text_width(ylabel, st.small) / 2, ylabel,
-              st.small, kBlack);
+    for (size_t i = 0; i < ylines.size(); ++i)  // the first line outermost
+      c.text_up(f.left - tick - 4 - widest - 10 - Canvas::text_height(st.small) -
+                    static_cast<int>(ylines.size() - 1 - i) * (Canvas::text_height(st.small) + 4),
+                cy + Canvas::text_width(ylines[i], st.small) / 2, ylines[i], st.small, kBlack);
 }
 
 int max_label_width(const Ticks& t, int scale) {
@@ -445,6 +533,60 @@ void data_range(const std::vector<Series>& series, bool use_x, bool log, double&
 }
 
 }  // namespace
+
+AxisZoom::AxisZoom(const mpq_class& lo, const mpq_class& hi) {
+  const mpq_class width = hi - lo;
+  if (sgn(width) <= 0) return;
+  // Plain labels of a window narrower than 1e-7 of its magnitude need 9 or more digits.
+  if (std::max(abs(lo), abs(hi)) <= width * 10000000) return;
+  const long e = floor_log10(width);
+  // The origin: the middle of the window rounded to a multiple of 10^(e+1), so that the
+  // origin has no more digits than the window needs and |t| stays below about 10.
+  const mpq_class grain = pow10(e + 1), q = (lo + hi) / 2 / grain + mpq_class(1, 2);
+  mpz_class m;
+  mpz_fdiv_q(m.get_mpz_t(), q.get_num_mpz_t(), q.get_den_mpz_t());
+  origin_ = m * grain;
+  scale_ = pow10(-e);
+  offset_.origin = decimal_text(m, e + 1);
+  offset_.exponent = static_cast<int>(e);
+  origin_d_ = origin_.get_d();
+  origin_err_ = mpq_class(origin_ - mpq_class(origin_d_)).get_d();
+  scale_d_ = std::pow(10.0, static_cast<double>(-e));
+}
+
+double AxisZoom::operator()(const mpq_class& x) const {
+  if (!active()) return x.get_d();
+  return mpq_class((x - origin_) * scale_).get_d();
+}
+
+double AxisZoom::operator()(double x) const {
+  if (!active()) return x;
+  // x - origin_d_ is exact near the window (Sterbenz); the origin's own rounding error is
+  // taken off after, so t is accurate to a few ulps of t.
+  return ((x - origin_d_) - origin_err_) * scale_d_;
+}
+
+std::string axis_title(const std::string& label, const AxisOffset& o) {
+  if (!o.active()) return label;
+  std::string out = label;
+  out += o.origin[0] == '-' ? " + " + o.origin.substr(1) : " - " + o.origin;
+  if (o.exponent != 0) out += ", in units of " + unit_text(o.exponent);
+  return out;
+}
+
+std::string decimal_rounded(const mpq_class& x, int exponent) {
+  const mpq_class grain = pow10(exponent), t = x / grain + mpq_class(1, 2);
+  mpz_class m;
+  mpz_fdiv_q(m.get_mpz_t(), t.get_num_mpz_t(), t.get_den_mpz_t());
+  return decimal_text(m, exponent);
+}
+
+std::string tick_value(const std::string& label, const AxisOffset& o) {
+  if (!o.active()) return label;
+  const auto t = Decimal::parse(label), origin = Decimal::parse(o.origin);
+  if (!t || !origin) throw std::invalid_argument("tick_value: '" + label + "' or '" + o.origin + "' is not a decimal");
+  return decimal_text(origin->value() + t->value() * pow10(o.exponent));
+}
 
 Ticks nice_ticks(double lo, double hi, int target) {
   Ticks t;
@@ -543,21 +685,46 @@ void write_png(const std::string& path, const Figure& fig) {
   if (!(x1 > x0)) x1 = x0 + 1;
   if (!(y1 > y0)) y1 = y0 + 1;
 
+  // A window too narrow for plain tick labels is drawn relative to an offset (AxisZoom),
+  // unless the caller's coordinates already are.
+  AxisOffset x_offset = fig.x_offset, y_offset = fig.y_offset;
+  std::vector<Series> zoomed;
+  const std::vector<Series>* series = &fig.series;
+  if (!fig.equal_aspect) {
+    const AxisZoom zx = x_offset.active() ? AxisZoom() : AxisZoom(mpq_class(x0), mpq_class(x1));
+    const AxisZoom zy = y_offset.active() || fig.log_y ? AxisZoom() : AxisZoom(mpq_class(y0), mpq_class(y1));
+    if (zx.active() || zy.active()) {
+      zoomed = fig.series;
+      for (Series& s : zoomed) {
+        for (double& x : s.x) x = zx(x);
+        for (double& y : s.y) y = zy(y);
+        for (double& e : s.yerr) e *= zy.scale();
+      }
+      series = &zoomed;
+      x0 = zx(x0); x1 = zx(x1); y0 = zy(y0); y1 = zy(y1);
+      if (zx.active()) x_offset = zx.offset();
+      if (zy.active()) y_offset = zy.offset();
+    }
+  }
+  const std::string xlabel = axis_title(fig.xlabel, x_offset);
+
   std::vector<LegendEntry> legend;
-  for (const auto& s : fig.series)
+  for (const auto& s : *series)
     if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers});
 
   // Layout: room for the y tick labels (estimated from the window), labels, title, legend.
   const Ticks ty0 = fig.log_y ? log_ticks(std::pow(10.0, y0), std::pow(10.0, y1)) : nice_ticks(y0, y1);
   const int title_h = title_height(fig.title, fig.subtitle, fig.width, st) + 8;
   Frame f{};
-  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10;
   f.top = title_h;
   const int below = fig.legend_below ? legend_below_height(legend, st.small, fig.width - 40) : 0;
+  const int frame_bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  const std::vector<std::string> ylines = y_title_lines(fig.ylabel, y_offset, frame_bottom - f.top, st.small);
+  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10 + y_title_extra(ylines, st.small);
   // Room at the right for half of the last x tick label (it is centred on its tick).
   const int x_overhang = Canvas::text_width(nice_ticks(x0, x1).labels.empty() ? "" : nice_ticks(x0, x1).labels.back(), st.small) / 2 + 6;
   f.right = fig.width - std::max(20, x_overhang) - (legend.empty() || fig.legend_below ? 0 : legend_width(legend, st.small) + 16);
-  f.bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  f.bottom = frame_bottom;
   if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
 
   if (fig.equal_aspect) {
@@ -576,10 +743,10 @@ void write_png(const std::string& path, const Figure& fig) {
   const Ticks ty = fig.log_y ? log_ticks(std::pow(10.0, y0), std::pow(10.0, y1)) : nice_ticks(y0, y1, std::max(3, (f.bottom - f.top) / 80));
 
   draw_title(c, fig.title, fig.subtitle, fig.width / 2, st);
-  draw_axes(c, f, tx, ty, fig.log_y, fig.xlabel, fig.ylabel, true, st);
+  draw_axes(c, f, tx, ty, fig.log_y, xlabel, ylines, true, st);
 
   c.clip(f.left + 1, f.top + 1, f.right, f.bottom);
-  for (const auto& s : fig.series) {
+  for (const auto& s : *series) {
     const size_t n = std::min(s.x.size(), s.y.size());
     auto ok = [&](size_t i) { return std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && (!fig.log_y || s.y[i] > 0); };
     auto Y = [&](size_t i) { return f.py(fig.log_y ? std::log10(s.y[i]) : s.y[i]); };
@@ -616,24 +783,39 @@ void write_png(const std::string& path, const ImageFigure& fig) {
   const Style st(fig.width);
   Canvas c(fig.width, fig.height);
 
+  // The window, relative to an offset when it is too narrow for plain tick labels.
+  double x0 = r.x_min, x1 = r.x_max, y0 = r.y_min, y1 = r.y_max;
+  if (!(std::isfinite(x0) && std::isfinite(x1) && x1 > x0 && std::isfinite(y0) && std::isfinite(y1) && y1 > y0))
+    throw std::runtime_error("raster window is empty");
+  AxisOffset x_offset = r.x_offset, y_offset = r.y_offset;
+  if (!x_offset.active()) {
+    const AxisZoom z{mpq_class(x0), mpq_class(x1)};
+    x0 = z(x0); x1 = z(x1); x_offset = z.offset();
+  }
+  if (!y_offset.active()) {
+    const AxisZoom z{mpq_class(y0), mpq_class(y1)};
+    y0 = z(y0); y1 = z(y1); y_offset = z.offset();
+  }
+
   std::vector<LegendEntry> legend;
   for (const auto& [label, color] : r.legend) legend.push_back({label, color, false, true});
-  const Ticks ty0 = nice_ticks(r.y_min, r.y_max);
+  const Ticks ty0 = nice_ticks(y0, y1);
   const Ticks tbar = r.colorbar.empty() ? Ticks{} : nice_ticks(r.colorbar_lo, r.colorbar_hi, 5);
   const int bar_w = r.colorbar.empty() ? 0 : std::max(22 + 12 + max_label_width(tbar, st.small), Canvas::text_width(r.colorbar_label, st.small));
   const int panel = std::max(r.legend_below ? 0 : legend_width(legend, st.small), bar_w);
   const int below = r.legend_below ? legend_below_height(legend, st.small, fig.width - 40) : 0;
   const int title_h = title_height(fig.title, fig.subtitle, fig.width, st) + 8;
   Frame f{};
-  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10;
   f.top = title_h;
-  const Ticks tx0 = nice_ticks(r.x_min, r.x_max);
+  const int frame_bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  const std::vector<std::string> ylines = y_title_lines(fig.ylabel, y_offset, frame_bottom - f.top, st.small);
+  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10 + y_title_extra(ylines, st.small);
+  const Ticks tx0 = nice_ticks(x0, x1);
   const int x_overhang = Canvas::text_width(tx0.labels.empty() ? "" : tx0.labels.back(), st.small) / 2 + 6;
   f.right = fig.width - (panel ? 20 + panel + 16 : std::max(20, x_overhang));
-  f.bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
+  f.bottom = frame_bottom;
   if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
-  f.x0 = r.x_min; f.x1 = r.x_max; f.y0 = r.y_min; f.y1 = r.y_max;
-  if (!(f.x1 > f.x0) || !(f.y1 > f.y0)) throw std::runtime_error("raster window is empty");
+  f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
 
   // Nearest cell for every pixel inside the frame.
   for (int y = f.top + 1; y < f.bottom; ++y) {
@@ -648,7 +830,7 @@ void write_png(const std::string& path, const ImageFigure& fig) {
   const Ticks tx = nice_ticks(f.x0, f.x1, std::max(3, (f.right - f.left) / 110));
   const Ticks ty = nice_ticks(f.y0, f.y1, std::max(3, (f.bottom - f.top) / 80));
   draw_title(c, fig.title, fig.subtitle, fig.width / 2, st);
-  draw_axes(c, f, tx, ty, false, fig.xlabel, fig.ylabel, false, st);
+  draw_axes(c, f, tx, ty, false, axis_title(fig.xlabel, x_offset), ylines, false, st);
 
   int y = f.top;
   if (r.legend_below) draw_legend_below(c, 20, fig.height - below, fig.width - 40, legend, st.small);

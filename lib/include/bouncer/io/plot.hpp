@@ -4,6 +4,8 @@
 // (Implemented in lib/src/io/plot.cpp; the font is lib/src/io/plot_font.inc.)
 #pragma once
 
+#include <gmpxx.h>
+
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -11,6 +13,55 @@
 #include <vector>
 
 namespace bouncer {
+
+// ---- Zooms: axes narrower than a double resolves -------------------------------------------
+// A window such as theta in [0.3, 0.3 + 1e-20] (a basin at mpfr:256) has ends that are the
+// same double. Such an axis is drawn in coordinates t relative to the window:
+//   value = origin + t * 10^exponent,
+// the origin an exact decimal near the window and 10^exponent <= window width < 10^(exponent+1),
+// so only t, of order 1, is a double and a window 1e-20 wide draws like any other. The
+// ticks are nice values of t, labelled with t, and the axis title says what t is, as a
+// physics journal labels a shifted and scaled axis (quantity over unit, ISO 80000-1):
+// "θ0 - 0.3, in units of 1e-20" under ticks 0.0, 0.2, ..., 1.0.
+struct AxisOffset {
+  std::string origin;  // exact decimal text; empty: no offset (coordinates are the values)
+  int exponent = 0;    // the unit is 10^exponent
+  bool active() const { return !origin.empty(); }
+};
+
+// The coordinates of one axis whose window is [lo, hi], computed exactly from the values
+// (a value of any precision converts exactly to a rational). An offset when plain tick
+// labels would need more than about 8 significant digits (the window is narrower than 1e-7
+// of its largest magnitude); otherwise the identity, so ordinary windows draw as always.
+class AxisZoom {
+ public:
+  AxisZoom() = default;  // the identity
+  AxisZoom(const mpq_class& lo, const mpq_class& hi);
+  const AxisOffset& offset() const { return offset_; }
+  bool active() const { return offset_.active(); }
+  // t = (x - origin) / 10^exponent, or x itself without an offset; rounded to a double.
+  double operator()(const mpq_class& x) const;
+  // The same for a double value, without rationals (for many data points).
+  double operator()(double x) const;
+  // Units of t per unit of value: 10^-exponent, or 1 (for lengths such as error bars).
+  double scale() const { return scale_d_; }
+
+ private:
+  AxisOffset offset_;
+  mpq_class origin_, scale_;            // t = (x - origin) * scale
+  double origin_d_ = 0, origin_err_ = 0, scale_d_ = 1;  // origin ~ origin_d_ + origin_err_
+};
+
+// The title of an axis: LABEL, or for an offset axis "LABEL - ORIGIN, in units of UNIT"
+// ("+ 3" for the origin -3; UNIT as 1e-20, or 0.01 ... 1000 for exponents -3 ... 3; no
+// "in units" when the unit is 1).
+std::string axis_title(const std::string& label, const AxisOffset& offset);
+// x rounded to a multiple of 10^exponent (halves up), as decimal text: a value on a zoomed
+// axis printed with the digits the zoom resolves ("26.00000000000000000000512").
+std::string decimal_rounded(const mpq_class& x, int exponent);
+// The value a tick label t of an offset axis stands for, origin + t * 10^exponent, as an
+// exact decimal text (the identity's labels stand for themselves).
+std::string tick_value(const std::string& label, const AxisOffset& offset);
 
 struct Rgb {
   std::uint8_t r = 0, g = 0, b = 0;
@@ -40,6 +91,10 @@ struct Figure {
   bool equal_aspect = false;   // one data unit is as long on both axes (polar plots)
   std::string subtitle;        // a second, smaller line under the title (parameters)
   bool legend_below = false;   // legend in rows under the plot instead of at the right
+  // Zoomed axes (AxisZoom): the series and x_min/x_max (y_min/y_max) are t coordinates of
+  // these offsets. Inactive: plain values, and a window too narrow for plain tick labels
+  // (from the data or the limits) is given an offset here (not with equal_aspect or log_y).
+  AxisOffset x_offset, y_offset;
 };
 
 // A raster over a rectangle of data space (row 0 = top = y_max), e.g. a density image of a
@@ -54,6 +109,9 @@ struct Raster {
   double colorbar_lo = 0, colorbar_hi = 1;
   std::string colorbar_label;
   bool legend_below = false;  // legend in rows under the image instead of at the right
+  // Zoomed axes (AxisZoom): x_min/x_max (y_min/y_max) are t coordinates of these offsets.
+  // Inactive: plain values, and a window too narrow for plain tick labels gets an offset.
+  AxisOffset x_offset, y_offset;
 };
 
 struct ImageFigure {

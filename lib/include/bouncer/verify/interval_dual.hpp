@@ -10,12 +10,16 @@
 
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/dual.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
 using IDual = Dual<Mpfi>;
 
-// The step for interval duals is instantiated once, in lib/src/verify/enclosure.cpp.
-extern template class ImpactMap<IDual>;
+// The step for interval duals (over the enclosure scalars of scalar/scalar_set.hpp) is
+// instantiated once, in lib/src/verify/enclosure.cpp.
+#define BOUNCER_X(S, kind) extern template class ImpactMap<Dual<S>>;
+BOUNCER_FOR_EACH_ENCLOSURE_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

@@ -478,40 +478,41 @@ TYPED_TEST(ScalarContract, ToStringReadsBack) {
   }
 }
 
-TYPED_TEST(ScalarContract, IntervalWidths) {
+// Widths: for the interval types of the set.
+template <class T>
+class IntervalContract : public ::testing::Test {};
+TYPED_TEST_SUITE(IntervalContract, GTestTypes<IntervalScalars>);
+
+TYPED_TEST(IntervalContract, Widths) {
   using T = TypeParam;
   using Tr = ScalarTraits<T>;
-  if constexpr (!Tr::is_interval) {
-    GTEST_SKIP() << "widths are an interval property";
-  } else {
-    mpq_class previous = 1;
-    for (long bits : precisions<T>()) {
-      SCOPED_TRACE(bits);
-      // Exact values are thin; arithmetic on them that is exact stays thin.
-      const T x = Tr::from_decimal("0.375", bits);
-      EXPECT_EQ(range_of(x).lo, range_of(x).hi);
-      EXPECT_EQ(range_of(T(x * 8L)).hi, range_of(T(x * 8L)).lo);
-      // A decimal's enclosure is one ulp wide; it shrinks with the precision.
-      const T t = Tr::from_decimal("0.1", bits);
-      const mpq_class w = range_of(t).hi - range_of(t).lo;
-      EXPECT_GT(w, 0);
-      EXPECT_EQ(w, inv_pow2(bits + 3));  // ulp of [1/16, 1/8) at `bits` bits
-      EXPECT_LT(w, previous);
-      previous = w;
-      // Ten of them: contains 1, width at least 10 w (widths add), at most 10 w plus
-      // the roundings of the nine sums (each at most an ulp of a value below 1).
-      T sum = t;
-      for (int i = 1; i < 10; ++i) sum += t;
-      const Range rs = range_of(sum);
-      EXPECT_LE(rs.lo, 1);
-      EXPECT_GE(rs.hi, 1);
-      EXPECT_GE(mpq_class(rs.hi - rs.lo), mpq_class(10 * w));
-      EXPECT_LE(mpq_class(rs.hi - rs.lo), mpq_class(10 * w + 18 * inv_pow2(bits)));
-      // Dependency: x - x is not 0 but [-w, w].
-      const Range rd = range_of(T(t - t));
-      EXPECT_EQ(rd.lo, -w);
-      EXPECT_EQ(rd.hi, w);
-    }
+  mpq_class previous = 1;
+  for (long bits : precisions<T>()) {
+    SCOPED_TRACE(bits);
+    // Exact values are thin; arithmetic on them that is exact stays thin.
+    const T x = Tr::from_decimal("0.375", bits);
+    EXPECT_EQ(range_of(x).lo, range_of(x).hi);
+    EXPECT_EQ(range_of(T(x * 8L)).hi, range_of(T(x * 8L)).lo);
+    // A decimal's enclosure is one ulp wide; it shrinks with the precision.
+    const T t = Tr::from_decimal("0.1", bits);
+    const mpq_class w = range_of(t).hi - range_of(t).lo;
+    EXPECT_GT(w, 0);
+    EXPECT_EQ(w, inv_pow2(bits + 3));  // ulp of [1/16, 1/8) at `bits` bits
+    EXPECT_LT(w, previous);
+    previous = w;
+    // Ten of them: contains 1, width at least 10 w (widths add), at most 10 w plus
+    // the outward roundings of the nine sums (an ulp of each end, the ends at most ~1).
+    T sum = t;
+    for (int i = 1; i < 10; ++i) sum += t;
+    const Range rs = range_of(sum);
+    EXPECT_LE(rs.lo, 1);
+    EXPECT_GE(rs.hi, 1);
+    EXPECT_GE(mpq_class(rs.hi - rs.lo), mpq_class(10 * w));
+    EXPECT_LE(mpq_class(rs.hi - rs.lo), mpq_class(10 * w + 18 * inv_pow2(bits)));
+    // Dependency: x - x is not 0 but [-w, w].
+    const Range rd = range_of(T(t - t));
+    EXPECT_EQ(rd.lo, -w);
+    EXPECT_EQ(rd.hi, w);
   }
 }
 

@@ -25,12 +25,14 @@
 
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"
+#include "scalar_types.hpp"
 
 namespace bouncer {
 namespace {
 
 // ---------------------------------------------------------------------------------------
-// Scalar set and per-type tolerances
+// Per-type tolerances (the typed suites run over the point scalars of
+// bouncer/scalar/scalar_set.hpp; a new point type needs its Cfg here)
 
 template <class T>
 struct Cfg;
@@ -518,12 +520,11 @@ StepChecker<T> run_checked(const ModelSpec& m, const std::string& theta, const s
 }
 
 // =======================================================================================
-// Typed tests over double, long double, Quad, Mpfr (256 bits)
+// Typed tests over the point scalars of the set: double, long double, Quad, Mpfr (256 bits)
 
 template <class T>
 class ImpactMapTyped : public ::testing::Test {};
-using ScalarSet = ::testing::Types<double, long double, Quad, Mpfr>;
-TYPED_TEST_SUITE(ImpactMapTyped, ScalarSet);
+TYPED_TEST_SUITE(ImpactMapTyped, GTestTypes<PointScalars>);
 
 // ---------------------------------------------------------------------------------------
 // Paper eq. 5: for a = 8(1+eps)/(p(1-eps)) every (theta*, v* = 4(1+eps)/(1-eps)) with the

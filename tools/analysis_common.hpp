@@ -13,12 +13,13 @@
 
 namespace bouncer::cli {
 
-// double | mpfr:BITS; anything else is an InputError naming the allowed values.
+// The precision of an analysis scalar (scalar/scalar_set.hpp); anything else is an
+// InputError naming the allowed values.
 inline Precision analysis_precision(const Options& o, const std::string& command) {
   const Precision p = precision_from(o);
-  if (p.kind == Precision::Kind::interval)
+  if (!p.is_analysis())
     throw InputError("precision", "'" + p.text() + "' is not available for " + command +
-                                      ": it follows one point orbit (allowed: double, long, quad, mpfr:BITS with " +
+                                      ": it follows one point orbit (allowed: " + precision_names<AnalysisScalars>() + " with " +
                                       std::to_string(kMinBits) + " <= BITS <= " + std::to_string(kMaxBits) +
                                       "; certified answers: certify-sticking, sweep)");
   return p;

@@ -301,11 +301,12 @@ T cell_centre(const T& lo, const T& hi, long i, long n) {
   return lo + (hi - lo) * (2 * i + 1) / (2 * n);
 }
 
-// Precisions the picture commands support: point types (an interval has no picture).
+// Precisions the picture commands support: the analysis scalars (an interval has no picture).
 inline Precision point_precision(const Options& o) {
   Precision p = precision_from(o);
-  if (p.is_interval())
-    throw InputError("precision", "interval precision is not supported here (use double, long, quad or mpfr:BITS)");
+  if (!p.is_analysis())
+    throw InputError("precision", "interval precision is not supported here (use " +
+                                      precision_names<AnalysisScalars>(" or ") + ")");
   return p;
 }
 

@@ -542,9 +542,9 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
   return c;
 }
 
-template Classification classify<double>(const ImpactMap<double>&, State<double>, const ClassifyOptions&);
-template Classification classify<Mpfr>(const ImpactMap<Mpfr>&, State<Mpfr>, const ClassifyOptions&);
-template Classification classify<long double>(const ImpactMap<long double>&, State<long double>, const ClassifyOptions&);
-template Classification classify<Quad>(const ImpactMap<Quad>&, State<Quad>, const ClassifyOptions&);
+#define BOUNCER_X(T, kind) \
+  template Classification classify<T>(const ImpactMap<T>&, State<T>, const ClassifyOptions&);
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

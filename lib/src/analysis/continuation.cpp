@@ -554,14 +554,11 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
   return br;
 }
 
-#define BOUNCER_CONTINUATION_INSTANTIATE(T)                                                                  \
+#define BOUNCER_CONTINUATION_INSTANTIATE(T, kind)                                                                \
   template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
                                         const T&, const ContinuationOptions&);                            \
   template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);
-BOUNCER_CONTINUATION_INSTANTIATE(double)
-BOUNCER_CONTINUATION_INSTANTIATE(long double)
-BOUNCER_CONTINUATION_INSTANTIATE(Quad)
-BOUNCER_CONTINUATION_INSTANTIATE(Mpfr)
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_CONTINUATION_INSTANTIATE)
 #undef BOUNCER_CONTINUATION_INSTANTIATE
 
 }  // namespace bouncer

@@ -94,21 +94,12 @@ Eigen2<S> eigenvalues(const Mat2<S>& m) {
   return e;
 }
 
-template Model<Dual<double>> dual_model<double>(const Model<double>&);
-template Model<Dual<Mpfr>> dual_model<Mpfr>(const Model<Mpfr>&);
-template Model<Dual<long double>> dual_model<long double>(const Model<long double>&);
-template Model<Dual<Quad>> dual_model<Quad>(const Model<Quad>&);
-template class TangentMap<double>;
-template class TangentMap<Mpfr>;
-template class TangentMap<long double>;
-template class TangentMap<Quad>;
-template Eigen2<double> eigenvalues<double>(const Mat2<double>&);
-template Eigen2<Mpfr> eigenvalues<Mpfr>(const Mat2<Mpfr>&);
-template Eigen2<long double> eigenvalues<long double>(const Mat2<long double>&);
-template Eigen2<Quad> eigenvalues<Quad>(const Mat2<Quad>&);
-template struct Eigen2<double>;
-template struct Eigen2<Mpfr>;
-template struct Eigen2<long double>;
-template struct Eigen2<Quad>;
+#define BOUNCER_X(S, kind)                                       \
+  template Model<Dual<S>> dual_model<S>(const Model<S>&);        \
+  template class TangentMap<S>;                                  \
+  template Eigen2<S> eigenvalues<S>(const Mat2<S>&);             \
+  template struct Eigen2<S>;
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

@@ -154,9 +154,9 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions
   return r;
 }
 
-template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&, State<double>*);
-template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&, State<Mpfr>*);
-template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&, State<long double>*);
-template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&, State<Quad>*);
+#define BOUNCER_X(T, kind) \
+  template LyapunovResult lyapunov<T>(const Model<T>&, State<T>, const LyapunovOptions&, State<T>*);
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

@@ -278,13 +278,10 @@ PeriodicOrbit<T> search_periodic(const Model<T>& m, long q, const NewtonOptions&
   return *best;
 }
 
-template PeriodicOrbit<double> find_periodic<double>(const Model<double>&, long, const State<double>&, const NewtonOptions&);
-template PeriodicOrbit<Mpfr> find_periodic<Mpfr>(const Model<Mpfr>&, long, const State<Mpfr>&, const NewtonOptions&);
-template PeriodicOrbit<long double> find_periodic<long double>(const Model<long double>&, long, const State<long double>&, const NewtonOptions&);
-template PeriodicOrbit<Quad> find_periodic<Quad>(const Model<Quad>&, long, const State<Quad>&, const NewtonOptions&);
-template PeriodicOrbit<double> search_periodic<double>(const Model<double>&, long, const NewtonOptions&);
-template PeriodicOrbit<Mpfr> search_periodic<Mpfr>(const Model<Mpfr>&, long, const NewtonOptions&);
-template PeriodicOrbit<long double> search_periodic<long double>(const Model<long double>&, long, const NewtonOptions&);
-template PeriodicOrbit<Quad> search_periodic<Quad>(const Model<Quad>&, long, const NewtonOptions&);
+#define BOUNCER_X(T, kind)                                                                                 \
+  template PeriodicOrbit<T> find_periodic<T>(const Model<T>&, long, const State<T>&, const NewtonOptions&); \
+  template PeriodicOrbit<T> search_periodic<T>(const Model<T>&, long, const NewtonOptions&);
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 namespace bouncer {
@@ -181,26 +182,31 @@ std::vector<InitialCondition> initial_conditions_from(const Options& o, const Mo
 }
 
 std::string Precision::text() const {
-  switch (kind) {
-    case Kind::double_: return "double";
-    case Kind::long_double: return "long";
-    case Kind::quad: return "quad";
-    case Kind::mpfr: return "mpfr:" + std::to_string(bits);
-    case Kind::interval: return "interval:" + std::to_string(bits);
-  }
-  return "?";
+  return with_scalar(*this, [&](auto tag) {
+    using Tr = ScalarTraits<typename decltype(tag)::type>;
+    return Tr::fixed_bits ? std::string(Tr::family) : std::string(Tr::family) + ":" + std::to_string(bits);
+  });
 }
 
+// Each type of the scalar set is one family: its name alone for the types of fixed
+// precision, NAME:BITS for the others (in the set's order).
 Precision parse_precision(const std::string& field, const std::string& text) {
-  Precision p;
-  if (text == "double") return {Precision::Kind::double_, 53};
-  if (text == "long") return {Precision::Kind::long_double, std::numeric_limits<long double>::digits};
-  if (text == "quad") return {Precision::Kind::quad, 113};
-  const std::string allowed = "allowed: double, long, quad, mpfr:BITS, interval:BITS with " +
-                              std::to_string(kMinBits) + " <= BITS <= " + std::to_string(kMaxBits);
-  for (auto [prefix, kind] : {std::pair{"mpfr:", Precision::Kind::mpfr}, std::pair{"interval:", Precision::Kind::interval}}) {
-    const std::string pre(prefix);
-    if (text.rfind(pre, 0) != 0) continue;
+  std::optional<Precision> fixed;
+  for_each_scalar<Scalars>([&](auto tag) {
+    using T = typename decltype(tag)::type;
+    using Tr = ScalarTraits<T>;
+    if (Tr::fixed_bits && !fixed && text == Tr::family) fixed = Precision{precision_kind<T>(), Tr::fixed_bits};
+  });
+  if (fixed) return *fixed;
+  const std::string allowed = "allowed: " + precision_names<Scalars>() + " with " + std::to_string(kMinBits) +
+                              " <= BITS <= " + std::to_string(kMaxBits);
+  std::optional<Precision> chosen;
+  for_each_scalar<Scalars>([&](auto tag) {
+    using T = typename decltype(tag)::type;
+    using Tr = ScalarTraits<T>;
+    if (Tr::fixed_bits || chosen) return;
+    const std::string pre = std::string(Tr::family) + ":";
+    if (text.rfind(pre, 0) != 0) return;
     const std::string num = text.substr(pre.size());
     auto d = Decimal::parse(num);
     if (!d || d->value().get_den() != 1 || num.find_first_not_of("0123456789") != std::string::npos)
@@ -208,22 +214,16 @@ Precision parse_precision(const std::string& field, const std::string& text) {
     const mpz_class bits = d->value().get_num();
     if (bits < kMinBits || bits > kMaxBits)
       throw InputError(field, "'" + text + "': bits out of range (" + allowed + ")");
-    return {kind, bits.get_si()};
-  }
+    chosen = Precision{precision_kind<T>(), bits.get_si()};
+  });
+  if (chosen) return *chosen;
   throw InputError(field, "unknown precision '" + text + "' (" + allowed + ")");
 }
 
 std::string decimal_note(const Precision& p) {
-  switch (p.kind) {
-    case Precision::Kind::double_:
-    case Precision::Kind::long_double:
-    case Precision::Kind::quad:
-    case Precision::Kind::mpfr:
-      return "each decimal input is rounded to the nearest " + p.text() + " value; results are about those values";
-    case Precision::Kind::interval:
-      return "each decimal input is enclosed exactly (outward rounding); results are enclosures for the exact decimals";
-  }
-  return "";
+  if (p.is_interval())
+    return "each decimal input is enclosed exactly (outward rounding); results are enclosures for the exact decimals";
+  return "each decimal input is rounded to the nearest " + p.text() + " value; results are about those values";
 }
 
 }  // namespace bouncer

@@ -1,5 +1,5 @@
-// Explicit instantiation of the impact map for the supported scalar set, so that tools
-// and tests include only declarations and compile fast.
+// Explicit instantiation of the impact map for the scalar set (scalar/scalar_set.hpp), so
+// that tools and tests include only declarations and compile fast.
 #include "bouncer/model/impact_map_impl.hpp"
 
 namespace bouncer {
@@ -13,16 +13,10 @@ const char* name(EventKind k) {
   return "?";
 }
 
-#define BOUNCER_INSTANTIATE(T)                                   \
-  template class ImpactMap<T>;                                   \
+#define BOUNCER_X(T, kind)           \
+  template class ImpactMap<T>;       \
   template Model<T> make_model<T>(const ModelSpec&, long);
-
-BOUNCER_INSTANTIATE(double)
-BOUNCER_INSTANTIATE(long double)
-BOUNCER_INSTANTIATE(Quad)
-BOUNCER_INSTANTIATE(Mpfr)
-BOUNCER_INSTANTIATE(Mpfi)
-
-#undef BOUNCER_INSTANTIATE
+BOUNCER_FOR_EACH_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

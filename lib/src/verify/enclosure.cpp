@@ -6,12 +6,14 @@
 
 #include "bouncer/model/spec.hpp"
 #include "bouncer/verify/interval_dual.hpp"
-// After the Dual<Mpfi> traits and guards: instantiate the step for interval duals.
+// Instantiate the step for interval duals (Dual<S> over the enclosure scalars).
 #include "bouncer/model/impact_map_impl.hpp"
 
 namespace bouncer {
 
-template class ImpactMap<IDual>;
+#define BOUNCER_X(S, kind) template class ImpactMap<Dual<S>>;
+BOUNCER_FOR_EACH_ENCLOSURE_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 const char* name(EnclosureMethod m) { return m == EnclosureMethod::naive ? "naive" : "lohner"; }
 

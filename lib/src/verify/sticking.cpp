@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
@@ -263,10 +264,10 @@ PlainSticking plain_sticking_period(const ModelSpec& model, const InitialConditi
   return out;
 }
 
-template PlainSticking plain_sticking_period<double>(const ModelSpec&, const InitialCondition&, long, long long);
-template PlainSticking plain_sticking_period<long double>(const ModelSpec&, const InitialCondition&, long, long long);
-template PlainSticking plain_sticking_period<Quad>(const ModelSpec&, const InitialCondition&, long, long long);
-template PlainSticking plain_sticking_period<Mpfr>(const ModelSpec&, const InitialCondition&, long, long long);
+#define BOUNCER_X(T, kind) \
+  template PlainSticking plain_sticking_period<T>(const ModelSpec&, const InitialCondition&, long, long long);
+BOUNCER_FOR_EACH_POINT_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 std::string describe(const StickingCertificate& c, long long max_steps) {
   std::ostringstream s;

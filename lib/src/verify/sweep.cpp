@@ -12,11 +12,16 @@
 
 namespace bouncer {
 
+// Every point type of the scalar set: the fixed ones at their precision, the others at
+// 64, 128, ..., 4096 bits.
 std::vector<Precision> default_sweep_precisions() {
-  std::vector<Precision> p{{Precision::Kind::double_, 53},
-                           {Precision::Kind::long_double, std::numeric_limits<long double>::digits},
-                           {Precision::Kind::quad, 113}};
-  for (long b = 64; b <= 4096; b *= 2) p.push_back({Precision::Kind::mpfr, b});
+  std::vector<Precision> p;
+  for_each_scalar<PointScalars>([&](auto tag) {
+    using T = typename decltype(tag)::type;
+    constexpr long fixed = ScalarTraits<T>::fixed_bits;
+    if (fixed) p.push_back({precision_kind<T>(), fixed});
+    else for (long b = 64; b <= 4096; b *= 2) p.push_back({precision_kind<T>(), b});
+  });
   return p;
 }
 
@@ -172,7 +177,7 @@ SweepReport precision_sweep(const SweepQuestion& q) {
 
   const std::vector<Precision> precisions = q.precisions.empty() ? default_sweep_precisions() : q.precisions;
   for (const Precision& p : precisions) {
-    if (p.kind == Precision::Kind::interval) continue;
+    if (p.is_interval()) continue;
     rep.rows.push_back(with_scalar(p, [&](auto tag) {
       using T = typename decltype(tag)::type;
       if constexpr (ScalarTraits<T>::is_interval) return SweepRow{};

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
@@ -53,9 +54,10 @@ struct ClassifyOptions {
 template <class T>
 Classification classify(const ImpactMap<T>& map, State<T> start, const ClassifyOptions& opt);
 
-extern template Classification classify<double>(const ImpactMap<double>&, State<double>, const ClassifyOptions&);
-extern template Classification classify<Mpfr>(const ImpactMap<Mpfr>&, State<Mpfr>, const ClassifyOptions&);
-extern template Classification classify<long double>(const ImpactMap<long double>&, State<long double>, const ClassifyOptions&);
-extern template Classification classify<Quad>(const ImpactMap<Quad>&, State<Quad>, const ClassifyOptions&);
+// Instantiated in lib/src/analysis/classify.cpp for the analysis scalars (scalar/scalar_set.hpp).
+#define BOUNCER_X(T, kind) \
+  extern template Classification classify<T>(const ImpactMap<T>&, State<T>, const ClassifyOptions&);
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

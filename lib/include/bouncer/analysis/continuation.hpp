@@ -15,7 +15,8 @@
 // first step, the end is located by bisection between the last accepted value and the
 // first refused one (the corrector runs at every trial value), down to the working
 // precision (2^-44 relative for double, 2^-(bits-12) for the others).
-// Implemented in lib/src/analysis/continuation.cpp for double, long double, Quad and Mpfr.
+// Implemented in lib/src/analysis/continuation.cpp for the analysis scalars
+// (scalar/scalar_set.hpp).
 #pragma once
 
 #include <array>
@@ -25,6 +26,7 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/periodic.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
@@ -156,14 +158,13 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
 template <class T>
 BranchPoint<T> analyse_orbit(const Model<T>& m, Parameter p, PeriodicOrbit<T> orbit);
 
-#define BOUNCER_CONTINUATION_EXTERN(T)                                                                             \
+// Instantiated in lib/src/analysis/continuation.cpp for the analysis scalars
+// (scalar/scalar_set.hpp).
+#define BOUNCER_CONTINUATION_EXTERN(T, kind)                                                                           \
   extern template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
                                                const T&, const ContinuationOptions&);                            \
   extern template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);
-BOUNCER_CONTINUATION_EXTERN(double)
-BOUNCER_CONTINUATION_EXTERN(long double)
-BOUNCER_CONTINUATION_EXTERN(Quad)
-BOUNCER_CONTINUATION_EXTERN(Mpfr)
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_CONTINUATION_EXTERN)
 #undef BOUNCER_CONTINUATION_EXTERN
 
 }  // namespace bouncer

@@ -1,6 +1,7 @@
 // Jacobians of the impact map by forward-mode automatic differentiation through the same
 // templated step (ImpactMap<Dual<S>>), and stability multipliers of periodic orbits.
-// Implemented in lib/src/analysis/jacobian.cpp for S = double and S = Mpfr.
+// Implemented in lib/src/analysis/jacobian.cpp for the analysis scalars S
+// (scalar/scalar_set.hpp).
 //
 // Seeding: theta0 -> (1, 0), v0 -> (0, 1). The result's derivative components are the rows
 //     J = [ d theta1/d theta0   d theta1/d v0 ]
@@ -22,17 +23,17 @@
 
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/dual.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
-extern template class ImpactMap<Dual<double>>;
-extern template class ImpactMap<Dual<Mpfr>>;
-extern template class ImpactMap<Dual<long double>>;
-extern template class ImpactMap<Dual<Quad>>;
-extern template Model<Dual<double>> make_model<Dual<double>>(const ModelSpec&, long);
-extern template Model<Dual<Mpfr>> make_model<Dual<Mpfr>>(const ModelSpec&, long);
-extern template Model<Dual<long double>> make_model<Dual<long double>>(const ModelSpec&, long);
-extern template Model<Dual<Quad>> make_model<Dual<Quad>>(const ModelSpec&, long);
+// The step in Dual<S> for the analysis scalars (scalar/scalar_set.hpp), instantiated in
+// lib/src/model/dual_map.cpp.
+#define BOUNCER_X(S, kind)                          \
+  extern template class ImpactMap<Dual<S>>;         \
+  extern template Model<Dual<S>> make_model<Dual<S>>(const ModelSpec&, long);
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 // A 2x2 matrix, row major.
 template <class S>
@@ -106,21 +107,13 @@ struct Eigen2 {
 template <class S>
 Eigen2<S> eigenvalues(const Mat2<S>& m);
 
-extern template Model<Dual<double>> dual_model<double>(const Model<double>&);
-extern template Model<Dual<Mpfr>> dual_model<Mpfr>(const Model<Mpfr>&);
-extern template Model<Dual<long double>> dual_model<long double>(const Model<long double>&);
-extern template Model<Dual<Quad>> dual_model<Quad>(const Model<Quad>&);
-extern template class TangentMap<double>;
-extern template class TangentMap<Mpfr>;
-extern template class TangentMap<long double>;
-extern template class TangentMap<Quad>;
-extern template Eigen2<double> eigenvalues<double>(const Mat2<double>&);
-extern template Eigen2<Mpfr> eigenvalues<Mpfr>(const Mat2<Mpfr>&);
-extern template Eigen2<long double> eigenvalues<long double>(const Mat2<long double>&);
-extern template Eigen2<Quad> eigenvalues<Quad>(const Mat2<Quad>&);
-extern template struct Eigen2<double>;
-extern template struct Eigen2<Mpfr>;
-extern template struct Eigen2<long double>;
-extern template struct Eigen2<Quad>;
+// Instantiated in lib/src/analysis/jacobian.cpp for the analysis scalars.
+#define BOUNCER_X(S, kind)                                              \
+  extern template Model<Dual<S>> dual_model<S>(const Model<S>&);        \
+  extern template class TangentMap<S>;                                  \
+  extern template Eigen2<S> eigenvalues<S>(const Mat2<S>&);             \
+  extern template struct Eigen2<S>;
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "bouncer/model/model.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
@@ -53,9 +54,10 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> start, const LyapunovOpt
 // log n at logarithmically spaced n (the helper shared with classify).
 double growth_exponent(const std::vector<std::pair<double, double>>& n_vmax);
 
-extern template LyapunovResult lyapunov<double>(const Model<double>&, State<double>, const LyapunovOptions&, State<double>*);
-extern template LyapunovResult lyapunov<Mpfr>(const Model<Mpfr>&, State<Mpfr>, const LyapunovOptions&, State<Mpfr>*);
-extern template LyapunovResult lyapunov<long double>(const Model<long double>&, State<long double>, const LyapunovOptions&, State<long double>*);
-extern template LyapunovResult lyapunov<Quad>(const Model<Quad>&, State<Quad>, const LyapunovOptions&, State<Quad>*);
+// Instantiated in lib/src/analysis/lyapunov.cpp for the analysis scalars (scalar/scalar_set.hpp).
+#define BOUNCER_X(T, kind) \
+  extern template LyapunovResult lyapunov<T>(const Model<T>&, State<T>, const LyapunovOptions&, State<T>*);
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bouncer/analysis/jacobian.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
@@ -147,13 +148,11 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
 template <class T>
 PeriodicOrbit<T> search_periodic(const Model<T>& m, long q, const NewtonOptions& opt = {});
 
-extern template PeriodicOrbit<double> find_periodic<double>(const Model<double>&, long, const State<double>&, const NewtonOptions&);
-extern template PeriodicOrbit<Mpfr> find_periodic<Mpfr>(const Model<Mpfr>&, long, const State<Mpfr>&, const NewtonOptions&);
-extern template PeriodicOrbit<long double> find_periodic<long double>(const Model<long double>&, long, const State<long double>&, const NewtonOptions&);
-extern template PeriodicOrbit<Quad> find_periodic<Quad>(const Model<Quad>&, long, const State<Quad>&, const NewtonOptions&);
-extern template PeriodicOrbit<double> search_periodic<double>(const Model<double>&, long, const NewtonOptions&);
-extern template PeriodicOrbit<Mpfr> search_periodic<Mpfr>(const Model<Mpfr>&, long, const NewtonOptions&);
-extern template PeriodicOrbit<long double> search_periodic<long double>(const Model<long double>&, long, const NewtonOptions&);
-extern template PeriodicOrbit<Quad> search_periodic<Quad>(const Model<Quad>&, long, const NewtonOptions&);
+// Instantiated in lib/src/analysis/periodic.cpp for the analysis scalars (scalar/scalar_set.hpp).
+#define BOUNCER_X(T, kind)                                                                                        \
+  extern template PeriodicOrbit<T> find_periodic<T>(const Model<T>&, long, const State<T>&, const NewtonOptions&); \
+  extern template PeriodicOrbit<T> search_periodic<T>(const Model<T>&, long, const NewtonOptions&);
+BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "bouncer/model/model.hpp"
+#include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
 
@@ -35,6 +36,8 @@ struct StepResult {
 
 template <class T>
 class ImpactMap {
+  static_assert(Scalar<T>, "the impact map needs a scalar type meeting the contract of scalar/contract.hpp");
+
  public:
   explicit ImpactMap(Model<T> model) : m_(std::move(model)), zero_(m_.zero()) {}
   const Model<T>& model() const { return m_; }
@@ -51,16 +54,13 @@ class ImpactMap {
   Truth left_zone(const State<T>& s, int j0, const T& u, const T& q) const;
 };
 
-// Explicitly instantiated in lib/src/model/impact_map.cpp for the supported scalar set.
-extern template class ImpactMap<double>;
-extern template class ImpactMap<long double>;
-extern template class ImpactMap<Quad>;
-extern template class ImpactMap<Mpfr>;
-extern template class ImpactMap<Mpfi>;
-extern template Model<double> make_model<double>(const ModelSpec&, long);
-extern template Model<long double> make_model<long double>(const ModelSpec&, long);
-extern template Model<Quad> make_model<Quad>(const ModelSpec&, long);
-extern template Model<Mpfr> make_model<Mpfr>(const ModelSpec&, long);
-extern template Model<Mpfi> make_model<Mpfi>(const ModelSpec&, long);
+// Explicitly instantiated in lib/src/model/impact_map.cpp for every type of the scalar set
+// (scalar/scalar_set.hpp); for the duals over it, see analysis/jacobian.hpp and
+// verify/interval_dual.hpp.
+#define BOUNCER_X(T, kind)                  \
+  extern template class ImpactMap<T>;       \
+  extern template Model<T> make_model<T>(const ModelSpec&, long);
+BOUNCER_FOR_EACH_SCALAR(BOUNCER_X)
+#undef BOUNCER_X
 
 }  // namespace bouncer

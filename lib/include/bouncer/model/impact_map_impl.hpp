@@ -187,7 +187,7 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         const T tau_fall = (s.v + root) / a;
         const T x = s.theta + tau_fall;
         T whole = zero;
-        const Truth whole_known = floor_certain(x, whole);
+        const Truth whole_known = Tr::floor_certain(x, whole);
         if (whole_known == Truth::invalid) throw Undecided(Reason::nonfinite);
         if (whole_known == Truth::yes) {
           fall = x - whole;

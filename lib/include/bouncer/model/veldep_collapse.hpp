@@ -55,6 +55,8 @@ T veldep_power(const T& y, long num, long den) {
   } else if constexpr (Tr::is_interval && requires { y.v; }) {
     return T(veldep_power(y.v, num, den));
   } else {
+    // Zero is right for a point y <= 0 only: another interval type needs its enclosure here.
+    static_assert(!Tr::is_interval, "veldep_power: enclose the power for this interval type");
     return zero;
   }
 }

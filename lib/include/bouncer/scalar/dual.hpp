@@ -1,5 +1,9 @@
 // Dual<S>: forward-mode automatic differentiation with two derivative components,
-// d/dtheta0 and d/dv0, over a point scalar S (double or Mpfr).
+// d/dtheta0 and d/dv0, over a scalar S of the set (scalar/scalar_set.hpp). Over a point
+// scalar it gives the Jacobian at a point; over an interval scalar (Dual<Mpfi>) the
+// derivative components enclose the Jacobian of the branch over the whole box (every branch
+// is decided for the whole box through the three-valued predicates, so the step is one
+// smooth formula there; used by the Lohner enclosure, verify/enclosure.hpp).
 //
 // The impact map is written once as a template (model/impact_map_impl.hpp); instantiating
 // it for Dual<S> differentiates exactly the branch the step takes, so the Jacobian is that
@@ -7,13 +11,19 @@
 // A step is piecewise smooth: at a branch point the result is the one-sided derivative of
 // the branch taken.
 //
-// Conventions at the non-smooth helpers (see also clamp_to_segment below):
-//   floor(x)         value floor, derivative zero (the integer part is locally constant);
-//                    theta' = x - floor(x) therefore keeps x's derivative;
-//   nonneg(x)        x when x >= 0, else exact zero with zero derivative;
+// ScalarTraits<Dual<S>> is one generic specialisation: it meets the contract of S
+// (scalar/contract.hpp), PointScalar when S is a point type and IntervalScalar when S is an
+// interval type; the operations of only one kind are forwarded to S's under a requires-clause.
+// Conventions at the non-smooth helpers:
+//   floor(x), floor_certain(x, out)  value floor, derivative zero (the integer part is
+//                    locally constant); theta' = x - floor(x) therefore keeps x's derivative;
+//   nonneg(x)        points: x when x >= 0, else exact zero with zero derivative;
+//                    intervals: only the value enclosure is cut to [0, inf), the derivatives
+//                    are kept (a square root of it then has an unbounded derivative
+//                    enclosure if 0 is inside);
 //   below(x)         next representable value below, derivative of x;
-//   clamp_to_segment rounding guard: the exact value is inside, so the result keeps the
-//                    derivative of x (only the value is moved).
+//   clamp(x, lo, hi) rounding guard: the exact value is inside, so the result keeps the
+//                    derivative of x (only the value is moved; S's clamp moves it).
 #pragma once
 
 #include <cmath>
@@ -28,6 +38,9 @@ namespace bouncer {
 
 template <class S>
 class Dual {
+  // Bool comparisons (and floor) exist only over a point scalar.
+  static constexpr bool kComparable = !ScalarTraits<S>::is_interval;
+
  public:
   S v;      // value
   S d[2];   // d/dtheta0, d/dv0
@@ -77,13 +90,14 @@ class Dual {
     return {q, f * x.d[0], f * x.d[1]};
   }
 
-  // Comparisons look at values only (branching never depends on derivatives).
-  friend bool operator<(const Dual& x, const Dual& y) { return x.v < y.v; }
-  friend bool operator<=(const Dual& x, const Dual& y) { return x.v <= y.v; }
-  friend bool operator>(const Dual& x, const Dual& y) { return x.v > y.v; }
-  friend bool operator>=(const Dual& x, const Dual& y) { return x.v >= y.v; }
-  friend bool operator==(const Dual& x, const Dual& y) { return x.v == y.v; }
-  friend bool operator!=(const Dual& x, const Dual& y) { return !(x.v == y.v); }
+  // Comparisons look at values only (branching never depends on derivatives). Only where S
+  // has them: an interval dual, like an interval, branches through the traits alone.
+  friend bool operator<(const Dual& x, const Dual& y) requires kComparable { return x.v < y.v; }
+  friend bool operator<=(const Dual& x, const Dual& y) requires kComparable { return x.v <= y.v; }
+  friend bool operator>(const Dual& x, const Dual& y) requires kComparable { return x.v > y.v; }
+  friend bool operator>=(const Dual& x, const Dual& y) requires kComparable { return x.v >= y.v; }
+  friend bool operator==(const Dual& x, const Dual& y) requires kComparable { return x.v == y.v; }
+  friend bool operator!=(const Dual& x, const Dual& y) requires kComparable { return !(x.v == y.v); }
 
   friend Dual sqrt(const Dual& x) {
     using std::sqrt;
@@ -101,15 +115,16 @@ class Dual {
     S f = 1 / x.v;
     return {log(x.v), f * x.d[0], f * x.d[1]};
   }
-  friend Dual floor(const Dual& x) { return Dual(ScalarTraits<S>::floor(x.v)); }
+  friend Dual floor(const Dual& x) requires kComparable { return Dual(ScalarTraits<S>::floor(x.v)); }
 };
 
 template <class S>
 struct ScalarTraits<Dual<S>> {
   using D = Dual<S>;
   using B = ScalarTraits<S>;
-  static constexpr bool is_interval = false;
-  static constexpr const char* family = "dual";
+  static constexpr bool is_interval = B::is_interval;
+  static constexpr const char* family = B::is_interval ? "interval-dual" : "dual";
+  static constexpr long fixed_bits = B::fixed_bits;
   static D from_decimal(std::string_view text, long bits) { return D(B::from_decimal(text, bits)); }
   static D from_int(long n, long bits) { return D(B::from_int(n, bits)); }
   static long bits(const D& x) { return B::bits(x.v); }
@@ -117,16 +132,21 @@ struct ScalarTraits<Dual<S>> {
   static Truth le(const D& x, const D& y) { return B::le(x.v, y.v); }
   static Truth is_zero(const D& x) { return B::is_zero(x.v); }
   static bool likely_negative(const D& x) { return B::likely_negative(x.v); }
-  static D nonneg(const D& x) { return B::likely_negative(x.v) ? D(D::zero_like(x.v)) : x; }
+  static D nonneg(const D& x) {
+    if constexpr (B::is_interval) return {B::nonneg(x.v), x.d[0], x.d[1]};
+    else return B::likely_negative(x.v) ? D(D::zero_like(x.v)) : x;
+  }
+  static D clamp(const D& x, const D& lo, const D& hi) { return {B::clamp(x.v, lo.v, hi.v), x.d[0], x.d[1]}; }
+  static Truth floor_certain(const D& x, D& out) {
+    S whole = x.v;
+    const Truth t = B::floor_certain(x.v, whole);
+    if (t == Truth::yes) out = D(std::move(whole));
+    return t;
+  }
   static bool is_finite(const D& x) { return B::is_finite(x.v); }
   static bool derivatives_finite(const D& x) { return B::is_finite(x.d[0]) && B::is_finite(x.d[1]); }
   static double to_double(const D& x) { return B::to_double(x.v); }
-  static D midpoint(const D& x) { return x; }
-  static D lower(const D& x) { return x; }
-  static D upper(const D& x) { return x; }
-  static D below(const D& x) { return {B::below(x.v), x.d[0], x.d[1]}; }
   static int exponent(const D& x) { return B::exponent(x.v); }
-  static D floor(const D& x) { return D(B::floor(x.v)); }
   // d(x^(3/5)) = (3/5) x^(3/5) / x dx  (x > 0 at every impact that uses it).
   static D pow_3_5(const D& x) {
     S p = B::pow_3_5(x.v);
@@ -134,18 +154,14 @@ struct ScalarTraits<Dual<S>> {
     return {p, f * x.d[0], f * x.d[1]};
   }
   static std::string to_string(const D& x) { return B::to_string(x.v); }
-};
 
-// Overload of the rounding guard of traits.hpp for duals (more specialized, found by ADL
-// when the templated step is instantiated): the exact value is known to lie in [lo, hi),
-// so only the value is moved and the derivative stays that of x. (The generic version
-// would return lo or below(hi) with their zero derivatives.)
-template <class S>
-Dual<S> clamp_to_segment(const Dual<S>& x, const Dual<S>& lo, const Dual<S>& hi) {
-  if (x.v < lo.v) return {lo.v, x.d[0], x.d[1]};
-  if (!(x.v < hi.v)) return {ScalarTraits<S>::below(hi.v), x.d[0], x.d[1]};
-  return x;
-}
+  // Point duals only.
+  static D below(const D& x) requires(!B::is_interval) { return {B::below(x.v), x.d[0], x.d[1]}; }
+  static D floor(const D& x) requires(!B::is_interval) { return D(B::floor(x.v)); }
+  // Interval duals only: the value's ends.
+  static std::string lower_string(const D& x) requires B::is_interval { return B::lower_string(x.v); }
+  static std::string upper_string(const D& x) requires B::is_interval { return B::upper_string(x.v); }
+};
 
 // "value (d/dtheta0, d/dv0)", each part printed as its scalar type prints.
 template <class S>

@@ -1,11 +1,9 @@
 // Per-scalar knowledge in one place: parsing decimals, printing, precision, and the
 // three-valued predicates that are the impact map's only branch points.
 //
-// The contract a scalar type T must meet (see README "Scalar contract"):
-//   arithmetic  T op T, T op long (exact integer operand), unary -, and, found by ADL or
-//               std::, sqrt, exp, log.
-//   traits      ScalarTraits<T> with the members below.
-// Supported: double, long double, Quad (__float128 through Boost), Mpfr, Mpfi.
+// The contract these specialisations meet is the concept Scalar<T> (and PointScalar<T>,
+// IntervalScalar<T>) of scalar/contract.hpp; the set of supported types is
+// scalar/scalar_set.hpp.
 #pragma once
 
 #include <boost/multiprecision/float128.hpp>
@@ -16,6 +14,7 @@
 #include <string>
 #include <string_view>
 
+#include "bouncer/scalar/contract.hpp"
 #include "bouncer/scalar/mpfi.hpp"
 #include "bouncer/scalar/mpfr.hpp"
 #include "bouncer/scalar/truth.hpp"
@@ -28,15 +27,28 @@ using Quad = boost::multiprecision::float128;
 // rounded in the given direction (RNDN for points; RNDD/RNDU for interval ends).
 std::string mpfr_to_string(mpfr_srcptr x, mpfr_rnd_t rnd);
 
-template <class T>
-struct ScalarTraits;
-
 namespace detail {
+
+// The rounding guards of every point type, from its below() and floor().
+template <class T>
+struct PointGuards {
+  static T clamp(const T& x, const T& lo, const T& hi) {
+    if (x < lo) return lo;
+    if (!(x < hi)) return ScalarTraits<T>::below(hi);
+    return x;
+  }
+  static Truth floor_certain(const T& x, T& out) {
+    if (!ScalarTraits<T>::is_finite(x)) return Truth::invalid;
+    out = ScalarTraits<T>::floor(x);
+    return Truth::yes;
+  }
+};
 
 // Shared by the IEEE-style point types (double, long double, Quad).
 template <class T>
-struct PointTraits {
+struct PointTraits : PointGuards<T> {
   static constexpr bool is_interval = false;
+  static constexpr long fixed_bits = std::numeric_limits<T>::digits;
   // NaN fails both comparisons, so it is recognised without a separate isnan test.
   static Truth lt(const T& x, const T& y) { return x < y ? Truth::yes : x >= y ? Truth::no : Truth::invalid; }
   static Truth le(const T& x, const T& y) { return x <= y ? Truth::yes : x > y ? Truth::no : Truth::invalid; }
@@ -45,9 +57,6 @@ struct PointTraits {
   static T nonneg(const T& x) { return x < 0 ? T(0) : x; }
   static bool is_finite(const T& x) { using std::isfinite; using boost::multiprecision::isfinite; return isfinite(x); }
   static double to_double(const T& x) { return static_cast<double>(x); }
-  static T midpoint(const T& x) { return x; }
-  static T lower(const T& x) { return x; }
-  static T upper(const T& x) { return x; }
   static bool nan(const T& x, const T& y) { using std::isnan; using boost::multiprecision::isnan; return isnan(x) || isnan(y); }
 };
 
@@ -93,9 +102,10 @@ struct ScalarTraits<Quad> : detail::PointTraits<Quad> {
 };
 
 template <>
-struct ScalarTraits<Mpfr> {
+struct ScalarTraits<Mpfr> : detail::PointGuards<Mpfr> {
   static constexpr bool is_interval = false;
   static constexpr const char* family = "mpfr";
+  static constexpr long fixed_bits = 0;
   static Mpfr from_decimal(std::string_view text, long bits);
   static Mpfr from_int(long n, long bits) { return Mpfr(n, bits); }
   static long bits(const Mpfr& x) { return x.bits(); }
@@ -106,9 +116,6 @@ struct ScalarTraits<Mpfr> {
   static Mpfr nonneg(const Mpfr& x) { return mpfr_sgn(x.get()) < 0 ? Mpfr(0, x.bits()) : x; }
   static bool is_finite(const Mpfr& x) { return mpfr_number_p(x.get()) != 0; }
   static double to_double(const Mpfr& x) { return x.to_double(); }
-  static Mpfr midpoint(const Mpfr& x) { return x; }
-  static Mpfr lower(const Mpfr& x) { return x; }
-  static Mpfr upper(const Mpfr& x) { return x; }
   static Mpfr below(const Mpfr& x) { Mpfr r = x; mpfr_nextbelow(r.get()); return r; }
   static int exponent(const Mpfr& x) { return mpfr_zero_p(x.get()) ? 0 : static_cast<int>(mpfr_get_exp(x.get())); }
   static Mpfr floor(const Mpfr& x) { return bouncer::floor(x); }
@@ -121,6 +128,7 @@ template <>
 struct ScalarTraits<Mpfi> {
   static constexpr bool is_interval = true;
   static constexpr const char* family = "interval";
+  static constexpr long fixed_bits = 0;
   static Mpfi from_decimal(std::string_view text, long bits);
   static Mpfi from_int(long n, long bits) { return Mpfi(n, bits); }
   static long bits(const Mpfi& x) { return x.bits(); }
@@ -132,31 +140,23 @@ struct ScalarTraits<Mpfi> {
   static bool likely_negative(const Mpfi& x) { return mpfr_sgn(x.mid().get()) < 0; }
   // Intersection with [0, inf): the caller knows the exact value is non-negative.
   static Mpfi nonneg(const Mpfi& x);
+  // The caller knows the exact value lies in [lo, hi): the enclosure is cut to it.
+  static Mpfi clamp(const Mpfi& x, const Mpfi& lo, const Mpfi& hi) { return intersect(x, hull(lo, hi)); }
+  // Certain only when both ends have the same integer part.
+  static Truth floor_certain(const Mpfi& x, Mpfi& out) {
+    Mpfr lo = bouncer::floor(x.lower()), hi = bouncer::floor(x.upper());
+    if (!(lo == hi)) return Truth::unknown;
+    out = Mpfi(lo, lo);
+    return Truth::yes;
+  }
   static bool is_finite(const Mpfi& x) { return !x.has_nan() && x.bounded(); }
   static double to_double(const Mpfi& x) { return x.mid().to_double(); }
-  static Mpfr midpoint(const Mpfi& x) { return x.mid(); }
-  static Mpfr lower(const Mpfi& x) { return x.lower(); }
-  static Mpfr upper(const Mpfi& x) { return x.upper(); }
   static Mpfi pow_3_5(const Mpfi& x);
   static int exponent(const Mpfi& x) { Mpfr u = abs(x).upper(); return mpfr_zero_p(u.get()) ? 0 : static_cast<int>(mpfr_get_exp(u.get())); }
   static std::string to_string(const Mpfi& x);  // "[lo, hi]"
   static std::string lower_string(const Mpfi& x);  // rounded down
   static std::string upper_string(const Mpfi& x);  // rounded up
 };
-
-// Restrict x to [lo, hi): the caller has decided that the exact value lies there, and
-// only rounding could put the computed value outside.
-template <class T>
-T clamp_to_segment(const T& x, const T& lo, const T& hi) {
-  using Tr = ScalarTraits<T>;
-  if constexpr (Tr::is_interval) {
-    return intersect(x, hull(lo, hi));
-  } else {
-    if (x < lo) return lo;
-    if (!(x < hi)) return Tr::below(hi);
-    return x;
-  }
-}
 
 // A value to be assigned before it is read, with the precision `bits` where the type has
 // one (an Mpfr of the right precision lets later assignments evaluate in place).
@@ -166,7 +166,7 @@ T blank(long bits) {
   else return T();
 }
 
-// In-place forms of ScalarTraits::nonneg and clamp_to_segment, for the hot path of the
+// In-place forms of ScalarTraits::nonneg and ScalarTraits::clamp, for the hot path of the
 // impact map: the same results without a copy for the multiple-precision point type.
 template <class T>
 void make_nonneg(T& x) { x = ScalarTraits<T>::nonneg(x); }
@@ -174,29 +174,13 @@ inline void make_nonneg(Mpfr& x) {
   if (mpfr_sgn(x.get()) < 0) mpfr_set_zero(x.get(), 1);
 }
 template <class T>
-void clamp_into_segment(T& x, const T& lo, const T& hi) { x = clamp_to_segment(x, lo, hi); }
+void clamp_into_segment(T& x, const T& lo, const T& hi) { x = ScalarTraits<T>::clamp(x, lo, hi); }
 inline void clamp_into_segment(Mpfr& x, const Mpfr& lo, const Mpfr& hi) {
   if (x < lo) {
     x = lo;
   } else if (!(x < hi)) {
     x = hi;
     mpfr_nextbelow(x.get());
-  }
-}
-
-// Integer part of x, when it is certain (for an interval: both ends agree).
-template <class T>
-Truth floor_certain(const T& x, T& out) {
-  using Tr = ScalarTraits<T>;
-  if constexpr (Tr::is_interval) {
-    Mpfr lo = bouncer::floor(x.lower()), hi = bouncer::floor(x.upper());
-    if (!(lo == hi)) return Truth::unknown;
-    out = Mpfi(lo, lo);
-    return Truth::yes;
-  } else {
-    if (!Tr::is_finite(x)) return Truth::invalid;
-    out = Tr::floor(x);
-    return Truth::yes;
   }
 }
 

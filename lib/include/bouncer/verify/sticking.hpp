@@ -81,7 +81,7 @@ struct PlainSticking {
   long long steps_run = 0;
   bool failed = false;
 };
-// T in {double, long double, Quad, Mpfr}; bits used by Mpfr only. With a_range the
+// T a point scalar (scalar/scalar_set.hpp); bits used by Mpfr only. With a_range the
 // midpoint of the range is used (as a decimal).
 template <class T>
 PlainSticking plain_sticking_period(const ModelSpec& model, const InitialCondition& start, long bits,

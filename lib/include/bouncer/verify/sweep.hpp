@@ -39,7 +39,8 @@ struct SweepQuestion {
   long classify_steps = 500;          // classify window for runs with neither sticking nor a period
 };
 
-// double, long, quad, mpfr:64, 128, 256, 512, 1024, 2048, 4096.
+// Every point type of the scalar set (scalar/scalar_set.hpp), those of variable precision at
+// 64, 128, ..., 4096 bits: double, long, quad, mpfr:64, 128, 256, 512, 1024, 2048, 4096.
 std::vector<Precision> default_sweep_precisions();
 
 struct SweepRow {

@@ -84,22 +84,49 @@ inline std::string check_command_line(CLI::App& app, int argc, char** argv) {
     return "unknown command '" + first + "'" + (guess ? " (did you mean '" + *guess + "'?)" : "") + "; commands: " + list;
   }
   std::vector<std::string> options;
-  for (const CLI::Option* o : sub->get_options())
+  bool positionals = false;
+  for (const CLI::Option* o : sub->get_options()) {
     for (const std::string& n : o->get_lnames()) options.push_back("--" + n);
+    positionals = positionals || o->get_positional();
+  }
+  auto find_option = [&](const std::string& name) -> const CLI::Option* {
+    for (const CLI::Option* o : sub->get_options())
+      for (const std::string& n : o->get_lnames())
+        if ("--" + n == name) return o;
+    return nullptr;
+  };
+  std::string last_option;
   for (int i = 2; i < argc; ++i) {
     const std::string tok = argv[i];
     if (tok == "--") break;
-    if (tok.rfind("--", 0) != 0) continue;
+    if (tok.rfind("--", 0) != 0) {
+      // A word no option takes: CLI11 would say "argument was not expected", naming nothing.
+      if (!positionals)
+        return first + ": unexpected value '" + tok + "'" +
+               (last_option.empty() ? "" : " after " + last_option + " (options take one value; lists are comma-separated)") +
+               "; see bouncer " + first + " --help";
+      continue;
+    }
     const auto eq = tok.find('=');
     const std::string name = tok.substr(0, eq);
     if (eq != std::string::npos && eq + 1 == tok.size())
       return name.substr(2) + ": '" + tok + "' gives no value (write " + name + " VALUE)";
     if (name == "--help" || name == "--version") continue;
-    if (std::find(options.begin(), options.end(), name) == options.end()) {
+    const CLI::Option* opt = find_option(name);
+    if (!opt) {
       const auto guess = closest(name, options);
       return first + ": unknown option '" + name + "'" + (guess ? " (did you mean " + *guess + "?)" : "") +
              "; see bouncer " + first + " --help";
     }
+    last_option = name;
+    if (opt->get_items_expected_max() == 0 || eq != std::string::npos) continue;  // a flag, or --opt=value
+    // The option's value(s): the next word(s) up to the next option. A value may start
+    // with '-' (a negative number) but not with "--".
+    if (i + 1 >= argc || std::string(argv[i + 1]).rfind("--", 0) == 0)
+      return name.substr(2) + ": " + name + " needs a value; see bouncer " + first + " --help";
+    ++i;
+    if (opt->get_expected_max() > 1)
+      while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) ++i;
   }
   return "";
 }

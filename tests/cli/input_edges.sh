@@ -47,6 +47,12 @@ for cmd in orbit certify-sticking certify-periodic sweep audit periodic continue
   [[ $rc -eq 0 && $out =~ commit ]] || fail "version_$cmd" "exit $rc: ${out:0:200}"
 done
 
+# Extra values and missing values get bouncer's message naming the option, not CLI11's
+# "The following argument was not expected: 0.6", which names none.
+refused extra_value "orbit: unexpected value '0.6' after --eps" orbit --model constant --a 24 --eps 0.5 0.6 --theta 0.1 --v 10
+refused missing_value "^bouncer: grid: --grid needs a value" basin "${M[@]}" --grid
+refused missing_value_mid "^bouncer: steps: --steps needs a value" orbit "${M[@]}" --steps --theta 0.1 --v 10
+
 # `bouncer help CMD` is `bouncer CMD --help`; `bouncer --scene FILE` runs the scene's command.
 for cmd in orbit basin merge; do
   cmp -s <("$BOUNCER" help "$cmd") <("$BOUNCER" "$cmd" --help) || fail "help_$cmd" "bouncer help $cmd differs from bouncer $cmd --help"

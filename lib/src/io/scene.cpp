@@ -62,7 +62,8 @@ std::string scalar_text(const std::string& key, const toml::node& n) {
 
 }  // namespace
 
-Options load_scene(const std::string& path, const std::string& command, const std::set<std::string>& allowed) {
+// The scene file as a TOML table; a directory, a missing file or bad TOML is InputError("scene").
+static toml::table read_scene_file(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError("scene", "'" + path + "' is a directory, not a scene file (.toml)");
   if (!std::filesystem::exists(path, ec)) throw InputError("scene", "'" + path + "' not found (give a scene file, .toml)");
@@ -74,6 +75,11 @@ Options load_scene(const std::string& path, const std::string& command, const st
     msg << "cannot read scene '" << path << "': " << e.description() << " (line " << e.source().begin.line << ")";
     throw InputError("scene", msg.str());
   }
+  return table;
+}
+
+Options load_scene(const std::string& path, const std::string& command, const std::set<std::string>& allowed) {
+  const toml::table table = read_scene_file(path);
   Options o;
   for (const auto& [k, node] : table) {
     const std::string key(k.str());
@@ -97,17 +103,7 @@ Options load_scene(const std::string& path, const std::string& command, const st
 }
 
 std::string scene_command(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError("scene", "'" + path + "' is a directory, not a scene file (.toml)");
-  if (!std::filesystem::exists(path, ec)) throw InputError("scene", "'" + path + "' not found (give a scene file, .toml)");
-  toml::table table;
-  try {
-    table = toml::parse_file(path);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream msg;
-    msg << "cannot read scene '" << path << "': " << e.description() << " (line " << e.source().begin.line << ")";
-    throw InputError("scene", msg.str());
-  }
+  const toml::table table = read_scene_file(path);
   const auto command = table["command"].value<std::string>();
   if (!command || command->empty())
     throw InputError("scene", "'" + path + "' has no command = \"...\" line: give the command (bouncer COMMAND --scene FILE)");

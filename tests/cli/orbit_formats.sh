@@ -50,7 +50,10 @@ def check(name, precision_line, interval, decimals_re):
     def has(pattern, what):
         if not any(re.search(pattern, c) for c in comments):
             bad.append(f"{name}: no provenance line with {what} (/{pattern}/)")
-    has(r"^# bouncer \d+\.\d+\.\d+ \(commit [0-9a-f]{7,40}\b", "version and commit")
+    # The two forms of the build's identity (cmake/BuildInfo.cmake): a git commit (with a
+    # hash of the diff when dirty), or a hash of the source tree where there is no git.
+    has(r"^# bouncer \d+\.\d+\.\d+ \(commit ([0-9a-f]{40}(\+dirty-[0-9a-f]{16})?|tree-sha256:[0-9a-f]{64})\) orbit$",
+        "version and commit")
     has(r"^# invocation: .*orbit", "the invocation")
     has(r"^# inputs: .*\ba=24\b.*\beps=0\.5\b.*\btheta=0\.05,0\.25\b.*\bv=10\.5,12\b", "the exact inputs")
     has("^# precision: " + re.escape(precision_line), f"precision '{precision_line}'")

@@ -208,6 +208,9 @@ bad grid-form $BA --grid 5 $O
 bad theta-range basin --model constant --a 24 --eps 0.5 --theta-range 0:2 --v-range 4:10 $O
 bad no-v-range basin --model elastic --a 24 --grid 4x4 $O  # constant and veldep default to the trapping region
 bad max-period $BA --grid 8x6 --max-period 400 $O
+# A prefix the file system cannot name (found by tools/fuzz_input.py: it was an internal error).
+bad out-too-long $B --out "$TMP/bad/$(printf 'x%.0s' {1..300})"
+bad out-tiles-too-long $B --out "$TMP/bad/$(printf 'x%.0s' {1..252})"
 bad basin-interval basin --model constant --a 24 --eps 0.5 --v-range 4:10 --precision interval:64 $O
 bad scan-elastic scan --model elastic --a-range 18:20 --eps-range 0.1:0.2 $O
 bad scan-eps-1 scan --model constant --a-range 18:20 --eps-range 0.5:1 $O

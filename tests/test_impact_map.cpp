@@ -669,6 +669,27 @@ TEST(ImpactMapWalls, CollinearKnotGivesTheSameOrbit) {
   }
 }
 
+// Found by bouncer-fuzz-step: a valid start moving with the wall, v = 200/29 (the rise
+// velocity of asymmetric:0.29) given as the decimal rounded up, rounds in double *below*
+// the wall velocity 2/0.29 rounded in double. Exactly, the relative velocity W is
+// positive and tiny (< 1e-28): a flight of 2W/a, a collision of speed W, which sticks
+// (eps = 1/2), a ride to the knot 0.29 and the release there with v = 200/29, after
+// tau = 0.29 - 0.1. The map used to fly for a negative time (tau = 2W/a < 0, rounded W).
+TYPED_TEST(ImpactMapTyped, StartAtTheWallVelocityRoundedBelowItRides) {
+  using T = TypeParam;
+  const ModelSpec m = spec(Law::constant, "24", "0.5", "1000", "asymmetric:0.29");
+  const InitialCondition ic{*Decimal::parse("0.1"), *Decimal::parse("6.89655172413793103448275862069")};
+  validate(m, ic, "theta", "v");  // v >= 200/29 exactly
+  const ImpactMap<T> map = make_map<T>(m);
+  const StepResult<T> r = map.step(make_state(map.model(), ic));
+  EXPECT_TRUE(r.kind == EventKind::ride || r.kind == EventKind::sticking) << name(r.kind);
+  EXPECT_GT(dbl(r.tau), 0.0);
+  EXPECT_LE(dist(r.tau, num<T>("0.19")), Cfg<T>::tol);
+  EXPECT_LE(dist(r.next.theta, num<T>("0.29")), Cfg<T>::tol);
+  const T release_v = num<T>("200") / 29L;  // the rise velocity 2 / 0.29
+  EXPECT_LE(dist(r.next.v, release_v), Cfg<T>::tol * 10);
+}
+
 // Random direct collisions on one segment: paper eqs. 3-4, case 1, checked directly.
 TYPED_TEST(ImpactMapTyped, PaperExplicitMapCase1) {
   using T = TypeParam;

@@ -100,7 +100,8 @@ ContinueRequest continue_request(const Options& given) {
     r.out = o.get("out");
     if (r.out->empty()) throw InputError("out", "must be a file name prefix");
     const auto parent = std::filesystem::path(*r.out).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent))
+    std::error_code ec;  // a parent the file system cannot name (too long) is not a directory
+    if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
       throw InputError("out", "directory '" + parent.string() + "' does not exist");
   }
   return r;

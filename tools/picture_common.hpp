@@ -80,6 +80,14 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
   if (o.has("out")) {
     r.out = o.get("out");
     if (r.out->empty()) throw InputError("out", "must be a file name prefix");
+    // A prefix the file system cannot name (too long, ...) is bad input, found before any
+    // work: checked with the longest name made from it, PREFIX.tiles.
+    for (const char* ext : {"", ".tiles"}) {
+      std::error_code ec;
+      const auto st = std::filesystem::status(*r.out + ext, ec);
+      if (ec && st.type() != std::filesystem::file_type::not_found)
+        throw InputError("out", "cannot use '" + *r.out + ext + "': " + ec.message());
+    }
     if (r.out->back() == '/' || std::filesystem::is_directory(*r.out))
       throw InputError("out", "'" + *r.out + "' is a directory: give a file name prefix (PREFIX.csv, PREFIX.png, PREFIX.json)");
     const auto parent = std::filesystem::path(*r.out).parent_path();

@@ -95,6 +95,11 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
     if (s.knot < 0) decide(Tr::lt(s.theta, wall.end[j]), Reason::phase_at_corner);
   const int j0 = j;
   T W = s.v - wall.velocity[j];  // relative velocity as the current piece of the walk begins
+  // A valid state has v >= the wall's velocity (exactly: validated input, or the map's own
+  // output), but in a point type the wall velocity rounded in T may exceed v rounded in T
+  // (asymmetric:0.29 and v = 200/29 rounded up): W < 0 would be a flight of negative length
+  // into the wall. It is zero: the particle rides. (An interval W keeps its enclosure.)
+  if constexpr (!Tr::is_interval) make_nonneg(W);
   if (decide(Tr::is_zero(W), Reason::riding)) {
     r.kind = EventKind::ride;
     ride(r, j, s.theta);

@@ -11,6 +11,7 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 #pragma GCC diagnostic pop
 
 #include <filesystem>
@@ -185,8 +186,17 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
           if (e.path().filename() != "lock") fs::remove_all(e.path());
       }
       if (old_key != g.job_key) {
-        write_atomically(g.tile_dir + "/job.toml", [&](std::ostream& s) { s << j.job.as_toml(j.command); });
-        write_atomically(g.tile_dir + "/job.key", [&](std::ostream& s) { s << g.job_key << "\n"; });
+        // Shards of one job may start together: each writes its own copy and renames it
+        // (the same bytes), so neither finds the other's PATH.partial gone under it.
+        const std::string own = "." + std::to_string(::getpid());
+        auto put = [&](const std::string& path, const std::string& text) {
+          write_output(OutputTarget{OutputTarget::Kind::file, path + own}, [&](std::ostream& s) { s << text; });
+          std::error_code ec;
+          fs::rename(path + own, path, ec);
+          if (ec) throw OutputError("cannot rename '" + path + own + "': " + ec.message());
+        };
+        put(g.tile_dir + "/job.toml", j.job.as_toml(j.command));
+        put(g.tile_dir + "/job.key", g.job_key + "\n");
       }
     }
     mpi_barrier();

@@ -45,6 +45,7 @@
 
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/precision.hpp"
+#include "bouncer/scalar/thread_caches.hpp"
 
 namespace {
 
@@ -711,6 +712,7 @@ int main(int argc, char** argv) {
     std::vector<std::thread> pool;
     for (int t = 0; t < threads; ++t)
       pool.emplace_back([&, t] {
+        const MpfrThreadCaches caches;  // freed when this thread ends
         with_point_scalar(prec, [&](auto tag) {
           using T = typename decltype(tag)::type;
           run<T>(prec, first_start + t, first_start + states, threads, seed, chain, ch, verbose, parts[t]);

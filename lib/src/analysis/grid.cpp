@@ -1,6 +1,7 @@
 #include "bouncer/analysis/grid.hpp"
 #include "bouncer/io/output.hpp"
 #include "bouncer/io/provenance.hpp"
+#include "bouncer/scalar/thread_caches.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -338,6 +339,7 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
   // record finished tiles in a byte vector and copy afterwards.
   std::vector<unsigned char> done(static_cast<size_t>(ntiles), 0);
   auto safe_worker = [&] {
+    const MpfrThreadCaches caches;  // freed when this worker ends
     for (;;) {
       if (failed.load()) return;
       const size_t k = next.fetch_add(1);

@@ -237,7 +237,7 @@ void check_eigenvalues(SubClaim& sub, long bits) {
   if (ok)
     sub.settle(Verdict::confirmed,
                "J = [[1, p/(v*+4)], [0, eps^2]] (exact on the branch; eps(ap/(v*+4)-1) = eps^2 in exact "
-               "rationals); interval-AD enclosures contain it at 3 points per family, eigenvalues enclose 1 and eps^2");
+               "rationals); interval-AD enclosures contain its entries 1 and 0 and overlap the others at 3 points per family, eigenvalues enclose 1 and eps^2");
 }
 
 // The ends of the open interval (p = 1 families): theta = 1/2 is certainly not fixed; theta = 0

@@ -274,7 +274,7 @@ void check_veldep_bound(SubClaim& sub, const BandPlan& band, long bits) {
   if (ok && escaped)
     sub.settle(Verdict::corrected,
                "every impact gives v' <= 4 + h(min(12 + v, w_m)) <= 4 + c(5/3)^(5/3)e^(-5/3) (h(w) = w eps(w)), so "
-               "{fdot <= v <= V} is forward invariant iff-sufficient 4 + h(min(12 + V, w_m)) <= V. The paper's V_c "
+               "{fdot <= v <= V} is forward invariant if 4 + h(min(12 + V, w_m)) <= V (a sufficient condition). The paper's V_c "
                "(eps at relative speed 8) satisfies this for c = 1, 10, 1000 (certified; for every a) but NOT for small "
                "c: at c = 1/2 and c = 1/10 states of M are certified to leave M. Correct bound: V* solving "
                "V = 4 + h(min(12 + V, w_m)), or simply V = max(V_c, 4 + h_max)");

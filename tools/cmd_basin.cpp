@@ -192,7 +192,7 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
   for (const auto& [k, n] : order) types.push_back({{"class", k.first}, {"period", k.second}, {"points", n}, {"fraction", n / total}});
   s["attractors"] = types;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -202,6 +202,7 @@ const std::set<std::string>& basin_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "recheck-factor", "precision"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

@@ -220,7 +220,7 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   s["sticking_events"] = sticking_events;
   s["undecided_samples"] = undecided;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -230,6 +230,7 @@ const std::set<std::string>& bifurcation_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"vary", "range", "samples", "transient", "record", "theta", "v", "carry", "precision", "show", "bins"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

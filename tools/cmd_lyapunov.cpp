@@ -298,7 +298,7 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   s["classes"] = classes;
   s["values"] = per_value;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 template <class T>
@@ -328,6 +328,7 @@ const std::set<std::string>& lyapunov_curve_keys() {
     std::set<std::string> k = lyapunov_keys();
     k.insert({"vary", "range", "samples", "ics", "max-period", "recheck-factor"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

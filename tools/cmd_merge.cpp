@@ -65,6 +65,7 @@ Command add_merge(CLI::App& app) {
   sub->add_option("prefix", *prefixes, "Output prefix(es) of the shard runs; the first names the job")->required();
   opts->add("out", "Write the merged outputs to PREFIX (default: the first prefix)");
   opts->add("threads", "Ignored by merge (nothing is computed); accepted for symmetry");
+  add_picture_options(*opts);  // render the merged job differently from its shards
   auto flags = std::make_shared<FlagSet>();
   sub->add_flag("--quiet", flags->quiet, "No progress output");
   sub->add_flag("--json", flags->json, "Print the JSON summary on stdout");

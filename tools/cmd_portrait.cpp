@@ -175,7 +175,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
   if (r.theta_window) s["theta_range"] = {r.theta_window->first.text(), r.theta_window->second.text()};
   if (r.v_window) s["v_range"] = {r.v_window->first.text(), r.v_window->second.text()};
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -185,6 +185,7 @@ const std::set<std::string>& portrait_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"theta", "v", "steps", "transient", "polar", "precision", "theta-range", "v-range"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

@@ -199,7 +199,7 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
   for (size_t k = 0; k < nc; ++k) t[count_names()[k]] = totals[k];
   s["totals"] = t;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -210,6 +210,7 @@ const std::set<std::string>& scan_keys() {
     k.insert({"a-range", "eps-range", "c-range", "grid", "ics", "theta-range", "v-range", "transient", "steps",
               "max-period", "recheck-factor", "precision", "show"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

@@ -411,7 +411,11 @@ LegendBox legend_box(const Painter& p, const std::vector<LegendEntry>& entries, 
 }
 void draw_swatch(const Painter& p, double x, double cy, const LegendEntry& e, double swatch, const Style& st) {
   if (e.line) p.line(x, cy, x + swatch, cy, e.color, 2 * st.line);
-  if (e.marker) {
+  if (e.marker && e.line) {  // a marked line: a disc on the line, as in the plot
+    p.color(e.color);
+    cairo_arc(p.cr(), x + swatch / 2, cy, 0.18 * swatch, 0, 2 * M_PI);
+    cairo_fill(p.cr());
+  } else if (e.marker) {  // a square of the colour (raster classes, point sets)
     const double r = 0.3 * swatch;
     p.fill(x + swatch / 2 - r, cy - r, x + swatch / 2 + r, cy + r, e.color);
     p.rect(x + swatch / 2 - r, cy - r, x + swatch / 2 + r, cy + r, kMuted, 0.5 * st.line);
@@ -1097,8 +1101,8 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
     LegendBox box;
     bool inside = false;
     if (!fig.legend_below && !legend.empty()) {
-      box = legend_box(p, legend, st.small, 0.36 * (f.right - f.left));
-      inside = box.w <= 0.45 * (f.right - f.left) && box.h <= 0.45 * (f.bottom - f.top);
+      box = legend_box(p, legend, st.small, 0.5 * (f.right - f.left));
+      inside = box.w <= 0.6 * (f.right - f.left) && box.h <= 0.45 * (f.bottom - f.top);
       if (!inside) {
         box = legend_box(p, legend, st.small, 0.2 * W);
         f.right = W - box.w - 1.2 * st.body;

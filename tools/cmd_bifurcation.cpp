@@ -196,7 +196,7 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   ras.colorbar.clear();  // grey level ~ log(points per cell); the legend names the marks
   ras.legend_below = true;
   const std::string par = r.vary == "eps" ? "ε" : r.vary;
-  fig.title = "Bifurcation diagram, " + std::string(name(r.model.law)) + " model";
+  fig.title = "Bifurcation diagram, " + model_title(r.model.law) + " model";
   std::string fixed;
   if (r.vary != "a") fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != "eps") fixed += "ε = " + r.model.eps.text() + ", ";

@@ -265,7 +265,7 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
     fig.series.push_back(std::move(s));
   }
   const std::string par = r.vary == "eps" ? "ε" : r.vary;
-  fig.title = "Leading Lyapunov exponent, " + std::string(name(r.model.law)) + " model";
+  fig.title = "Leading Lyapunov exponent, " + model_title(r.model.law) + " model";
   std::string fixed;
   if (r.vary != "a") fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != "eps") fixed += "ε = " + r.model.eps.text() + ", ";

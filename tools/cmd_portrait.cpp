@@ -135,7 +135,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
     more.color = Rgb{160, 160, 160};
     fig.series.push_back(more);
   }
-  fig.title = std::string(r.polar ? "Polar phase portrait, " : "Phase portrait, ") + name(r.model.law) + " model";
+  fig.title = std::string(r.polar ? "Polar phase portrait, " : "Phase portrait, ") + model_title(r.model.law) + " model";
   std::string par = "a = " + r.model.a.text();
   if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
   if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();

@@ -1184,7 +1184,7 @@ void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat f
     const std::vector<std::string> ylines = y_title_lines(p, fig.ylabel, y_offset, f.bottom - f.top, st.body);
     f.left = left_room(p, nice_ticks(y0, y1), ylines, st);
     // The side column (legend and colour bar): slim, at most a quarter of the width.
-    const double col_max = 0.25 * W - 1.6 * st.body;
+    const double col_max = 0.28 * W - 1.2 * st.body;
     LegendBox box;
     double col = 0;
     if (!r.legend_below && !legend.empty()) {

@@ -185,13 +185,17 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   ras.x_offset = zx.offset();
   ras.y_min = y0;
   ras.y_max = y1;
-  const Rgb red{215, 25, 28};
+  // Density of orbit points, log scale: grey to black (--palette paper, the paper's look) or
+  // viridis from green (sparse) to dark purple (dense), both readable on the white background.
+  const bool paper = f.picture.palette == Palette::paper;
+  const Rgb red = paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0};
+  auto density = [&](double t) { return paper ? ramp_color(0.45 + 0.55 * t) : viridis_color(0.75 * (1 - t)); };
   for (size_t i = 0; i < count.size(); ++i) {
     if (stick[i]) ras.pixels.push_back(red);
     else if (count[i] == 0) ras.pixels.push_back(Rgb{255, 255, 255});
-    else ras.pixels.push_back(ramp_color(0.45 + 0.55 * std::log1p(static_cast<double>(count[i])) / std::log1p(static_cast<double>(max_count))));
+    else ras.pixels.push_back(density(std::log1p(static_cast<double>(count[i])) / std::log1p(static_cast<double>(max_count))));
   }
-  ras.legend = {{"orbit points (darker: denser)", ramp_color(1.0)},
+  ras.legend = {{paper ? "orbit points (darker: denser)" : "orbit points (green: sparse, purple: dense)", density(1.0)},
                 {show_theta ? "sticking release (θ = 1/2)" : "sticking release (v = 4)", red}};
   ras.colorbar.clear();  // grey level ~ log(points per cell); the legend names the marks
   ras.legend_below = true;

@@ -272,9 +272,9 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   if (r.model.law == Law::veldep && r.vary != "c") fixed += "c = " + r.model.c.text() + ", ";
   fig.subtitle = fixed + std::to_string(r.samples) + " values x " + std::to_string(r.ics) + " start" +
                  (r.ics == 1 ? "" : "s") + ", " + std::to_string(r.lyap.transient) + " + " + std::to_string(r.lyap.steps) +
-                 " steps, " + r.precision.text() + (not_drawn ? "; " + std::to_string(not_drawn) + " with lambda = -inf/nan not drawn" : "");
+                 " steps, " + r.precision.text() + (not_drawn ? "; " + std::to_string(not_drawn) + " with λ = −∞ or NaN not drawn" : "");
   fig.xlabel = par;
-  fig.ylabel = "lambda per collision (+- stderr)";  // the font has no lambda or +-
+  fig.ylabel = "λ per collision (± standard error)";
   fig.legend_below = true;
   fig.x_min = zx(x_lo);
   fig.x_max = zx(x_hi);

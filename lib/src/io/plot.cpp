@@ -506,9 +506,10 @@ bool upright(const std::vector<std::string>& lines) {
   for (unsigned char c : lines[0]) chars += (c & 0xC0) != 0x80;
   return chars <= 3;
 }
+std::string typeset(const std::string& label);
 double max_label_width(const Painter& p, const Ticks& t, double size) {
   double w = 0;
-  for (const auto& l : t.labels) w = std::max(w, p.width(l, size));
+  for (const auto& l : t.labels) w = std::max(w, p.width(typeset(l), size));
   return w;
 }
 
@@ -525,6 +526,17 @@ double bottom_room(const std::string& xlabel, const Style& st) {
          0.6 * st.body;
 }
 
+// A tick label as printed: a real minus sign (U+2212) for the hyphen of a negative number
+// or exponent ("-0.5", "1e-20").
+std::string typeset(const std::string& label) {
+  std::string out;
+  for (size_t i = 0; i < label.size(); ++i) {
+    if (label[i] == '-' && (i == 0 || label[i - 1] == 'e')) out += "\u2212";
+    else out += label[i];
+  }
+  return out;
+}
+
 // Axes: ticks, tick labels, grid lines (optional), frame and axis titles.
 void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& ty, const AxisMap& mx, const AxisMap& my,
                const std::string& xlabel, const std::vector<std::string>& ylines, bool grid, const Style& st) {
@@ -539,13 +551,13 @@ void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& t
   for (size_t i = 0; i < tx.values.size(); ++i) {
     const double x = f.px(mx.pos(tx.values[i]));
     p.line(x, f.bottom, x, f.bottom + tick, kFrame, lw);
-    p.text(x, f.bottom + tick + 0.2 * st.body + Painter::cap(st.small), tx.labels[i], st.small, kBlack, 0.5);
+    p.text(x, f.bottom + tick + 0.2 * st.body + Painter::cap(st.small), typeset(tx.labels[i]), st.small, kBlack, 0.5);
   }
   for (size_t i = 0; i < ty.values.size(); ++i) {
     const double y = f.py(my.pos(ty.values[i]));
     p.line(f.left - tick, y, f.left, y, kFrame, lw);
-    widest = std::max(widest, p.width(ty.labels[i], st.small));
-    p.text(f.left - tick - 0.3 * st.body, y + Painter::cap(st.small) / 2, ty.labels[i], st.small, kBlack, 1);
+    widest = std::max(widest, p.width(typeset(ty.labels[i]), st.small));
+    p.text(f.left - tick - 0.3 * st.body, y + Painter::cap(st.small) / 2, typeset(ty.labels[i]), st.small, kBlack, 1);
   }
   p.rect(f.left, f.top, f.right, f.bottom, kFrame, lw);
   const double cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
@@ -572,6 +584,14 @@ void data_range(const std::vector<Series>& series, bool use_x, const AxisMap& m,
       lo = std::min(lo, t);
       hi = std::max(hi, t);
     }
+  // Error bars inside the window too (linear axes; a log axis draws none).
+  if (!use_x && !m.log)
+    for (const auto& s : series)
+      for (size_t i = 0; i < s.yerr.size() && i < s.y.size(); ++i)
+        if (std::isfinite(s.y[i]) && std::isfinite(s.yerr[i]) && s.yerr[i] > 0) {
+          lo = std::min(lo, s.y[i] - s.yerr[i]);
+          hi = std::max(hi, s.y[i] + s.yerr[i]);
+        }
   if (!std::isfinite(lo)) { lo = 0; hi = 1; }
   if (hi - lo <= 0) {
     const double d = std::max(0.5, std::fabs(lo) * 0.1);
@@ -627,7 +647,7 @@ void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& se
     }
     if (s.markers) {
       p.color(s.color);
-      const double r = (s.marker_size <= 0 ? 0.7 : s.marker_size + 0.5) * st.unit;
+      const double r = (s.marker_size <= 0 ? 0.8 : s.marker_size + 0.8) * st.unit;
       for (size_t i = 0; i < n; ++i)
         if (ok(i) && near(X(i), Y(i))) {
           cairo_new_sub_path(cr);
@@ -1029,7 +1049,7 @@ Rgb category_color(int index) {
   // Okabe-Ito first (without its vermillion, blue and bluish green: sticking, unbounded and
   // chaos), then further distinct colours.
   static const Rgb palette[] = {
-      {230, 159, 0},   {86, 180, 233},  {240, 228, 66}, {204, 121, 167}, {140, 86, 11},  {0, 90, 60},
+      {230, 159, 0},   {86, 180, 233},  {204, 121, 167}, {0, 90, 60},    {140, 86, 11},  {240, 228, 66},
       {128, 128, 0},   {0, 200, 200},   {255, 200, 140}, {100, 60, 140}, {180, 220, 120}, {200, 170, 230},
       {120, 120, 60},  {0, 110, 110},   {255, 150, 220}, {170, 120, 60},
   };
@@ -1269,7 +1289,7 @@ void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat f
         for (size_t i = 0; i < tbar.values.size(); ++i) {
           const double yy = bottom - (tbar.values[i] - r.colorbar_lo) / (r.colorbar_hi - r.colorbar_lo) * (bottom - top);
           p.line(x + bw, yy, x + bw + 0.3 * st.body, yy, kFrame, 0.8 * st.line);
-          p.text(x + bw + 0.5 * st.body, yy + Painter::cap(st.small) / 2, tbar.labels[i], st.small, kBlack);
+          p.text(x + bw + 0.5 * st.body, yy + Painter::cap(st.small) / 2, typeset(tbar.labels[i]), st.small, kBlack);
         }
       }
     }

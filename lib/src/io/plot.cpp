@@ -166,7 +166,7 @@ std::string latin(const std::string& s, size_t max) {
 constexpr Rgb kBlack{0, 0, 0};
 constexpr Rgb kWhite{255, 255, 255};
 constexpr Rgb kGrid{232, 232, 232};
-constexpr Rgb kFrame{30, 30, 30};
+constexpr Rgb kFrame{40, 40, 40};
 constexpr Rgb kMuted{80, 80, 80};
 constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
@@ -487,6 +487,12 @@ struct AxisMap {
 struct Frame {
   double left, top, right, bottom;
   double x0, x1, y0, y1;
+  // Edges on pixel centres, so that a frame line of odd width covers whole pixels: a crisp
+  // frame in the PNG, of exactly the frame colour (tests find the frame by it).
+  void snap() {
+    left = std::floor(left) + 0.5; top = std::floor(top) + 0.5;
+    right = std::floor(right) + 0.5; bottom = std::floor(bottom) + 0.5;
+  }
   double px(double x) const { return left + (x - x0) / (x1 - x0) * (right - left); }
   double py(double y) const { return bottom - (y - y0) / (y1 - y0) * (bottom - top); }
 };
@@ -537,6 +543,12 @@ std::string typeset(const std::string& label) {
   return out;
 }
 
+// The frame's line width: whole pixels, odd (with Frame::snap, it covers whole pixels).
+double frame_width(const Style& st) {
+  const double w = 0.8 * st.line;
+  return w < 2 ? 1.0 : 2 * std::floor(w / 2) + 1;
+}
+
 // Axes: ticks, tick labels, grid lines (optional), frame and axis titles.
 void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& ty, const AxisMap& mx, const AxisMap& my,
                const std::string& xlabel, const std::vector<std::string>& ylines, bool grid, const Style& st) {
@@ -559,7 +571,7 @@ void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& t
     widest = std::max(widest, p.width(typeset(ty.labels[i]), st.small));
     p.text(f.left - tick - 0.3 * st.body, y + Painter::cap(st.small) / 2, typeset(ty.labels[i]), st.small, kBlack, 1);
   }
-  p.rect(f.left, f.top, f.right, f.bottom, kFrame, lw);
+  p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
   const double cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
   if (!xlabel.empty())
     p.text(cx, f.bottom + tick + 0.2 * st.body + Painter::leading(st.small) + Painter::leading(st.body) - 0.1 * st.body,
@@ -1140,13 +1152,14 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
         x0 = mid - half; x1 = mid + half;
       }
     }
+    f.snap();
     f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
     const Ticks tx = axis_ticks(mx, x0, x1, std::max(3, static_cast<int>((f.right - f.left) / (6 * st.body))));
     const Ticks ty = axis_ticks(my, y0, y1, std::max(3, static_cast<int>((f.bottom - f.top) / (3.5 * st.body))));
     draw_title(p, tb, W / 2.0, st);
     draw_axes(p, f, tx, ty, mx, my, xlabel, ylines, true, st);
     draw_series(p, f, *series, mx, my, st);
-    p.rect(f.left, f.top, f.right, f.bottom, kFrame, 0.8 * st.line);
+    p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
     if (fig.legend_below) {
       draw_legend_rows(p, st.body, H - below - 0.2 * st.body, W - 2 * st.body, legend, st.small, st);
     } else if (inside) {
@@ -1224,6 +1237,7 @@ void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat f
                            : std::max(1.2 * st.body, (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) +
                                                          0.5 * st.body));
     if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
+    f.snap();
     f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
 
     // The cells, nearest neighbour (a cell is a square of colour, not a blur).
@@ -1263,7 +1277,7 @@ void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat f
     draw_title(p, tb, W / 2.0, st);
     draw_axes(p, f, tx, ty, lin, lin, axis_title(fig.xlabel, x_offset), ylines, false, st);
     draw_series(p, f, overlay, lin, lin, st);
-    p.rect(f.left, f.top, f.right, f.bottom, kFrame, 0.8 * st.line);
+    p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
 
     double y = f.top;
     const double x = f.right + 0.8 * st.body;

@@ -198,8 +198,8 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
   fig.subtitle = par + "; " + std::to_string(r.nx) + " x " + std::to_string(r.ny) + " points, " +
                  std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
                  r.precision.text();
-  fig.xlabel = "θ0 (initial phase)";
-  fig.ylabel = "v0 (initial velocity)";
+  fig.xlabel = "θ₀ (initial phase)";
+  fig.ylabel = "v₀ (initial velocity)";
   fig.width = 1000;
   fig.height = 700;
   fig.metadata = png_metadata(prov, fig.title);

@@ -205,7 +205,7 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   if (r.vary != "a") fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != "eps") fixed += "ε = " + r.model.eps.text() + ", ";
   if (r.model.law == Law::veldep && r.vary != "c") fixed += "c = " + r.model.c.text() + ", ";
-  fig.subtitle = fixed + "θ0 = " + r.ic.theta.text() + ", v0 = " + r.ic.v.text() + "; " + std::to_string(r.transient) +
+  fig.subtitle = fixed + "θ₀ = " + r.ic.theta.text() + ", v₀ = " + r.ic.v.text() + "; " + std::to_string(r.transient) +
                  " + " + std::to_string(r.record) + " steps x " + std::to_string(r.samples) + (r.carry ? " (carried)" : "") +
                  ", " + r.precision.text();
   fig.xlabel = par;

@@ -102,7 +102,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
     Series s;
     s.color = items.size() == 1 ? Rgb{20, 20, 20} : category_color(static_cast<int>(k));
     s.marker_size = r.steps * items.size() > 20000 ? 0 : 1;
-    if (k < 12) s.label = "θ0 = " + r.initial[k].theta.text() + ", v0 = " + r.initial[k].v.text();
+    if (k < 12) s.label = "θ₀ = " + r.initial[k].theta.text() + ", v₀ = " + r.initial[k].v.text();
     std::istringstream in(items[k]);
     std::string line;
     while (std::getline(in, line)) {

@@ -14,6 +14,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -549,6 +550,35 @@ double frame_width(const Style& st) {
   return w < 2 ? 1.0 : 2 * std::floor(w / 2) + 1;
 }
 
+// An axis title as printed: the offset's " - " (axis_title) with a real minus sign, and
+// its "1e-20" as 10⁻²⁰.
+std::string typeset_title(const std::string& title) {
+  static const char* const sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string out;
+  for (size_t i = 0; i < title.size(); ++i) {
+    if (title.compare(i, 3, " - ") == 0) {
+      out += " \u2212 ";
+      i += 2;
+    } else if (title.compare(i, 2, "1e") == 0 && (i == 0 || title[i - 1] == ' ') && i + 2 < title.size() &&
+               (title[i + 2] == '-' || std::isdigit(static_cast<unsigned char>(title[i + 2])))) {
+      size_t j = i + 2;
+      std::string exp = title[j] == '-' ? "⁻" : "";
+      if (title[j] == '-') ++j;
+      const size_t digits = j;
+      while (j < title.size() && std::isdigit(static_cast<unsigned char>(title[j]))) exp += sup[title[j++] - '0'];
+      if (j == digits) {
+        out += title[i];
+        continue;
+      }
+      out += "10" + exp;
+      i = j - 1;
+    } else {
+      out += title[i];
+    }
+  }
+  return out;
+}
+
 // Axes: ticks, tick labels, grid lines (optional), frame and axis titles.
 void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& ty, const AxisMap& mx, const AxisMap& my,
                const std::string& xlabel, const std::vector<std::string>& ylines, bool grid, const Style& st) {
@@ -575,14 +605,14 @@ void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& t
   const double cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
   if (!xlabel.empty())
     p.text(cx, f.bottom + tick + 0.2 * st.body + Painter::leading(st.small) + Painter::leading(st.body) - 0.1 * st.body,
-           xlabel, st.body, kBlack, 0.5);
+           typeset_title(xlabel), st.body, kBlack, 0.5);
   const double label_edge = f.left - tick - 0.3 * st.body - widest - 0.5 * st.body;
   if (upright(ylines)) {
     p.text(label_edge, cy + Painter::cap(st.body) / 2, ylines[0], st.body, kBlack, 1);
   } else if (!ylines[0].empty()) {
     for (size_t i = 0; i < ylines.size(); ++i)  // the first line outermost
-      p.text_up(label_edge - (ylines.size() - 1 - i) * Painter::leading(st.body) - 0.25 * st.body, cy, ylines[i], st.body,
-                kBlack);
+      p.text_up(label_edge - (ylines.size() - 1 - i) * Painter::leading(st.body) - 0.25 * st.body, cy,
+                typeset_title(ylines[i]), st.body, kBlack);
   }
 }
 

@@ -431,6 +431,33 @@ TEST(Render, OverlayCurvesAreDrawnOverTheRasterAndClippedToTheFrame) {
   EXPECT_TRUE(same(d.at(x0 + 2, y1 - 2), curve) || same(d.at(x0 + 3, y1 - 3), curve) || x1 - x0 > 100);
 }
 
+TEST(Render, ALongTitleOnASmallCanvasIsWrappedNotCut) {
+  // A title far wider than the canvas: shrunk and wrapped onto two lines, so the columns at
+  // the canvas edges stay white (nothing runs off) and text is drawn on two bands of rows.
+  TempDir tmp;
+  Figure f = small_figure();
+  f.title = "Leading Lyapunov exponent against the restitution coefficient, velocity-dependent restitution model";
+  f.width = 420;
+  f.height = 320;
+  const std::string path = (tmp.path / "t.png").string();
+  write_png(path, f);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  auto ink = [&](int x, int y) { const Rgb c = d.at(x, y); return c.r + c.g + c.b < 600; };
+  for (int y = 0; y < d.height / 4; ++y)
+    for (int x : {0, 1, 2, d.width - 3, d.width - 2, d.width - 1}) EXPECT_FALSE(ink(x, y)) << x << "," << y;
+  // Rows of the title band with ink, grouped into runs: two lines of text.
+  int runs = 0;
+  bool prev = false;
+  for (int y = 0; y < d.height / 6; ++y) {
+    bool any = false;
+    for (int x = 0; x < d.width && !any; ++x) any = ink(x, y);
+    runs += any && !prev;
+    prev = any;
+  }
+  EXPECT_GE(runs, 2);
+}
+
 TEST(Ticks, Log2TicksArePowersOfTwoLabelledWithTheirValues) {
   const Ticks t = log_ticks(24, 4096, 2);
   ASSERT_FALSE(t.values.empty());

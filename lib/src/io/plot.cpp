@@ -270,7 +270,7 @@ struct Style {
     body = std::min(9.5 * pt, std::min(w, h * 3 / 2) / 42.0);
     small = 0.88 * body;
     title = 1.2 * body;
-    unit = body / 20.0;  // the old 2x bitmap font's pixel, for marker sizes and line widths
+    unit = body / 20.0;  // about one pixel of a 900-pixel figure at 150 dpi: marker sizes and line widths
     line = std::max(1.0, 1.5 * unit);
   }
 };

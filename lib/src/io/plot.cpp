@@ -384,8 +384,25 @@ LegendBox legend_box(const Painter& p, const std::vector<LegendEntry>& entries, 
   b.pad = 0.5 * size;
   double text_w = 0;
   for (const auto& e : entries) {
-    Fitted f = fit_text(p, e.label, size, max_text_w);
-    if (f.size < size) {  // wrapped or shrunk: keep the legend's size, wrap at spaces instead
+    Fitted f{{e.label}, size};
+    if (p.width(e.label, size) > max_text_w) {
+      // Too wide: two lines split after ": ", "; " or ", " when both halves fit (the split
+      // that balances them best), else wrapped at spaces.
+      f.lines.clear();
+      double best = 1e300;
+      for (const char* sep : {": ", "; ", ", "}) {
+        for (size_t at = e.label.find(sep); at != std::string::npos; at = e.label.find(sep, at + 1)) {
+          const std::string a = e.label.substr(0, at + 1), b = e.label.substr(at + 2);
+          const double worst = std::max(p.width(a, size), p.width(b, size));
+          if (worst <= max_text_w && worst < best) {
+            best = worst;
+            f.lines = {a, b};
+          }
+        }
+        if (!f.lines.empty()) break;
+      }
+    }
+    if (f.lines.empty()) {
       std::vector<std::string> lines;
       std::string cur;
       std::istringstream words(e.label);

@@ -370,6 +370,7 @@ struct LegendEntry {
   std::string label;
   Rgb color;
   bool line = false, marker = true;
+  bool disc = false;  // the marker is a series' dot (else a square: a raster's cells)
 };
 
 // A legend box: entries stacked, each label wrapped to the box's text width.
@@ -433,7 +434,11 @@ void draw_swatch(const Painter& p, double x, double cy, const LegendEntry& e, do
     p.color(e.color);
     cairo_arc(p.cr(), x + swatch / 2, cy, 0.18 * swatch, 0, 2 * M_PI);
     cairo_fill(p.cr());
-  } else if (e.marker) {  // a square of the colour (raster classes, point sets)
+  } else if (e.marker && e.disc) {  // a series' dots
+    p.color(e.color);
+    cairo_arc(p.cr(), x + swatch / 2, cy, 0.28 * swatch, 0, 2 * M_PI);
+    cairo_fill(p.cr());
+  } else if (e.marker) {  // a square of the colour (raster classes)
     const double r = 0.3 * swatch;
     p.fill(x + swatch / 2 - r, cy - r, x + swatch / 2 + r, cy + r, e.color);
     p.rect(x + swatch / 2 - r, cy - r, x + swatch / 2 + r, cy + r, kMuted, 0.5 * st.line);
@@ -721,7 +726,7 @@ void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& se
 // The corner of the frame (0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left) whose
 // legend box covers the fewest data points; ties go to the earlier corner.
 int best_corner(const Frame& f, const std::vector<Series>& series, const AxisMap& mx, const AxisMap& my, double w,
-                double h, double margin) {
+                double h, double margin, long& covered_out) {
   long best = -1;
   int corner = 0;
   for (int c = 0; c < 4; ++c) {
@@ -751,6 +756,7 @@ int best_corner(const Frame& f, const std::vector<Series>& series, const AxisMap
       corner = c;
     }
   }
+  covered_out = best;
   return corner;
 }
 
@@ -1164,7 +1170,7 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
 
   std::vector<LegendEntry> legend;
   for (const auto& s : *series)
-    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers});
+    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, true});
 
   render(path, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
     const TitleBlock tb = title_block(p, fig.title, fig.subtitle, W, st);
@@ -1176,33 +1182,54 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
     f.left = left_room(p, axis_ticks(my, y0, y1, 6), ylines, st);
     const Ticks tx0 = axis_ticks(mx, x0, x1, 6);
     f.right = W - std::max(1.2 * st.body, (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) + 0.5 * st.body);
-    // The legend: inside the frame when it is small beside it, else a slim column at the right.
+    // The legend: inside the frame, in the corner that hides the fewest points, when it is
+    // small beside the frame and that corner is (nearly) empty; else a slim column at the right.
+    const Frame base = f;
     LegendBox box;
-    bool inside = false;
-    if (!fig.legend_below && !legend.empty()) {
-      box = legend_box(p, legend, st.small, 0.5 * (f.right - f.left));
-      inside = box.w <= 0.6 * (f.right - f.left) && box.h <= 0.45 * (f.bottom - f.top);
-      if (!inside) {
+    auto finish_frame = [&](bool column) {
+      f = base;
+      if (column) {
         box = legend_box(p, legend, st.small, 0.2 * W);
         f.right = W - box.w - 1.2 * st.body;
       }
-    }
-    if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
-    if (fig.equal_aspect) {
-      // Widen the shorter side so one unit has the same length in x and y.
-      const double sx = (x1 - x0) / (f.right - f.left), sy = (y1 - y0) / (f.bottom - f.top);
-      if (sx > sy) {
-        const double mid = (y0 + y1) / 2, half = sx * (f.bottom - f.top) / 2;
-        y0 = mid - half; y1 = mid + half;
+      if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
+      if (fig.equal_aspect) {
+        // Widen the shorter side so one unit has the same length in x and y.
+        const double sx = (x1 - x0) / (f.right - f.left), sy = (y1 - y0) / (f.bottom - f.top);
+        if (sx > sy) {
+          const double mid = (y0 + y1) / 2, half = sx * (f.bottom - f.top) / 2;
+          f.y0 = mid - half; f.y1 = mid + half;
+          f.x0 = x0; f.x1 = x1;
+        } else {
+          const double mid = (x0 + x1) / 2, half = sy * (f.right - f.left) / 2;
+          f.x0 = mid - half; f.x1 = mid + half;
+          f.y0 = y0; f.y1 = y1;
+        }
       } else {
-        const double mid = (x0 + x1) / 2, half = sy * (f.right - f.left) / 2;
-        x0 = mid - half; x1 = mid + half;
+        f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
+      }
+      f.snap();
+    };
+    bool inside = false;
+    const bool side_legend = !fig.legend_below && !legend.empty();
+    if (side_legend) {
+      box = legend_box(p, legend, st.small, 0.5 * (f.right - f.left));
+      inside = box.w <= 0.6 * (f.right - f.left) && box.h <= 0.45 * (f.bottom - f.top);
+    }
+    finish_frame(side_legend && !inside);
+    int corner = 0;
+    const double margin = 0.6 * st.body;
+    if (inside) {
+      long covered = 0, points = 0;
+      corner = best_corner(f, *series, mx, my, box.w, box.h, margin, covered);
+      for (const auto& s : *series) points += static_cast<long>(std::min(s.x.size(), s.y.size()));
+      if (covered > 2 + points / 200) {  // every corner hides data: beside the frame instead
+        inside = false;
+        finish_frame(true);
       }
     }
-    f.snap();
-    f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
-    const Ticks tx = axis_ticks(mx, x0, x1, std::max(3, static_cast<int>((f.right - f.left) / (6 * st.body))));
-    const Ticks ty = axis_ticks(my, y0, y1, std::max(3, static_cast<int>((f.bottom - f.top) / (3.5 * st.body))));
+    const Ticks tx = axis_ticks(mx, f.x0, f.x1, std::max(3, static_cast<int>((f.right - f.left) / (6 * st.body))));
+    const Ticks ty = axis_ticks(my, f.y0, f.y1, std::max(3, static_cast<int>((f.bottom - f.top) / (3.5 * st.body))));
     draw_title(p, tb, W / 2.0, st);
     draw_axes(p, f, tx, ty, mx, my, xlabel, ylines, true, st);
     draw_series(p, f, *series, mx, my, st);
@@ -1210,8 +1237,8 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
     if (fig.legend_below) {
       draw_legend_rows(p, st.body, H - below - 0.2 * st.body, W - 2 * st.body, legend, st.small, st);
     } else if (inside) {
-      const double m = 0.6 * st.body;
-      const int c = best_corner(f, *series, mx, my, box.w, box.h, m);
+      const double m = margin;
+      const int c = corner;
       draw_legend(p, c % 2 == 0 ? f.right - m - box.w : f.left + m, c < 2 ? f.top + m : f.bottom - m - box.h, box, legend, st,
                   true);
     } else {

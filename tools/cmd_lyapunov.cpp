@@ -250,7 +250,7 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   int sticking_rank = 0;
   for (const auto& [cls, n] : order) {
     Series s;
-    s.color = attractor_color(cls, 0, sticking_rank);
+    s.color = attractor_color(cls, 0, sticking_rank, f.picture.palette);
     if (cls == "sticking") ++sticking_rank;
     std::string label = cls;
     std::replace(label.begin(), label.end(), '_', ' ');

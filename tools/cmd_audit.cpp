@@ -333,7 +333,7 @@ int audit(const std::string& path) {
   } else if (rec->is_json && !has_out) {
     // Commands that print JSON on stdout with --json; orbit chooses it with --format.
     bool chosen = false;
-    for (const auto& [k, v] : rec->inputs) chosen = chosen || k == "json" || k == "format";
+    for (const auto& [k, v] : rec->inputs) chosen = chosen || k == "json" || (k == "format" && rec->command == "orbit");  // elsewhere --format names pictures
     if (!chosen) argv.push_back("--json");
   }
   if (has_out) {

@@ -47,7 +47,8 @@ int run_merge(const std::vector<std::string>& prefixes, Options o, const FlagSet
     if (first_line(tiles_dir(p) + "/job.key") != key)
       throw InputError("prefix", "'" + tiles_dir(p) + "' is missing or holds a different job than '" + dir0 + "'");
   Options job = load_scene(dir0 + "/job.toml", command, it->second.keys());
-  // Run options of the merge itself (threads, out) on top of the job's.
+  // Run options of the merge itself (threads, out) and its picture options (format, size,
+  // dpi, palette: how the merged job is drawn) on top of the job's.
   for (const auto& [k, v] : o.values) job.values[k] = v;
   if (!job.has("out")) job.set("out", prefixes[0]);
   RunFlags f = run_flags_from(job, flags, argv_text);

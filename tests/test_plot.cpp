@@ -1,14 +1,20 @@
 // PNG figures decoded back with libpng (size, colours where they belong, tEXt provenance,
-// atomic writes), the properties of the tick generator, and zoomed axes (offsets and their
+// atomic writes), PDF and SVG renderings (page size, font, metadata, no dates), the legend's
+// placement, overlay curves clipped to the frame, the properties of the tick generators
+// (linear, log10, log2), the colour ramps, and zoomed axes (offsets and their
 // labels against hand-derived cases and exact rational arithmetic).
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <random>
 #include <set>
+#include <tuple>
 
 #include "bouncer/io/plot.hpp"
 #include "bouncer/scalar/decimal.hpp"
@@ -281,6 +287,199 @@ TEST(Colors, CategoriesAreDistinctAndAvoidTheReservedRedAndBlue) {
     const Rgb a = ramp_color((i - 1) / 100.0), b = ramp_color(i / 100.0);
     EXPECT_LE(b.r + b.g + b.b, a.r + a.g + a.b);
   }
+}
+
+// ---- Cairo renderings: formats, size, legend, overlays -------------------------------------
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+Figure small_figure() {
+  Figure f;
+  f.title = "A figure with θ, ε and a long title that has to fit into the width of a small canvas somehow";
+  f.xlabel = "θ";
+  f.ylabel = "v";
+  Series s;
+  s.label = "points";
+  s.color = Rgb{0, 114, 178};
+  for (int i = 0; i <= 40; ++i) {
+    s.x.push_back(i / 40.0);
+    s.y.push_back(std::sin(i / 6.0));
+  }
+  f.series.push_back(s);
+  f.metadata = {{"Title", "small"}, {"bouncer:provenance", "{\"command\": \"test\"}"}};
+  return f;
+}
+
+TEST(Render, PdfAndSvgPagesAreSizeTimes72OverDpiWithFontAndProvenanceAndNoDate) {
+  TempDir tmp;
+  const Figure f = small_figure();
+  RenderOptions ro;
+  ro.width = 800;
+  ro.height = 500;
+  ro.dpi = 200;  // 800 x 500 px = 288 x 180 pt
+  const std::string pdf = (tmp.path / "f.pdf").string(), svg = (tmp.path / "f.svg").string();
+  write_figure(pdf, f, ImageFormat::pdf, ro);
+  write_figure(svg, f, ImageFormat::svg, ro);
+  EXPECT_FALSE(fs::exists(pdf + ".partial"));
+  const std::string p = slurp(pdf), v = slurp(svg);
+  EXPECT_EQ(p.rfind("%PDF-", 0), 0u);
+  EXPECT_NE(p.find("/MediaBox [ 0 0 288 180 ]"), std::string::npos) << p.substr(0, 2000);
+  EXPECT_NE(p.find("DejaVuSans"), std::string::npos);
+  EXPECT_EQ(p.find("CreationDate"), std::string::npos);
+  EXPECT_NE(p.find("/Title (small)"), std::string::npos);
+  EXPECT_NE(v.find("width=\"288pt\" height=\"180pt\""), std::string::npos) << v.substr(0, 400);
+  EXPECT_NE(v.find("<metadata>"), std::string::npos);
+  EXPECT_NE(v.find("bouncer:provenance: {&quot;command&quot;: &quot;test&quot;}"), std::string::npos);
+  EXPECT_NE(v.find("<symbol"), std::string::npos);  // glyphs: text was drawn
+}
+
+TEST(Render, SizeOptionSetsThePngPixelsAndBadOptionsThrow) {
+  TempDir tmp;
+  const Figure f = small_figure();
+  RenderOptions ro;
+  ro.width = 321;
+  ro.height = 234;
+  const std::string path = (tmp.path / "s.png").string();
+  write_figure(path, f, ImageFormat::png, ro);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 321);
+  EXPECT_EQ(d.height, 234);
+  std::set<std::tuple<int, int, int>> colours;
+  for (int y = 0; y < d.height; ++y)
+    for (int x = 0; x < d.width; ++x) colours.insert({d.at(x, y).r, d.at(x, y).g, d.at(x, y).b});
+  EXPECT_GT(colours.size(), 20u);  // antialiased text and curves
+  ro.width = 50;
+  EXPECT_THROW(write_figure(path, f, ImageFormat::png, ro), std::runtime_error);
+  ro.width = 400;
+  ro.dpi = 1;
+  EXPECT_THROW(write_figure(path, f, ImageFormat::pdf, ro), std::runtime_error);
+}
+
+TEST(Render, SmallLegendGoesInsideTheFrameAwayFromTheData) {
+  // Data only in the lower left: the legend belongs in the upper right of the frame.
+  TempDir tmp;
+  Figure f;
+  f.width = 600;
+  f.height = 400;
+  const Rgb data{0, 0, 200}, key{200, 0, 200};
+  Series s{"data", {}, {}, data, false, true, 3};
+  for (int i = 0; i < 30; ++i) {
+    s.x.push_back(i * 0.01);
+    s.y.push_back(i * 0.01);
+  }
+  s.x.push_back(1);
+  s.y.push_back(1e-9);  // stretches the window to [0, 1] in x
+  s.x.push_back(1e-9);
+  s.y.push_back(1);     // and in y
+  f.series.push_back(s);
+  f.series.push_back(Series{"a second entry", {}, {}, key, false, true, 0});
+  f.series.back().x = {0.0};
+  f.series.back().y = {0.0};
+  const std::string path = (tmp.path / "leg.png").string();
+  write_png(path, f);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  long upper_right = 0, elsewhere = 0;
+  for (int y = 0; y < d.height; ++y)
+    for (int x = 0; x < d.width; ++x)
+      if (same(d.at(x, y), key)) (x > d.width / 2 && y < d.height / 2 ? upper_right : elsewhere) += 1;
+  EXPECT_GT(upper_right, 30);  // the legend's swatch, a filled square
+  EXPECT_LT(elsewhere, upper_right);
+}
+
+TEST(Render, OverlayCurvesAreDrawnOverTheRasterAndClippedToTheFrame) {
+  TempDir tmp;
+  ImageFigure f;
+  f.width = 500;
+  f.height = 400;
+  Raster& r = f.raster;
+  r.nx = r.ny = 1;
+  r.pixels = {Rgb{255, 255, 255}};
+  const Rgb curve{0, 200, 0};
+  Series s;
+  s.color = curve;
+  s.lines = true;
+  s.markers = false;
+  for (int k = 0; k <= 100; ++k) {  // a diagonal that runs far outside the window
+    s.x.push_back(-1 + 3 * k / 100.0);
+    s.y.push_back(-1 + 3 * k / 100.0);
+  }
+  f.overlay.push_back(s);
+  const std::string path = (tmp.path / "ov.png").string();
+  write_png(path, f);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  int x0 = d.width, x1 = 0, y0 = d.height, y1 = 0;
+  long n = 0;
+  for (int y = 0; y < d.height; ++y)
+    for (int x = 0; x < d.width; ++x)
+      if (same(d.at(x, y), curve)) {
+        ++n;
+        x0 = std::min(x0, x); x1 = std::max(x1, x);
+        y0 = std::min(y0, y); y1 = std::max(y1, y);
+      }
+  ASSERT_GT(n, 100);
+  // Clipped: the curve stays inside the figure's margins (the frame), and rises to the right.
+  EXPECT_GT(x0, 20);
+  EXPECT_LT(x1, d.width - 5);
+  EXPECT_GT(y0, 20);
+  EXPECT_LT(y1, d.height - 20);
+  EXPECT_TRUE(same(d.at(x0 + 2, y1 - 2), curve) || same(d.at(x0 + 3, y1 - 3), curve) || x1 - x0 > 100);
+}
+
+TEST(Render, ALongTitleOnASmallCanvasIsWrappedNotCut) {
+  // A title far wider than the canvas: shrunk and wrapped onto two lines, so the columns at
+  // the canvas edges stay white (nothing runs off) and text is drawn on two bands of rows.
+  TempDir tmp;
+  Figure f = small_figure();
+  f.title = "Leading Lyapunov exponent against the restitution coefficient, velocity-dependent restitution model";
+  f.width = 420;
+  f.height = 320;
+  const std::string path = (tmp.path / "t.png").string();
+  write_png(path, f);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  auto ink = [&](int x, int y) { const Rgb c = d.at(x, y); return c.r + c.g + c.b < 600; };
+  for (int y = 0; y < d.height / 4; ++y)
+    for (int x : {0, 1, 2, d.width - 3, d.width - 2, d.width - 1}) EXPECT_FALSE(ink(x, y)) << x << "," << y;
+  // Rows of the title band with ink, grouped into runs: two lines of text.
+  int runs = 0;
+  bool prev = false;
+  for (int y = 0; y < d.height / 6; ++y) {
+    bool any = false;
+    for (int x = 0; x < d.width && !any; ++x) any = ink(x, y);
+    runs += any && !prev;
+    prev = any;
+  }
+  EXPECT_GE(runs, 2);
+}
+
+TEST(Ticks, Log2TicksArePowersOfTwoLabelledWithTheirValues) {
+  const Ticks t = log_ticks(24, 4096, 2);
+  ASSERT_FALSE(t.values.empty());
+  EXPECT_EQ(t.values.front(), 32);
+  EXPECT_EQ(t.values.back(), 4096);
+  for (size_t i = 0; i < t.values.size(); ++i) {
+    EXPECT_EQ(std::exp2(std::round(std::log2(t.values[i]))), t.values[i]);
+    EXPECT_EQ(t.labels[i], std::to_string(static_cast<long>(t.values[i])));
+  }
+  EXPECT_LE(t.values.size(), 11u);
+  const Ticks wide = log_ticks(1.0 / 1024, 1e12, 2);  // a long range: every k-th power
+  EXPECT_LE(wide.values.size(), 11u);
+  EXPECT_GE(wide.values.size(), 4u);
+  const Ticks ten = log_ticks(1, 1000, 10);  // base 10 is log_ticks
+  EXPECT_EQ(ten.values, log_ticks(1, 1000).values);
+}
+
+TEST(Colors, ViridisRunsFromDarkToLight) {
+  auto luma = [](Rgb c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; };
+  for (int i = 1; i <= 100; ++i) EXPECT_LT(luma(viridis_color((i - 1) / 100.0)), luma(viridis_color(i / 100.0)) + 1e-9);
+  EXPECT_TRUE(same(viridis_color(0), Rgb{68, 1, 84}));
+  EXPECT_TRUE(same(viridis_color(1), Rgb{253, 231, 37}));
 }
 
 // ---- zoomed axes ---------------------------------------------------------------------------

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #pragma GCC diagnostic pop
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -16,11 +17,14 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/io/output.hpp"
+#include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
 
@@ -113,6 +117,91 @@ inline void write_output_set(const std::vector<OutputFile>& files) {
     remove_staged();
     throw;
   }
+}
+
+// ---- Pictures: formats, size, resolution and palette (presentation only) -------------------
+// These options change how a picture looks, never a computed value: they are not part of a
+// grid job's key (picture_common.hpp), so re-rendering a finished or resumed job with
+// another --format or --size reuses its saved tiles.
+inline const std::set<std::string>& presentation_keys() {
+  static const std::set<std::string> k{"format", "size", "dpi", "palette", "curves"};
+  return k;
+}
+// The keys of add_picture_options (scene files accept them too).
+inline const std::set<std::string>& picture_keys() {
+  static const std::set<std::string> k{"format", "size", "dpi", "palette"};
+  return k;
+}
+enum class Palette { safe, paper };
+struct Presentation {
+  std::vector<ImageFormat> formats{ImageFormat::png};
+  RenderOptions render;
+  Palette palette = Palette::safe;
+};
+inline void add_picture_options(OptionSet& o) {
+  o.add("format", "Picture formats, a comma list of png, pdf, svg (default png): PREFIX.png, PREFIX.pdf, PREFIX.svg");
+  o.add("size", "Picture size WxH: pixels of the PNG, 200..20000 x 150..20000 (default: the command's, e.g. 900x600); "
+                "PDF/SVG pages are W*72/dpi x H*72/dpi points");
+  o.add("dpi", "Resolution, integer in [36, 2400] (default 150): text is set in points at this many pixels per inch");
+  o.add("palette", "Colours: safe (default; Okabe-Ito categories, viridis densities, colour-blind safe) | "
+                   "paper (the paper's: black periodic, red sticking, green chaos)");
+}
+inline Presentation presentation_from(const Options& o) {
+  Presentation p;
+  if (o.has("format")) {
+    const std::string text = o.get("format");
+    p.formats.clear();
+    std::string item;
+    std::istringstream in(text + ",");
+    while (std::getline(in, item, ',')) {
+      ImageFormat f;
+      if (item == "png") f = ImageFormat::png;
+      else if (item == "pdf") f = ImageFormat::pdf;
+      else if (item == "svg") f = ImageFormat::svg;
+      else throw InputError("format", "must be a comma list of png, pdf, svg (got '" + text + "')");
+      if (std::find(p.formats.begin(), p.formats.end(), f) == p.formats.end()) p.formats.push_back(f);
+    }
+    if (p.formats.empty()) throw InputError("format", "must be a comma list of png, pdf, svg (got '" + text + "')");
+  }
+  if (o.has("size")) {
+    const std::string text = o.get("size");
+    const std::string range = "WxH with whole numbers " + std::to_string(kMinFigureWidth) + " <= W <= " +
+                              std::to_string(kMaxFigureSide) + ", " + std::to_string(kMinFigureHeight) + " <= H <= " +
+                              std::to_string(kMaxFigureSide);
+    const auto x = text.find('x');
+    auto whole = [&](const std::string& s, int lo) {
+      if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
+        throw InputError("size", "must be " + range + " (got '" + text + "')");
+      const int n = std::stoi(s);
+      if (n < lo || n > kMaxFigureSide) throw InputError("size", "must be " + range + " (got '" + text + "')");
+      return n;
+    };
+    if (x == std::string::npos) throw InputError("size", "must be " + range + ", e.g. 1200x800 (got '" + text + "')");
+    p.render.width = whole(text.substr(0, x), kMinFigureWidth);
+    p.render.height = whole(text.substr(x + 1), kMinFigureHeight);
+  }
+  p.render.dpi = static_cast<double>(integer_from(o, "dpi", static_cast<long long>(kMinDpi), static_cast<long long>(kMaxDpi), 150));
+  const std::string palette = o.get_or("palette", "safe");
+  if (palette == "paper") p.palette = Palette::paper;
+  else if (palette != "safe") throw InputError("palette", "must be safe or paper (got '" + palette + "')");
+  return p;
+}
+// The picture files of PREFIX, one per format, for write_output_set.
+inline std::vector<OutputFile> picture_files(const std::string& prefix, const Presentation& p,
+                                             const std::function<void(const std::string&, ImageFormat)>& draw) {
+  std::vector<OutputFile> files;
+  for (ImageFormat f : p.formats)
+    files.push_back({prefix + "." + format_name(f), [draw, f](const OutputTarget& to) { draw(to.path, f); }});
+  return files;
+}
+// The models as the paper names them, for titles.
+inline std::string model_title(Law law) {
+  switch (law) {
+    case Law::constant: return "constant restitution";
+    case Law::veldep: return "velocity-dependent restitution";
+    case Law::elastic: return "elastic";
+  }
+  return name(law);
 }
 
 // The command line as one string, for provenance.

@@ -15,7 +15,7 @@
 //     line "# invocation:";
 //   * the output location: JSON provenance.inputs.out and the top-level "files" of a
 //     PREFIX.json, "out=..." in the text "# inputs:" line (the rerun writes elsewhere).
-// Pictures (PNG) and proof certificates are refused with exit 2, naming what to audit or
+// Pictures (PNG, PDF, SVG) and proof certificates are refused with exit 2, naming what to audit or
 // rerun instead.
 // The version, commit, compiler, flags and library versions ARE compared: a result from
 // another build is reported as different (with the field), even if its numbers agree.
@@ -276,7 +276,8 @@ int audit(const std::string& path) {
     return 2;
   }
   // Kinds that carry no rerunnable provenance are refused up front, with what to do instead.
-  if (text.rfind("\x89PNG", 0) == 0) {
+  if (text.rfind("\x89PNG", 0) == 0 || text.rfind("%PDF-", 0) == 0 ||
+      (text.rfind("<?xml", 0) == 0 && text.find("<svg", 0) != std::string::npos)) {
     std::cerr << "bouncer audit: '" << path << "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
                  "(same provenance, exact numbers)\n";
     return 2;
@@ -332,7 +333,7 @@ int audit(const std::string& path) {
   } else if (rec->is_json && !has_out) {
     // Commands that print JSON on stdout with --json; orbit chooses it with --format.
     bool chosen = false;
-    for (const auto& [k, v] : rec->inputs) chosen = chosen || k == "json" || k == "format";
+    for (const auto& [k, v] : rec->inputs) chosen = chosen || k == "json" || (k == "format" && rec->command == "orbit");  // elsewhere --format names pictures
     if (!chosen) argv.push_back("--json");
   }
   if (has_out) {

@@ -112,7 +112,7 @@ std::string attractor_label(const std::string& cls, long period) {
   if (cls == "effective_sticking") return "effective sticking";
   if (cls == "transient_chaos")
     return period ? "transient chaos, settles with period " + std::to_string(period) : std::string("transient chaos, settles (no period)");
-  if (cls == "outside") return "outside (v < wall)";
+  if (cls == "outside") return "outside the phase space (v < wall velocity)";
   return cls;
 }
 
@@ -135,9 +135,10 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
     return x.second != y.second ? x.second > y.second : x.first < y.first;
   });
   std::map<std::pair<std::string, long>, Rgb> color;
+  const Palette palette = f.picture.palette;
   int periodic_rank = 0, sticking_rank = 0, transient_rank = 0;
   for (const auto& [k, n] : order) {
-    color[k] = attractor_color(k.first, periodic_rank, k.first == "transient_chaos" ? transient_rank : sticking_rank);
+    color[k] = attractor_color(k.first, periodic_rank, k.first == "transient_chaos" ? transient_rank : sticking_rank, palette);
     if (k.first == "periodic") ++periodic_rank;
     if (k.first == "sticking") ++sticking_rank;
     if (k.first == "transient_chaos") ++transient_rank;
@@ -160,24 +161,45 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
     const long col = static_cast<long>(i) % r.nx, row = r.ny - 1 - static_cast<long>(i) / r.nx;
     ras.pixels[static_cast<size_t>(row * r.nx + col)] = color[kinds[i]];
   }
+  // Shares in the legend are of the points in the phase space: the starts below the wall
+  // velocity ("outside") are no orbits and do not count in the denominator.
   const double total = static_cast<double>(items.size());
-  const size_t shown = order.size() > 14 ? 13 : order.size();
-  for (size_t k = 0; k < shown; ++k) {
+  long outside = 0;
+  for (const auto& [k, n] : order)
+    if (k.first == "outside") outside += n;
+  const double inside = total - static_cast<double>(outside);
+  auto share = [&](long n) {
     char pct[32];
-    std::snprintf(pct, sizeof pct, " (%.1f%%)", 100.0 * order[k].second / total);
-    ras.legend.emplace_back(attractor_label(order[k].first.first, order[k].first.second) + pct, color[order[k].first]);
+    std::snprintf(pct, sizeof pct, " (%.1f%%)", inside > 0 ? 100.0 * n / inside : 0.0);
+    return std::string(pct);
+  };
+  // Legend entries: one per colour. The paper palette gives every periodic type one black and
+  // every sticking period one red, so those are summed into one entry each.
+  std::vector<std::pair<std::string, std::pair<Rgb, long>>> entries;  // label -> colour, points
+  for (const auto& [k, n] : order) {
+    std::string label = attractor_label(k.first, k.second);
+    if (palette == Palette::paper && (k.first == "fixed" || k.first == "periodic")) label = "fixed point or periodic";
+    if (palette == Palette::paper && k.first == "sticking") label = "sticking";
+    auto it = std::find_if(entries.begin(), entries.end(), [&](const auto& e) { return e.first == label; });
+    if (it == entries.end()) entries.push_back({label, {color[k], n}});
+    else it->second.second += n;
   }
-  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " more types", Rgb{255, 255, 255});
+  std::stable_sort(entries.begin(), entries.end(), [](const auto& x, const auto& y) { return x.second.second > y.second.second; });
+  const size_t shown = entries.size() > 14 ? 13 : entries.size();
+  for (size_t k = 0; k < shown; ++k)
+    ras.legend.emplace_back(entries[k].first + (entries[k].first.rfind("outside", 0) == 0 ? "" : share(entries[k].second.second)),
+                            entries[k].second.first);
+  if (shown < entries.size()) ras.legend.emplace_back("+" + std::to_string(entries.size() - shown) + " more types", Rgb{255, 255, 255});
 
-  fig.title = "Basins of attraction, " + std::string(name(r.model.law)) + " model";
+  fig.title = "Basins of attraction, " + model_title(r.model.law) + " model";
   std::string par = "a = " + r.model.a.text();
   if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
   if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();
   fig.subtitle = par + "; " + std::to_string(r.nx) + " x " + std::to_string(r.ny) + " points, " +
                  std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
                  r.precision.text();
-  fig.xlabel = "θ0 (initial phase)";
-  fig.ylabel = "v0 (initial velocity)";
+  fig.xlabel = "θ₀ (initial phase)";
+  fig.ylabel = "v₀ (initial velocity)";
   fig.width = 1000;
   fig.height = 700;
   fig.metadata = png_metadata(prov, fig.title);
@@ -188,11 +210,17 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
   s["theta_range"] = {r.t0.text(), r.t1.text()};
   s["v_range"] = {r.v0.text(), r.v1.text()};  // the default is the trapping region
   s["points"] = items.size();
+  s["points_in_phase_space"] = items.size() - static_cast<size_t>(outside);
   nlohmann::ordered_json types = nlohmann::ordered_json::array();
-  for (const auto& [k, n] : order) types.push_back({{"class", k.first}, {"period", k.second}, {"points", n}, {"fraction", n / total}});
+  for (const auto& [k, n] : order) {
+    nlohmann::ordered_json t{{"class", k.first}, {"period", k.second}, {"points", n}, {"fraction", n / total}};
+    // The legend's share: of the points in the phase space (none for the points outside).
+    t["share_of_phase_space"] = k.first == "outside" || inside <= 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(n / inside);
+    types.push_back(t);
+  }
   s["attractors"] = types;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -202,6 +230,7 @@ const std::set<std::string>& basin_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "recheck-factor", "precision"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

@@ -185,23 +185,27 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   ras.x_offset = zx.offset();
   ras.y_min = y0;
   ras.y_max = y1;
-  const Rgb red{215, 25, 28};
+  // Density of orbit points, log scale: grey to black (--palette paper, the paper's look) or
+  // viridis from green (sparse) to dark purple (dense), both readable on the white background.
+  const bool paper = f.picture.palette == Palette::paper;
+  const Rgb red = paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0};
+  auto density = [&](double t) { return paper ? ramp_color(0.45 + 0.55 * t) : viridis_color(0.75 * (1 - t)); };
   for (size_t i = 0; i < count.size(); ++i) {
     if (stick[i]) ras.pixels.push_back(red);
     else if (count[i] == 0) ras.pixels.push_back(Rgb{255, 255, 255});
-    else ras.pixels.push_back(ramp_color(0.45 + 0.55 * std::log1p(static_cast<double>(count[i])) / std::log1p(static_cast<double>(max_count))));
+    else ras.pixels.push_back(density(std::log1p(static_cast<double>(count[i])) / std::log1p(static_cast<double>(max_count))));
   }
-  ras.legend = {{"orbit points (darker: denser)", ramp_color(1.0)},
+  ras.legend = {{paper ? "orbit points (darker: denser)" : "orbit points (green: sparse, purple: dense)", density(1.0)},
                 {show_theta ? "sticking release (θ = 1/2)" : "sticking release (v = 4)", red}};
   ras.colorbar.clear();  // grey level ~ log(points per cell); the legend names the marks
   ras.legend_below = true;
   const std::string par = r.vary == "eps" ? "ε" : r.vary;
-  fig.title = "Bifurcation diagram, " + std::string(name(r.model.law)) + " model";
+  fig.title = "Bifurcation diagram, " + model_title(r.model.law) + " model";
   std::string fixed;
   if (r.vary != "a") fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != "eps") fixed += "ε = " + r.model.eps.text() + ", ";
   if (r.model.law == Law::veldep && r.vary != "c") fixed += "c = " + r.model.c.text() + ", ";
-  fig.subtitle = fixed + "θ0 = " + r.ic.theta.text() + ", v0 = " + r.ic.v.text() + "; " + std::to_string(r.transient) +
+  fig.subtitle = fixed + "θ₀ = " + r.ic.theta.text() + ", v₀ = " + r.ic.v.text() + "; " + std::to_string(r.transient) +
                  " + " + std::to_string(r.record) + " steps x " + std::to_string(r.samples) + (r.carry ? " (carried)" : "") +
                  ", " + r.precision.text();
   fig.xlabel = par;
@@ -220,7 +224,7 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   s["sticking_events"] = sticking_events;
   s["undecided_samples"] = undecided;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -230,6 +234,7 @@ const std::set<std::string>& bifurcation_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"vary", "range", "samples", "transient", "record", "theta", "v", "carry", "precision", "show", "bins"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

@@ -26,6 +26,7 @@ const std::set<std::string>& continue_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"period", "guess", "vary", "range", "precision", "step", "max-points", "max-iter", "beyond", "show",
               "transient", "steps", "max-period", "out", "certify"});
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;
@@ -43,6 +44,7 @@ struct ContinueRequest {
   std::string show = "v";
   std::optional<std::string> out;
   bool certify = false;
+  Presentation picture;  // --format, --size, --dpi, --palette
 };
 
 ContinueRequest continue_request(const Options& given) {
@@ -104,6 +106,8 @@ ContinueRequest continue_request(const Options& given) {
     if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
       throw InputError("out", "directory '" + parent.string() + "' does not exist");
   }
+  r.picture = presentation_from(o);
+  if (r.out) check_figure_font();  // an output failure, found before the work
   return r;
 }
 
@@ -395,7 +399,7 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     fig.x_offset = zx.offset();
     fig.y_offset = zy.offset();
     fig.legend_below = true;
-    fig.title = "Period-" + std::to_string(r.period) + " branch, " + std::string(name(r.model.law)) + " model";
+    fig.title = "Period-" + std::to_string(r.period) + " branch, " + model_title(r.model.law) + " model";
     std::string fixed;
     if (r.vary != Parameter::a) fixed += "a = " + r.model.a.text() + ", ";
     if (r.model.law == Law::constant && r.vary != Parameter::eps) fixed += "ε = " + r.model.eps.text() + ", ";
@@ -405,9 +409,13 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     fig.xlabel = r.vary == Parameter::eps ? "ε" : par;
     fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
     fig.metadata = png_metadata(prov, fig.title);
-    write_output_set({{*r.out + ".csv", text_file([&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); })},
-                      {*r.out + ".png", [&](const OutputTarget& to) { write_png(to.path, fig); }},
-                      {*r.out + ".json", text_file([&](std::ostream& f) { f << doc.dump(2) << "\n"; })}});
+    std::vector<OutputFile> files{{*r.out + ".csv", text_file([&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); })}};
+    for (OutputFile& pic : picture_files(*r.out, r.picture, [&](const std::string& path, ImageFormat fmt) {
+           write_figure(path, fig, fmt, r.picture.render);
+         }))
+      files.push_back(std::move(pic));
+    files.push_back({*r.out + ".json", text_file([&](std::ostream& f) { f << doc.dump(2) << "\n"; })});
+    write_output_set(files);
   }
   if (print_json) std::cout << doc.dump(2) << "\n";
   else std::cout << text.str();
@@ -435,7 +443,8 @@ Command add_continue(CLI::App& app) {
   opts->add("beyond", "Classify at a* + BEYOND*max(1,|a*|) past each end, decimal in (0, 0.1] (default 1e-6)");
   opts->add("show", "Picture: v (default) or theta of every orbit point against the parameter");
   add_classify_options(*opts);
-  opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json");
+  opts->add("out", "Write PREFIX.csv, PREFIX.json and the pictures PREFIX.png/.pdf/.svg of --format");
+  add_picture_options(*opts);
   sub->add_flag("--json", *json_flag, "Print the JSON summary on stdout");
   sub->add_flag("--certify", *certify,
                  "Krawczyk on the branch side of each border end: a certified one-sided bound on a*");

@@ -250,7 +250,7 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   int sticking_rank = 0;
   for (const auto& [cls, n] : order) {
     Series s;
-    s.color = attractor_color(cls, 0, sticking_rank);
+    s.color = attractor_color(cls, 0, sticking_rank, f.picture.palette);
     if (cls == "sticking") ++sticking_rank;
     std::string label = cls;
     std::replace(label.begin(), label.end(), '_', ' ');
@@ -265,16 +265,16 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
     fig.series.push_back(std::move(s));
   }
   const std::string par = r.vary == "eps" ? "ε" : r.vary;
-  fig.title = "Leading Lyapunov exponent, " + std::string(name(r.model.law)) + " model";
+  fig.title = "Leading Lyapunov exponent, " + model_title(r.model.law) + " model";
   std::string fixed;
   if (r.vary != "a") fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != "eps") fixed += "ε = " + r.model.eps.text() + ", ";
   if (r.model.law == Law::veldep && r.vary != "c") fixed += "c = " + r.model.c.text() + ", ";
   fig.subtitle = fixed + std::to_string(r.samples) + " values x " + std::to_string(r.ics) + " start" +
                  (r.ics == 1 ? "" : "s") + ", " + std::to_string(r.lyap.transient) + " + " + std::to_string(r.lyap.steps) +
-                 " steps, " + r.precision.text() + (not_drawn ? "; " + std::to_string(not_drawn) + " with lambda = -inf/nan not drawn" : "");
+                 " steps, " + r.precision.text() + (not_drawn ? "; " + std::to_string(not_drawn) + " with λ = −∞ or NaN not drawn" : "");
   fig.xlabel = par;
-  fig.ylabel = "lambda per collision (+- stderr)";  // the font has no lambda or +-
+  fig.ylabel = "λ per collision (± standard error)";
   fig.legend_below = true;
   fig.x_min = zx(x_lo);
   fig.x_max = zx(x_hi);
@@ -298,7 +298,7 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   s["classes"] = classes;
   s["values"] = per_value;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 template <class T>
@@ -328,6 +328,7 @@ const std::set<std::string>& lyapunov_curve_keys() {
     std::set<std::string> k = lyapunov_keys();
     k.insert({"vary", "range", "samples", "ics", "max-period", "recheck-factor"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

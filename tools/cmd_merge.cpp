@@ -47,7 +47,8 @@ int run_merge(const std::vector<std::string>& prefixes, Options o, const FlagSet
     if (first_line(tiles_dir(p) + "/job.key") != key)
       throw InputError("prefix", "'" + tiles_dir(p) + "' is missing or holds a different job than '" + dir0 + "'");
   Options job = load_scene(dir0 + "/job.toml", command, it->second.keys());
-  // Run options of the merge itself (threads, out) on top of the job's.
+  // Run options of the merge itself (threads, out) and its picture options (format, size,
+  // dpi, palette: how the merged job is drawn) on top of the job's.
   for (const auto& [k, v] : o.values) job.values[k] = v;
   if (!job.has("out")) job.set("out", prefixes[0]);
   RunFlags f = run_flags_from(job, flags, argv_text);
@@ -65,6 +66,7 @@ Command add_merge(CLI::App& app) {
   sub->add_option("prefix", *prefixes, "Output prefix(es) of the shard runs; the first names the job")->required();
   opts->add("out", "Write the merged outputs to PREFIX (default: the first prefix)");
   opts->add("threads", "Ignored by merge (nothing is computed); accepted for symmetry");
+  add_picture_options(*opts);  // render the merged job differently from its shards
   auto flags = std::make_shared<FlagSet>();
   sub->add_flag("--quiet", flags->quiet, "No progress output");
   sub->add_flag("--json", flags->json, "Print the JSON summary on stdout");

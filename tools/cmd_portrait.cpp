@@ -102,7 +102,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
     Series s;
     s.color = items.size() == 1 ? Rgb{20, 20, 20} : category_color(static_cast<int>(k));
     s.marker_size = r.steps * items.size() > 20000 ? 0 : 1;
-    if (k < 12) s.label = "θ0 = " + r.initial[k].theta.text() + ", v0 = " + r.initial[k].v.text();
+    if (k < 12) s.label = "θ₀ = " + r.initial[k].theta.text() + ", v₀ = " + r.initial[k].v.text();
     std::istringstream in(items[k]);
     std::string line;
     while (std::getline(in, line)) {
@@ -135,7 +135,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
     more.color = Rgb{160, 160, 160};
     fig.series.push_back(more);
   }
-  fig.title = std::string(r.polar ? "Polar phase portrait, " : "Phase portrait, ") + name(r.model.law) + " model";
+  fig.title = std::string(r.polar ? "Polar phase portrait, " : "Phase portrait, ") + model_title(r.model.law) + " model";
   std::string par = "a = " + r.model.a.text();
   if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
   if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();
@@ -175,7 +175,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
   if (r.theta_window) s["theta_range"] = {r.theta_window->first.text(), r.theta_window->second.text()};
   if (r.v_window) s["v_range"] = {r.v_window->first.text(), r.v_window->second.text()};
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -185,6 +185,7 @@ const std::set<std::string>& portrait_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"theta", "v", "steps", "transient", "polar", "precision", "theta-range", "v-range"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;

@@ -35,6 +35,7 @@ struct ScanRequest {
   ClassifyOptions classify;
   Precision precision;
   std::string show = "regular";
+  bool fixed_point_curves = false;  // --curves fixed-points: the paper's eq. 5 over the picture
 };
 
 ScanRequest scan_request(const Options& given) {
@@ -77,6 +78,14 @@ ScanRequest scan_request(const Options& given) {
   bool known = r.show == "regular";
   for (const auto& n : count_names()) known = known || n == r.show;
   if (!known) throw InputError("show", "must be regular or one of fixed, periodic, sticking, quasiperiodic, chaotic, unbounded, effective_sticking, transient_chaos, undecided");
+  // The analytic fixed-point curves (paper eq. 5) belong to the (a, eps) plane of the
+  // constant model: drawn there by default, never elsewhere.
+  const std::string curves = o.get_or("curves", r.y == "eps" ? "fixed-points" : "none");
+  if (curves != "fixed-points" && curves != "none")
+    throw InputError("curves", "must be fixed-points or none (got '" + curves + "')");
+  if (curves == "fixed-points" && r.y != "eps")
+    throw InputError("curves", "fixed-points needs --model constant (the curves are in the (a, eps) plane)");
+  r.fixed_point_curves = curves == "fixed-points";
   return r;
 }
 
@@ -138,7 +147,7 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
   csv += ",total\n";
   const size_t nc = count_names().size();
   std::vector<long> totals(nc, 0);
-  std::vector<double> frac(items.size(), 0);
+  std::vector<double> frac(items.size(), 0), regular(items.size(), 0), chaotic(items.size(), 0);
   for (size_t i = 0; i < items.size(); ++i) {
     std::istringstream ls(items[i]);
     std::string cell;
@@ -158,6 +167,8 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
       if (r.show == count_names()[k] || (r.show == "regular" && (k == 0 || k == 1))) hit += c[k];
     const long inside = total - c[nc - 1];
     frac[i] = inside > 0 ? static_cast<double>(hit) / inside : 0;
+    regular[i] = inside > 0 ? static_cast<double>(c[0] + c[1]) / inside : 0;
+    chaotic[i] = inside > 0 ? static_cast<double>(c[4]) / inside : 0;
   }
   ImageFigure fig;
   Raster& ras = fig.raster;
@@ -172,17 +183,51 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
   ras.x_offset = zx.offset();
   ras.y_offset = zy.offset();
   ras.pixels.resize(items.size());
+  const bool paper = f.picture.palette == Palette::paper;
+  const Rgb paper_green{0, 150, 40};
   for (size_t i = 0; i < items.size(); ++i) {
     const long col = static_cast<long>(i) % r.p, row = r.q - 1 - static_cast<long>(i) / r.p;
-    ras.pixels[static_cast<size_t>(row * r.p + col)] = ramp_color(frac[i]);
+    Rgb c = viridis_color(frac[i]);
+    if (paper) {  // the paper's look: black where the starts are regular, green where chaotic
+      auto ch = [&](double green) {
+        return static_cast<std::uint8_t>(std::lround(255 * (1 - regular[i] - chaotic[i]) + green * chaotic[i]));
+      };
+      c = Rgb{ch(paper_green.r), ch(paper_green.g), ch(paper_green.b)};
+    }
+    ras.pixels[static_cast<size_t>(row * r.p + col)] = c;
   }
-  for (int i = 0; i < 64; ++i) ras.colorbar.push_back(ramp_color(i / 63.0));
-  ras.colorbar_lo = 0;
-  ras.colorbar_hi = 1;
   const std::string shown = r.show == "regular" ? "fixed + periodic" : r.show;
-  ras.colorbar_label = "fraction " + (r.show == "regular" ? std::string("regular") : r.show);
+  if (paper) {
+    ras.legend = {{"fixed + periodic (black: all starts)", Rgb{0, 0, 0}},
+                  {"chaotic (green: all starts)", paper_green},
+                  {"neither (sticking, ...)", Rgb{255, 255, 255}}};
+  } else {
+    for (int i = 0; i < 64; ++i) ras.colorbar.push_back(viridis_color(i / 63.0));
+    ras.colorbar_lo = 0;
+    ras.colorbar_hi = 1;
+    ras.colorbar_label = "share of starts " + (r.show == "regular" ? std::string("fixed + periodic") : r.show);
+  }
+  if (r.fixed_point_curves) {
+    // Paper eq. 5: the fixed points of the constant model exist at a = 8(1+eps)/(p(1-eps)),
+    // p = 1..10 (fig. paramspace1's curves), drawn over the window in its axis coordinates.
+    const double e0 = r.y0.value().get_d(), e1 = std::min(r.y1.value().get_d(), 1 - 1e-9);
+    const Rgb blue = paper ? Rgb{30, 70, 210} : Rgb{86, 180, 233};
+    for (int pp = 1; pp <= 10; ++pp) {
+      Series s;
+      if (pp == 1) s.label = "eq. 5, p = 1…10: a = 8(1+ε)/(p(1−ε))";
+      s.color = blue;
+      s.lines = true;
+      s.markers = false;
+      for (int k = 0; k <= 400; ++k) {
+        const double e = e0 + (e1 - e0) * k / 400.0;
+        s.x.push_back(zx(8 * (1 + e) / (pp * (1 - e))));
+        s.y.push_back(zy(e));
+      }
+      fig.overlay.push_back(s);
+    }
+  }
   fig.title = "Parameter scan: " + shown + " solutions";
-  fig.subtitle = std::string(name(r.model.law)) + " model; " + std::to_string(r.p) + " x " + std::to_string(r.q) +
+  fig.subtitle = model_title(r.model.law) + " model; " + std::to_string(r.p) + " x " + std::to_string(r.q) +
                  " parameters, " + std::to_string(r.k) + " x " + std::to_string(r.k) + " initial conditions, " +
                  std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
                  r.precision.text();
@@ -199,7 +244,7 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
   for (size_t k = 0; k < nc; ++k) t[count_names()[k]] = totals[k];
   s["totals"] = t;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -208,8 +253,9 @@ const std::set<std::string>& scan_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"a-range", "eps-range", "c-range", "grid", "ics", "theta-range", "v-range", "transient", "steps",
-              "max-period", "recheck-factor", "precision", "show"});
+              "max-period", "recheck-factor", "precision", "show", "curves"});
     k.insert(run_keys().begin(), run_keys().end());
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;
@@ -236,6 +282,8 @@ Command add_scan(CLI::App& app) {
   add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
+  opts->add("curves", "Over the picture: fixed-points (default for --model constant: the paper's eq. 5, "
+                      "a = 8(1+eps)/(p(1-eps)), p = 1..10) | none");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), opts->collected());

@@ -3,7 +3,9 @@
 // enclosure, what it answers, and the Lyapunov exponent the divergence steps imply.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <memory>
 #include <set>
@@ -24,6 +26,7 @@ const std::set<std::string>& sweep_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"theta", "v", "steps", "tolerance", "reference-max-bits", "method", "classify-steps", "json", "out"});
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;
@@ -33,6 +36,7 @@ struct Request {
   SweepQuestion q;
   bool json = false;
   std::optional<std::string> prefix;
+  Presentation picture;  // --format, --size, --dpi, --palette
 };
 
 Request request_from(const Options& o) {
@@ -56,6 +60,8 @@ Request request_from(const Options& o) {
     r.prefix = o.get("out");
     if (r.prefix->empty()) throw InputError("out", "needs a file name prefix");
   }
+  r.picture = presentation_from(o);
+  if (r.prefix) check_figure_font();  // an output failure, found before the work
   return r;
 }
 
@@ -148,10 +154,12 @@ Figure divergence_figure(const SweepReport& rep, const Provenance& p, long long 
   Figure f;
   f.title = "Precision sweep: first step outside the certified enclosure";
   f.xlabel = "significand bits";
+  f.log_x = true;  // 24 ... 4096 bits: powers of two are evenly spaced
+  f.log_x_base = 2;
   f.ylabel = "step";
-  Series left{"leaves the enclosure", {}, {}, Rgb{200, 30, 30}, false, true};
+  Series left{"leaves the enclosure", {}, {}, Rgb{213, 94, 0}, false, true, 3};
   Series stays{"stays within all " + std::to_string(std::min<long long>(steps, rep.reference_steps)) + " steps", {}, {},
-               Rgb{30, 90, 200}, false, true};
+               Rgb{0, 114, 178}, false, true, 3};
   for (const SweepRow& r : rep.rows) {
     if (r.leaves_at) {
       left.x.push_back(static_cast<double>(r.bits));
@@ -168,15 +176,20 @@ Figure divergence_figure(const SweepReport& rep, const Provenance& p, long long 
     for (size_t i = 0; i < left.x.size(); ++i) { mx += left.x[i]; my += left.y[i]; }
     mx /= left.x.size();
     my /= left.y.size();
-    Series fit{"fit: lambda = " + std::to_string(rep.implied_lyapunov.value_or(0)) + " per step", {}, {}, Rgb{0, 0, 0},
+    char lambda[64];
+    std::snprintf(lambda, sizeof lambda, "%.4g", rep.implied_lyapunov.value_or(0));
+    Series fit{std::string("least-squares fit: λ = ") + lambda + " per step", {}, {}, Rgb{0, 0, 0},
                true, false};
-    for (double x : {left.x.front(), left.x.back()}) {
+    // Linear in bits, so a curve on the log2 axis: sampled finely.
+    const double xa = *std::min_element(left.x.begin(), left.x.end()), xb = *std::max_element(left.x.begin(), left.x.end());
+    for (int k = 0; k <= 64; ++k) {
+      const double x = xa * std::pow(xb / xa, k / 64.0);
       fit.x.push_back(x);
       fit.y.push_back(my + *rep.slope * (x - mx));
     }
     f.series.push_back(fit);
   }
-  f.metadata = {{"provenance", p.as_json()}};
+  f.metadata = {{"Title", f.title}, {"provenance", p.as_json()}};
   return f;
 }
 
@@ -196,7 +209,8 @@ Command add_sweep(CLI::App& app) {
   opts->add("method", "Reference enclosure: lohner (default) | naive");
   opts->add("classify-steps", "Rows with neither sticking nor a period are classified over this many more steps, "
                               "integer in [8, 1000000] (default 500)");
-  opts->add("out", "PREFIX: write PREFIX.json, PREFIX.csv and PREFIX.png (atomically)");
+  opts->add("out", "PREFIX: write PREFIX.json, PREFIX.csv and the pictures PREFIX.png/.pdf/.svg of --format (atomically)");
+  add_picture_options(*opts);
   sub->add_flag("--json", *as_json, "JSON on stdout instead of the text table");
 
   auto run = [opts, scene, as_json](const std::string& argv_text) {
@@ -209,9 +223,14 @@ Command add_sweep(CLI::App& app) {
     p.bits = rep.reference_bits;
     const json j = report_json(r, rep, p);
     if (r.prefix) {
-      write_output_set({{*r.prefix + ".json", text_file([&](std::ostream& s) { s << j.dump(1) << "\n"; })},
-                        {*r.prefix + ".csv", text_file([&](std::ostream& s) { s << csv_text(rep, p); })},
-                        {*r.prefix + ".png", [&](const OutputTarget& to) { write_png(to.path, divergence_figure(rep, p, r.q.steps)); }}});
+      const Figure fig = divergence_figure(rep, p, r.q.steps);
+      std::vector<OutputFile> files{{*r.prefix + ".json", text_file([&](std::ostream& s) { s << j.dump(1) << "\n"; })},
+                                    {*r.prefix + ".csv", text_file([&](std::ostream& s) { s << csv_text(rep, p); })}};
+      for (OutputFile& pic : picture_files(*r.prefix, r.picture, [&](const std::string& path, ImageFormat fmt) {
+             write_figure(path, fig, fmt, r.picture.render);
+           }))
+        files.push_back(std::move(pic));
+      write_output_set(files);
     }
     if (r.json) std::cout << j.dump(1) << "\n";
     else std::cout << p.as_comment_lines() << text_table(rep, r.q.steps);

@@ -1,6 +1,7 @@
 // Shared plumbing of the grid and picture commands (bifurcation, portrait, basin, scan,
-// merge): run flags, the tiled parallel run with resume and shards, and the three outputs
-// PREFIX.csv, PREFIX.png, PREFIX.json (each written atomically).
+// merge): run flags, the tiled parallel run with resume and shards, and the outputs
+// PREFIX.csv, PREFIX.json and the pictures PREFIX.png/.pdf/.svg (--format), written all or
+// none, each atomically.
 //
 // A job is defined by its options minus the run flags (threads, shard, out, quiet, json):
 // those decide how the job runs, never what it computes. The job's options are saved in
@@ -43,6 +44,7 @@ struct RunFlags {
   std::vector<std::string> merge_from;  // bouncer merge: tile directories to import
   bool merge_only = false;              // bouncer merge: compute nothing
   std::string invocation;
+  Presentation picture;  // --format, --size, --dpi, --palette (how the picture looks)
 };
 
 inline const std::set<std::string>& run_keys() {
@@ -67,7 +69,8 @@ inline std::shared_ptr<FlagSet> add_run_options(CLI::App* sub, OptionSet& opts) 
   auto f = std::make_shared<FlagSet>();
   opts.add("threads", "Worker threads, integer >= 1 (default: all cores); results do not depend on it");
   opts.add("shard", "Run only shard I/N of the tiles (0 <= I < N); needs --out; join with bouncer merge");
-  opts.add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json (tiles in PREFIX.tiles/ while running)");
+  opts.add("out", "Write PREFIX.csv, PREFIX.json and the pictures PREFIX.png/.pdf/.svg of --format (tiles in PREFIX.tiles/ while running)");
+  add_picture_options(opts);
   sub->add_flag("--quiet", f->quiet, "No progress bar on stderr");
   sub->add_flag("--json", f->json, "Print a JSON summary on stdout");
   sub->add_flag("--keep-tiles", f->keep_tiles, "Keep PREFIX.tiles/ after the outputs are written");
@@ -96,6 +99,9 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
       throw InputError("out", "directory '" + parent.string() + "' does not exist");
   }
   if (!r.shard.all() && !r.out) throw InputError("shard", "needs --out PREFIX (the shard's tiles go to PREFIX.tiles/)");
+  r.picture = presentation_from(o);
+  // The pictures need their font: a missing font is an output failure found before the work.
+  if (r.out && r.shard.all()) check_figure_font();
   r.quiet = f.quiet;
   r.json = f.json;
   r.keep_tiles = f.keep_tiles;
@@ -125,8 +131,13 @@ struct PictureJob {
 
 inline std::string tiles_dir(const std::string& prefix) { return prefix + ".tiles"; }
 
+// The key of the tiles: the job's options without the presentation (format, size, dpi,
+// palette, curves), which change the picture, not a tile.
 inline std::string job_key(const PictureJob& j) {
-  return job_fingerprint("bouncer-grid-1\n" + j.job.as_toml(j.command) + "items " + std::to_string(j.plan.items) +
+  Options computed;
+  for (const auto& [k, v] : j.job.values)
+    if (!presentation_keys().count(k)) computed.values[k] = v;
+  return job_fingerprint("bouncer-grid-1\n" + computed.as_toml(j.command) + "items " + std::to_string(j.plan.items) +
                          " tile " + std::to_string(j.plan.tile_items) + "\n");
 }
 
@@ -240,19 +251,24 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
   return std::nullopt;
 }
 
-// Writes the outputs of a finished job: PREFIX.csv (provenance comments + rows),
-// PREFIX.png (through `draw`), PREFIX.json (provenance + summary); without --out the CSV
-// goes to stdout unless --json. With --json the summary is printed on stdout.
+// Writes the outputs of a finished job: PREFIX.csv (provenance comments + rows), the
+// pictures of --format (PREFIX.png/.pdf/.svg through `draw`), PREFIX.json (provenance +
+// summary), all or none; without --out the CSV goes to stdout unless --json. With --json the
+// summary is printed on stdout.
 inline void write_outputs(const RunFlags& f, const Provenance& p, const std::string& csv_body,
-                          const std::function<void(const std::string&)>& draw, const nlohmann::ordered_json& summary) {
+                          const std::function<void(const std::string&, ImageFormat)>& draw,
+                          const nlohmann::ordered_json& summary) {
   nlohmann::ordered_json doc;
   doc["provenance"] = nlohmann::ordered_json::parse(p.as_json());
   doc["summary"] = summary;
   if (f.out) {
-    doc["files"] = {{"csv", *f.out + ".csv"}, {"png", *f.out + ".png"}, {"json", *f.out + ".json"}};
-    write_output_set({{*f.out + ".csv", text_file([&](std::ostream& s) { s << p.as_comment_lines() << csv_body; })},
-                      {*f.out + ".png", [&](const OutputTarget& to) { draw(to.path); }},
-                      {*f.out + ".json", text_file([&](std::ostream& s) { s << doc.dump(2) << "\n"; })}});
+    doc["files"] = {{"csv", *f.out + ".csv"}};
+    for (ImageFormat fmt : f.picture.formats) doc["files"][format_name(fmt)] = *f.out + "." + format_name(fmt);
+    doc["files"]["json"] = *f.out + ".json";
+    std::vector<OutputFile> files{{*f.out + ".csv", text_file([&](std::ostream& s) { s << p.as_comment_lines() << csv_body; })}};
+    for (OutputFile& pic : picture_files(*f.out, f.picture, draw)) files.push_back(std::move(pic));
+    files.push_back({*f.out + ".json", text_file([&](std::ostream& s) { s << doc.dump(2) << "\n"; })});
+    write_output_set(files);
     if (!f.keep_tiles) {
       std::error_code ec;
       std::filesystem::remove_all(tiles_dir(*f.out), ec);
@@ -328,18 +344,21 @@ inline Precision point_precision(const Options& o) {
   return p;
 }
 
-// The colour of an attractor type (basin, scan legends, exponent curves): black = fixed
-// points and red = sticking as in the paper; `rank` orders the periodic types by their share,
-// `sub_rank` the sticking periods (red shades) and the periods transient chaos settles on
-// (pale green shades).
-inline Rgb attractor_color(const std::string& cls, int rank, int sub_rank) {
-  if (cls == "fixed") return Rgb{0, 0, 0};
+// The colour of an attractor type (basin, scan legends, exponent curves); `rank` orders the
+// periodic types by their share, `sub_rank` the sticking periods and the periods transient
+// chaos settles on. Palette safe (default): fixed points black, periodic types Okabe-Ito
+// colours, sticking vermillion shades, chaos bluish green, unbounded blue. Palette paper: as
+// the paper's figures, every periodic type (fixed points too) black, sticking red, chaos green.
+inline Rgb attractor_color(const std::string& cls, int rank, int sub_rank, Palette palette = Palette::safe) {
+  const bool paper = palette == Palette::paper;
+  if (cls == "fixed" || (paper && cls == "periodic")) return Rgb{0, 0, 0};
   if (cls == "sticking") {
-    static const Rgb reds[] = {{215, 25, 28}, {150, 10, 20}, {250, 110, 100}, {100, 0, 30}, {240, 60, 120}, {190, 70, 40}};
+    if (paper) return Rgb{215, 25, 28};
+    static const Rgb reds[] = {{213, 94, 0}, {150, 50, 0}, {240, 150, 100}, {110, 30, 10}, {235, 110, 60}, {180, 80, 40}};
     return reds[sub_rank % 6];
   }
-  if (cls == "unbounded") return Rgb{30, 70, 210};
-  if (cls == "chaotic") return Rgb{0, 150, 40};
+  if (cls == "unbounded") return paper ? Rgb{30, 70, 210} : Rgb{0, 114, 178};
+  if (cls == "chaotic") return paper ? Rgb{0, 150, 40} : Rgb{0, 158, 115};
   if (cls == "transient_chaos") {  // pale greens: chaos that settled later
     static const Rgb greens[] = {{150, 215, 110}, {200, 240, 160}, {105, 170, 75}, {175, 200, 60}};
     return greens[sub_rank % 4];

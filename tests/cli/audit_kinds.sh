@@ -55,7 +55,7 @@ S=(--model constant --eps 0.8 --a 24 --theta 0.1 --v 10)
 "$BOUNCER" lyapunov "${S[@]}" --steps 2000 --json >lyapunov.json
 "$BOUNCER" classify "${S[@]}" --json >classify.json
 "$BOUNCER" sweep "${S[@]}" --steps 10 --json >sweep.json
-"$BOUNCER" basin --model constant --eps 0.5 --a 24 --grid 16x12 --out basin --quiet
+"$BOUNCER" basin --model constant --eps 0.5 --a 24 --grid 16x12 --out basin --quiet --format png,pdf,svg
 "$BOUNCER" bifurcation --model constant --eps 0.5 --range 20:24 --samples 8 --transient 100 --record 20 --theta 0.1 --v 10 --out bif --quiet
 "$BOUNCER" scan --model constant --a-range 20:24 --eps-range 0.4:0.6 --grid 6x4 --out scan --quiet
 "$BOUNCER" lyapunov --model constant --eps 0.5 --vary a --range 20:24 --samples 4 --steps 300 --transient 50 --out curve --quiet
@@ -71,7 +71,7 @@ refused() {
   [[ $rc -eq 2 && $(wc -l <err) -eq 1 && ! -s out ]] || fail "$f" "exit $rc, expected 2 and one line: $(head -c 300 err)"
   grep -q -- "$pattern" err || fail "$f" "message lacks '$pattern': $(head -c 300 err)"
 }
-refused basin.png "audit the PREFIX.json or PREFIX.csv"
+for pic in basin.png basin.pdf basin.svg; do refused "$pic" "audit the PREFIX.json or PREFIX.csv"; done
 printf '{"proof": "elastic_period2", "claim": "eq. (33)", "verdict": "proved"}\n' >certificate.json
 refused certificate.json "proof_elastic_period2 --json"
 

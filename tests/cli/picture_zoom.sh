@@ -303,7 +303,7 @@ starts = [r for r in rows if r[1] == "0"]
 assert near(starts[0][2], F("0.300000000000000000005"), 1) and near(starts[1][3], F("7.00000000000000000002"), 1), starts
 _, _, px, _ = png(sys.argv[1] + ".png")
 left, top, right, bottom = frame(px)
-for colour, fx, fy in [((230, 159, 0), 0.5, 1 / 3), ((0, 158, 115), 0.9, 2 / 3)]:  # category colours 0, 1
+for colour, fx, fy in [((230, 159, 0), 0.5, 1 / 3), ((86, 180, 233), 0.9, 2 / 3)]:  # category colours 0, 1
     c = bytes(colour)
     pts = [(x, y) for y in range(top + 1, bottom) for x in range(left + 1, right) if px[y][3 * x:3 * x + 3] == c]
     assert pts, colour

@@ -1,14 +1,27 @@
-// PNG figures: an RGB canvas, a bitmap font, axes with nice ticks, legends, colour bars,
-// written with libpng (provenance in tEXt chunks) to PATH.partial and renamed into place.
+// Figures drawn with Cairo: one drawing code for PNG (an antialiased image surface written
+// with libpng, provenance in tEXt chunks), PDF and SVG (vector surfaces, provenance in the
+// document information / a <metadata> element). Text is DejaVu Sans from a fixed font file
+// through FreeType (no fontconfig), so the bytes depend only on the inputs. Every file is
+// written to PATH.partial and renamed into place.
 #include "bouncer/io/plot.hpp"
 
+#include <cairo-ft.h>
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <ft2build.h>
+#include FT_FREETYPE_H
 #include <png.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <functional>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "bouncer/io/output.hpp"
@@ -18,134 +31,6 @@
 namespace bouncer {
 
 namespace {
-
-#include "plot_font.inc"
-
-constexpr Rgb kBlack{0, 0, 0};
-constexpr Rgb kWhite{255, 255, 255};
-constexpr Rgb kGrid{228, 228, 228};
-constexpr Rgb kFrame{40, 40, 40};
-constexpr Rgb kMuted{90, 90, 90};
-
-// Glyph indices of a UTF-8 string: ASCII, and the four Greek letters of the font.
-std::vector<int> glyphs(const std::string& s) {
-  std::vector<int> out;
-  for (size_t i = 0; i < s.size();) {
-    const unsigned char c = static_cast<unsigned char>(s[i]);
-    if (c < 0x80) {
-      out.push_back(c >= 32 && c <= 126 ? c - 32 : '?' - 32);
-      ++i;
-      continue;
-    }
-    unsigned cp = 0;
-    int len = (c & 0xE0) == 0xC0 ? 2 : (c & 0xF0) == 0xE0 ? 3 : (c & 0xF8) == 0xF0 ? 4 : 1;
-    cp = len == 2 ? c & 0x1F : len == 3 ? c & 0x0F : c & 0x07;
-    for (int k = 1; k < len && i + k < s.size(); ++k) cp = (cp << 6) | (static_cast<unsigned char>(s[i + k]) & 0x3F);
-    i += len;
-    switch (cp) {
-      case 0x03B8: case 0x03D1: out.push_back(95); break;  // theta
-      case 0x03B5: case 0x03F5: out.push_back(96); break;  // epsilon
-      case 0x03C0: out.push_back(97); break;               // pi
-      case 0x03C6: case 0x03D5: out.push_back(98); break;  // phi
-      default: out.push_back('?' - 32);
-    }
-  }
-  return out;
-}
-
-class Canvas {
- public:
-  static constexpr double kFar = 1e9;  // pixel coordinates beyond this are not drawn
-  Canvas(int w, int h) : w_(w), h_(h), px_(static_cast<size_t>(w) * h * 3, 255) {}
-  int width() const { return w_; }
-  int height() const { return h_; }
-  const std::vector<std::uint8_t>& bytes() const { return px_; }
-
-  void set(int x, int y, Rgb c) {
-    if (x < clip_x0_ || y < clip_y0_ || x >= clip_x1_ || y >= clip_y1_) return;
-    std::uint8_t* p = &px_[(static_cast<size_t>(y) * w_ + x) * 3];
-    p[0] = c.r; p[1] = c.g; p[2] = c.b;
-  }
-  void clip(int x0, int y0, int x1, int y1) {
-    clip_x0_ = std::max(0, x0); clip_y0_ = std::max(0, y0);
-    clip_x1_ = std::min(w_, x1); clip_y1_ = std::min(h_, y1);
-  }
-  void unclip() { clip(0, 0, w_, h_); }
-
-  void fill(int x0, int y0, int x1, int y1, Rgb c) {  // [x0, x1) x [y0, y1)
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) set(x, y, c);
-  }
-  void rect(int x0, int y0, int x1, int y1, Rgb c) {  // outline, inclusive corners
-    for (int x = x0; x <= x1; ++x) { set(x, y0, c); set(x, y1, c); }
-    for (int y = y0; y <= y1; ++y) { set(x0, y, c); set(x1, y, c); }
-  }
-  void line(double fx0, double fy0, double fx1, double fy1, Rgb c, int thick = 1) {
-    // Bresenham on rounded ends; `thick` > 1 draws a small square brush.
-    if (!(std::fabs(fx0) < kFar && std::fabs(fy0) < kFar && std::fabs(fx1) < kFar && std::fabs(fy1) < kFar)) return;
-    int x0 = static_cast<int>(std::lround(fx0)), y0 = static_cast<int>(std::lround(fy0));
-    const int x1 = static_cast<int>(std::lround(fx1)), y1 = static_cast<int>(std::lround(fy1));
-    const int dx = std::abs(x1 - x0), sx = x0 < x1 ? 1 : -1;
-    const int dy = -std::abs(y1 - y0), sy = y0 < y1 ? 1 : -1;
-    int err = dx + dy;
-    const int lo = -(thick - 1) / 2, hi = thick / 2;
-    for (long guard = 0; guard < 100000; ++guard) {
-      for (int a = lo; a <= hi; ++a)
-        for (int b = lo; b <= hi; ++b) set(x0 + a, y0 + b, c);
-      if (x0 == x1 && y0 == y1) break;
-      const int e2 = 2 * err;
-      if (e2 >= dy) { err += dy; x0 += sx; }
-      if (e2 <= dx) { err += dx; y0 += sy; }
-    }
-  }
-  void disc(double fx, double fy, int r, Rgb c) {
-    if (!(std::fabs(fx) < kFar && std::fabs(fy) < kFar)) return;  // far outside (and no int overflow)
-    const int x = static_cast<int>(std::lround(fx)), y = static_cast<int>(std::lround(fy));
-    for (int a = -r; a <= r; ++a)
-      for (int b = -r; b <= r; ++b)
-        if (a * a + b * b <= r * r + r) set(x + a, y + b, c);
-  }
-
-  static int text_width(const std::string& s, int scale) {
-    const int n = static_cast<int>(glyphs(s).size());
-    return n == 0 ? 0 : (n * 6 - 1) * scale;
-  }
-  static int text_height(int scale) { return 8 * scale; }
-  // Horizontal text with its top-left corner at (x, y).
-  void text(int x, int y, const std::string& s, int scale, Rgb c, bool bold = false) {
-    int k = 0;
-    for (int g : glyphs(s)) {
-      const unsigned char* rows = kFont[g < kFontGlyphs ? g : '?' - 32];
-      for (int r = 0; r < 8; ++r)
-        for (int col = 0; col < 5; ++col)
-          if (rows[r] & (0x10 >> col)) {
-            const int px = x + (k * 6 + col) * scale, py = y + r * scale;
-            fill(px, py, px + scale + (bold ? 1 : 0), py + scale, c);
-          }
-      ++k;
-    }
-  }
-  // Text rotated a quarter turn counter-clockwise (read bottom to top); (x, y) is the
-  // bottom-left corner of the rotated block.
-  void text_up(int x, int y, const std::string& s, int scale, Rgb c) {
-    int k = 0;
-    for (int g : glyphs(s)) {
-      const unsigned char* rows = kFont[g < kFontGlyphs ? g : '?' - 32];
-      for (int r = 0; r < 8; ++r)
-        for (int col = 0; col < 5; ++col)
-          if (rows[r] & (0x10 >> col)) {
-            const int px = x + r * scale, py = y - (k * 6 + col + 1) * scale;
-            fill(px, py, px + scale, py + scale, c);
-          }
-      ++k;
-    }
-  }
-
- private:
-  int w_, h_;
-  std::vector<std::uint8_t> px_;
-  int clip_x0_ = 0, clip_y0_ = 0, clip_x1_ = w_, clip_y1_ = h_;
-};
 
 std::string format_number(double v, double step) {
   if (std::fabs(v) < step * 1e-9) v = 0;  // no "-0" or "1e-17" at the origin
@@ -163,6 +48,7 @@ std::string format_number(double v, double step) {
   }
   return buf;
 }
+
 
 // libpng's default handlers print to stderr; ours stay silent (the caller reports one line).
 void png_silent_error(png_structp png, png_const_charp) { png_longjmp(png, 1); }
@@ -276,10 +162,664 @@ std::string latin(const std::string& s, size_t max) {
   return out;
 }
 
-void save(const std::string& path, const Canvas& c, std::vector<std::pair<std::string, std::string>> meta) {
+// ---- drawing with Cairo ----------------------------------------------------------------------
+
+constexpr Rgb kBlack{0, 0, 0};
+constexpr Rgb kWhite{255, 255, 255};
+constexpr Rgb kGrid{232, 232, 232};
+constexpr Rgb kFrame{40, 40, 40};
+constexpr Rgb kMuted{80, 80, 80};
+constexpr const char* kFontFile = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+// The one font face, loaded once from the fixed file (kept for the life of the process).
+cairo_font_face_t* font_face() {
+  static FT_Library library = nullptr;
+  static FT_Face face = nullptr;
+  static cairo_font_face_t* cairo_face = nullptr;
+  if (cairo_face) return cairo_face;
+  if (!library && FT_Init_FreeType(&library) != 0) throw OutputError("cannot initialise FreeType to draw text");
+  if (FT_New_Face(library, kFontFile, 0, &face) != 0) {
+    face = nullptr;
+    throw OutputError(std::string("cannot load the font file '") + kFontFile +
+                      "' that pictures are drawn with: install the Debian package 'fonts-dejavu-core'");
+  }
+  // No hinting: glyph outlines (and so the pixels) do not depend on FreeType's hinter settings.
+  cairo_face = cairo_ft_font_face_create_for_ft_face(face, FT_LOAD_NO_HINTING);
+  return cairo_face;
+}
+
+// A Cairo context in figure units (pixels of the PNG), with the font, text measures and
+// the few primitives the layout uses.
+class Painter {
+ public:
+  explicit Painter(cairo_t* cr) : cr_(cr) {
+    cairo_set_font_face(cr_, font_face());
+    cairo_font_options_t* fo = cairo_font_options_create();
+    cairo_font_options_set_hint_style(fo, CAIRO_HINT_STYLE_NONE);
+    cairo_font_options_set_hint_metrics(fo, CAIRO_HINT_METRICS_OFF);
+    cairo_font_options_set_antialias(fo, CAIRO_ANTIALIAS_GRAY);
+    cairo_set_font_options(cr_, fo);
+    cairo_font_options_destroy(fo);
+    cairo_set_line_join(cr_, CAIRO_LINE_JOIN_ROUND);
+    cairo_set_line_cap(cr_, CAIRO_LINE_CAP_BUTT);
+  }
+  cairo_t* cr() const { return cr_; }
+  void color(Rgb c) const { cairo_set_source_rgb(cr_, c.r / 255.0, c.g / 255.0, c.b / 255.0); }
+  double width(const std::string& s, double size) const {
+    if (s.empty()) return 0;
+    cairo_set_font_size(cr_, size);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr_, s.c_str(), &e);
+    return e.x_advance;
+  }
+  // Height of capital letters (for centring a line on a point) and the line spacing.
+  static double cap(double size) { return 0.73 * size; }
+  static double leading(double size) { return 1.25 * size; }
+  // Text with its baseline at y; align 0 = left, 0.5 = centred, 1 = right at x.
+  void text(double x, double y, const std::string& s, double size, Rgb c, double align = 0) const {
+    if (s.empty()) return;
+    color(c);
+    cairo_set_font_size(cr_, size);
+    cairo_move_to(cr_, x - align * width(s, size), y);
+    cairo_show_text(cr_, s.c_str());
+    cairo_new_path(cr_);
+  }
+  // Text read bottom to top, centred on (x, y) along its length; x is the baseline.
+  void text_up(double x, double y, const std::string& s, double size, Rgb c) const {
+    cairo_save(cr_);
+    cairo_translate(cr_, x, y);
+    cairo_rotate(cr_, -M_PI / 2);
+    text(0, 0, s, size, c, 0.5);
+    cairo_restore(cr_);
+  }
+  void line(double x0, double y0, double x1, double y1, Rgb c, double w) const {
+    color(c);
+    cairo_set_line_width(cr_, w);
+    cairo_move_to(cr_, x0, y0);
+    cairo_line_to(cr_, x1, y1);
+    cairo_stroke(cr_);
+  }
+  void fill(double x0, double y0, double x1, double y1, Rgb c) const {
+    color(c);
+    cairo_rectangle(cr_, x0, y0, x1 - x0, y1 - y0);
+    cairo_fill(cr_);
+  }
+  void rect(double x0, double y0, double x1, double y1, Rgb c, double w) const {
+    color(c);
+    cairo_set_line_width(cr_, w);
+    cairo_rectangle(cr_, x0, y0, x1 - x0, y1 - y0);
+    cairo_stroke(cr_);
+  }
+  void clip(double x0, double y0, double x1, double y1) const {
+    cairo_save(cr_);
+    cairo_rectangle(cr_, x0, y0, x1 - x0, y1 - y0);
+    cairo_clip(cr_);
+  }
+  void unclip() const { cairo_restore(cr_); }
+
+ private:
+  cairo_t* cr_;
+};
+
+// Sizes of one figure: text in points at the figure's dpi, shrunk on a small canvas so that
+// a 400-pixel figure still has room for its plot.
+struct Style {
+  double body, small, title, line, unit;
+  Style(int w, int h, double dpi) {
+    const double pt = dpi / 72.0;
+    body = std::min(9.5 * pt, std::min(w, h * 3 / 2) / 42.0);
+    small = 0.88 * body;
+    title = 1.2 * body;
+    unit = body / 20.0;  // about one pixel of a 900-pixel figure at 150 dpi: marker sizes and line widths
+    line = std::max(1.0, 1.5 * unit);
+  }
+};
+
+// Lines of text at a size that fit `max_w`: one line, shrunk to 85% if that suffices; else
+// two lines split at the space that balances them (shrunk further if a line still does not
+// fit, down to 60%). Never cut.
+struct Fitted {
+  std::vector<std::string> lines;
+  double size;
+};
+Fitted fit_text(const Painter& p, const std::string& s, double size, double max_w, bool allow_wrap = true,
+                const std::vector<std::string>& seps = {" "}) {
+  if (s.empty()) return {{}, size};
+  if (p.width(s, size) <= max_w) return {{s}, size};
+  if (p.width(s, size * 0.85) <= max_w) return {{s}, size * 0.85};
+  std::vector<std::string> lines{s};
+  if (allow_wrap) {
+    size_t best_at = std::string::npos, best_len = 0;
+    double best = 1e300;
+    for (const std::string& sep : seps) {
+      for (size_t at = s.find(sep); at != std::string::npos; at = s.find(sep, at + 1)) {
+        const std::string a = s.substr(0, at + (sep == " " ? 0 : sep.size() - 1)), b = s.substr(at + sep.size());
+        const double worst = std::max(p.width(a, size), p.width(b, size));
+        if (worst < best) { best = worst; best_at = at; best_len = sep.size(); }
+      }
+      if (best_at != std::string::npos && best <= max_w) break;  // the first separator kind that fits
+    }
+    if (best_at != std::string::npos) {
+      const std::string sep = s.substr(best_at, best_len);
+      lines = {s.substr(0, best_at + (sep == " " ? 0 : sep.size() - 1)), s.substr(best_at + best_len)};
+    }
+  }
+  double widest = 0;
+  for (const auto& l : lines) widest = std::max(widest, p.width(l, size));
+  const double scaled = widest <= max_w ? size : std::max(0.6 * size, size * max_w / widest);
+  return {lines, scaled};
+}
+
+// The subtitle as lines that fit: split at "; " (then ", ") as often as needed.
+Fitted fit_subtitle(const Painter& p, const std::string& sub, double size, double max_w) {
+  Fitted f{{}, size};
+  std::string rest = sub;
+  while (!rest.empty() && f.lines.size() < 4) {
+    if (p.width(rest, size) <= max_w || f.lines.size() == 3) {
+      f.lines.push_back(rest);
+      break;
+    }
+    size_t cut = std::string::npos;
+    double best = 1e300;
+    for (const char* sep : {"; ", ", "})
+      for (size_t at = rest.find(sep); at != std::string::npos; at = rest.find(sep, at + 1)) {
+        const double w1 = p.width(rest.substr(0, at + 1), size), w2 = p.width(rest.substr(at + 2), size);
+        const double worst = w1 > max_w ? 1e200 + w1 : std::max(w1, w2);
+        if (worst < best) { best = worst; cut = at; }
+      }
+    if (cut == std::string::npos) {
+      f.lines.push_back(rest);
+      break;
+    }
+    f.lines.push_back(rest.substr(0, cut + 1));
+    rest = rest.substr(cut + 2);
+  }
+  double widest = 0;
+  for (const auto& l : f.lines) widest = std::max(widest, p.width(l, size));
+  if (widest > max_w) f.size = std::max(0.6 * size, size * max_w / widest);
+  return f;
+}
+
+struct TitleBlock {
+  Fitted title, subtitle;
+  double height(const Style& st) const {
+    double h = 0.8 * st.body;
+    h += title.lines.size() * Painter::leading(title.size);
+    if (!subtitle.lines.empty()) h += 0.15 * st.body + subtitle.lines.size() * Painter::leading(subtitle.size);
+    return h + 0.5 * st.body;
+  }
+};
+TitleBlock title_block(const Painter& p, const std::string& title, const std::string& subtitle, double width, const Style& st) {
+  const double max_w = width - 2 * st.body;
+  return {fit_text(p, title, st.title, max_w), fit_subtitle(p, subtitle, st.small, max_w)};
+}
+void draw_title(const Painter& p, const TitleBlock& t, double cx, const Style& st) {
+  double y = 0.8 * st.body;
+  for (const auto& l : t.title.lines) {
+    y += Painter::leading(t.title.size);
+    p.text(cx, y - 0.25 * t.title.size, l, t.title.size, kBlack, 0.5);
+  }
+  if (!t.subtitle.lines.empty()) y += 0.15 * st.body;
+  for (const auto& l : t.subtitle.lines) {
+    y += Painter::leading(t.subtitle.size);
+    p.text(cx, y - 0.25 * t.subtitle.size, l, t.subtitle.size, kMuted, 0.5);
+  }
+}
+
+struct LegendEntry {
+  std::string label;
+  Rgb color;
+  bool line = false, marker = true;
+  bool disc = false;  // the marker is a series' dot (else a square: a raster's cells)
+};
+
+// A legend box: entries stacked, each label wrapped to the box's text width.
+struct LegendBox {
+  std::vector<std::vector<std::string>> labels;  // lines of each entry
+  double size = 0, w = 0, h = 0, swatch = 0, pad = 0;
+};
+LegendBox legend_box(const Painter& p, const std::vector<LegendEntry>& entries, double size, double max_text_w) {
+  LegendBox b;
+  b.size = size;
+  b.swatch = 1.6 * size;
+  b.pad = 0.5 * size;
+  double text_w = 0;
+  for (const auto& e : entries) {
+    Fitted f{{e.label}, size};
+    if (p.width(e.label, size) > max_text_w) {
+      // Too wide: two lines split after ": ", "; " or ", " when both halves fit (the split
+      // that balances them best), else wrapped at spaces.
+      f.lines.clear();
+      double best = 1e300;
+      for (const char* sep : {": ", "; ", ", "}) {
+        for (size_t at = e.label.find(sep); at != std::string::npos; at = e.label.find(sep, at + 1)) {
+          const std::string a = e.label.substr(0, at + 1), b = e.label.substr(at + 2);
+          const double worst = std::max(p.width(a, size), p.width(b, size));
+          if (worst <= max_text_w && worst < best) {
+            best = worst;
+            f.lines = {a, b};
+          }
+        }
+        if (!f.lines.empty()) break;
+      }
+    }
+    if (f.lines.empty()) {
+      std::vector<std::string> lines;
+      std::string cur;
+      std::istringstream words(e.label);
+      for (std::string w; words >> w;) {
+        const std::string next = cur.empty() ? w : cur + " " + w;
+        if (!cur.empty() && p.width(next, size) > max_text_w) {
+          lines.push_back(cur);
+          cur = w;
+        } else {
+          cur = next;
+        }
+      }
+      if (!cur.empty()) lines.push_back(cur);
+      f.lines = lines;
+    }
+    for (const auto& l : f.lines) text_w = std::max(text_w, p.width(l, size));
+    b.h += f.lines.size() * Painter::leading(size) + 0.2 * size;
+    b.labels.push_back(f.lines);
+  }
+  if (entries.empty()) return b;
+  b.w = b.pad + b.swatch + 0.5 * size + text_w + b.pad;
+  b.h += 2 * b.pad - 0.2 * size;
+  return b;
+}
+void draw_swatch(const Painter& p, double x, double cy, const LegendEntry& e, double swatch, const Style& st) {
+  if (e.line) p.line(x, cy, x + swatch, cy, e.color, 2 * st.line);
+  if (e.marker && e.line) {  // a marked line: a disc on the line, as in the plot
+    p.color(e.color);
+    cairo_arc(p.cr(), x + swatch / 2, cy, 0.18 * swatch, 0, 2 * M_PI);
+    cairo_fill(p.cr());
+  } else if (e.marker && e.disc) {  // a series' dots
+    p.color(e.color);
+    cairo_arc(p.cr(), x + swatch / 2, cy, 0.28 * swatch, 0, 2 * M_PI);
+    cairo_fill(p.cr());
+  } else if (e.marker) {  // a square of the colour (raster classes)
+    const double r = 0.3 * swatch;
+    p.fill(x + swatch / 2 - r, cy - r, x + swatch / 2 + r, cy + r, e.color);
+    p.rect(x + swatch / 2 - r, cy - r, x + swatch / 2 + r, cy + r, kMuted, 0.5 * st.line);
+  }
+}
+void draw_legend(const Painter& p, double x, double y, const LegendBox& b, const std::vector<LegendEntry>& entries,
+                 const Style& st, bool framed) {
+  if (entries.empty()) return;
+  if (framed) {
+    p.fill(x, y, x + b.w, y + b.h, kWhite);
+    p.rect(x, y, x + b.w, y + b.h, Rgb{160, 160, 160}, 0.6 * st.line);
+  }
+  double yy = y + b.pad;
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const double first_baseline = yy + Painter::leading(b.size) - 0.3 * b.size;
+    draw_swatch(p, x + b.pad, first_baseline - Painter::cap(b.size) / 2, entries[i], b.swatch, st);
+    for (size_t k = 0; k < b.labels[i].size(); ++k)
+      p.text(x + b.pad + b.swatch + 0.5 * b.size, first_baseline + k * Painter::leading(b.size), b.labels[i][k], b.size, kBlack);
+    yy += b.labels[i].size() * Painter::leading(b.size) + 0.2 * b.size;
+  }
+}
+
+// A legend in rows under the plot: entries flow left to right, rows centred.
+std::vector<std::vector<size_t>> legend_rows(const Painter& p, const std::vector<LegendEntry>& entries, double size,
+                                             double max_w) {
+  std::vector<std::vector<size_t>> rows;
+  double x = 0;
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const double w = 1.6 * size + 0.5 * size + p.width(entries[i].label, size) + 1.5 * size;
+    if (rows.empty() || (x + w > max_w && !rows.back().empty())) {
+      rows.emplace_back();
+      x = 0;
+    }
+    rows.back().push_back(i);
+    x += w;
+  }
+  return rows;
+}
+double legend_rows_height(const Painter& p, const std::vector<LegendEntry>& entries, double size, double max_w) {
+  if (entries.empty()) return 0;
+  return legend_rows(p, entries, size, max_w).size() * Painter::leading(size) + 0.6 * size;
+}
+void draw_legend_rows(const Painter& p, double left, double top, double max_w, const std::vector<LegendEntry>& entries,
+                      double size, const Style& st) {
+  double y = top + 0.3 * size;
+  for (const auto& row : legend_rows(p, entries, size, max_w)) {
+    double total = 0;
+    for (size_t i : row) total += 1.6 * size + 0.5 * size + p.width(entries[i].label, size) + 1.5 * size;
+    double x = left + std::max(0.0, (max_w - total + 1.5 * size) / 2);
+    const double baseline = y + Painter::leading(size) - 0.3 * size;
+    for (size_t i : row) {
+      draw_swatch(p, x, baseline - Painter::cap(size) / 2, entries[i], 1.6 * size, st);
+      p.text(x + 2.1 * size, baseline, entries[i].label, size, kBlack);
+      x += 1.6 * size + 0.5 * size + p.width(entries[i].label, size) + 1.5 * size;
+    }
+    y += Painter::leading(size);
+  }
+}
+
+// One axis: linear, or logarithmic in a base (positions are log_base of the values).
+struct AxisMap {
+  bool log = false;
+  double base = 10;
+  double pos(double v) const { return log ? std::log(v) / std::log(base) : v; }
+  bool drawable(double v) const { return std::isfinite(v) && (!log || v > 0); }
+};
+
+// The rectangle of the plot in figure units and the window it shows (in axis positions).
+struct Frame {
+  double left, top, right, bottom;
+  double x0, x1, y0, y1;
+  // Edges on pixel centres, so that a frame line of odd width covers whole pixels: a crisp
+  // frame in the PNG, of exactly the frame colour (tests find the frame by it).
+  void snap() {
+    left = std::floor(left) + 0.5; top = std::floor(top) + 0.5;
+    right = std::floor(right) + 0.5; bottom = std::floor(bottom) + 0.5;
+  }
+  double px(double x) const { return left + (x - x0) / (x1 - x0) * (right - left); }
+  double py(double y) const { return bottom - (y - y0) / (y1 - y0) * (bottom - top); }
+};
+
+// The lines of a y axis title (drawn upward beside the frame): one, or for an offset axis
+// whose title is longer than the frame is tall, the label and then the offset note.
+std::vector<std::string> y_title_lines(const Painter& p, const std::string& label, const AxisOffset& o, double frame_h,
+                                       double size) {
+  const std::string whole = axis_title(label, o);
+  if (!o.active() || label.empty() || p.width(whole, size) <= frame_h) return {whole};
+  return {label, axis_title("", o).substr(1)};
+}
+// A short symbol (θ, ε, a) reads better upright than turned.
+bool upright(const std::vector<std::string>& lines) {
+  if (lines.size() != 1 || lines[0].empty()) return false;
+  size_t chars = 0;
+  for (unsigned char c : lines[0]) chars += (c & 0xC0) != 0x80;
+  return chars <= 3;
+}
+std::string typeset(const std::string& label);
+double max_label_width(const Painter& p, const Ticks& t, double size) {
+  double w = 0;
+  for (const auto& l : t.labels) w = std::max(w, p.width(typeset(l), size));
+  return w;
+}
+
+// Room left of the frame for the y tick labels and title.
+double left_room(const Painter& p, const Ticks& ty, const std::vector<std::string>& ylines, const Style& st) {
+  const double labels = max_label_width(p, ty, st.small);
+  double title = 0;
+  if (upright(ylines)) title = p.width(ylines[0], st.body) + 0.6 * st.body;
+  else if (!ylines[0].empty()) title = ylines.size() * Painter::leading(st.body) + 0.2 * st.body;
+  return 0.6 * st.body + title + labels + 0.5 * st.body + 0.5 * st.body;
+}
+double bottom_room(const std::string& xlabel, const Style& st) {
+  return 0.5 * st.body + Painter::leading(st.small) + (xlabel.empty() ? 0 : Painter::leading(st.body) + 0.2 * st.body) +
+         0.6 * st.body;
+}
+
+// A tick label as printed: a real minus sign (U+2212) for the hyphen of a negative number
+// or exponent ("-0.5", "1e-20").
+std::string typeset(const std::string& label) {
+  std::string out;
+  for (size_t i = 0; i < label.size(); ++i) {
+    if (label[i] == '-' && (i == 0 || label[i - 1] == 'e')) out += "\u2212";
+    else out += label[i];
+  }
+  return out;
+}
+
+// The frame's line width: whole pixels, odd (with Frame::snap, it covers whole pixels).
+double frame_width(const Style& st) {
+  const double w = 0.8 * st.line;
+  return w < 2 ? 1.0 : 2 * std::floor(w / 2) + 1;
+}
+
+// An axis title as printed: the offset's " - " (axis_title) with a real minus sign, and
+// its "1e-20" as 10⁻²⁰.
+std::string typeset_title(const std::string& title) {
+  static const char* const sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  std::string out;
+  for (size_t i = 0; i < title.size(); ++i) {
+    if (title.compare(i, 3, " - ") == 0) {
+      out += " \u2212 ";
+      i += 2;
+    } else if (title.compare(i, 2, "1e") == 0 && (i == 0 || title[i - 1] == ' ') && i + 2 < title.size() &&
+               (title[i + 2] == '-' || std::isdigit(static_cast<unsigned char>(title[i + 2])))) {
+      size_t j = i + 2;
+      std::string exp = title[j] == '-' ? "⁻" : "";
+      if (title[j] == '-') ++j;
+      const size_t digits = j;
+      while (j < title.size() && std::isdigit(static_cast<unsigned char>(title[j]))) exp += sup[title[j++] - '0'];
+      if (j == digits) {
+        out += title[i];
+        continue;
+      }
+      out += "10" + exp;
+      i = j - 1;
+    } else {
+      out += title[i];
+    }
+  }
+  return out;
+}
+
+// Axes: ticks, tick labels, grid lines (optional), frame and axis titles.
+void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& ty, const AxisMap& mx, const AxisMap& my,
+               const std::string& xlabel, const std::vector<std::string>& ylines, bool grid, const Style& st) {
+  const double tick = 0.4 * st.body, lw = 0.8 * st.line;
+  if (grid) {
+    p.clip(f.left, f.top, f.right, f.bottom);
+    for (double v : tx.values) p.line(f.px(mx.pos(v)), f.top, f.px(mx.pos(v)), f.bottom, kGrid, 0.7 * st.line);
+    for (double v : ty.values) p.line(f.left, f.py(my.pos(v)), f.right, f.py(my.pos(v)), kGrid, 0.7 * st.line);
+    p.unclip();
+  }
+  double widest = 0;
+  for (size_t i = 0; i < tx.values.size(); ++i) {
+    const double x = f.px(mx.pos(tx.values[i]));
+    p.line(x, f.bottom, x, f.bottom + tick, kFrame, lw);
+    p.text(x, f.bottom + tick + 0.2 * st.body + Painter::cap(st.small), typeset(tx.labels[i]), st.small, kBlack, 0.5);
+  }
+  for (size_t i = 0; i < ty.values.size(); ++i) {
+    const double y = f.py(my.pos(ty.values[i]));
+    p.line(f.left - tick, y, f.left, y, kFrame, lw);
+    widest = std::max(widest, p.width(typeset(ty.labels[i]), st.small));
+    p.text(f.left - tick - 0.3 * st.body, y + Painter::cap(st.small) / 2, typeset(ty.labels[i]), st.small, kBlack, 1);
+  }
+  p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
+  const double cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
+  if (!xlabel.empty())
+    p.text(cx, f.bottom + tick + 0.2 * st.body + Painter::leading(st.small) + Painter::leading(st.body) - 0.1 * st.body,
+           typeset_title(xlabel), st.body, kBlack, 0.5);
+  const double label_edge = f.left - tick - 0.3 * st.body - widest - 0.5 * st.body;
+  if (upright(ylines)) {
+    p.text(label_edge, cy + Painter::cap(st.body) / 2, ylines[0], st.body, kBlack, 1);
+  } else if (!ylines[0].empty()) {
+    for (size_t i = 0; i < ylines.size(); ++i)  // the first line outermost
+      p.text_up(label_edge - (ylines.size() - 1 - i) * Painter::leading(st.body) - 0.25 * st.body, cy,
+                typeset_title(ylines[i]), st.body, kBlack);
+  }
+}
+
+void data_range(const std::vector<Series>& series, bool use_x, const AxisMap& m, double& lo, double& hi) {
+  lo = std::numeric_limits<double>::infinity();
+  hi = -lo;
+  for (const auto& s : series)
+    for (double v : use_x ? s.x : s.y) {
+      if (!m.drawable(v)) continue;
+      const double t = m.pos(v);
+      lo = std::min(lo, t);
+      hi = std::max(hi, t);
+    }
+  // Error bars inside the window too (linear axes; a log axis draws none).
+  if (!use_x && !m.log)
+    for (const auto& s : series)
+      for (size_t i = 0; i < s.yerr.size() && i < s.y.size(); ++i)
+        if (std::isfinite(s.y[i]) && std::isfinite(s.yerr[i]) && s.yerr[i] > 0) {
+          lo = std::min(lo, s.y[i] - s.yerr[i]);
+          hi = std::max(hi, s.y[i] + s.yerr[i]);
+        }
+  if (!std::isfinite(lo)) { lo = 0; hi = 1; }
+  if (hi - lo <= 0) {
+    const double d = std::max(0.5, std::fabs(lo) * 0.1);
+    lo -= d;
+    hi += d;
+  } else {
+    const double pad = (hi - lo) * 0.03;
+    lo -= pad;
+    hi += pad;
+  }
+}
+
+Ticks axis_ticks(const AxisMap& m, double p0, double p1, int target) {
+  if (!m.log) return nice_ticks(p0, p1, target);
+  return log_ticks(std::pow(m.base, p0), std::pow(m.base, p1), m.base);
+}
+
+// Series: lines, error bars, markers, clipped to the frame.
+void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& series, const AxisMap& mx, const AxisMap& my,
+                 const Style& st) {
+  p.clip(f.left, f.top, f.right, f.bottom);
+  cairo_t* cr = p.cr();
+  for (const auto& s : series) {
+    const size_t n = std::min(s.x.size(), s.y.size());
+    auto ok = [&](size_t i) { return mx.drawable(s.x[i]) && my.drawable(s.y[i]); };
+    auto X = [&](size_t i) { return f.px(mx.pos(s.x[i])); };
+    auto Y = [&](size_t i) { return f.py(my.pos(s.y[i])); };
+    // Far outside the frame: not drawn (Cairo's fixed point cannot hold it).
+    auto near = [&](double x, double y) { return std::fabs(x) < 1e6 && std::fabs(y) < 1e6; };
+    if (s.lines) {
+      p.color(s.color);
+      cairo_set_line_width(cr, 1.6 * st.line);
+      bool open = false;
+      for (size_t i = 0; i < n; ++i) {
+        if (!ok(i) || !near(X(i), Y(i))) {
+          open = false;
+          continue;
+        }
+        if (open) cairo_line_to(cr, X(i), Y(i));
+        else cairo_move_to(cr, X(i), Y(i));
+        open = true;
+      }
+      cairo_stroke(cr);
+    }
+    for (size_t i = 0; i < n && i < s.yerr.size(); ++i) {
+      const double e = s.yerr[i];
+      if (!ok(i) || !std::isfinite(e) || e <= 0 || my.log) continue;
+      const double xp = X(i), lo = f.py(s.y[i] - e), hi = f.py(s.y[i] + e), cap = 3 * st.unit;
+      if (!near(xp, lo) || !near(xp, hi)) continue;
+      p.line(xp, lo, xp, hi, s.color, 0.8 * st.line);
+      p.line(xp - cap, lo, xp + cap, lo, s.color, 0.8 * st.line);
+      p.line(xp - cap, hi, xp + cap, hi, s.color, 0.8 * st.line);
+    }
+    if (s.markers) {
+      p.color(s.color);
+      const double r = (s.marker_size <= 0 ? 0.8 : s.marker_size + 0.8) * st.unit;
+      for (size_t i = 0; i < n; ++i)
+        if (ok(i) && near(X(i), Y(i))) {
+          cairo_new_sub_path(cr);
+          cairo_arc(cr, X(i), Y(i), r, 0, 2 * M_PI);
+        }
+      cairo_fill(cr);
+    }
+  }
+  p.unclip();
+}
+
+// The corner of the frame (0 top-right, 1 top-left, 2 bottom-right, 3 bottom-left) whose
+// legend box covers the fewest data points; ties go to the earlier corner.
+int best_corner(const Frame& f, const std::vector<Series>& series, const AxisMap& mx, const AxisMap& my, double w,
+                double h, double margin, long& covered_out) {
+  long best = -1;
+  int corner = 0;
+  for (int c = 0; c < 4; ++c) {
+    const double x0 = c % 2 == 0 ? f.right - margin - w : f.left + margin, y0 = c < 2 ? f.top + margin : f.bottom - margin - h;
+    long covered = 0;
+    for (const auto& s : series) {
+      const size_t n = std::min(s.x.size(), s.y.size());
+      for (size_t i = 0; i < n; ++i) {
+        if (!mx.drawable(s.x[i]) || !my.drawable(s.y[i])) continue;
+        const double x = f.px(mx.pos(s.x[i])), y = f.py(my.pos(s.y[i]));
+        covered += x >= x0 - margin && x <= x0 + w + margin && y >= y0 - margin && y <= y0 + h + margin;
+      }
+      // Lines between points cover the box too: sample the segments.
+      if (s.lines)
+        for (size_t i = 1; i < n; ++i) {
+          if (!mx.drawable(s.x[i - 1]) || !my.drawable(s.y[i - 1]) || !mx.drawable(s.x[i]) || !my.drawable(s.y[i])) continue;
+          for (int k = 1; k < 8; ++k) {
+            const double t = k / 8.0;
+            const double x = f.px(mx.pos(s.x[i - 1]) * (1 - t) + mx.pos(s.x[i]) * t);
+            const double y = f.py(my.pos(s.y[i - 1]) * (1 - t) + my.pos(s.y[i]) * t);
+            covered += x >= x0 && x <= x0 + w && y >= y0 && y <= y0 + h;
+          }
+        }
+    }
+    if (best < 0 || covered < best) {
+      best = covered;
+      corner = c;
+    }
+  }
+  covered_out = best;
+  return corner;
+}
+
+// A rendering target: an image surface for PNG, a PDF or SVG stream into a string.
+cairo_status_t append_bytes(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+std::string meta_value(const std::vector<std::pair<std::string, std::string>>& meta, const std::string& key) {
+  for (const auto& [k, v] : meta)
+    if (k == key) return v;
+  return "";
+}
+
+std::vector<std::pair<std::string, std::string>> with_software(std::vector<std::pair<std::string, std::string>> meta) {
   bool has_software = false;
   for (const auto& kv : meta) has_software = has_software || kv.first == "Software";
   if (!has_software) meta.emplace_back("Software", "bouncer " + build_info().version + " (commit " + build_info().commit + ")");
+  return meta;
+}
+
+std::string xml_escaped(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default:
+        // XML 1.0 allows no control characters but tab and newline.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t') out += ' ';
+        else out += c;
+    }
+  }
+  return out;
+}
+
+// Writes `bytes` to PATH.partial and renames it into place.
+void save_bytes(const std::string& path, const std::string& bytes, const char* what) {
+  const std::string tmp = path + ".partial";
+  const PartialFile registered(tmp);
+  bool ok = false;
+  if (FILE* fp = std::fopen(tmp.c_str(), "wb")) {
+    ok = std::fwrite(bytes.data(), 1, bytes.size(), fp) == bytes.size();
+    ok = std::fclose(fp) == 0 && ok;
+  }
+  std::error_code ec;
+  if (!ok) {
+    std::filesystem::remove(tmp, ec);
+    throw OutputError(std::string("cannot write ") + what + " '" + path + "'");
+  }
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::filesystem::remove(tmp, ec);
+    throw OutputError("cannot rename '" + tmp + "' to '" + path + "'");
+  }
+}
+
+void save_png(const std::string& path, int w, int h, const std::vector<std::uint8_t>& rgb,
+              const std::vector<std::pair<std::string, std::string>>& metadata) {
+  const auto meta = with_software(metadata);
   std::vector<std::string> keys, values;
   for (const auto& [k, v] : meta) {
     std::string key = latin(k, 79);
@@ -296,7 +836,7 @@ void save(const std::string& path, const Canvas& c, std::vector<std::pair<std::s
   }
   const std::string tmp = path + ".partial";
   const PartialFile registered(tmp);
-  if (!encode_png(tmp.c_str(), c.width(), c.height(), c.bytes().data(), text.data(), static_cast<int>(text.size()))) {
+  if (!encode_png(tmp.c_str(), w, h, rgb.data(), text.data(), static_cast<int>(text.size()))) {
     std::error_code ec;
     std::filesystem::remove(tmp, ec);
     throw OutputError("cannot write PNG '" + path + "'");
@@ -309,227 +849,93 @@ void save(const std::string& path, const Canvas& c, std::vector<std::pair<std::s
   }
 }
 
-// Text sizes: tick labels and legend at scale 2, title at scale 3 on a 900-pixel figure.
-struct Style {
-  int small, title;
-  explicit Style(int width) : small(width >= 600 ? 2 : 1), title(width >= 600 ? 3 : 2) {}
-};
-
-struct LegendEntry {
-  std::string label;
-  Rgb color;
-  bool line = false, marker = true;
-};
-
-int legend_width(const std::vector<LegendEntry>& entries, int scale) {
-  int w = 0;
-  for (const auto& e : entries) w = std::max(w, Canvas::text_width(e.label, scale));
-  return entries.empty() ? 0 : w + 12 * scale + 16;
-}
-
-// Legend entries stacked from (x, y); returns the y below the last one.
-int draw_legend(Canvas& c, int x, int y, const std::vector<LegendEntry>& entries, int scale) {
-  if (entries.empty()) return y;
-  const int row = Canvas::text_height(scale) + 6 * scale / 2 + 4;
-  const int h = static_cast<int>(entries.size()) * row + 8;
-  c.fill(x, y, x + legend_width(entries, scale), y + h, kWhite);
-  c.rect(x, y, x + legend_width(entries, scale), y + h, Rgb{170, 170, 170});
-  int yy = y + 6;
-  for (const auto& e : entries) {
-    const int sw = 8 * scale, cy = yy + Canvas::text_height(scale) / 2;
-    if (e.line) c.line(x + 6, cy, x + 6 + sw, cy, e.color, 2);
-    if (e.marker) c.fill(x + 6 + sw / 2 - 3 * scale, cy - 3 * scale, x + 6 + sw / 2 + 3 * scale, cy + 3 * scale, e.color);
-    if (e.marker) c.rect(x + 6 + sw / 2 - 3 * scale, cy - 3 * scale, x + 6 + sw / 2 + 3 * scale - 1, cy + 3 * scale - 1, kMuted);
-    c.text(x + 12 + sw, yy, e.label, scale, kBlack);
-    yy += row;
+// Renders with `draw(painter)` in figure units (W x H) to the format and writes the file.
+void render(const std::string& path, ImageFormat format, int w, int h, double dpi,
+            const std::vector<std::pair<std::string, std::string>>& metadata, const std::function<void(const Painter&)>& draw) {
+  font_face();  // a missing font is reported before anything is drawn
+  const double points = 72.0 / dpi;
+  std::string bytes;
+  cairo_surface_t* surface = nullptr;
+  switch (format) {
+    case ImageFormat::png: surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h); break;
+    case ImageFormat::pdf: surface = cairo_pdf_surface_create_for_stream(append_bytes, &bytes, w * points, h * points); break;
+    case ImageFormat::svg: surface = cairo_svg_surface_create_for_stream(append_bytes, &bytes, w * points, h * points); break;
   }
-  return y + h;
-}
-
-// Title (and subtitle) centred over the plot area; returns the height used.
-// The subtitle as lines that fit the figure: split at "; " (then ", ") when too long.
-std::vector<std::string> subtitle_lines(const std::string& sub, int scale, int width) {
-  std::vector<std::string> lines;
-  std::string rest = sub;
-  while (!rest.empty()) {
-    if (Canvas::text_width(rest, scale) <= width - 16) {
-      lines.push_back(rest);
-      break;
-    }
-    // The split that fits and balances the line widths best ("; " and ", " only).
-    size_t cut = std::string::npos;
-    int best = 1 << 30;
-    for (const char* sep : {"; ", ", "})
-      for (size_t at = rest.find(sep); at != std::string::npos; at = rest.find(sep, at + 1)) {
-        const int w1 = Canvas::text_width(rest.substr(0, at + 1), scale);
-        const int w2 = Canvas::text_width(rest.substr(at + 2), scale);
-        const int worst = w1 > width - 16 ? (1 << 29) + w1 : std::max(w1, w2);
-        if (worst < best) { best = worst; cut = at; }
+  if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
+    cairo_surface_destroy(surface);
+    throw OutputError(std::string("cannot create a ") + format_name(format) + " surface for '" + path + "'");
+  }
+  const auto meta = with_software(metadata);
+  if (format == ImageFormat::pdf) {
+    // The document information holds the provenance; the dates cairo would add (the time
+    // of the run) are left out so that the same inputs give the same bytes.
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, meta_value(meta, "Title").c_str());
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, meta_value(meta, "Software").c_str());
+    std::string subject = meta_value(meta, "bouncer:provenance");
+    if (subject.empty()) subject = meta_value(meta, "provenance");
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_SUBJECT, subject.c_str());
+    std::string keywords;
+    for (const auto& [k, v] : meta)
+      if (k != "Title" && k != "Software" && k != "bouncer:provenance" && k != "provenance")
+        keywords += (keywords.empty() ? "" : "; ") + k + "=" + v;
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_KEYWORDS, keywords.c_str());
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, "");
+    cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_MOD_DATE, "");
+  }
+  if (format == ImageFormat::svg) cairo_svg_surface_set_document_unit(surface, CAIRO_SVG_UNIT_PT);
+  cairo_t* cr = cairo_create(surface);
+  if (format != ImageFormat::png) cairo_scale(cr, points, points);
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  try {
+    draw(Painter(cr));
+  } catch (...) {
+    cairo_destroy(cr);
+    cairo_surface_destroy(surface);
+    throw;
+  }
+  const cairo_status_t drawn = cairo_status(cr);
+  cairo_destroy(cr);
+  cairo_surface_flush(surface);
+  std::vector<std::uint8_t> rgb;
+  if (format == ImageFormat::png && drawn == CAIRO_STATUS_SUCCESS) {
+    const unsigned char* data = cairo_image_surface_get_data(surface);
+    const int stride = cairo_image_surface_get_stride(surface);
+    rgb.resize(static_cast<size_t>(w) * h * 3);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        std::uint32_t px;
+        std::memcpy(&px, data + static_cast<size_t>(y) * stride + 4 * static_cast<size_t>(x), 4);
+        std::uint8_t* o = &rgb[(static_cast<size_t>(y) * w + x) * 3];
+        o[0] = static_cast<std::uint8_t>(px >> 16);
+        o[1] = static_cast<std::uint8_t>(px >> 8);
+        o[2] = static_cast<std::uint8_t>(px);
       }
-    if (cut == std::string::npos) {
-      lines.push_back(rest);
-      break;
+  }
+  cairo_surface_finish(surface);
+  const cairo_status_t finished = cairo_surface_status(surface);
+  cairo_surface_destroy(surface);
+  if (drawn != CAIRO_STATUS_SUCCESS || finished != CAIRO_STATUS_SUCCESS)
+    throw OutputError(std::string("cannot render ") + format_name(format) + " '" + path + "': " +
+                      cairo_status_to_string(drawn != CAIRO_STATUS_SUCCESS ? drawn : finished));
+  if (format == ImageFormat::png) return save_png(path, w, h, rgb, metadata);
+  if (format == ImageFormat::svg) {
+    // Provenance in the SVG: a <title> and a <metadata> element after the opening <svg> tag.
+    const size_t open = bytes.find("<svg");
+    const size_t end = open == std::string::npos ? open : bytes.find('>', open);
+    if (end != std::string::npos) {
+      std::string block = "\n<title>" + xml_escaped(meta_value(meta, "Title")) + "</title>\n<metadata>\n";
+      for (const auto& [k, v] : meta) block += xml_escaped(k) + ": " + xml_escaped(v) + "\n";
+      block += "</metadata>";
+      bytes.insert(end + 1, block);
     }
-    lines.push_back(rest.substr(0, cut + 1));
-    rest = rest.substr(cut + 2);
   }
-  return lines;
+  save_bytes(path, bytes, format == ImageFormat::pdf ? "PDF" : "SVG");
 }
 
-int title_height(const std::string& title, const std::string& subtitle, int width, const Style& st) {
-  int h = 10;
-  if (!title.empty()) h += Canvas::text_height(st.title) + 8;
-  if (!subtitle.empty())
-    h += static_cast<int>(subtitle_lines(subtitle, st.small, width).size()) * (Canvas::text_height(st.small) + 6);
-  return h + 8;
-}
-
-// Title and subtitle centred over `cx` but kept inside the figure.
-int draw_title(Canvas& c, const std::string& title, const std::string& subtitle, int cx, const Style& st) {
-  int y = 10;
-  auto centred = [&](const std::string& s, int scale, Rgb col) {
-    const int w = Canvas::text_width(s, scale);
-    const int x = std::clamp(cx - w / 2, 8, std::max(8, c.width() - 8 - w));
-    c.text(x, y, s, scale, col);
-    y += Canvas::text_height(scale);
-  };
-  if (!title.empty()) {
-    centred(title, st.title, kBlack);
-    y += 8;
-  }
-  if (!subtitle.empty())
-    for (const std::string& line : subtitle_lines(subtitle, st.small, c.width())) {
-      centred(line, st.small, kMuted);
-      y += 6;
-    }
-  return y + 8;
-}
-
-// A legend laid out in rows under the plot: entries flow left to right.
-std::vector<std::vector<size_t>> legend_rows(const std::vector<LegendEntry>& entries, int scale, int max_width) {
-  std::vector<std::vector<size_t>> rows;
-  int x = 0;
-  for (size_t i = 0; i < entries.size(); ++i) {
-    const int w = 8 * scale + 12 + Canvas::text_width(entries[i].label, scale) + 24;
-    if (rows.empty() || (x + w > max_width && !rows.back().empty())) {
-      rows.emplace_back();
-      x = 0;
-    }
-    rows.back().push_back(i);
-    x += w;
-  }
-  return rows;
-}
-
-int legend_below_height(const std::vector<LegendEntry>& entries, int scale, int max_width) {
-  if (entries.empty()) return 0;
-  return static_cast<int>(legend_rows(entries, scale, max_width).size()) * (Canvas::text_height(scale) + 10) + 8;
-}
-
-void draw_legend_below(Canvas& c, int left, int y, int max_width, const std::vector<LegendEntry>& entries, int scale) {
-  for (const auto& row : legend_rows(entries, scale, max_width)) {
-    int total = 0;
-    for (size_t i : row) total += 8 * scale + 12 + Canvas::text_width(entries[i].label, scale) + 24;
-    int x = left + std::max(0, (max_width - total + 24) / 2);
-    for (size_t i : row) {
-      const LegendEntry& e = entries[i];
-      const int sw = 8 * scale, cy = y + Canvas::text_height(scale) / 2;
-      if (e.line) c.line(x, cy, x + sw, cy, e.color, 2);
-      if (e.marker) {
-        c.fill(x + sw / 2 - 3 * scale, cy - 3 * scale, x + sw / 2 + 3 * scale, cy + 3 * scale, e.color);
-        c.rect(x + sw / 2 - 3 * scale, cy - 3 * scale, x + sw / 2 + 3 * scale - 1, cy + 3 * scale - 1, kMuted);
-      }
-      c.text(x + sw + 8, y, e.label, scale, kBlack);
-      x += sw + 12 + Canvas::text_width(e.label, scale) + 24;
-    }
-    y += Canvas::text_height(scale) + 10;
-  }
-}
-
-// The rectangle of the plot in pixels and the data window it shows.
-struct Frame {
-  int left, top, right, bottom;  // pixel edges (inclusive)
-  double x0, x1, y0, y1;         // data window (y in log10 when log_y)
-  double px(double x) const { return left + (x - x0) / (x1 - x0) * (right - left); }
-  double py(double y) const { return bottom - (y - y0) / (y1 - y0) * (bottom - top); }
-};
-
-// The lines of a y axis title (drawn upward beside the frame): one, or for an offset axis
-// whose title is longer than the frame is tall, the label and then the offset note
-// ("- 4, in units of 1e-26") on a second line.
-std::vector<std::string> y_title_lines(const std::string& label, const AxisOffset& o, int frame_height, int scale) {
-  const std::string whole = axis_title(label, o);
-  if (!o.active() || label.empty() || Canvas::text_width(whole, scale) <= frame_height) return {whole};
-  return {label, axis_title("", o).substr(1)};
-}
-int y_title_extra(const std::vector<std::string>& lines, int scale) {
-  return static_cast<int>(lines.size() - 1) * (Canvas::text_height(scale) + 4);
-}
-
-// Axes: frame, ticks, tick labels, grid lines (optional) and axis labels.
-void draw_axes(Canvas& c, const Frame& f, const Ticks& tx, const Ticks& ty, bool log_y, const std::string& xlabel,
-               const std::vector<std::string>& ylines, bool grid, const Style& st) {
-  const int tick = 6;
-  if (grid) {
-    c.clip(f.left + 1, f.top + 1, f.right, f.bottom);
-    for (double v : tx.values) c.line(f.px(v), f.top, f.px(v), f.bottom, kGrid);
-    for (double v : ty.values) c.line(f.left, f.py(log_y ? std::log10(v) : v), f.right, f.py(log_y ? std::log10(v) : v), kGrid);
-    c.unclip();
-  }
-  int widest = 0;
-  for (size_t i = 0; i < tx.values.size(); ++i) {
-    const double x = f.px(tx.values[i]);
-    c.line(x, f.bottom, x, f.bottom + tick, kFrame);
-    c.text(static_cast<int>(x) - Canvas::text_width(tx.labels[i], st.small) / 2, f.bottom + tick + 4, tx.labels[i], st.small, kBlack);
-  }
-  for (size_t i = 0; i < ty.values.size(); ++i) {
-    const double y = f.py(log_y ? std::log10(ty.values[i]) : ty.values[i]);
-    c.line(f.left - tick, y, f.left, y, kFrame);
-    const int w = Canvas::text_width(ty.labels[i], st.small);
-    widest = std::max(widest, w);
-    c.text(f.left - tick - 4 - w, static_cast<int>(y) - Canvas::text_height(st.small) / 2, ty.labels[i], st.small, kBlack);
-  }
-  c.rect(f.left, f.top, f.right, f.bottom, kFrame);
-  const int cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
-  if (!xlabel.empty())
-    c.text(cx - Canvas::text_width(xlabel, st.small) / 2, f.bottom + tick + 4 + Canvas::text_height(st.small) + 10, xlabel, st.small, kBlack);
-  const std::string& ylabel = ylines.front();
-  if (ylines.size() == 1 && !ylabel.empty() && glyphs(ylabel).size() <= 2)  // a symbol reads better upright
-    c.text(f.left - tick - 4 - widest - 10 - Canvas::text_width(ylabel, st.small), cy - Canvas::text_height(st.small) / 2, ylabel,
-           st.small, kBlack);
-  else if (!ylabel.empty())
-    for (size_t i = 0; i < ylines.size(); ++i)  // the first line outermost
-      c.text_up(f.left - tick - 4 - widest - 10 - Canvas::text_height(st.small) -
-                    static_cast<int>(ylines.size() - 1 - i) * (Canvas::text_height(st.small) + 4),
-                cy + Canvas::text_width(ylines[i], st.small) / 2, ylines[i], st.small, kBlack);
-}
-
-int max_label_width(const Ticks& t, int scale) {
-  int w = 0;
-  for (const auto& l : t.labels) w = std::max(w, Canvas::text_width(l, scale));
-  return w;
-}
-
-void data_range(const std::vector<Series>& series, bool use_x, bool log, double& lo, double& hi) {
-  lo = std::numeric_limits<double>::infinity();
-  hi = -lo;
-  for (const auto& s : series)
-    for (double v : use_x ? s.x : s.y) {
-      if (!std::isfinite(v) || (log && v <= 0)) continue;
-      const double t = log ? std::log10(v) : v;
-      lo = std::min(lo, t);
-      hi = std::max(hi, t);
-    }
-  if (!std::isfinite(lo)) { lo = 0; hi = 1; }
-  if (hi - lo <= 0) {
-    const double d = std::max(0.5, std::fabs(lo) * 0.1);
-    lo -= d;
-    hi += d;
-  } else {
-    const double pad = (hi - lo) * 0.03;
-    lo -= pad;
-    hi += pad;
-  }
+void check_size(int w, int h) {
+  if (w < kMinFigureWidth || h < kMinFigureHeight || w > kMaxFigureSide || h > kMaxFigureSide)
+    throw std::runtime_error("figure size out of range");
 }
 
 }  // namespace
@@ -645,6 +1051,46 @@ Ticks log_ticks(double lo, double hi) {
   return t;
 }
 
+const char* format_name(ImageFormat f) {
+  switch (f) {
+    case ImageFormat::png: return "png";
+    case ImageFormat::pdf: return "pdf";
+    case ImageFormat::svg: return "svg";
+  }
+  return "png";
+}
+
+const char* figure_font_path() { return kFontFile; }
+void check_figure_font() { font_face(); }
+
+Ticks log_ticks(double lo, double hi, double base) {
+  if (base == 10 || !(base > 1)) return log_ticks(lo, hi);
+  Ticks t;
+  if (!(lo > 0) || !(hi > lo)) return nice_ticks(lo, hi);
+  const double lb = std::log(base);
+  const int k0 = static_cast<int>(std::ceil(std::log(lo) / lb - 1e-9)), k1 = static_cast<int>(std::floor(std::log(hi) / lb + 1e-9));
+  if (k1 - k0 < 1) return nice_ticks(lo, hi);
+  const int stride = std::max(1, (k1 - k0 + 9) / 10);
+  static const char* const sup[] = {"⁰", "¹", "²", "³", "⁴", "⁵", "⁶", "⁷", "⁸", "⁹"};
+  for (int k = k0; k <= k1; k += stride) {
+    const double v = std::pow(base, k);
+    t.values.push_back(v);
+    char buf[64];
+    if (v == std::round(v) && v < 1e7) {
+      std::snprintf(buf, sizeof buf, "%.0f", v);
+      t.labels.push_back(buf);
+    } else {
+      std::snprintf(buf, sizeof buf, "%g", base);
+      std::string s = buf;
+      if (k < 0) s += "⁻";
+      for (char c : std::to_string(std::abs(k))) s += sup[c - '0'];
+      t.labels.push_back(s);
+    }
+  }
+  t.step = stride;
+  return t;
+}
+
 Rgb ramp_color(double t) {
   t = std::clamp(t, 0.0, 1.0);
   // White to near-black through cool greys: light marks stay visible, dense ones are black.
@@ -653,11 +1099,24 @@ Rgb ramp_color(double t) {
   return Rgb{ch(1.15), ch(1.05), ch(0.95)};
 }
 
+Rgb viridis_color(double t) {
+  // Matplotlib's viridis sampled at 0, 1/8, ..., 1, interpolated linearly.
+  static const double v[9][3] = {{68, 1, 84},    {71, 44, 122},  {59, 81, 139},  {44, 113, 142}, {33, 144, 141},
+                                 {39, 173, 129}, {92, 200, 99},  {170, 220, 50}, {253, 231, 37}};
+  t = std::clamp(t, 0.0, 1.0) * 8;
+  const int i = std::min(7, static_cast<int>(t));
+  const double f = t - i;
+  auto ch = [&](int c) { return static_cast<std::uint8_t>(std::lround(v[i][c] * (1 - f) + v[i + 1][c] * f)); };
+  return Rgb{ch(0), ch(1), ch(2)};
+}
+
 Rgb category_color(int index) {
+  // Okabe-Ito first (without its vermillion, blue and bluish green: sticking, unbounded and
+  // chaos), then further distinct colours.
   static const Rgb palette[] = {
-      {230, 159, 0},   {0, 158, 115},  {204, 121, 167}, {240, 228, 66}, {140, 86, 11},   {86, 180, 233},
-      {128, 128, 0},   {0, 200, 200},  {255, 200, 140}, {100, 60, 140}, {180, 220, 120}, {200, 170, 230},
-      {120, 120, 60},  {0, 110, 110},  {255, 150, 220}, {170, 120, 60},
+      {230, 159, 0},   {86, 180, 233},  {204, 121, 167}, {0, 90, 60},    {140, 86, 11},  {240, 228, 66},
+      {128, 128, 0},   {0, 200, 200},   {255, 200, 140}, {100, 60, 140}, {180, 220, 120}, {200, 170, 230},
+      {120, 120, 60},  {0, 110, 110},   {255, 150, 220}, {170, 120, 60},
   };
   constexpr int n = sizeof(palette) / sizeof(palette[0]);
   if (index < 0) index = 0;
@@ -668,20 +1127,21 @@ Rgb category_color(int index) {
   return Rgb{static_cast<std::uint8_t>(base.r * f), static_cast<std::uint8_t>(base.g * f), static_cast<std::uint8_t>(base.b * f)};
 }
 
-void write_png(const std::string& path, const Figure& fig) {
-  if (fig.width < 200 || fig.height < 150 || fig.width > 20000 || fig.height > 20000)
-    throw std::runtime_error("figure size out of range");
-  const Style st(fig.width);
-  Canvas c(fig.width, fig.height);
+void write_figure(const std::string& path, const Figure& fig, ImageFormat format, const RenderOptions& ro) {
+  const int W = ro.width > 0 ? ro.width : fig.width, H = ro.height > 0 ? ro.height : fig.height;
+  check_size(W, H);
+  if (!(ro.dpi >= kMinDpi && ro.dpi <= kMaxDpi)) throw std::runtime_error("figure dpi out of range");
+  const Style st(W, H, ro.dpi);
+  const AxisMap mx{fig.log_x, fig.log_x ? fig.log_x_base : 10}, my{fig.log_y, 10};
 
-  // Data window.
+  // Data window, in axis positions (log_base of the values on a log axis).
   double x0, x1, y0, y1;
-  data_range(fig.series, true, false, x0, x1);
-  data_range(fig.series, false, fig.log_y, y0, y1);
-  if (std::isfinite(fig.x_min)) x0 = fig.x_min;
-  if (std::isfinite(fig.x_max)) x1 = fig.x_max;
-  if (std::isfinite(fig.y_min)) y0 = fig.log_y ? std::log10(fig.y_min) : fig.y_min;
-  if (std::isfinite(fig.y_max)) y1 = fig.log_y ? std::log10(fig.y_max) : fig.y_max;
+  data_range(fig.series, true, mx, x0, x1);
+  data_range(fig.series, false, my, y0, y1);
+  if (std::isfinite(fig.x_min) && mx.drawable(fig.x_min)) x0 = mx.pos(fig.x_min);
+  if (std::isfinite(fig.x_max) && mx.drawable(fig.x_max)) x1 = mx.pos(fig.x_max);
+  if (std::isfinite(fig.y_min) && my.drawable(fig.y_min)) y0 = my.pos(fig.y_min);
+  if (std::isfinite(fig.y_max) && my.drawable(fig.y_max)) y1 = my.pos(fig.y_max);
   if (!(x1 > x0)) x1 = x0 + 1;
   if (!(y1 > y0)) y1 = y0 + 1;
 
@@ -691,8 +1151,8 @@ void write_png(const std::string& path, const Figure& fig) {
   std::vector<Series> zoomed;
   const std::vector<Series>* series = &fig.series;
   if (!fig.equal_aspect) {
-    const AxisZoom zx = x_offset.active() ? AxisZoom() : AxisZoom(mpq_class(x0), mpq_class(x1));
-    const AxisZoom zy = y_offset.active() || fig.log_y ? AxisZoom() : AxisZoom(mpq_class(y0), mpq_class(y1));
+    const AxisZoom zx = x_offset.active() || mx.log ? AxisZoom() : AxisZoom(mpq_class(x0), mpq_class(x1));
+    const AxisZoom zy = y_offset.active() || my.log ? AxisZoom() : AxisZoom(mpq_class(y0), mpq_class(y1));
     if (zx.active() || zy.active()) {
       zoomed = fig.series;
       for (Series& s : zoomed) {
@@ -710,154 +1170,218 @@ void write_png(const std::string& path, const Figure& fig) {
 
   std::vector<LegendEntry> legend;
   for (const auto& s : *series)
-    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers});
+    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, true});
 
-  // Layout: room for the y tick labels (estimated from the window), labels, title, legend.
-  const Ticks ty0 = fig.log_y ? log_ticks(std::pow(10.0, y0), std::pow(10.0, y1)) : nice_ticks(y0, y1);
-  const int title_h = title_height(fig.title, fig.subtitle, fig.width, st) + 8;
-  Frame f{};
-  f.top = title_h;
-  const int below = fig.legend_below ? legend_below_height(legend, st.small, fig.width - 40) : 0;
-  const int frame_bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
-  const std::vector<std::string> ylines = y_title_lines(fig.ylabel, y_offset, frame_bottom - f.top, st.small);
-  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10 + y_title_extra(ylines, st.small);
-  // Room at the right for half of the last x tick label (it is centred on its tick).
-  const int x_overhang = Canvas::text_width(nice_ticks(x0, x1).labels.empty() ? "" : nice_ticks(x0, x1).labels.back(), st.small) / 2 + 6;
-  f.right = fig.width - std::max(20, x_overhang) - (legend.empty() || fig.legend_below ? 0 : legend_width(legend, st.small) + 16);
-  f.bottom = frame_bottom;
-  if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
-
-  if (fig.equal_aspect) {
-    // Widen the shorter side so one unit has the same length in x and y.
-    const double sx = (x1 - x0) / (f.right - f.left), sy = (y1 - y0) / (f.bottom - f.top);
-    if (sx > sy) {
-      const double mid = (y0 + y1) / 2, half = sx * (f.bottom - f.top) / 2;
-      y0 = mid - half; y1 = mid + half;
+  render(path, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
+    const TitleBlock tb = title_block(p, fig.title, fig.subtitle, W, st);
+    Frame f{};
+    f.top = tb.height(st) + 0.3 * st.body;
+    const double below = fig.legend_below ? legend_rows_height(p, legend, st.small, W - 2 * st.body) : 0;
+    f.bottom = H - bottom_room(xlabel, st) - below;
+    const std::vector<std::string> ylines = y_title_lines(p, fig.ylabel, y_offset, f.bottom - f.top, st.body);
+    f.left = left_room(p, axis_ticks(my, y0, y1, 6), ylines, st);
+    const Ticks tx0 = axis_ticks(mx, x0, x1, 6);
+    f.right = W - std::max(1.2 * st.body, (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) + 0.5 * st.body);
+    // The legend: inside the frame, in the corner that hides the fewest points, when it is
+    // small beside the frame and that corner is (nearly) empty; else a slim column at the right.
+    const Frame base = f;
+    LegendBox box;
+    auto finish_frame = [&](bool column) {
+      f = base;
+      if (column) {
+        box = legend_box(p, legend, st.small, 0.2 * W);
+        f.right = W - box.w - 1.2 * st.body;
+      }
+      if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
+      if (fig.equal_aspect) {
+        // Widen the shorter side so one unit has the same length in x and y.
+        const double sx = (x1 - x0) / (f.right - f.left), sy = (y1 - y0) / (f.bottom - f.top);
+        if (sx > sy) {
+          const double mid = (y0 + y1) / 2, half = sx * (f.bottom - f.top) / 2;
+          f.y0 = mid - half; f.y1 = mid + half;
+          f.x0 = x0; f.x1 = x1;
+        } else {
+          const double mid = (x0 + x1) / 2, half = sy * (f.right - f.left) / 2;
+          f.x0 = mid - half; f.x1 = mid + half;
+          f.y0 = y0; f.y1 = y1;
+        }
+      } else {
+        f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
+      }
+      f.snap();
+    };
+    bool inside = false;
+    const bool side_legend = !fig.legend_below && !legend.empty();
+    if (side_legend) {
+      box = legend_box(p, legend, st.small, 0.5 * (f.right - f.left));
+      inside = box.w <= 0.6 * (f.right - f.left) && box.h <= 0.45 * (f.bottom - f.top);
+    }
+    finish_frame(side_legend && !inside);
+    int corner = 0;
+    const double margin = 0.6 * st.body;
+    if (inside) {
+      long covered = 0, points = 0;
+      corner = best_corner(f, *series, mx, my, box.w, box.h, margin, covered);
+      for (const auto& s : *series) points += static_cast<long>(std::min(s.x.size(), s.y.size()));
+      if (covered > 2 + points / 200) {  // every corner hides data: beside the frame instead
+        inside = false;
+        finish_frame(true);
+      }
+    }
+    const Ticks tx = axis_ticks(mx, f.x0, f.x1, std::max(3, static_cast<int>((f.right - f.left) / (6 * st.body))));
+    const Ticks ty = axis_ticks(my, f.y0, f.y1, std::max(3, static_cast<int>((f.bottom - f.top) / (3.5 * st.body))));
+    draw_title(p, tb, W / 2.0, st);
+    draw_axes(p, f, tx, ty, mx, my, xlabel, ylines, true, st);
+    draw_series(p, f, *series, mx, my, st);
+    p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
+    if (fig.legend_below) {
+      draw_legend_rows(p, st.body, H - below - 0.2 * st.body, W - 2 * st.body, legend, st.small, st);
+    } else if (inside) {
+      const double m = margin;
+      const int c = corner;
+      draw_legend(p, c % 2 == 0 ? f.right - m - box.w : f.left + m, c < 2 ? f.top + m : f.bottom - m - box.h, box, legend, st,
+                  true);
     } else {
-      const double mid = (x0 + x1) / 2, half = sy * (f.right - f.left) / 2;
-      x0 = mid - half; x1 = mid + half;
+      draw_legend(p, f.right + 0.8 * st.body, f.top, box, legend, st, false);
     }
-  }
-  f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
-  const Ticks tx = nice_ticks(x0, x1, std::max(3, (f.right - f.left) / 110));
-  const Ticks ty = fig.log_y ? log_ticks(std::pow(10.0, y0), std::pow(10.0, y1)) : nice_ticks(y0, y1, std::max(3, (f.bottom - f.top) / 80));
-
-  draw_title(c, fig.title, fig.subtitle, fig.width / 2, st);
-  draw_axes(c, f, tx, ty, fig.log_y, xlabel, ylines, true, st);
-
-  c.clip(f.left + 1, f.top + 1, f.right, f.bottom);
-  for (const auto& s : *series) {
-    const size_t n = std::min(s.x.size(), s.y.size());
-    auto ok = [&](size_t i) { return std::isfinite(s.x[i]) && std::isfinite(s.y[i]) && (!fig.log_y || s.y[i] > 0); };
-    auto Y = [&](size_t i) { return f.py(fig.log_y ? std::log10(s.y[i]) : s.y[i]); };
-    if (s.lines)
-      for (size_t i = 1; i < n; ++i)
-        if (ok(i - 1) && ok(i)) c.line(f.px(s.x[i - 1]), Y(i - 1), f.px(s.x[i]), Y(i), s.color, 2);
-    // Error bars under the markers, with short caps so that a bar shorter than the
-    // marker is still visible as a cap.
-    for (size_t i = 0; i < n && i < s.yerr.size(); ++i) {
-      const double e = s.yerr[i];
-      if (!ok(i) || !std::isfinite(e) || e <= 0 || fig.log_y) continue;
-      const double xp = f.px(s.x[i]), lo = f.py(s.y[i] - e), hi = f.py(s.y[i] + e);
-      c.line(xp, lo, xp, hi, s.color, 1);
-      c.line(xp - 3, lo, xp + 3, lo, s.color, 1);
-      c.line(xp - 3, hi, xp + 3, hi, s.color, 1);
-    }
-    if (s.markers)
-      for (size_t i = 0; i < n; ++i)
-        if (ok(i)) c.disc(f.px(s.x[i]), Y(i), s.marker_size, s.color);
-  }
-  c.unclip();
-  c.rect(f.left, f.top, f.right, f.bottom, kFrame);
-  if (fig.legend_below) draw_legend_below(c, 20, fig.height - below, fig.width - 40, legend, st.small);
-  else draw_legend(c, f.right + 16, f.top, legend, st.small);
-  save(path, c, fig.metadata);
+  });
 }
 
-void write_png(const std::string& path, const ImageFigure& fig) {
+void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat format, const RenderOptions& ro) {
   const Raster& r = fig.raster;
-  if (fig.width < 200 || fig.height < 150 || fig.width > 20000 || fig.height > 20000)
-    throw std::runtime_error("figure size out of range");
+  const int W = ro.width > 0 ? ro.width : fig.width, H = ro.height > 0 ? ro.height : fig.height;
+  check_size(W, H);
+  if (!(ro.dpi >= kMinDpi && ro.dpi <= kMaxDpi)) throw std::runtime_error("figure dpi out of range");
   if (r.nx <= 0 || r.ny <= 0 || r.pixels.size() != static_cast<size_t>(r.nx) * r.ny)
     throw std::runtime_error("raster size does not match its pixels");
-  const Style st(fig.width);
-  Canvas c(fig.width, fig.height);
+  const Style st(W, H, ro.dpi);
 
-  // The window, relative to an offset when it is too narrow for plain tick labels.
+  // The window, relative to an offset when it is too narrow for plain tick labels; the
+  // overlay curves move with it.
   double x0 = r.x_min, x1 = r.x_max, y0 = r.y_min, y1 = r.y_max;
   if (!(std::isfinite(x0) && std::isfinite(x1) && x1 > x0 && std::isfinite(y0) && std::isfinite(y1) && y1 > y0))
     throw std::runtime_error("raster window is empty");
   AxisOffset x_offset = r.x_offset, y_offset = r.y_offset;
+  std::vector<Series> overlay = fig.overlay;
   if (!x_offset.active()) {
     const AxisZoom z{mpq_class(x0), mpq_class(x1)};
     x0 = z(x0); x1 = z(x1); x_offset = z.offset();
+    for (Series& s : overlay) for (double& x : s.x) x = z(x);
   }
   if (!y_offset.active()) {
     const AxisZoom z{mpq_class(y0), mpq_class(y1)};
     y0 = z(y0); y1 = z(y1); y_offset = z.offset();
+    for (Series& s : overlay) for (double& y : s.y) y = z(y);
   }
 
   std::vector<LegendEntry> legend;
   for (const auto& [label, color] : r.legend) legend.push_back({label, color, false, true});
-  const Ticks ty0 = nice_ticks(y0, y1);
-  const Ticks tbar = r.colorbar.empty() ? Ticks{} : nice_ticks(r.colorbar_lo, r.colorbar_hi, 5);
-  const int bar_w = r.colorbar.empty() ? 0 : std::max(22 + 12 + max_label_width(tbar, st.small), Canvas::text_width(r.colorbar_label, st.small));
-  const int panel = std::max(r.legend_below ? 0 : legend_width(legend, st.small), bar_w);
-  const int below = r.legend_below ? legend_below_height(legend, st.small, fig.width - 40) : 0;
-  const int title_h = title_height(fig.title, fig.subtitle, fig.width, st) + 8;
-  Frame f{};
-  f.top = title_h;
-  const int frame_bottom = fig.height - (6 + 4 + 2 * Canvas::text_height(st.small) + 10 + 14) - below;
-  const std::vector<std::string> ylines = y_title_lines(fig.ylabel, y_offset, frame_bottom - f.top, st.small);
-  f.left = 16 + Canvas::text_height(st.small) + 10 + max_label_width(ty0, st.small) + 10 + y_title_extra(ylines, st.small);
-  const Ticks tx0 = nice_ticks(x0, x1);
-  const int x_overhang = Canvas::text_width(tx0.labels.empty() ? "" : tx0.labels.back(), st.small) / 2 + 6;
-  f.right = fig.width - (panel ? 20 + panel + 16 : std::max(20, x_overhang));
-  f.bottom = frame_bottom;
-  if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
-  f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
+  for (const auto& s : overlay)
+    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers});
+  const AxisMap lin;
 
-  // Nearest cell for every pixel inside the frame.
-  for (int y = f.top + 1; y < f.bottom; ++y) {
-    const double fy = (y + 0.5 - (f.top + 1)) / (f.bottom - f.top - 1);
-    const int row = std::clamp(static_cast<int>(fy * r.ny), 0, r.ny - 1);
-    for (int x = f.left + 1; x < f.right; ++x) {
-      const double fx = (x + 0.5 - (f.left + 1)) / (f.right - f.left - 1);
-      const int col = std::clamp(static_cast<int>(fx * r.nx), 0, r.nx - 1);
-      c.set(x, y, r.pixels[static_cast<size_t>(row) * r.nx + col]);
+  // The raster as an image (at most 2048 cells a side: larger grids are sampled, nearest).
+  const int sx = std::min(r.nx, 2048), sy = std::min(r.ny, 2048);
+  render(path, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
+    const TitleBlock tb = title_block(p, fig.title, fig.subtitle, W, st);
+    Frame f{};
+    f.top = tb.height(st) + 0.3 * st.body;
+    const double below = r.legend_below ? legend_rows_height(p, legend, st.small, W - 2 * st.body) : 0;
+    f.bottom = H - bottom_room(axis_title(fig.xlabel, x_offset), st) - below;
+    const std::vector<std::string> ylines = y_title_lines(p, fig.ylabel, y_offset, f.bottom - f.top, st.body);
+    f.left = left_room(p, nice_ticks(y0, y1), ylines, st);
+    // The side column (legend and colour bar): slim, at most a quarter of the width.
+    const double col_max = 0.28 * W - 1.2 * st.body;
+    LegendBox box;
+    double col = 0;
+    if (!r.legend_below && !legend.empty()) {
+      box = legend_box(p, legend, st.small, col_max - 2.6 * st.small);
+      col = box.w;
     }
-  }
-  const Ticks tx = nice_ticks(f.x0, f.x1, std::max(3, (f.right - f.left) / 110));
-  const Ticks ty = nice_ticks(f.y0, f.y1, std::max(3, (f.bottom - f.top) / 80));
-  draw_title(c, fig.title, fig.subtitle, fig.width / 2, st);
-  draw_axes(c, f, tx, ty, false, axis_title(fig.xlabel, x_offset), ylines, false, st);
+    const Ticks tbar = r.colorbar.empty() ? Ticks{} : nice_ticks(r.colorbar_lo, r.colorbar_hi, 5);
+    Fitted bar_label{{}, st.small};
+    if (!r.colorbar.empty()) {
+      bar_label = fit_text(p, r.colorbar_label, st.small, col_max);
+      double lw = 0;
+      for (const auto& l : bar_label.lines) lw = std::max(lw, p.width(l, bar_label.size));
+      col = std::max({col, 1.6 * st.body + 0.8 * st.body + max_label_width(p, tbar, st.small), lw});
+    }
+    const Ticks tx0 = nice_ticks(x0, x1);
+    f.right = W - (col > 0 ? col + 1.6 * st.body
+                           : std::max(1.2 * st.body, (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) +
+                                                         0.5 * st.body));
+    if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
+    f.snap();
+    f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
 
-  int y = f.top;
-  if (r.legend_below) draw_legend_below(c, 20, fig.height - below, fig.width - 40, legend, st.small);
-  else y = draw_legend(c, f.right + 16, f.top, legend, st.small);
-  if (!r.colorbar.empty()) {
-    const int x = f.right + 16;
-    int top = y + (legend.empty() || r.legend_below ? 0 : 24);
-    if (!r.colorbar_label.empty()) {
-      c.text(x, top, r.colorbar_label, st.small, kBlack);
-      top += Canvas::text_height(st.small) + 8;
+    // The cells, nearest neighbour (a cell is a square of colour, not a blur).
+    cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_RGB24, sx, sy);
+    if (cairo_surface_status(img) != CAIRO_STATUS_SUCCESS) {
+      cairo_surface_destroy(img);
+      throw OutputError("cannot allocate the raster image");
     }
-    const int bottom = f.bottom;
-    if (bottom - top > 40) {
-      const int n = static_cast<int>(r.colorbar.size());
-      for (int yy = top; yy <= bottom; ++yy) {
-        const double t = 1.0 - static_cast<double>(yy - top) / (bottom - top);
-        c.fill(x, yy, x + 22, yy + 1, r.colorbar[std::clamp(static_cast<int>(t * n), 0, n - 1)]);
-      }
-      c.rect(x, top, x + 22, bottom, kFrame);
-      for (size_t i = 0; i < tbar.values.size(); ++i) {
-        const double yy = bottom - (tbar.values[i] - r.colorbar_lo) / (r.colorbar_hi - r.colorbar_lo) * (bottom - top);
-        c.line(x + 22, yy, x + 26, yy, kFrame);
-        c.text(x + 34, static_cast<int>(yy) - Canvas::text_height(st.small) / 2, tbar.labels[i], st.small, kBlack);
+    cairo_surface_flush(img);
+    unsigned char* data = cairo_image_surface_get_data(img);
+    const int stride = cairo_image_surface_get_stride(img);
+    for (int y = 0; y < sy; ++y) {
+      const long row = static_cast<long>(y) * r.ny / sy;
+      for (int x = 0; x < sx; ++x) {
+        const long c = static_cast<long>(x) * r.nx / sx;
+        const Rgb px = r.pixels[static_cast<size_t>(row) * r.nx + c];
+        const std::uint32_t v = (std::uint32_t{px.r} << 16) | (std::uint32_t{px.g} << 8) | px.b;
+        std::memcpy(data + static_cast<size_t>(y) * stride + 4 * static_cast<size_t>(x), &v, 4);
       }
     }
-  }
-  save(path, c, fig.metadata);
+    cairo_surface_mark_dirty(img);
+    cairo_t* cr = p.cr();
+    cairo_save(cr);
+    cairo_rectangle(cr, f.left, f.top, f.right - f.left, f.bottom - f.top);
+    cairo_clip(cr);
+    cairo_translate(cr, f.left, f.top);
+    cairo_scale(cr, (f.right - f.left) / sx, (f.bottom - f.top) / sy);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+    cairo_pattern_set_extend(cairo_get_source(cr), CAIRO_EXTEND_PAD);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
+
+    const Ticks tx = nice_ticks(f.x0, f.x1, std::max(3, static_cast<int>((f.right - f.left) / (6 * st.body))));
+    const Ticks ty = nice_ticks(f.y0, f.y1, std::max(3, static_cast<int>((f.bottom - f.top) / (3.5 * st.body))));
+    draw_title(p, tb, W / 2.0, st);
+    draw_axes(p, f, tx, ty, lin, lin, axis_title(fig.xlabel, x_offset), ylines, false, st);
+    draw_series(p, f, overlay, lin, lin, st);
+    p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
+
+    double y = f.top;
+    const double x = f.right + 0.8 * st.body;
+    if (r.legend_below) {
+      draw_legend_rows(p, st.body, H - below - 0.2 * st.body, W - 2 * st.body, legend, st.small, st);
+    } else if (!legend.empty()) {
+      draw_legend(p, x, y, box, legend, st, false);
+      y += box.h + 0.8 * st.body;
+    }
+    if (!r.colorbar.empty()) {
+      for (const auto& l : bar_label.lines) {
+        y += Painter::leading(bar_label.size);
+        p.text(x, y - 0.25 * bar_label.size, l, bar_label.size, kBlack);
+      }
+      const double top = y + 0.5 * st.body, bottom = f.bottom, bw = 1.6 * st.body;
+      if (bottom - top > 3 * st.body) {
+        const int n = static_cast<int>(r.colorbar.size());
+        for (int i = 0; i < n; ++i) {  // ramp[0] at the bottom
+          const double y_hi = bottom - (i + 1.0) / n * (bottom - top), y_lo = bottom - static_cast<double>(i) / n * (bottom - top);
+          p.fill(x, y_hi - 0.5, x + bw, y_lo + (i == 0 ? 0 : 0.5), r.colorbar[i]);
+        }
+        p.rect(x, top, x + bw, bottom, kFrame, 0.8 * st.line);
+        for (size_t i = 0; i < tbar.values.size(); ++i) {
+          const double yy = bottom - (tbar.values[i] - r.colorbar_lo) / (r.colorbar_hi - r.colorbar_lo) * (bottom - top);
+          p.line(x + bw, yy, x + bw + 0.3 * st.body, yy, kFrame, 0.8 * st.line);
+          p.text(x + bw + 0.5 * st.body, yy + Painter::cap(st.small) / 2, typeset(tbar.labels[i]), st.small, kBlack);
+        }
+      }
+    }
+  });
 }
 
 }  // namespace bouncer

@@ -1,7 +1,11 @@
 // Pictures a person would put in a paper: line/scatter plots and density images with axes,
-// tick labels, title and a legend, written as PNG (libpng) with provenance in tEXt chunks.
-// Text is drawn with a built-in bitmap font, so no font package is needed.
-// (Implemented in lib/src/io/plot.cpp; the font is lib/src/io/plot_font.inc.)
+// tick labels, title and a legend. One drawing code (Cairo) for three formats: PNG (an
+// antialiased image surface written with libpng, provenance in tEXt chunks), PDF and SVG
+// (vector; provenance in the PDF document information and an SVG <metadata> element).
+// Text uses one fixed font file, DejaVu Sans (Debian package fonts-dejavu-core), loaded with
+// FreeType: no fontconfig lookup, so the output does not depend on the machine's fonts.
+// Identical inputs give identical bytes in every format (no dates are written).
+// (Implemented in lib/src/io/plot.cpp.)
 #pragma once
 
 #include <gmpxx.h>
@@ -82,7 +86,9 @@ struct Series {
 struct Figure {
   std::string title, xlabel, ylabel;
   std::vector<Series> series;
-  bool log_y = false;
+  bool log_y = false;          // base-10 logarithmic y axis (positive values only)
+  bool log_x = false;          // logarithmic x axis in base log_x_base (2: ticks at powers of two)
+  double log_x_base = 10;
   int width = 900, height = 600;
   // Written as PNG tEXt chunks (key, value): provenance, inputs, ...
   std::vector<std::pair<std::string, std::string>> metadata;
@@ -90,7 +96,7 @@ struct Figure {
   double x_min = NAN, x_max = NAN, y_min = NAN, y_max = NAN;
   bool equal_aspect = false;   // one data unit is as long on both axes (polar plots)
   std::string subtitle;        // a second, smaller line under the title (parameters)
-  bool legend_below = false;   // legend in rows under the plot instead of at the right
+  bool legend_below = false;   // legend in rows under the plot instead of in the frame's best corner
   // Zoomed axes (AxisZoom): the series and x_min/x_max (y_min/y_max) are t coordinates of
   // these offsets. Inactive: plain values, and a window too narrow for plain tick labels
   // (from the data or the limits) is given an offset here (not with equal_aspect or log_y).
@@ -117,14 +123,41 @@ struct Raster {
 struct ImageFigure {
   std::string title, xlabel, ylabel;
   Raster raster;
+  // Curves drawn over the raster, clipped to its frame, in the raster's axis coordinates
+  // (t coordinates of its offsets); labelled ones join the legend.
+  std::vector<Series> overlay;
   int width = 900, height = 700;
   std::vector<std::pair<std::string, std::string>> metadata;
   std::string subtitle;
 };
 
-// Throw std::runtime_error on I/O failure. Write atomically (PATH.partial, then rename).
-void write_png(const std::string& path, const Figure& f);
-void write_png(const std::string& path, const ImageFigure& f);
+enum class ImageFormat { png, pdf, svg };
+// "png", "pdf", "svg" (also the file extension without its dot).
+const char* format_name(ImageFormat f);
+
+// How a figure is rendered (presentation only: it changes no computed value).
+// width, height: pixels of the PNG; the PDF/SVG page is width*72/dpi x height*72/dpi points.
+// 0 keeps the figure's own width/height. Text sizes are set in points at `dpi` (9.5 pt body
+// text, shrunk on small canvases), so a 900 x 600 figure at 150 dpi is a 6 x 4 inch figure.
+struct RenderOptions {
+  int width = 0, height = 0;
+  double dpi = 150;
+};
+// Limits of RenderOptions (the command line checks them: exit 2 naming the option).
+constexpr int kMinFigureWidth = 200, kMinFigureHeight = 150, kMaxFigureSide = 20000;
+constexpr double kMinDpi = 36, kMaxDpi = 2400;
+
+// The font file every figure's text is drawn with, and a check that it can be loaded
+// (OutputError naming the Debian package fonts-dejavu-core if not).
+const char* figure_font_path();
+void check_figure_font();
+
+// Throw std::runtime_error (OutputError for I/O and a missing font) on failure. Write
+// atomically (PATH.partial, then rename).
+void write_figure(const std::string& path, const Figure& f, ImageFormat format, const RenderOptions& r = {});
+void write_figure(const std::string& path, const ImageFigure& f, ImageFormat format, const RenderOptions& r = {});
+inline void write_png(const std::string& path, const Figure& f) { write_figure(path, f, ImageFormat::png); }
+inline void write_png(const std::string& path, const ImageFigure& f) { write_figure(path, f, ImageFormat::png); }
 
 // Axis ticks: "nice" values (1, 2 or 5 times a power of ten apart) inside [lo, hi], about
 // `target` of them (at least 2 when lo < hi), with labels that tell them apart.
@@ -136,11 +169,17 @@ struct Ticks {
 Ticks nice_ticks(double lo, double hi, int target = 6);
 // Decades (and 2, 5 multiples when the range is short) for a logarithmic axis, lo > 0.
 Ticks log_ticks(double lo, double hi);
+// Powers of `base` (> 1; 10 gives log_ticks) inside [lo, hi], at most about 10 of them
+// (every k-th power on a long range); labels are the values (64, 128, ...) or base^k.
+Ticks log_ticks(double lo, double hi, double base);
 
-// A perceptually ordered colour ramp (dark to light), t in [0, 1].
+// A grey density ramp, white (t = 0) to near-black (t = 1): the paper's look.
 Rgb ramp_color(double t);
+// A perceptually uniform, colour-blind-safe ramp (viridis: dark purple at 0, yellow at 1).
+Rgb viridis_color(double t);
 // Distinct colours for categories (attractors): index 0, 1, ... never red or blue, which
-// are reserved for sticking and unbounded orbits.
+// are reserved for sticking and unbounded orbits. The first ones are Okabe-Ito colours
+// (distinguishable with the common colour-vision deficiencies).
 Rgb category_color(int index);
 
 }  // namespace bouncer

@@ -12,6 +12,7 @@
 // eps = (a p - 8)/(a p + 8) is the inverse of the formula, and the CSV gives a, eps and
 // theta_min as exact fractions (plus doubles for plotting tools).
 #include <gmpxx.h>
+#include <mpfr.h>
 
 #include <cmath>
 #include <algorithm>
@@ -55,6 +56,15 @@ mpq_class theta_min_of(const mpq_class& eps, long p) {
   return t > 0 ? t : mpq_class(0);
 }
 std::string text(const mpq_class& q) { return q.get_str(); }
+// The nearest double (mpq_class::get_d truncates).
+double nearest(const mpq_class& q) {
+  mpfr_t x;
+  mpfr_init2(x, 53);
+  mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
+  const double d = mpfr_get_d(x, MPFR_RNDN);
+  mpfr_clear(x);
+  return d;
+}
 std::string dbl(double x) {
   char buf[40];
   std::snprintf(buf, sizeof buf, "%.17g", x);
@@ -172,7 +182,7 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
     const Rgb color = category_color(static_cast<int>(p - 1));
     std::vector<double> sx_full, sy_full, sx_part, sy_part;
     for (const Point& q : pts) {
-      const double a = q.a.get_d(), e = q.eps.get_d();
+      const double a = nearest(q.a), e = nearest(q.eps);
       csv += std::to_string(p) + ',' + text(q.a) + ',' + text(q.eps) + ',' + text(theta_min_of(q.eps, p)) + ',' +
              (q.full ? "yes" : "no") + ',' + dbl(a) + ',' + dbl(e) + '\n';
       // The switch point belongs to both pieces, so they join.

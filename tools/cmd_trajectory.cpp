@@ -285,7 +285,7 @@ void finish(const TrajectoryRequest& r, const std::vector<Row>& rows, long impac
   particle.color = Rgb{20, 20, 20};
   particle.lines = true;
   particle.markers = false;
-  hits.label = "impacts";
+  hits.label = "impacts (and the start)";
   hits.color = Rgb{30, 70, 210};
   hits.marker_size = 4;
   stuck.label = "sticking: riding the wall";

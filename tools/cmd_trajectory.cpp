@@ -78,8 +78,8 @@ class Tracer {
     add(tn, height(s.theta), "start");
     try {
       while (tn < t_end_) {
-        if (++steps > 1000000) {
-          note = "more than 1e6 steps in the window";
+        if (++steps > 100000) {
+          note = "more than 1e5 steps in the window (stopped there)";
           break;
         }
         const StepResult<T> st = map_.step(s);

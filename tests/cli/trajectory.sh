@@ -29,7 +29,12 @@ FP=(--model constant --eps 0.5 --a 24 --theta 0.3 --v 12)
 ST=(--model constant --eps 0.5 --a 24 --theta 0.5 --v 4)
 "$BOUNCER" trajectory "${ST[@]}" --periods 5 --out st || fail st "exit $?"
 "$BOUNCER" trajectory "${ST[@]}" --periods 5 --samples 50 --precision mpfr:160 --out stm || fail stm "exit $?"
-for p in fp fpm st stm; do
+# A collapse on the downward wall (eps 0.3, a 24 from (0.6, -3): stuck at theta = 0.6833),
+# under both conventions: released at the next peak, t = 1.5 (README "Downward sticking").
+DS=(--model constant --eps 0.3 --a 24 --theta 0.6 --v -3 --periods 2 --samples 64 --precision mpfr:160)
+"$BOUNCER" trajectory "${DS[@]}" --out dp || fail dp "exit $?"
+"$BOUNCER" trajectory "${DS[@]}" --downward-sticking impact --out di || fail di "exit $?"
+for p in fp fpm st stm dp di; do
   for ext in csv png json; do [[ -s $p.$ext ]] || fail "$p" "missing $p.$ext"; done
 done
 
@@ -48,7 +53,8 @@ def check(cond, what):
         print("FAIL:", what, file=sys.stderr)
         bad += 1
 
-for name, exact, tol in [("fp", False, 1e-12), ("st", False, 1e-12), ("fpm", True, F(1, 10**40)), ("stm", True, F(1, 10**40))]:
+for name, exact, tol in [("fp", False, 1e-12), ("st", False, 1e-12), ("fpm", True, F(1, 10**40)), ("stm", True, F(1, 10**40)),
+                          ("dp", True, F(1, 10**40)), ("di", True, F(1, 10**40))]:
     rs = rows(name + ".csv")
     num = (lambda s: F(s)) if exact else float
     assert json.load(open(name + ".json"))["provenance"]["command"] == "trajectory"
@@ -114,6 +120,14 @@ for name in ("st", "stm"):
             check(3 < t <= F(7, 2), f"{name}: stuck row at t={r['t']} outside the rising wall of period 3")
     s = json.load(open(name + ".json"))["summary"]
     check(s["sticking_steps"] == 1, f"{name}: summary {s}")
+for name in ("dp", "di"):
+    rs = rows(name + ".csv")
+    rel = [r for r in rs if r["event"] == "release"]
+    check(len(rel) == 1 and F(rel[0]["t"]) == F(3, 2) and F(rel[0]["particle"]) == 1,
+          f"{name}: release rows {[(r['t'], r['particle']) for r in rel]}")
+    stuck = [F(r["t"]) for r in rs if r["event"] == "stuck"]
+    check(stuck and min(stuck) > F(6, 10) and max(stuck) < F(3, 2) and any(t < 1 for t in stuck),
+          f"{name}: stuck rows not on the downward wall before the valley")
 sys.exit(1 if bad else 0)
 PY
 

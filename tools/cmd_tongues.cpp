@@ -279,7 +279,7 @@ Command add_tongues(CLI::App& app) {
     Provenance prov;
     prov.command = "tongues";
     prov.inputs = job_options(o).inputs();
-    prov.precision = "exact";  // rationals (GMP) throughout; no scalar type is involved
+    prov.precision = "exact rationals";  // GMP throughout; no scalar type is involved (bits 0)
     prov.bits = 0;
     prov.decimal_note = "exact rational arithmetic: a, eps and theta_min are exact fractions; "
                         "the *_double columns are the nearest doubles";

@@ -101,8 +101,17 @@ class Tracer {
           std::vector<Chatter> chatters;
           const T after = after_stuck(st, chatters);
           const T ts = t_next - after;
-          flight(tn, y0, s.v, ts, "flight");
-          if (ts <= t_end_) {
+          // A start on the wall with its velocity (W = 0) rides to the corner first; with
+          // --downward-sticking impact the collision there may be the one that sticks.
+          const bool rode = !(wall_.velocity[segment(s.theta)] < s.v);
+          if (rode) {
+            on_wall(tn, ts, "ride");
+          } else {
+            flight(tn, y0, s.v, ts, "flight");
+          }
+          if (rode) {
+            if (ts <= t_end_) add(ts, wall_at(ts), "impact");
+          } else if (ts <= t_end_) {
             T y = parabola(y0, s.v, T(ts - tn));
             add(ts, std::move(y), "impact");
             ++impacts;

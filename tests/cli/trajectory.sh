@@ -34,7 +34,11 @@ ST=(--model constant --eps 0.5 --a 24 --theta 0.5 --v 4)
 DS=(--model constant --eps 0.3 --a 24 --theta 0.6 --v -3 --periods 2 --samples 64 --precision mpfr:160)
 "$BOUNCER" trajectory "${DS[@]}" --out dp || fail dp "exit $?"
 "$BOUNCER" trajectory "${DS[@]}" --downward-sticking impact --out di || fail di "exit $?"
-for p in fp fpm st stm dp di; do
+# A start riding the downward wall (v = -4) to the valley, where the impact convention's
+# collision of speed 8 sticks: ride, chatter, stuck, release at t = 1.5.
+"$BOUNCER" trajectory --model constant --eps 0.3 --a 24 --theta 0.7 --v -4 --downward-sticking impact --periods 2 \
+  --samples 64 --precision mpfr:160 --out ri || fail ri "exit $?"
+for p in fp fpm st stm dp di ri; do
   for ext in csv png json; do [[ -s $p.$ext ]] || fail "$p" "missing $p.$ext"; done
 done
 
@@ -54,7 +58,7 @@ def check(cond, what):
         bad += 1
 
 for name, exact, tol in [("fp", False, 1e-12), ("st", False, 1e-12), ("fpm", True, F(1, 10**40)), ("stm", True, F(1, 10**40)),
-                          ("dp", True, F(1, 10**40)), ("di", True, F(1, 10**40))]:
+                          ("dp", True, F(1, 10**40)), ("di", True, F(1, 10**40)), ("ri", True, F(1, 10**40))]:
     rs = rows(name + ".csv")
     num = (lambda s: F(s)) if exact else float
     assert json.load(open(name + ".json"))["provenance"]["command"] == "trajectory"
@@ -120,7 +124,11 @@ for name in ("st", "stm"):
             check(3 < t <= F(7, 2), f"{name}: stuck row at t={r['t']} outside the rising wall of period 3")
     s = json.load(open(name + ".json"))["summary"]
     check(s["sticking_steps"] == 1, f"{name}: summary {s}")
-for name in ("dp", "di"):
+rs = rows("ri.csv")
+ride = [F(r["t"]) for r in rs if r["event"] == "ride"]
+check(ride and min(ride) > F(7, 10) and max(ride) < 1, "ri: the ride on the downward wall is not marked")
+check(any(r["event"] == "impact" and F(r["t"]) == 1 for r in rs), "ri: no collision at the valley t = 1")
+for name in ("dp", "di", "ri"):
     rs = rows(name + ".csv")
     rel = [r for r in rs if r["event"] == "release"]
     check(len(rel) == 1 and F(rel[0]["t"]) == F(3, 2) and F(rel[0]["particle"]) == 1,

@@ -272,6 +272,7 @@ Command add_tongues(CLI::App& app) {
   opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json (all or none)");
   auto flags = std::make_shared<FlagSet>();
   sub->add_flag("--json", flags->json, "Print a JSON summary on stdout");
+  sub->add_flag("--quiet", flags->quiet, "Accepted like the other picture commands (this one prints no progress)");
   auto run = [opts, scene, flags](const std::string& argv_text) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "tongues", tongues_keys()), opts->collected());
     const TonguesRequest req = tongues_request(o);

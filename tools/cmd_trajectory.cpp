@@ -400,6 +400,7 @@ Command add_trajectory(CLI::App& app) {
   opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json (all or none)");
   auto flags = std::make_shared<FlagSet>();
   sub->add_flag("--json", flags->json, "Print a JSON summary on stdout");
+  sub->add_flag("--quiet", flags->quiet, "Accepted like the other picture commands (this one prints no progress)");
   auto run = [opts, scene, flags](const std::string& argv_text) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "trajectory", trajectory_keys()), opts->collected());
     return run_trajectory(o, run_flags_from(o, *flags, argv_text));

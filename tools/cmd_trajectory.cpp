@@ -303,8 +303,10 @@ void finish(const TrajectoryRequest& r, const std::vector<Row>& rows, long impac
   chat.label = "chatter (collapse)";
   chat.color = Rgb{250, 110, 100};
   chat.marker_size = 1;
-  double ymax = 1;
+  double ymax = 1, ymin = -1;  // the wall's range at least (any --wall profile)
   for (const Row& row : rows) {
+    ymin = std::min({ymin, row.wd, row.yd});
+    ymax = std::max(ymax, row.wd);
     csv += row.t + ',' + row.y + ',' + row.wall + ',' + row.event + ',' + std::to_string(row.step) + '\n';
     wall.x.push_back(row.td);
     wall.y.push_back(row.wd);
@@ -337,12 +339,12 @@ void finish(const TrajectoryRequest& r, const std::vector<Row>& rows, long impac
                  std::to_string(impacts) + (impacts == 1 ? " impact" : " impacts") +
                  (sticking ? ", " + std::to_string(sticking) + " sticking" : "") + ", " + r.precision.text();
   fig.xlabel = "t (wall periods; θ = t mod 1)";
-  fig.ylabel = "height (wall amplitude = 1)";
+  fig.ylabel = "height (units: A = 1)";
   const double t0 = rows.empty() ? 0 : rows.front().td;
   fig.x_min = t0;
   fig.x_max = t0 + static_cast<double>(r.periods);
-  fig.y_min = -1.2;
-  fig.y_max = ymax + 0.05 * (ymax + 1.2);
+  fig.y_min = ymin - 0.06 * (ymax - ymin);
+  fig.y_max = ymax + 0.05 * (ymax - ymin);
   fig.width = 1000;
   fig.height = 640;
   fig.legend_below = true;

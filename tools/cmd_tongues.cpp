@@ -201,7 +201,8 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
     }
     points += static_cast<long>(pts.size());
     const std::string label = "p = " + std::to_string(p);
-    if (sx_full.size() >= 2) {
+    const bool solid_part = sx_full.size() >= 2;  // labelled there; else on the dashes
+    if (solid_part) {
       Series s;
       s.label = p <= 12 ? label : "";
       s.color = color;
@@ -211,7 +212,7 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
       s.y = std::move(sy_full);
       fig.series.push_back(std::move(s));
     }
-    if (sx_part.size() >= 2) dashed(fig, sx_part, sy_part, sx, sy, color, p <= 12 && fig.series.empty() ? label : "");
+    if (sx_part.size() >= 2) dashed(fig, sx_part, sy_part, sx, sy, color, p <= 12 && !solid_part ? label : "");
     nlohmann::ordered_json c;
     c["p"] = p;
     c["points"] = pts.size();

@@ -122,8 +122,7 @@ class Tracer {
           for (size_t c = 0; c < chatters.size(); ++c) {
             const T start = ts + chatters[c].offset;
             on_wall(from, start, "stuck");
-            const T done = chatter(start, chatters[c].w, chatters[c].eps_law);
-            from = done;
+            from = chatter(start, chatters[c].w);
           }
           on_wall(from, t_next, "stuck");
           if (t_next <= t_end_) add(t_next, height(st.next.theta), "release");
@@ -140,7 +139,6 @@ class Tracer {
   struct Chatter {
     T offset;  // from the stuck collision
     T w;       // relative launch speed of the first bounce
-    bool eps_law = true;
   };
 
   const TrajectoryRequest& r_;
@@ -228,7 +226,7 @@ class Tracer {
   // The chatter from time `start` with first relative launch speed w: bounces drawn until
   // they are below what the samples resolve; returns the time of the collapse (constant
   // eps: exactly start + 2w / (a(1 - eps)); otherwise the bounces' summed durations).
-  T chatter(const T& start, const T& w0, bool) {
+  T chatter(const T& start, const T& w0) {
     const T two = Tr::from_int(2, bits_);
     T t = start, w = w0;
     T collapse = start;  // a touchdown (w0 = 0) collapses at once
@@ -264,7 +262,7 @@ class Tracer {
     int j = st.stick_segment;
     T from = st.stuck_theta;
     T d = Tr::from_int(0, bits_);
-    chatters.push_back({d, T(st.stuck_v - wall_.velocity[j]), true});
+    chatters.push_back({d, T(st.stuck_v - wall_.velocity[j])});
     for (int guard = 0; guard < 4 * wall_.segments() + 4; ++guard) {
       d += wall_.end[j] - from;
       const int k = wall_.next(j);
@@ -273,7 +271,7 @@ class Tracer {
         const T out = out_speed(T(wall_.velocity[k] - wall_.velocity[j]));
         T room = m_.collapse * (wall_.end[k] - wall_.start[k]);
         if (!(out <= room)) return d;  // the corner collision launches the particle
-        chatters.push_back({d, out, true});
+        chatters.push_back({d, out});
       }
       j = k;
       from = wall_.start[k];

@@ -52,6 +52,8 @@ COMMAND_LINES = [
     "portrait --model elastic --a 19 --theta 0.1,0.3 --v 10,12 --steps 50 --polar --out {OUT}/por",
     "basin --model constant --a 24 --eps 0.5 --theta-range 0:1 --v-range 4:20 --grid 6x4 --transient 50 --steps 20 --out {OUT}/bas",
     "scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 3x2 --ics 2 --transient 50 --steps 32 --out {OUT}/scan",
+    "trajectory --model constant --a 24 --eps 0.5 --theta 0.5 --v 4 --periods 2 --samples 20 --out {OUT}/tra",
+    "tongues --p-max 4 --a-range 1:30 --eps-range 0:0.9 --samples 20 --out {OUT}/ton",
     "continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 24:28 --json --out {OUT}/k.json",
     "audit {IN}/rec.csv",
     "merge {IN}/sh --quiet",

@@ -59,7 +59,9 @@ S=(--model constant --eps 0.8 --a 24 --theta 0.1 --v 10)
 "$BOUNCER" bifurcation --model constant --eps 0.5 --range 20:24 --samples 8 --transient 100 --record 20 --theta 0.1 --v 10 --out bif --quiet
 "$BOUNCER" scan --model constant --a-range 20:24 --eps-range 0.4:0.6 --grid 6x4 --out scan --quiet
 "$BOUNCER" lyapunov --model constant --eps 0.5 --vary a --range 20:24 --samples 4 --steps 300 --transient 50 --out curve --quiet
-for f in orbit.csv orbit.json sticking.txt sticking.json cperiodic.json periodic.txt periodic.json lyapunov.json \
+"$BOUNCER" trajectory --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --periods 4 --samples 40 --out traj
+"$BOUNCER" tongues --p-max 3 --samples 20 --out tongues
+for f in traj.json traj.csv tongues.json tongues.csv orbit.csv orbit.json sticking.txt sticking.json cperiodic.json periodic.txt periodic.json lyapunov.json \
   classify.json sweep.json basin.json basin.csv bif.json scan.json curve.csv; do
   audited "$f"
 done

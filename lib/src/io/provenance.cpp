@@ -39,7 +39,9 @@ std::string Provenance::as_comment_lines() const {
   if (!invocation.empty()) s << "# invocation: " << invocation << "\n";
   s << "# inputs:";
   for (const auto& [k, v] : inputs) s << " " << k << "=" << quote_input(v);
-  s << "\n# precision: " << precision << " (" << bits << " significand bits)\n";
+  s << "\n# precision: " << precision;
+  if (bits > 0) s << " (" << bits << " significand bits)";  // 0: no scalar type (exact rationals)
+  s << "\n";
   if (!decimal_note.empty()) s << "# decimals: " << decimal_note << "\n";
   s << "# libraries: " << library_versions() << "\n";
   s << "# compiler: " << b.compiler << " " << b.build_type << " flags: " << b.flags << "\n";

@@ -1,0 +1,295 @@
+// bouncer tongues: the paper's Arnold-tongue figure (fig. arnold). The period-p fixed
+// points of eq. 5 (flight of exactly p wall periods, launched and landing on the rising
+// wall at the same phase theta*) have v* = a p / 2 (back at the same height after time p)
+// and v* = 4(1+eps)/(1-eps) (eq. 2 with v^- = -v*, fdot = 4), so they lie on the curves
+//     a = 8 (1 + eps) / (p (1 - eps)),   p = 1, 2, ...
+// in the (a, eps) plane. proofs/fixed_point_family.cpp proved (README Claims, row 1) that
+// the family is theta* in (max(0, 1/2 - 2p eps/(1+eps)), 1/2): the whole (0, 1/2) iff
+// eps >= 1/(4p-1), i.e. a <= 16/(2p-1) on the curve. Each curve is drawn solid where the
+// whole interval exists and dashed where only part does, with the switch marked.
+//
+// Everything is exact: points are taken uniformly in a within the window (exact rationals),
+// eps = (a p - 8)/(a p + 8) is the inverse of the formula, and the CSV gives a, eps and
+// theta_min as exact fractions (plus doubles for plotting tools).
+#include <gmpxx.h>
+#include <mpfr.h>
+
+#include <cmath>
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+#include "commands.hpp"
+#include "picture_common.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+struct TonguesRequest {
+  long p_max = 10, samples = 600;
+  std::pair<Decimal, Decimal> a_range{Decimal::from_int(0), Decimal::from_int(30)};
+  std::pair<Decimal, Decimal> eps_range{Decimal::from_int(0), Decimal::from_int(1)};
+};
+
+TonguesRequest tongues_request(const Options& o) {
+  TonguesRequest r;
+  r.p_max = integer_from(o, "p-max", 1, 50, 10);
+  r.samples = integer_from(o, "samples", 16, 100000, 600);
+  if (o.has("a-range")) {
+    r.a_range = parse_range("a-range", o.get("a-range"));
+    if (r.a_range.first < Decimal::from_int(0) || r.a_range.second > Decimal::from_int(1000000))
+      throw InputError("a-range", "must lie in [0, 1e6] (got '" + o.get("a-range") + "')");
+  }
+  if (o.has("eps-range")) {
+    r.eps_range = parse_range("eps-range", o.get("eps-range"));
+    if (r.eps_range.first < Decimal::from_int(0) || r.eps_range.second > Decimal::from_int(1))
+      throw InputError("eps-range", "must lie in [0, 1] (got '" + o.get("eps-range") + "')");
+  }
+  return r;
+}
+
+mpq_class a_of(const mpq_class& eps, long p) { return mpq_class(8 * (1 + eps) / (p * (1 - eps))); }
+mpq_class eps_of(const mpq_class& a, long p) { return mpq_class((a * p - 8) / (a * p + 8)); }
+mpq_class theta_min_of(const mpq_class& eps, long p) {
+  const mpq_class t = mpq_class(1, 2) - mpq_class(2 * p * eps / (1 + eps));
+  return t > 0 ? t : mpq_class(0);
+}
+std::string text(const mpq_class& q) { return q.get_str(); }
+// The nearest double (mpq_class::get_d truncates).
+double nearest(const mpq_class& q) {
+  mpfr_t x;
+  mpfr_init2(x, 53);
+  mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
+  const double d = mpfr_get_d(x, MPFR_RNDN);
+  mpfr_clear(x);
+  return d;
+}
+std::string dbl(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+struct Point {
+  mpq_class a, eps;
+  bool full = false;
+};
+
+// The curve of period p inside the window, or nothing: points uniform in a, plus the
+// switch point eps = 1/(4p-1) when it is inside.
+std::vector<Point> curve(const TonguesRequest& r, long p) {
+  const mpq_class alo = r.a_range.first.value(), ahi = r.a_range.second.value();
+  const mpq_class elo = r.eps_range.first.value(), ehi = r.eps_range.second.value();
+  // eps(a) increases with a; eps < 1 for every finite a, and eps >= 0 iff a >= 8/p.
+  mpq_class lo = alo, hi = ahi;
+  const mpq_class a_at_elo = a_of(elo, p);
+  if (lo < a_at_elo) lo = a_at_elo;
+  if (ehi < 1) {
+    const mpq_class a_at_ehi = a_of(ehi, p);
+    if (a_at_ehi < hi) hi = a_at_ehi;
+  }
+  std::vector<Point> out;
+  if (!(lo < hi)) return out;
+  const mpq_class eps_switch(1, 4 * p - 1);
+  const mpq_class a_switch(16, 2 * p - 1);
+  bool switch_done = !(lo < a_switch && a_switch < hi);
+  const long n = r.samples;
+  for (long i = 0; i < n; ++i) {
+    const mpq_class a = lo + (hi - lo) * i / (n - 1);
+    if (!switch_done && a_switch < a) {
+      out.push_back({a_switch, eps_switch, true});
+      switch_done = true;
+    }
+    const mpq_class e = eps_of(a, p);
+    out.push_back({a, e, e >= eps_switch});
+  }
+  return out;
+}
+
+// Dashes of the polyline (x, y) in the window's normalized coordinates: each dash is its own
+// series of joined points (the Figure API has no dash pattern), on for `on`, off for `off`.
+void dashed(Figure& fig, const std::vector<double>& x, const std::vector<double>& y, double sx, double sy, Rgb color,
+            const std::string& label) {
+  const double on = 0.012, off = 0.009;
+  double run = 0;
+  bool drawing = true;
+  Series cur;
+  auto start = [&](double px, double py) {
+    cur = Series{};
+    cur.color = color;
+    cur.lines = true;
+    cur.markers = false;
+    cur.x = {px};
+    cur.y = {py};
+  };
+  auto flush = [&] {
+    if (cur.x.size() >= 2) {
+      if (fig.series.empty() || label.empty() || std::none_of(fig.series.begin(), fig.series.end(), [&](const Series& s) { return s.label == label; }))
+        cur.label = label;
+      fig.series.push_back(cur);
+    }
+    cur = Series{};
+  };
+  if (x.empty()) return;
+  start(x[0], y[0]);
+  for (size_t i = 1; i < x.size(); ++i) {
+    double x0 = x[i - 1], y0 = y[i - 1];
+    double len = std::hypot((x[i] - x0) * sx, (y[i] - y0) * sy);
+    while (len > 0) {
+      const double left = (drawing ? on : off) - run;
+      if (len < left) {
+        run += len;
+        if (drawing) {
+          cur.x.push_back(x[i]);
+          cur.y.push_back(y[i]);
+        }
+        break;
+      }
+      const double f = left / len;
+      const double xm = x0 + (x[i] - x0) * f, ym = y0 + (y[i] - y0) * f;
+      if (drawing) {
+        cur.x.push_back(xm);
+        cur.y.push_back(ym);
+        flush();
+      } else {
+        start(xm, ym);
+      }
+      drawing = !drawing;
+      run = 0;
+      len -= left;
+      x0 = xm;
+      y0 = ym;
+    }
+  }
+  if (drawing) flush();
+}
+
+void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) {
+  std::string csv = "p,a,eps,theta_min,full,a_double,eps_double\n";
+  Figure fig;
+  const double ax0 = r.a_range.first.approx(), ax1 = r.a_range.second.approx();
+  const double ey0 = r.eps_range.first.approx(), ey1 = r.eps_range.second.approx();
+  const double sx = 1 / (ax1 - ax0), sy = 1 / (ey1 - ey0);
+  Series switches;
+  switches.label = "switch: ε = 1/(4p-1), a = 16/(2p-1)";
+  switches.color = Rgb{0, 0, 0};
+  switches.marker_size = 4;
+  nlohmann::ordered_json curves = nlohmann::ordered_json::array();
+  long points = 0;
+  for (long p = 1; p <= r.p_max; ++p) {
+    const std::vector<Point> pts = curve(r, p);
+    const Rgb color = category_color(static_cast<int>(p - 1));
+    std::vector<double> sx_full, sy_full, sx_part, sy_part;
+    for (const Point& q : pts) {
+      const double a = nearest(q.a), e = nearest(q.eps);
+      csv += std::to_string(p) + ',' + text(q.a) + ',' + text(q.eps) + ',' + text(theta_min_of(q.eps, p)) + ',' +
+             (q.full ? "yes" : "no") + ',' + dbl(a) + ',' + dbl(e) + '\n';
+      // The switch point belongs to both pieces, so they join.
+      if (q.full) {
+        sx_full.push_back(a);
+        sy_full.push_back(e);
+      }
+      if (!q.full || q.eps == mpq_class(1, 4 * p - 1)) {
+        sx_part.push_back(a);
+        sy_part.push_back(e);
+      }
+      if (q.eps == mpq_class(1, 4 * p - 1)) {
+        switches.x.push_back(a);
+        switches.y.push_back(e);
+      }
+    }
+    points += static_cast<long>(pts.size());
+    const std::string label = "p = " + std::to_string(p);
+    const bool solid_part = sx_full.size() >= 2;  // labelled there; else on the dashes
+    if (solid_part) {
+      Series s;
+      s.label = p <= 12 ? label : "";
+      s.color = color;
+      s.lines = true;
+      s.markers = false;
+      s.x = std::move(sx_full);
+      s.y = std::move(sy_full);
+      fig.series.push_back(std::move(s));
+    }
+    if (sx_part.size() >= 2) dashed(fig, sx_part, sy_part, sx, sy, color, p <= 12 && !solid_part ? label : "");
+    nlohmann::ordered_json c;
+    c["p"] = p;
+    c["points"] = pts.size();
+    c["switch_eps"] = "1/" + std::to_string(4 * p - 1);
+    c["switch_a"] = text(mpq_class(16, 2 * p - 1));
+    curves.push_back(c);
+  }
+  if (!switches.x.empty()) fig.series.push_back(std::move(switches));
+  Series solid, dash;
+  solid.label = "solid: θ* fills (0, 1/2)";
+  dash.label = "dashed: θ* > 1/2 - 2pε/(1+ε) > 0";
+  for (Series* s : {&solid, &dash}) {
+    s->color = Rgb{110, 110, 110};
+    s->lines = true;
+    s->markers = false;
+  }
+  fig.series.push_back(std::move(solid));
+  fig.series.push_back(std::move(dash));
+  fig.title = "Period-p fixed points (eq. 5): a = 8(1+ε)/(p(1-ε))";
+  fig.subtitle = "p = 1.." + std::to_string(r.p_max) + "; family θ* in (max(0, 1/2 - 2pε/(1+ε)), 1/2), proved";
+  fig.xlabel = "a (dimensionless gravity)";
+  fig.ylabel = "ε (restitution)";
+  fig.x_min = ax0;
+  fig.x_max = ax1;
+  fig.y_min = ey0;
+  fig.y_max = ey1;
+  fig.width = 1000;
+  fig.height = 760;
+  fig.legend_below = true;  // twelve entries: the plot keeps the figure's width
+  fig.metadata = png_metadata(prov, fig.title);
+  nlohmann::ordered_json s;
+  s["command"] = "tongues";
+  s["p_max"] = r.p_max;
+  s["a_range"] = {r.a_range.first.text(), r.a_range.second.text()};
+  s["eps_range"] = {r.eps_range.first.text(), r.eps_range.second.text()};
+  s["points"] = points;
+  s["curves"] = curves;
+  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+}
+
+const std::set<std::string>& tongues_keys() {
+  static const std::set<std::string> keys{"p-max", "a-range", "eps-range", "samples", "out"};
+  return keys;
+}
+
+}  // namespace
+
+Command add_tongues(CLI::App& app) {
+  CLI::App* sub = app.add_subcommand(
+      "tongues", "Arnold tongues (fig. arnold): eq. 5 fixed-point curves in (a, eps), solid where the proved family fills (0, 1/2)");
+  auto opts = std::make_shared<OptionSet>(sub);
+  auto scene = std::make_shared<std::string>();
+  sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
+  opts->add("p-max", "Curves p = 1..P, integer in [1, 50] (default 10)");
+  opts->add("a-range", "Window of a, LO:HI within [0, 1e6] (default 0:30)");
+  opts->add("eps-range", "Window of eps, LO:HI within [0, 1] (default 0:1)");
+  opts->add("samples", "Points per curve, integer in [16, 100000] (default 600), uniform in a");
+  opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json (all or none)");
+  auto flags = std::make_shared<FlagSet>();
+  sub->add_flag("--json", flags->json, "Print a JSON summary on stdout");
+  sub->add_flag("--quiet", flags->quiet, "Accepted like the other picture commands (this one prints no progress)");
+  auto run = [opts, scene, flags](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "tongues", tongues_keys()), opts->collected());
+    const TonguesRequest req = tongues_request(o);
+    const RunFlags f = run_flags_from(o, *flags, argv_text);
+    Provenance prov;
+    prov.command = "tongues";
+    prov.inputs = job_options(o).inputs();
+    prov.precision = "exact rationals";  // GMP throughout; no scalar type is involved (bits 0)
+    prov.bits = 0;
+    prov.decimal_note = "exact rational arithmetic: a, eps and theta_min are exact fractions; "
+                        "the *_double columns are the nearest doubles";
+    prov.invocation = argv_text;
+    finish(req, f, prov);
+    return 0;
+  };
+  return {sub, run};
+}
+
+}  // namespace bouncer::cli

@@ -107,64 +107,6 @@ std::vector<Point> curve(const TonguesRequest& r, long p) {
   return out;
 }
 
-// Dashes of the polyline (x, y) in the window's normalized coordinates: each dash is its own
-// series of joined points (the Figure API has no dash pattern), on for `on`, off for `off`.
-void dashed(Figure& fig, const std::vector<double>& x, const std::vector<double>& y, double sx, double sy, Rgb color,
-            const std::string& label) {
-  const double on = 0.012, off = 0.009;
-  double run = 0;
-  bool drawing = true;
-  Series cur;
-  auto start = [&](double px, double py) {
-    cur = Series{};
-    cur.color = color;
-    cur.lines = true;
-    cur.markers = false;
-    cur.x = {px};
-    cur.y = {py};
-  };
-  auto flush = [&] {
-    if (cur.x.size() >= 2) {
-      if (fig.series.empty() || label.empty() || std::none_of(fig.series.begin(), fig.series.end(), [&](const Series& s) { return s.label == label; }))
-        cur.label = label;
-      fig.series.push_back(cur);
-    }
-    cur = Series{};
-  };
-  if (x.empty()) return;
-  start(x[0], y[0]);
-  for (size_t i = 1; i < x.size(); ++i) {
-    double x0 = x[i - 1], y0 = y[i - 1];
-    double len = std::hypot((x[i] - x0) * sx, (y[i] - y0) * sy);
-    while (len > 0) {
-      const double left = (drawing ? on : off) - run;
-      if (len < left) {
-        run += len;
-        if (drawing) {
-          cur.x.push_back(x[i]);
-          cur.y.push_back(y[i]);
-        }
-        break;
-      }
-      const double f = left / len;
-      const double xm = x0 + (x[i] - x0) * f, ym = y0 + (y[i] - y0) * f;
-      if (drawing) {
-        cur.x.push_back(xm);
-        cur.y.push_back(ym);
-        flush();
-      } else {
-        start(xm, ym);
-      }
-      drawing = !drawing;
-      run = 0;
-      len -= left;
-      x0 = xm;
-      y0 = ym;
-    }
-  }
-  if (drawing) flush();
-}
-
 void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) {
   std::string csv = "p,a,eps,theta_min,full,a_double,eps_double\n";
   Figure fig;
@@ -212,7 +154,17 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
       s.y = std::move(sy_full);
       fig.series.push_back(std::move(s));
     }
-    if (sx_part.size() >= 2) dashed(fig, sx_part, sy_part, sx, sy, color, p <= 12 && !solid_part ? label : "");
+    if (sx_part.size() >= 2) {
+      Series s;
+      s.label = p <= 12 && !solid_part ? label : "";
+      s.color = color;
+      s.lines = true;
+      s.dashed = true;
+      s.markers = false;
+      s.x = std::move(sx_part);
+      s.y = std::move(sy_part);
+      fig.series.push_back(std::move(s));
+    }
     nlohmann::ordered_json c;
     c["p"] = p;
     c["points"] = pts.size();
@@ -229,6 +181,7 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
     s->lines = true;
     s->markers = false;
   }
+  dash.dashed = true;
   fig.series.push_back(std::move(solid));
   fig.series.push_back(std::move(dash));
   fig.title = "Period-p fixed points (eq. 5): a = 8(1+ε)/(p(1-ε))";
@@ -250,11 +203,15 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
   s["eps_range"] = {r.eps_range.first.text(), r.eps_range.second.text()};
   s["points"] = points;
   s["curves"] = curves;
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 const std::set<std::string>& tongues_keys() {
-  static const std::set<std::string> keys{"p-max", "a-range", "eps-range", "samples", "out"};
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k{"p-max", "a-range", "eps-range", "samples", "out"};
+    k.insert(picture_keys().begin(), picture_keys().end());
+    return k;
+  }();
   return keys;
 }
 
@@ -270,7 +227,8 @@ Command add_tongues(CLI::App& app) {
   opts->add("a-range", "Window of a, LO:HI within [0, 1e6] (default 0:30)");
   opts->add("eps-range", "Window of eps, LO:HI within [0, 1] (default 0:1)");
   opts->add("samples", "Points per curve, integer in [16, 100000] (default 600), uniform in a");
-  opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json (all or none)");
+  opts->add("out", "Write PREFIX.csv, PREFIX.json and the pictures (PREFIX.png, or --format; all or none)");
+  add_picture_options(*opts);
   auto flags = std::make_shared<FlagSet>();
   sub->add_flag("--json", flags->json, "Print a JSON summary on stdout");
   sub->add_flag("--quiet", flags->quiet, "Accepted like the other picture commands (this one prints no progress)");

@@ -329,7 +329,7 @@ void finish(const TrajectoryRequest& r, const std::vector<Row>& rows, long impac
   if (!stuck.x.empty()) fig.series.push_back(std::move(stuck));
   if (!chat.x.empty()) fig.series.push_back(std::move(chat));
   fig.series.push_back(std::move(hits));
-  fig.title = "Particle and wall heights against time, " + std::string(name(r.model.law)) + " model";
+  fig.title = "Particle and wall heights against time, " + model_title(r.model.law) + " model";
   std::string par = "a = " + r.model.a.text();
   if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
   if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();
@@ -358,13 +358,14 @@ void finish(const TrajectoryRequest& r, const std::vector<Row>& rows, long impac
   s["max_height"] = ymax;
   if (!note.empty()) s["stopped"] = note;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path) { write_png(path, fig); }, s);
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
 const std::set<std::string>& trajectory_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"theta", "v", "periods", "samples", "precision", "out"});
+    k.insert(picture_keys().begin(), picture_keys().end());
     return k;
   }();
   return keys;
@@ -397,7 +398,8 @@ Command add_trajectory(CLI::App& app) {
   opts->add("periods", "Wall periods drawn, integer in [1, 100] (default 3)");
   opts->add("samples", "Samples per wall period, integer in [8, 10000] (default 400); impacts and corners are added exactly");
   opts->add("precision", kPointPrecisionHelp);
-  opts->add("out", "Write PREFIX.csv, PREFIX.png and PREFIX.json (all or none)");
+  opts->add("out", "Write PREFIX.csv, PREFIX.json and the pictures (PREFIX.png, or --format; all or none)");
+  add_picture_options(*opts);
   auto flags = std::make_shared<FlagSet>();
   sub->add_flag("--json", flags->json, "Print a JSON summary on stdout");
   sub->add_flag("--quiet", flags->quiet, "Accepted like the other picture commands (this one prints no progress)");

@@ -371,6 +371,7 @@ struct LegendEntry {
   Rgb color;
   bool line = false, marker = true;
   bool disc = false;  // the marker is a series' dot (else a square: a raster's cells)
+  bool dashed = false;  // the line is dashed
 };
 
 // A legend box: entries stacked, each label wrapped to the box's text width.
@@ -429,7 +430,14 @@ LegendBox legend_box(const Painter& p, const std::vector<LegendEntry>& entries, 
   return b;
 }
 void draw_swatch(const Painter& p, double x, double cy, const LegendEntry& e, double swatch, const Style& st) {
-  if (e.line) p.line(x, cy, x + swatch, cy, e.color, 2 * st.line);
+  if (e.line && e.dashed) {
+    const double dash[] = {0.32 * swatch, 0.18 * swatch};
+    cairo_set_dash(p.cr(), dash, 2, 0);
+    p.line(x, cy, x + swatch, cy, e.color, 2 * st.line);
+    cairo_set_dash(p.cr(), nullptr, 0, 0);
+  } else if (e.line) {
+    p.line(x, cy, x + swatch, cy, e.color, 2 * st.line);
+  }
   if (e.marker && e.line) {  // a marked line: a disc on the line, as in the plot
     p.color(e.color);
     cairo_arc(p.cr(), x + swatch / 2, cy, 0.18 * swatch, 0, 2 * M_PI);
@@ -688,6 +696,8 @@ void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& se
     if (s.lines) {
       p.color(s.color);
       cairo_set_line_width(cr, 1.6 * st.line);
+      const double dash[] = {6 * st.line, 4 * st.line};
+      if (s.dashed) cairo_set_dash(cr, dash, 2, 0);
       bool open = false;
       for (size_t i = 0; i < n; ++i) {
         if (!ok(i) || !near(X(i), Y(i))) {
@@ -699,6 +709,7 @@ void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& se
         open = true;
       }
       cairo_stroke(cr);
+      cairo_set_dash(cr, nullptr, 0, 0);
     }
     for (size_t i = 0; i < n && i < s.yerr.size(); ++i) {
       const double e = s.yerr[i];
@@ -1170,7 +1181,7 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
 
   std::vector<LegendEntry> legend;
   for (const auto& s : *series)
-    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, true});
+    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, true, s.dashed});
 
   render(path, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
     const TitleBlock tb = title_block(p, fig.title, fig.subtitle, W, st);
@@ -1277,7 +1288,7 @@ void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat f
   std::vector<LegendEntry> legend;
   for (const auto& [label, color] : r.legend) legend.push_back({label, color, false, true});
   for (const auto& s : overlay)
-    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers});
+    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, false, s.dashed});
   const AxisMap lin;
 
   // The raster as an image (at most 2048 cells a side: larger grids are sampled, nearest).

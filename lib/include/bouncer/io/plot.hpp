@@ -81,6 +81,7 @@ struct Series {
   int marker_size = 2;         // marker radius in pixels (0: one pixel)
   // Vertical error bars: y[i] +- yerr[i] (empty: none; non-finite entries: no bar).
   std::vector<double> yerr = {};
+  bool dashed = false;         // the connecting line is dashed (also in the legend)
 };
 
 struct Figure {

@@ -269,6 +269,18 @@ std::string self_path() {
 }
 
 int audit(const std::string& path) {
+  // A `bouncer reproduce` directory (report.md, claims.json, panels/): comparing it item by
+  // item is not implemented yet, and saying DIFFERENT without comparing would be false.
+  if (std::error_code ec; std::filesystem::is_directory(path, ec)) {
+    if (std::filesystem::exists(std::filesystem::path(path) / "claims.json", ec))
+      std::cerr << "bouncer audit: '" << path << "' is a reproduce directory; auditing it item by item is not "
+                   "implemented yet: rerun `bouncer reproduce --out NEW` with the same mode and --only, and compare "
+                   "the claims' verdicts in claims.json (or audit one output, e.g. "
+                << path << "/panels/NAME.json)\n";
+    else
+      std::cerr << "bouncer audit: '" << path << "' is a directory; give a result file (JSON or CSV written by bouncer)\n";
+    return 2;
+  }
   bool ok = false;
   const std::string text = read_file(path, ok);
   if (!ok) {
@@ -279,6 +291,11 @@ int audit(const std::string& path) {
   if (text.rfind("\x89PNG", 0) == 0) {
     std::cerr << "bouncer audit: '" << path << "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
                  "(same provenance, exact numbers)\n";
+    return 2;
+  }
+  if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("reproduce") && j.contains("claims")) {
+    std::cerr << "bouncer audit: '" << path << "' is the claims.json of a reproduce directory; auditing it is not "
+                 "implemented yet: rerun `bouncer reproduce --out NEW` with the same mode and compare the verdicts\n";
     return 2;
   }
   if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("proof") && j.contains("claim")) {

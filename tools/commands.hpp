@@ -28,5 +28,6 @@ Command add_basin(CLI::App& app);
 Command add_scan(CLI::App& app);
 Command add_merge(CLI::App& app);
 Command add_continue(CLI::App& app);
+Command add_reproduce(CLI::App& app);
 
 }  // namespace bouncer::cli

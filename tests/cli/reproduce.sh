@@ -11,6 +11,8 @@
 #     (test manifest via the hidden --manifest);
 #   * bad options exit 2 with one line naming the option: --jobs 0, --jobs x, --quick --full,
 #     --only with an unknown id (close matches listed), --out an existing file;
+#   * a proof binary missing beside the tool: its claim is "not reproduced: proof binary not
+#     found", exit 1;
 #   * `bouncer audit DIR` on a reproduce directory refuses with exit 2 (no false DIFFERENT).
 # Usage: bash reproduce.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -133,6 +135,16 @@ bad only "unknown item 'basin22'" --only basin22 --out "$TMP/b4"
 grep -q 'basin2' "$TMP/err" || fail only "no close match listed: $(cat "$TMP/err")"
 bad outfile 'out' --out "$TMP/afile"
 bad unknownopt 'unknown option' --fast
+
+# A proof binary that is not next to the tool: the claim is "not reproduced", exit 1, no crash.
+mkdir "$TMP/lone"
+cp "$BOUNCER" "$TMP/lone/bouncer"
+set +e
+"$TMP/lone/bouncer" reproduce --only elastic-period2 --out "$TMP/lone/r" 2> "$TMP/errl"
+s=$?
+set -e
+[ "$s" = 1 ] || fail noproof "exit $s, expected 1"
+grep -q 'elastic-period2: not reproduced: proof binary not found' "$TMP/errl" || fail noproof "not named: $(cat "$TMP/errl")"
 
 # audit refuses a reproduce directory.
 set +e

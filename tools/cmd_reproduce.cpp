@@ -572,7 +572,8 @@ int run_reproduce(const Options_& o) {
     times[it.id] = {{"state", it.state}, {"seconds", it.seconds}};
     if (!it.is_claim) {
       const Panel& p = m.panels[it.index];
-      json j{{"label", p.label}, {"figure", p.figure}, {"status", it.state == "skipped" ? "pending" : it.state}};
+      json j{{"label", p.label}, {"figure", p.figure}, {"status", it.state == "skipped" ? "pending" : it.state == "cached" ? "done" : it.state}};
+      // (a resumed item is "done" here: whether it was rerun is a run detail, kept under times)
       if (it.state == "skipped") j["reason"] = p.reason;
       if (!it.argv.empty()) j["command"] = command_text(it.argv);
       if (it.state == "done" || it.state == "cached") j["files"] = it.outputs;

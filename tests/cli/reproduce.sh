@@ -13,7 +13,9 @@
 #     --only with an unknown id (close matches listed), --out an existing file;
 #   * a proof binary missing beside the tool: its claim is "not reproduced: proof binary not
 #     found", exit 1;
-#   * `bouncer audit DIR` on a reproduce directory refuses with exit 2 (no false DIFFERENT).
+#   * `bouncer audit DIR` reruns the reproduce: identical for an untouched directory (no false
+#     DIFFERENT), exit 1 naming a changed verdict and a changed picture row; a directory that
+#     is not a reproduce directory is refused with exit 2.
 # Usage: bash reproduce.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 BOUNCER=${1:?usage: bash reproduce.sh <bouncer-binary> <source-dir>}
@@ -146,17 +148,39 @@ set -e
 [ "$s" = 1 ] || fail noproof "exit $s, expected 1"
 grep -q 'elastic-period2: not reproduced: proof binary not found' "$TMP/errl" || fail noproof "not named: $(cat "$TMP/errl")"
 
-# audit refuses a reproduce directory.
+# audit DIR reruns the reproduce and compares item by item: identical for an untouched
+# directory; a changed verdict and a changed picture row are named; a plain directory is refused.
+"$BOUNCER" audit "$D" > "$TMP/outa" 2> "$TMP/erra" || fail audit "untouched directory: exit $?: $(cat "$TMP/outa" "$TMP/erra")"
+grep -q 'identical: 2 claims' "$TMP/outa" || fail audit "no identical line: $(cat "$TMP/outa")"
+cp -r "$D" "$TMP/t"
+python3 - "$TMP/t" <<'PY'
+import json, sys
+d = sys.argv[1]
+j = json.load(open(d + "/claims.json"))
+for c in j["claims"]:
+    if c["id"] == "elastic-period2": c["verdict"] = "confirmed"
+json.dump(j, open(d + "/claims.json", "w"), indent=2)
+lines = open(d + "/panels/basin2.csv").read().splitlines(True)
+last = next(i for i in range(len(lines) - 1, -1, -1) if not lines[i].startswith("#"))
+lines[last] = lines[last].replace("fixed", "sticking", 1) if "fixed" in lines[last] else lines[last].replace(",", ",9", 1)
+open(d + "/panels/basin2.csv", "w").writelines(lines)
+PY
 set +e
-"$BOUNCER" audit "$D" > /dev/null 2> "$TMP/erra"
+"$BOUNCER" audit "$TMP/t" > "$TMP/outa" 2> "$TMP/erra"
 s=$?
 set -e
-[ "$s" = 2 ] || fail audit "exit $s, expected 2"
-grep -q 'reproduce directory' "$TMP/erra" || fail audit "no clear message: $(cat "$TMP/erra")"
-grep -qi 'different' "$TMP/erra" && fail audit "says DIFFERENT"
+[ "$s" = 1 ] || fail audit "tampered directory: exit $s, expected 1"
+grep -q 'claim elastic-period2: verdict' "$TMP/outa" || fail audit "changed verdict not named: $(cat "$TMP/outa")"
+grep -q 'panels/basin2.csv: rows differ' "$TMP/outa" || fail audit "changed row not named: $(cat "$TMP/outa")"
+mkdir "$TMP/plain"
+set +e
+"$BOUNCER" audit "$TMP/plain" > /dev/null 2> "$TMP/erra"
+s=$?
+set -e
+[ "$s" = 2 ] || fail audit "plain directory: exit $s, expected 2"
 
 if [ "$failures" -gt 0 ]; then
   echo "$failures failure(s)" >&2
   exit 1
 fi
-echo "ok: reproduce --only, reports, resume, failing checks, bad options, audit refusal"
+echo "ok: reproduce --only, reports, resume, failing checks, missing proofs, bad options, audit DIR"

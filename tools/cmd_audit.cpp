@@ -20,6 +20,8 @@
 // The version, commit, compiler, flags and library versions ARE compared: a result from
 // another build is reported as different (with the field), even if its numbers agree.
 //
+// A `bouncer reproduce` directory is compared item by item (audit_reproduce below).
+//
 // Exit status: 0 identical, 1 different (the first difference is printed) or the rerun
 // failed, 2 the file is not a result (or cannot be read).
 #include <nlohmann/json.hpp>
@@ -540,7 +542,7 @@ int audit(const std::string& path) {
 Command add_audit(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("audit", "Rerun a recorded result from its provenance; exit 0 if bit-identical");
   auto file = std::make_shared<std::string>();
-  sub->add_option("file", *file, "A JSON or CSV/text result written by bouncer")->required();
+  sub->add_option("file", *file, "A JSON or CSV/text result written by bouncer, or a bouncer reproduce directory")->required();
   auto run = [file](const std::string&) { return audit(*file); };
   return {sub, run};
 }

@@ -11,7 +11,8 @@
 // An item whose key (mode, argv, build version and commit) matches DIR/keys/ID.key and whose
 // outputs exist is not rerun (resumable). Exit 0: every item ran and every claim's check
 // reproduced its expected verdict; 1: an item failed or a check did not hold (the report says
-// which); 2: bad options.
+// which); 2: bad options. `bouncer audit DIR` reruns a reproduce directory and compares it
+// item by item (tools/cmd_audit.cpp).
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <nlohmann/json.hpp>

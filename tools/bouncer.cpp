@@ -54,7 +54,7 @@ int main(int argc_in, char** argv_in) {
   char** argv = word_ptrs.data();
   CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)"};
   app.require_subcommand(1);
-  std::vector<Command> commands{add_orbit(app), add_certify_sticking(app), add_certify_periodic(app), add_sweep(app), add_audit(app), add_periodic(app), add_lyapunov(app), add_classify(app), add_bifurcation(app), add_portrait(app), add_basin(app), add_scan(app), add_merge(app), add_continue(app), add_trajectory(app), add_tongues(app)};
+  std::vector<Command> commands{add_orbit(app), add_certify_sticking(app), add_certify_periodic(app), add_sweep(app), add_audit(app), add_periodic(app), add_lyapunov(app), add_classify(app), add_bifurcation(app), add_portrait(app), add_basin(app), add_scan(app), add_merge(app), add_continue(app), add_trajectory(app), add_tongues(app), add_reproduce(app)};
 
   const std::string version = build_info().version + " (commit " + build_info().commit + ")";
   app.set_version_flag("--version", version);

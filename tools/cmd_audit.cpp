@@ -20,6 +20,8 @@
 // The version, commit, compiler, flags and library versions ARE compared: a result from
 // another build is reported as different (with the field), even if its numbers agree.
 //
+// A `bouncer reproduce` directory is compared item by item (audit_reproduce below).
+//
 // Exit status: 0 identical, 1 different (the first difference is printed) or the rerun
 // failed, 2 the file is not a result (or cannot be read).
 #include <nlohmann/json.hpp>
@@ -34,6 +36,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -268,7 +271,146 @@ std::string self_path() {
   return ec ? std::string() : p.string();
 }
 
+// `bouncer audit DIR` for a `bouncer reproduce` directory: reruns the same reproduce (mode,
+// --only, manifest) into a temporary directory with this binary and compares item by item:
+// each claim's status, verdict and every check's value; each claim's JSON output and each
+// panel's PREFIX.json and PREFIX.csv with the volatile fields removed as for single results
+// (times, invocation, output paths); of a proof certificate, its verdicts and statements
+// (its evidence strings hold timings). Pictures are compared through their CSV and JSON, not
+// as PNG bytes. Exit 0 identical, 1 different or the rerun failed, 2 not a reproduce directory.
+int audit_reproduce(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  bool ok = false;
+  const json old = json::parse(read_file((dir / "claims.json").string(), ok), nullptr, false);
+  if (!ok || old.is_discarded() || !old.contains("reproduce") || !old["reproduce"].is_object() ||
+      !old["reproduce"].contains("mode") || !old["reproduce"]["mode"].is_string()) {
+    std::cerr << "bouncer audit: '" << (dir / "claims.json").string() << "' is not the claims.json of bouncer reproduce\n";
+    return 2;
+  }
+  const json& r = old["reproduce"];
+  std::vector<std::string> argv{self_path(), "reproduce", "--" + r["mode"].get<std::string>()};
+  if (r.contains("only") && r["only"].is_array() && !r["only"].empty()) {
+    std::string only;
+    for (const json& id : r["only"]) only += (only.empty() ? "" : ",") + id.get<std::string>();
+    argv.insert(argv.end(), {"--only", only});
+  }
+  if (r.contains("manifest") && r["manifest"].is_string() && r["manifest"].get<std::string>().find("(built in)") == std::string::npos)
+    argv.insert(argv.end(), {"--manifest", r["manifest"].get<std::string>()});
+  std::string tmpl = (fs::temp_directory_path() / "bouncer-audit-XXXXXX").string();
+  if (!mkdtemp(tmpl.data())) {
+    std::cerr << "bouncer audit: cannot create a temporary directory\n";
+    return 1;
+  }
+  const fs::path tmp = tmpl;
+  struct Cleanup {
+    fs::path p;
+    ~Cleanup() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  } cleanup{tmp};
+  argv.insert(argv.end(), {"--out", (tmp / "r").string()});
+  const int status = run_to_file(argv, (tmp / "stdout").string());
+  const json now = json::parse(read_file((tmp / "r" / "claims.json").string(), ok), nullptr, false);
+  if ((status != 0 && status != 1) || !ok || now.is_discarded()) {
+    std::cerr << "bouncer audit: the rerun of reproduce failed (exit status " << status << ")\n";
+    return 1;
+  }
+  std::vector<std::string> differences;
+  size_t compared = 0;
+  if (r.value("build", "") != now["reproduce"].value("build", ""))
+    differences.push_back("build: " + r.value("build", "") + " vs " + now["reproduce"].value("build", ""));
+  auto by_id = [](const json& list, const char* key) {
+    std::map<std::string, json> m;
+    if (list.is_array())
+      for (const json& e : list) m[e.value(key, "")] = e;
+    return m;
+  };
+  auto compare_file = [&](const std::string& rel) {
+    const std::string a = read_file((dir / rel).string(), ok);
+    if (!ok) return differences.push_back(rel + ": missing in " + dir.string());
+    const std::string b = read_file((tmp / "r" / rel).string(), ok);
+    if (!ok) return differences.push_back(rel + ": missing in the rerun");
+    ++compared;
+    if (rel.size() > 4 && rel.substr(rel.size() - 4) == ".csv") {
+      if (normalized_lines(a) != normalized_lines(b)) differences.push_back(rel + ": rows differ");
+      return;
+    }
+    json ja = json::parse(numbers_as_text(a), nullptr, false), jb = json::parse(numbers_as_text(b), nullptr, false);
+    if (ja.is_discarded() || jb.is_discarded()) {
+      if (a != b) differences.push_back(rel + ": differs");
+      return;
+    }
+    // A proof certificate's evidence strings carry timings ("(0.33 s)"): compare what it
+    // concludes (verdicts and statements, overall and per sub-claim), not its evidence.
+    auto conclusions = [](const json& j) {
+      if (!j.is_object() || !j.contains("proof") || !j.contains("subclaims")) return j;
+      json c{{"verdict", j.value("verdict", json())}, {"statement", j.value("statement", json())}, {"subclaims", json::array()}};
+      if (j["subclaims"].is_array())
+        for (const json& s : j["subclaims"])
+          c["subclaims"].push_back({{"name", s.value("name", json())}, {"verdict", s.value("verdict", json())},
+                                    {"statement", s.value("statement", json())}});
+      return c;
+    };
+    ja = conclusions(ja);
+    jb = conclusions(jb);
+    strip_volatile(ja, true);
+    strip_volatile(jb, true);
+    std::string detail;
+    if (const std::string where = first_difference(ja, jb, "", detail); !where.empty())
+      differences.push_back(rel + ": " + where + ": " + detail);
+  };
+  const auto old_claims = by_id(old["claims"], "id"), new_claims = by_id(now["claims"], "id");
+  for (const auto& [id, c] : old_claims) {
+    const auto it = new_claims.find(id);
+    if (it == new_claims.end()) {
+      differences.push_back("claim " + id + ": not in the rerun");
+      continue;
+    }
+    for (const char* k : {"status", "verdict", "checks"})
+      if (c.value(k, json()) != it->second.value(k, json()))
+        differences.push_back("claim " + id + ": " + k + ": " + short_dump(c.value(k, json())) + " vs " + short_dump(it->second.value(k, json())));
+    if (c.contains("output") && c["status"] != "failed") compare_file(c["output"].get<std::string>());
+  }
+  for (const auto& [id, c] : new_claims)
+    if (!old_claims.count(id)) differences.push_back("claim " + id + ": only in the rerun");
+  const auto old_panels = by_id(old["panels"], "label"), new_panels = by_id(now["panels"], "label");
+  for (const auto& [label, p] : old_panels) {
+    const auto it = new_panels.find(label);
+    if (it == new_panels.end()) {
+      differences.push_back("panel " + label + ": not in the rerun");
+      continue;
+    }
+    if (p.value("status", "") != it->second.value("status", ""))
+      differences.push_back("panel " + label + ": status " + p.value("status", "") + " vs " + it->second.value("status", ""));
+    if (p.contains("files"))
+      for (const json& f : p["files"]) {
+        const std::string rel = f.get<std::string>();
+        if (rel.size() > 4 && rel.substr(rel.size() - 4) == ".png") continue;  // compared through CSV and JSON
+        compare_file(rel);
+      }
+  }
+  for (const auto& [label, p] : new_panels)
+    if (!old_panels.count(label)) differences.push_back("panel " + label + ": only in the rerun");
+  if (differences.empty()) {
+    std::cout << "bouncer audit: identical: " << old_claims.size() << " claims (verdicts and checks) and " << compared
+              << " outputs of " << dir.string() << " match the rerun (times, invocations and output paths ignored; "
+              "pictures compared through their CSV and JSON)\n";
+    return 0;
+  }
+  std::cout << "bouncer audit: DIFFERENT: " << differences.size() << " difference(s) in " << dir.string() << "\n";
+  for (const std::string& d : differences) std::cout << "  " << d << "\n";
+  return 1;
+}
+
 int audit(const std::string& path) {
+  // A `bouncer reproduce` directory: compared item by item (audit_reproduce).
+  if (std::error_code ec; std::filesystem::is_directory(path, ec)) {
+    if (std::filesystem::exists(std::filesystem::path(path) / "claims.json", ec)) return audit_reproduce(path);
+    std::cerr << "bouncer audit: '" << path << "' is a directory without claims.json; give a result file (JSON or CSV "
+                 "written by bouncer) or a bouncer reproduce directory\n";
+    return 2;
+  }
   bool ok = false;
   const std::string text = read_file(path, ok);
   if (!ok) {
@@ -281,6 +423,10 @@ int audit(const std::string& path) {
     std::cerr << "bouncer audit: '" << path << "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
                  "(same provenance, exact numbers)\n";
     return 2;
+  }
+  if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("reproduce") && j.contains("claims")) {
+    return audit_reproduce(std::filesystem::path(path).parent_path().empty() ? std::filesystem::path(".")
+                                                                              : std::filesystem::path(path).parent_path());
   }
   if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("proof") && j.contains("claim")) {
     std::cerr << "bouncer audit: '" << path << "' is a proof certificate; rerun its proof (build/proofs/proof_"
@@ -397,7 +543,7 @@ int audit(const std::string& path) {
 Command add_audit(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("audit", "Rerun a recorded result from its provenance; exit 0 if bit-identical");
   auto file = std::make_shared<std::string>();
-  sub->add_option("file", *file, "A JSON or CSV/text result written by bouncer")->required();
+  sub->add_option("file", *file, "A JSON or CSV/text result written by bouncer, or a bouncer reproduce directory")->required();
   auto run = [file](const std::string&) { return audit(*file); };
   return {sub, run};
 }

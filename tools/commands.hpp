@@ -30,5 +30,6 @@ Command add_merge(CLI::App& app);
 Command add_continue(CLI::App& app);
 Command add_trajectory(CLI::App& app);
 Command add_tongues(CLI::App& app);
+Command add_reproduce(CLI::App& app);
 
 }  // namespace bouncer::cli

@@ -1,0 +1,186 @@
+#!/usr/bin/env bash
+# End-to-end: `bouncer reproduce` on a few items, in a temporary directory.
+#   * --quick --only one picture panel, one proof claim, one command claim and one pending
+#     panel: exit 0; claims.json parses, has a verdict per selected claim equal to its
+#     expected verdict, and lists every selected panel;
+#   * report.md and report.html reference only images that exist (every ![](...) and src=);
+#     report.html is well-formed (html.parser, every opened tag closed in order);
+#   * the run is resumable: a second run reruns nothing (every item "cached") and writes the
+#     same report apart from the Times section;
+#   * a claim whose check fails, and a claim whose command fails, make exit 1 and are named
+#     (test manifest via the hidden --manifest);
+#   * bad options exit 2 with one line naming the option: --jobs 0, --jobs x, --quick --full,
+#     --only with an unknown id (close matches listed), --out an existing file;
+#   * a proof binary missing beside the tool: its claim is "not reproduced: proof binary not
+#     found", exit 1;
+#   * `bouncer audit DIR` reruns the reproduce: identical for an untouched directory (no false
+#     DIFFERENT), exit 1 naming a changed verdict and a changed picture row; a directory that
+#     is not a reproduce directory is refused with exit 2.
+# Usage: bash reproduce.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash reproduce.sh <bouncer-binary> <source-dir>}
+SRC=${2:?source dir}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+failures=0
+fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+
+ONLY=fig:basin2,elastic-period2,elastic-fermi,fig:arnold
+D=$TMP/r
+if ! "$BOUNCER" reproduce --quick --only "$ONLY" --out "$D" --jobs 2 2> "$TMP/err1"; then
+  fail run "exit status $? (stderr: $(tail -3 "$TMP/err1"))"
+fi
+grep -q 'reproduce \[4/4\]' "$TMP/err1" || fail progress "no progress line per item: $(cat "$TMP/err1")"
+for f in report.md report.html claims.json panels/basin2.png claims/elastic-period2.json; do
+  [ -s "$D/$f" ] || fail outputs "$f missing"
+done
+
+python3 - "$D" "$SRC/data/paper/manifest.toml" <<'PY' || fail reports "see above"
+import json, os, re, sys, tomllib
+from html.parser import HTMLParser
+d, manifest = sys.argv[1], sys.argv[2]
+m = tomllib.load(open(manifest, "rb"))
+expected = {c["id"]: c["expected"] for c in m["claim"]}
+errors = []
+j = json.load(open(os.path.join(d, "claims.json")))
+got = {c["id"]: c for c in j["claims"]}
+for cid in ("elastic-period2", "elastic-fermi"):
+    if cid not in got:
+        errors.append(f"claims.json: no {cid}")
+    elif got[cid]["verdict"] != expected[cid] or got[cid]["status"] != "reproduced":
+        errors.append(f"claims.json: {cid} verdict {got[cid]['verdict']!r}, expected {expected[cid]!r}")
+if set(got) != {"elastic-period2", "elastic-fermi"}:
+    errors.append(f"claims.json holds claims {sorted(got)}, not just the selected two")
+panels = {p["label"]: p for p in j["panels"]}
+if panels.get("fig:basin2", {}).get("status") != "done":
+    errors.append(f"fig:basin2 not done: {panels.get('fig:basin2')}")
+if panels.get("fig:arnold", {}).get("status") != "pending" or not panels["fig:arnold"].get("reason"):
+    errors.append(f"fig:arnold not reported pending with a reason: {panels.get('fig:arnold')}")
+# the proof's own certificate says the same verdict
+cert = json.load(open(os.path.join(d, "claims", "elastic-period2.json")))
+if cert.get("verdict") != "refuted":
+    errors.append("the proof certificate's verdict is not refuted")
+# images referenced exist
+md = open(os.path.join(d, "report.md"), encoding="utf-8").read()
+html = open(os.path.join(d, "report.html"), encoding="utf-8").read()
+refs = re.findall(r"!\[[^\]]*\]\(([^)]+)\)", md) + re.findall(r'src="([^"]+)"', html)
+if not refs:
+    errors.append("no image referenced")
+for r in refs:
+    if r.startswith("/") or "://" in r or not os.path.isfile(os.path.join(d, r)):
+        errors.append(f"image reference {r!r} is not a relative path to an existing file")
+if "fig:basin2" not in md or "Basin of attraction for the family of fixed points" not in md:
+    errors.append("report.md lacks the panel or its paper caption")
+# well-formed HTML: every non-void tag closed, in order
+VOID = {"meta", "img", "br", "hr", "link", "input"}
+class P(HTMLParser):
+    def __init__(self):
+        super().__init__(); self.stack = []; self.bad = []
+    def handle_starttag(self, tag, attrs):
+        if tag not in VOID: self.stack.append(tag)
+    def handle_endtag(self, tag):
+        if not self.stack or self.stack[-1] != tag:
+            self.bad.append(f"</{tag}> closes {self.stack[-1] if self.stack else 'nothing'}")
+        else:
+            self.stack.pop()
+p = P(); p.feed(html); p.close()
+if p.bad or p.stack:
+    errors.append(f"report.html not well-formed: {p.bad[:3]} unclosed {p.stack}")
+if not html.startswith("<!DOCTYPE html>"):
+    errors.append("report.html has no doctype")
+if errors:
+    print("\n".join(errors)); sys.exit(1)
+PY
+
+# Resume: nothing reruns, the report is the same apart from its Times section.
+cp "$D/report.md" "$TMP/report1.md"
+"$BOUNCER" reproduce --quick --only "$ONLY" --out "$D" 2> "$TMP/err2" || fail resume "second run exit $?"
+if grep -E '\] (fig:basin2|elastic-period2|elastic-fermi): done' "$TMP/err2" > /dev/null; then
+  fail resume "an item was rerun: $(cat "$TMP/err2")"
+fi
+[ "$(grep -c ': cached' "$TMP/err2")" = 3 ] || fail resume "expected 3 cached items: $(cat "$TMP/err2")"
+diff <(sed '/^## Times/,$d' "$TMP/report1.md") <(sed '/^## Times/,$d' "$D/report.md") > /dev/null ||
+  fail resume "report.md differs outside the Times section"
+
+# A failing check and a failing command: exit 1, both named.
+set +e
+"$BOUNCER" reproduce --manifest "$SRC/tests/data/reproduce-failing-manifest.toml" --out "$TMP/f" 2> "$TMP/errf"
+status=$?
+set -e
+[ "$status" = 1 ] || fail failing "exit $status, expected 1"
+grep -q 'wrong-verdict: not reproduced: check verdict == "confirmed" (got "refuted") failed' "$TMP/errf" ||
+  fail failing "the failed check is not named: $(cat "$TMP/errf")"
+grep -q 'bad-command: not reproduced' "$TMP/errf" || fail failing "the failed command is not named"
+python3 -c "
+import json,sys; j=json.load(open('$TMP/f/claims.json'))
+s={c['id']:c['status'] for c in j['claims']}
+sys.exit(0 if s=={'wrong-verdict':'not reproduced','bad-command':'failed'} and j['reproduce']['result']=='not reproduced' else 1)" ||
+  fail failing "claims.json does not record the failures"
+
+# Bad options: exit 2, one line naming the option.
+touch "$TMP/afile"
+bad() {  # bad NAME PATTERN ARGS...
+  local name=$1 pat=$2; shift 2
+  set +e
+  "$BOUNCER" reproduce "$@" > "$TMP/out" 2> "$TMP/err"
+  local s=$?
+  set -e
+  [ "$s" = 2 ] || fail "$name" "exit $s, expected 2"
+  [ "$(wc -l < "$TMP/err")" = 1 ] || fail "$name" "stderr is not one line: $(cat "$TMP/err")"
+  grep -q -- "$pat" "$TMP/err" || fail "$name" "stderr does not name $pat: $(cat "$TMP/err")"
+  [ ! -s "$TMP/out" ] || fail "$name" "wrote to stdout"
+}
+bad jobs0 '--jobs\|jobs' --jobs 0 --out "$TMP/b1"
+bad jobsx 'jobs' --jobs x --out "$TMP/b2"
+bad quickfull 'quick' --quick --full --out "$TMP/b3"
+bad only "unknown item 'basin22'" --only basin22 --out "$TMP/b4"
+grep -q 'basin2' "$TMP/err" || fail only "no close match listed: $(cat "$TMP/err")"
+bad outfile 'out' --out "$TMP/afile"
+bad unknownopt 'unknown option' --fast
+
+# A proof binary that is not next to the tool: the claim is "not reproduced", exit 1, no crash.
+mkdir "$TMP/lone"
+cp "$BOUNCER" "$TMP/lone/bouncer"
+set +e
+"$TMP/lone/bouncer" reproduce --only elastic-period2 --out "$TMP/lone/r" 2> "$TMP/errl"
+s=$?
+set -e
+[ "$s" = 1 ] || fail noproof "exit $s, expected 1"
+grep -q 'elastic-period2: not reproduced: proof binary not found' "$TMP/errl" || fail noproof "not named: $(cat "$TMP/errl")"
+
+# audit DIR reruns the reproduce and compares item by item: identical for an untouched
+# directory; a changed verdict and a changed picture row are named; a plain directory is refused.
+"$BOUNCER" audit "$D" > "$TMP/outa" 2> "$TMP/erra" || fail audit "untouched directory: exit $?: $(cat "$TMP/outa" "$TMP/erra")"
+grep -q 'identical: 2 claims' "$TMP/outa" || fail audit "no identical line: $(cat "$TMP/outa")"
+cp -r "$D" "$TMP/t"
+python3 - "$TMP/t" <<'PY'
+import json, sys
+d = sys.argv[1]
+j = json.load(open(d + "/claims.json"))
+for c in j["claims"]:
+    if c["id"] == "elastic-period2": c["verdict"] = "confirmed"
+json.dump(j, open(d + "/claims.json", "w"), indent=2)
+lines = open(d + "/panels/basin2.csv").read().splitlines(True)
+last = next(i for i in range(len(lines) - 1, -1, -1) if not lines[i].startswith("#"))
+lines[last] = lines[last].replace("fixed", "sticking", 1) if "fixed" in lines[last] else lines[last].replace(",", ",9", 1)
+open(d + "/panels/basin2.csv", "w").writelines(lines)
+PY
+set +e
+"$BOUNCER" audit "$TMP/t" > "$TMP/outa" 2> "$TMP/erra"
+s=$?
+set -e
+[ "$s" = 1 ] || fail audit "tampered directory: exit $s, expected 1"
+grep -q 'claim elastic-period2: verdict' "$TMP/outa" || fail audit "changed verdict not named: $(cat "$TMP/outa")"
+grep -q 'panels/basin2.csv: rows differ' "$TMP/outa" || fail audit "changed row not named: $(cat "$TMP/outa")"
+mkdir "$TMP/plain"
+set +e
+"$BOUNCER" audit "$TMP/plain" > /dev/null 2> "$TMP/erra"
+s=$?
+set -e
+[ "$s" = 2 ] || fail audit "plain directory: exit $s, expected 2"
+
+if [ "$failures" -gt 0 ]; then
+  echo "$failures failure(s)" >&2
+  exit 1
+fi
+echo "ok: reproduce --only, reports, resume, failing checks, missing proofs, bad options, audit DIR"

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# The README's claims table is generated, not hand-kept: the block between
+# <!-- claims:begin ... --> and <!-- claims:end --> must equal `bouncer reproduce --claims-table`
+# (printed from data/paper/manifest.toml, compiled into the binary). Also: the table has one
+# row per claim of the manifest, every row has the five columns, and the manifest's expected
+# verdict word appears in the row's verdict cell.
+# Usage: bash reproduce_claims_table.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+BOUNCER=${1:?usage: bash reproduce_claims_table.sh <bouncer-binary> <source-dir>}
+SRC=${2:?source dir}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+"$BOUNCER" reproduce --claims-table > "$TMP/generated.md"
+python3 - "$SRC/README.md" "$TMP/generated.md" "$SRC/data/paper/manifest.toml" <<'PY'
+import re, sys, tomllib
+readme, generated, manifest = sys.argv[1:4]
+text = open(readme, encoding="utf-8").read()
+begin = [m.end() for m in re.finditer(r"<!-- claims:begin[^>]*-->\n", text)]
+end = [m.start() for m in re.finditer(r"<!-- claims:end -->", text)]
+if len(begin) != 1 or len(end) != 1 or end[0] < begin[0]:
+    sys.exit("FAIL: README must hold exactly one claims:begin ... claims:end block")
+block = text[begin[0]:end[0]]
+gen = open(generated, encoding="utf-8").read()
+if block != gen:
+    import difflib
+    sys.stdout.writelines(difflib.unified_diff(block.splitlines(True), gen.splitlines(True), "README block", "generated"))
+    sys.exit("FAIL: the README claims block differs from `bouncer reproduce --claims-table`; paste the generated table")
+m = tomllib.load(open(manifest, "rb"))
+rows = [l for l in gen.splitlines() if l.startswith("| ") and not l.startswith("| # ")]
+if len(rows) != len(m["claim"]):
+    sys.exit(f"FAIL: {len(rows)} table rows for {len(m['claim'])} claims")
+for row, claim in zip(rows, m["claim"]):
+    cells = [c.strip() for c in re.split(r"(?<!\\)\|", row)[1:-1]]
+    if len(cells) != 5:
+        sys.exit(f"FAIL: row {claim['row']} has {len(cells)} cells, not 5")
+    if cells[0] != claim["row"]:
+        sys.exit(f"FAIL: row {cells[0]} is not claim {claim['row']}")
+    if claim["expected"] not in cells[2].replace("*", ""):
+        sys.exit(f"FAIL: row {claim['row']}: verdict cell {cells[2]!r} does not say {claim['expected']!r}")
+print(f"ok: README claims block = generated table ({len(rows)} claims)")
+PY

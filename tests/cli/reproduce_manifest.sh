@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The paper manifest (data/paper/manifest.toml) is complete:
+#   * every label of data/paper/figure-labels.txt is a panel's label or a figure's label, and
+#     every figure label with panels is covered by at least one panel; no panel label is
+#     missing from the list;
+#   * when the paper source is present (/work/shared/paper or $BOUNCER_PAPER_TEX; it is not
+#     in the repository, so CI skips this part), the stored list equals the .tex's
+#     \label{fig:...} in order;
+#   * every panel is ready (quick and full commands, starting with bouncer) or pending with a
+#     reason; a ready panel's caption is the .tex caption of its figure (when the .tex is there);
+#   * every claim has an expected verdict from the five words, a run command and checks, and
+#     together the claims cover all 11 claim groups of DESIGN.md section 4 and README rows
+#     1-15.
+# Usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+SRC=${2:?usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>}
+TEX=${BOUNCER_PAPER_TEX:-/work/shared/paper/langer-miller-2014.tex}
+python3 - "$SRC/data/paper/manifest.toml" "$SRC/data/paper/figure-labels.txt" "$TEX" <<'PY'
+import os, re, sys, tomllib
+manifest, labels_file, tex = sys.argv[1:4]
+m = tomllib.load(open(manifest, "rb"))
+errors = []
+labels = [l.strip() for l in open(labels_file) if l.strip() and not l.startswith("#")]
+panels = m.get("panel", [])
+panel_labels = [p["label"] for p in panels]
+figure_labels = {p["figure"] for p in panels}
+if len(set(panel_labels)) != len(panel_labels):
+    errors.append("duplicate panel labels")
+for l in labels:
+    if l not in panel_labels and l not in figure_labels:
+        errors.append(f"{l}: in the paper, not in the manifest")
+for l in panel_labels + sorted(figure_labels):
+    if l not in labels:
+        errors.append(f"{l}: in the manifest, not a label of the paper")
+for p in panels:
+    if p["status"] == "ready":
+        for v in ("quick", "full"):
+            if not p.get(v) or p[v][0] != "bouncer":
+                errors.append(f"{p['label']}: ready panel needs a '{v}' bouncer command")
+    elif p["status"] == "pending":
+        if not p.get("reason"):
+            errors.append(f"{p['label']}: pending without a reason")
+    else:
+        errors.append(f"{p['label']}: status {p['status']!r}")
+words = {"confirmed", "refuted", "corrected", "not reproduced", "consistent"}
+groups, rows = set(), set()
+for c in m.get("claim", []):
+    if c["expected"] not in words:
+        errors.append(f"{c['id']}: expected {c['expected']!r}")
+    if not c.get("run") or not c.get("checks"):
+        errors.append(f"{c['id']}: needs run and checks")
+    groups.update(c.get("groups", []))
+    rows.add(re.match(r"\d+", c["row"]).group(0))
+if groups != set(range(1, 12)):
+    errors.append(f"claim groups covered {sorted(groups)}, DESIGN.md section 4 has 1..11")
+if rows != {str(i) for i in range(1, 16)}:
+    errors.append(f"README rows covered {sorted(rows, key=int)}, need 1..15")
+checked_tex = False
+if os.path.exists(tex):
+    checked_tex = True
+    src = open(tex, encoding="utf-8").read()
+    tex_labels = re.findall(r"\\label\{(fig:[^}]*)\}", src)
+    if tex_labels != labels:
+        errors.append(f"figure-labels.txt differs from the .tex labels: {tex_labels}")
+    # each figure environment: its caption and labels
+    for fig in re.findall(r"\\begin\{figure\}(.*?)\\end\{figure\}", src, re.S):
+        cap = re.search(r"\\caption\{(.*)\}\s*\\label\{(fig:[^}]*)\}", fig, re.S)
+        if not cap:
+            continue
+        for p in panels:
+            if p["figure"] == cap.group(2) and p["caption"] != cap.group(1).strip():
+                errors.append(f"{p['label']}: caption differs from the .tex")
+if errors:
+    print("FAIL:\n  " + "\n  ".join(errors)); sys.exit(1)
+print(f"ok: {len(panels)} panels ({sum(p['status'] == 'pending' for p in panels)} pending), {len(m['claim'])} claims, "
+      f"{len(labels)} labels" + (", checked against the .tex" if checked_tex else " (no .tex here: stored list only)"))
+PY

@@ -445,9 +445,12 @@ int run_reproduce(const Options_& o) {
     }
     it.argv = o.full ? p.full : p.quick;
     const std::string prefix = (dir / "panels" / p.name()).string();
-    it.outputs = {"panels/" + p.name() + ".png", "panels/" + p.name() + ".json", "panels/" + p.name() + ".csv"};
+    // Every panel in the three formats a journal takes: PNG for the report, PDF and SVG
+    // (vector) for print. All picture commands take --format.
+    it.outputs = {"panels/" + p.name() + ".png", "panels/" + p.name() + ".pdf", "panels/" + p.name() + ".svg",
+                  "panels/" + p.name() + ".json", "panels/" + p.name() + ".csv"};
     it.exec = it.argv;
-    it.exec.insert(it.exec.end(), {"--out", prefix, "--quiet"});
+    it.exec.insert(it.exec.end(), {"--out", prefix, "--quiet", "--format", "png,pdf,svg"});
     it.stdout_path = (dir / "logs" / (p.name() + ".stdout")).string();
     it.stderr_path = (dir / "logs" / (p.name() + ".stderr")).string();
     it.key_path = (dir / "keys" / (p.name() + ".key")).string();
@@ -665,7 +668,8 @@ int run_reproduce(const Options_& o) {
     }
     md << "\n#### " << p.label << (p.panel.empty() ? "" : " " + p.panel) << "\n\n";
     if (it.state == "done" || it.state == "cached")
-      md << "![" << p.label << "](panels/" << p.name() << ".png)\n\n";
+      md << "![" << p.label << "](panels/" << p.name() << ".png)\n\n[PDF](panels/" << p.name() << ".pdf) · [SVG](panels/"
+         << p.name() << ".svg) · [CSV](panels/" << p.name() << ".csv)\n\n";
     else if (it.state == "skipped")
       md << "**Pending:** " << p.reason << ".\n\n";
     else
@@ -726,7 +730,9 @@ int run_reproduce(const Options_& o) {
     }
     h << "<figure id=\"" << html_escape(p.label) << "\">\n";
     if (it.state == "done" || it.state == "cached")
-      h << "<img src=\"panels/" << html_escape(p.name()) << ".png\" alt=\"" << html_escape(p.label) << "\">\n";
+      h << "<img src=\"panels/" << html_escape(p.name()) << ".png\" alt=\"" << html_escape(p.label) << "\">\n"
+        << "<p class=\"files\"><a href=\"panels/" << html_escape(p.name()) << ".pdf\">PDF</a> · <a href=\"panels/"
+        << html_escape(p.name()) << ".svg\">SVG</a> · <a href=\"panels/" << html_escape(p.name()) << ".csv\">CSV</a></p>\n";
     else if (it.state == "skipped")
       h << "<p><strong>Pending:</strong> " << html_escape(p.reason) << ".</p>\n";
     else

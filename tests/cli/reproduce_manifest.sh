@@ -53,8 +53,8 @@ for c in m.get("claim", []):
     rows.add(re.match(r"\d+", c["row"]).group(0))
 if groups != set(range(1, 12)):
     errors.append(f"claim groups covered {sorted(groups)}, DESIGN.md section 4 has 1..11")
-if rows != {str(i) for i in range(1, 16)}:
-    errors.append(f"README rows covered {sorted(rows, key=int)}, need 1..15")
+if not {str(i) for i in range(1, 16)} <= rows:
+    errors.append(f"README rows covered {sorted(rows, key=int)}, need at least 1..15 (the paper claims of the old README tables)")
 checked_tex = False
 if os.path.exists(tex):
     checked_tex = True

@@ -135,6 +135,24 @@ TEST(Classify, ChaoticAndQuasiperiodic) {
   EXPECT_LT(std::fabs(q.lambda), 0.02);
 }
 
+// A short window must not make a chaotic orbit periodic. With steps = 128 and max-period 64,
+// the shift q = 64 used to be "verified" over zero pairs of the window's second half, and the
+// attractor at a = 27, c = 1000 came out periodic with period 64 (and every cell of a quick
+// (a, c) scan periodic). Each q is now compared over at least one full period.
+TEST(Classify, ShortWindowNeverCallsChaosPeriodic) {
+  ClassifyOptions o;
+  o.transient = 500;
+  o.steps = 128;
+  o.max_period = 64;
+  o.recheck_factor = 0;
+  const Classification c = run(spec(Law::veldep, "27"), 0.3, 6, o);
+  EXPECT_NE(c.cls, OrbitClass::periodic) << c.evidence;
+  EXPECT_NE(c.period, 64) << c.evidence;
+  // A true period is still found in the same window: the eq. 5 fixed point.
+  const Classification f = run(spec(Law::constant, "24", "0.5"), 0.3, 12, o);
+  EXPECT_EQ(f.cls, OrbitClass::fixed) << f.evidence;
+}
+
 TEST(Classify, VelocityDependentChatterIsEffectiveSticking) {
   // c = 1: eps(w) = exp(-w^(3/5)) is small for every relative speed above ~1 and the
   // relative velocity then decays on a rising segment through ever shorter flights.

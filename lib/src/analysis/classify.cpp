@@ -8,8 +8,8 @@
 //   4. veldep: a chatter run (>= 32 consecutive impacts on one segment with strictly
 //      decreasing relative velocity) or a ride (relative velocity rounded to 0)
 //                                                              -> effective_sticking
-//   5. the state repeats after q <= max_period steps over the second half of the window
-//      (theta compared modulo 1)                               -> fixed (q = 1) / periodic
+//   5. the state repeats after q <= max_period steps over the second half of the window,
+//      and over at least q steps (theta compared modulo 1)    -> fixed (q = 1) / periodic
 //   6. leading Lyapunov exponent over the window (AD tangent map):
 //      (measured over max(steps, 2000) further steps in 20 blocks)
 //      lambda > max(0.01, 3 stderr)                            -> chaotic
@@ -298,13 +298,16 @@ Classification classify_window(const ImpactMap<T>& map, State<T> s, const Classi
     }
   }
 
-  // 5. Periodic: smallest q whose shift matches over the second half of the window.
+  // 5. Periodic: smallest q whose shift matches over the second half of the window, and
+  // always over at least one full period (q comparisons): for q > L/4 the second half holds
+  // fewer than q pairs, and at q = L/2 none, which once passed vacuously and labelled chaotic
+  // orbits "periodic" with period steps/2.
   const long L = static_cast<long>(win.size());
   const long qmax = std::min(opt.max_period, L / 2);
   for (long q = 1; q <= qmax; ++q) {
     double worst = 0;
     bool ok = true;
-    for (long i = L / 2; i + q < L; ++i) {
+    for (long i = std::min(L / 2, L - 2 * q); i + q < L; ++i) {
       const double d = state_distance(win[i], win[i + q]);
       worst = std::max(worst, d);
       if (!(d <= kRepeatTol)) { ok = false; break; }

@@ -337,6 +337,37 @@ std::string html_escape(const std::string& s) {
   return o;
 }
 
+// The Markdown inline marks the manifest's texts use (`code`, **bold**, \| inside a table
+// cell) as HTML, everything else escaped: the HTML report shows what report.md shows.
+std::string md_inline_html(const std::string& s) {
+  std::string o;
+  bool bold = false;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '`') {
+      const size_t end = s.find('`', i + 1);
+      if (end != std::string::npos) {
+        o += "<code>" + html_escape(s.substr(i + 1, end - i - 1)) + "</code>";
+        i = end;
+        continue;
+      }
+    }
+    if (s.compare(i, 2, "**") == 0) {
+      o += bold ? "</strong>" : "<strong>";
+      bold = !bold;
+      ++i;
+      continue;
+    }
+    if (s.compare(i, 2, "\\|") == 0) {
+      o += "|";
+      ++i;
+      continue;
+    }
+    o += html_escape(std::string(1, s[i]));
+  }
+  if (bold) o += "</strong>";
+  return o;
+}
+
 std::string md_cell(std::string s) {
   for (char& ch : s)
     if (ch == '\n') ch = ' ';
@@ -714,10 +745,10 @@ int run_reproduce(const Options_& o) {
     if (!it.is_claim) continue;
     const Claim& c = m.claims[it.index];
     const Outcome& oc = outcome[c.id];
-    h << "<tr><td>" << html_escape(c.row) << "</td><td>" << html_escape(c.text) << "</td><td>" << html_escape(c.paper)
+    h << "<tr><td>" << html_escape(c.row) << "</td><td>" << md_inline_html(c.text) << "</td><td>" << html_escape(c.paper)
       << "</td><td>" << html_escape(c.expected) << "</td><td class=\"" << (oc.status == "reproduced" ? "ok" : "bad") << "\">"
-      << html_escape(oc.verdict) << "</td><td>" << html_escape(c.evidence) << "</td><td><code>" << html_escape(c.rerun)
-      << "</code></td></tr>\n";
+      << html_escape(oc.verdict) << "</td><td>" << md_inline_html(c.evidence) << "</td><td>" << md_inline_html(c.rerun)
+      << "</td></tr>\n";
   }
   h << "</table>\n<h2>Figures</h2>\n";
   figure.clear();

@@ -208,8 +208,8 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
 
 const std::set<std::string>& tongues_keys() {
   static const std::set<std::string> keys = [] {
-    std::set<std::string> k{"p-max", "a-range", "eps-range", "samples", "out"};
-    k.insert(picture_keys().begin(), picture_keys().end());
+    std::set<std::string> k = single_run_keys();
+    k.insert({"p-max", "a-range", "eps-range", "samples"});
     return k;
   }();
   return keys;
@@ -227,11 +227,7 @@ Command add_tongues(CLI::App& app) {
   opts->add("a-range", "Window of a, LO:HI within [0, 1e6] (default 0:30)");
   opts->add("eps-range", "Window of eps, LO:HI within [0, 1] (default 0:1)");
   opts->add("samples", "Points per curve, integer in [16, 100000] (default 600), uniform in a");
-  opts->add("out", "Write PREFIX.csv, PREFIX.json and the pictures (PREFIX.png, or --format; all or none)");
-  add_picture_options(*opts);
-  auto flags = std::make_shared<FlagSet>();
-  sub->add_flag("--json", flags->json, "Print a JSON summary on stdout");
-  sub->add_flag("--quiet", flags->quiet, "Accepted like the other picture commands (this one prints no progress)");
+  auto flags = add_single_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "tongues", tongues_keys()), opts->collected());
     const TonguesRequest req = tongues_request(o);

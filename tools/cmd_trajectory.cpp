@@ -364,8 +364,9 @@ void finish(const TrajectoryRequest& r, const std::vector<Row>& rows, long impac
 const std::set<std::string>& trajectory_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"theta", "v", "periods", "samples", "precision", "out"});
-    k.insert(picture_keys().begin(), picture_keys().end());
+    k.insert({"theta", "v", "periods", "samples", "precision"});
+    const std::set<std::string> run = single_run_keys();
+    k.insert(run.begin(), run.end());
     return k;
   }();
   return keys;
@@ -398,11 +399,7 @@ Command add_trajectory(CLI::App& app) {
   opts->add("periods", "Wall periods drawn, integer in [1, 100] (default 3)");
   opts->add("samples", "Samples per wall period, integer in [8, 10000] (default 400); impacts and corners are added exactly");
   opts->add("precision", kPointPrecisionHelp);
-  opts->add("out", "Write PREFIX.csv, PREFIX.json and the pictures (PREFIX.png, or --format; all or none)");
-  add_picture_options(*opts);
-  auto flags = std::make_shared<FlagSet>();
-  sub->add_flag("--json", flags->json, "Print a JSON summary on stdout");
-  sub->add_flag("--quiet", flags->quiet, "Accepted like the other picture commands (this one prints no progress)");
+  auto flags = add_single_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "trajectory", trajectory_keys()), opts->collected());
     return run_trajectory(o, run_flags_from(o, *flags, argv_text));

@@ -77,6 +77,23 @@ inline std::shared_ptr<FlagSet> add_run_options(CLI::App* sub, OptionSet& opts) 
   return f;
 }
 
+// The run options of a picture command that runs once, without tiles (trajectory, tongues):
+// --out, the picture options, --json, and --quiet (accepted like the grid commands'; such a
+// command prints no progress). The scene keys of these options: single_run_keys().
+inline std::shared_ptr<FlagSet> add_single_run_options(CLI::App* sub, OptionSet& opts) {
+  opts.add("out", "Write PREFIX.csv, PREFIX.json and the pictures (PREFIX.png, or --format; all or none)");
+  add_picture_options(opts);
+  auto f = std::make_shared<FlagSet>();
+  sub->add_flag("--json", f->json, "Print a JSON summary on stdout");
+  sub->add_flag("--quiet", f->quiet, "Accepted like the other picture commands (this one prints no progress)");
+  return f;
+}
+inline std::set<std::string> single_run_keys() {
+  std::set<std::string> k = picture_keys();
+  k.insert("out");
+  return k;
+}
+
 inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::string& invocation) {
   RunFlags r;
   r.threads = static_cast<unsigned>(integer_from(o, "threads", 1, 4096, 0));

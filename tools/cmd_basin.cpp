@@ -149,13 +149,7 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
   ras.ny = static_cast<int>(r.ny);
   // The window in the coordinates of its axes: relative to an offset when a double cannot
   // resolve it (a zoom at mpfr:256), the values themselves otherwise.
-  const AxisZoom zx(r.t0.value(), r.t1.value()), zy(r.v0.value(), r.v1.value());
-  ras.x_min = zx(r.t0.value());
-  ras.x_max = zx(r.t1.value());
-  ras.y_min = zy(r.v0.value());
-  ras.y_max = zy(r.v1.value());
-  ras.x_offset = zx.offset();
-  ras.y_offset = zy.offset();
+  set_exact_window(ras, r.t0.value(), r.t1.value(), r.v0.value(), r.v1.value());
   ras.pixels.resize(items.size());
   for (size_t i = 0; i < items.size(); ++i) {
     const long col = static_cast<long>(i) % r.nx, row = r.ny - 1 - static_cast<long>(i) / r.nx;

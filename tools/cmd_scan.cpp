@@ -175,13 +175,7 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
   ras.nx = static_cast<int>(r.p);
   ras.ny = static_cast<int>(r.q);
   // The window in the coordinates of its axes (relative to an offset for a zoom).
-  const AxisZoom zx(r.a0.value(), r.a1.value()), zy(r.y0.value(), r.y1.value());
-  ras.x_min = zx(r.a0.value());
-  ras.x_max = zx(r.a1.value());
-  ras.y_min = zy(r.y0.value());
-  ras.y_max = zy(r.y1.value());
-  ras.x_offset = zx.offset();
-  ras.y_offset = zy.offset();
+  const auto [zx, zy] = set_exact_window(ras, r.a0.value(), r.a1.value(), r.y0.value(), r.y1.value());
   ras.pixels.resize(items.size());
   const bool paper = f.picture.palette == Palette::paper;
   const Rgb paper_green{0, 150, 40};

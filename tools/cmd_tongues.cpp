@@ -143,28 +143,22 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
     }
     points += static_cast<long>(pts.size());
     const std::string label = "p = " + std::to_string(p);
-    const bool solid_part = sx_full.size() >= 2;  // labelled there; else on the dashes
-    if (solid_part) {
+    // The curve's solid and dashed parts; the legend names p once (on the solid part if any).
+    auto add_part = [&](std::vector<double> x, std::vector<double> y, bool dashed, bool labelled) {
+      if (x.size() < 2) return;
       Series s;
-      s.label = p <= 12 ? label : "";
+      s.label = labelled && p <= 12 ? label : "";
       s.color = color;
       s.lines = true;
+      s.dashed = dashed;
       s.markers = false;
-      s.x = std::move(sx_full);
-      s.y = std::move(sy_full);
+      s.x = std::move(x);
+      s.y = std::move(y);
       fig.series.push_back(std::move(s));
-    }
-    if (sx_part.size() >= 2) {
-      Series s;
-      s.label = p <= 12 && !solid_part ? label : "";
-      s.color = color;
-      s.lines = true;
-      s.dashed = true;
-      s.markers = false;
-      s.x = std::move(sx_part);
-      s.y = std::move(sy_part);
-      fig.series.push_back(std::move(s));
-    }
+    };
+    const bool solid_part = sx_full.size() >= 2;
+    add_part(std::move(sx_full), std::move(sy_full), false, true);
+    add_part(std::move(sx_part), std::move(sy_part), true, !solid_part);
     nlohmann::ordered_json c;
     c["p"] = p;
     c["points"] = pts.size();

@@ -983,6 +983,18 @@ double AxisZoom::operator()(double x) const {
   return ((x - origin_d_) - origin_err_) * scale_d_;
 }
 
+std::pair<AxisZoom, AxisZoom> set_exact_window(Raster& r, const mpq_class& x0, const mpq_class& x1, const mpq_class& y0,
+                                               const mpq_class& y1) {
+  const AxisZoom zx(x0, x1), zy(y0, y1);
+  r.x_min = zx(x0);
+  r.x_max = zx(x1);
+  r.y_min = zy(y0);
+  r.y_max = zy(y1);
+  r.x_offset = zx.offset();
+  r.y_offset = zy.offset();
+  return {zx, zy};
+}
+
 std::string axis_title(const std::string& label, const AxisOffset& o) {
   if (!o.active()) return label;
   std::string out = label;

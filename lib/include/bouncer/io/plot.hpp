@@ -121,6 +121,11 @@ struct Raster {
   AxisOffset x_offset, y_offset;
 };
 
+// Set the raster's window [x0, x1] x [y0, y1], given as exact values, in the coordinates of
+// its axes: relative to an offset where a double cannot resolve the window (AxisZoom), the
+// values themselves otherwise. Returns the two axes' maps, for drawing over the raster.
+std::pair<AxisZoom, AxisZoom> set_exact_window(Raster& r, const mpq_class& x0, const mpq_class& x1, const mpq_class& y0, const mpq_class& y1);
+
 struct ImageFigure {
   std::string title, xlabel, ylabel;
   Raster raster;

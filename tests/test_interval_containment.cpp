@@ -1,4 +1,5 @@
-// Randomized containment of the interval step (in the style of Arb's t-*.c tests): for
+// Randomized containment of the interval step (in the style of Arb's t-*.c tests), for each
+// interval type of the set (Mpfi at the drawn precision, and the fast DoubleInterval): for
 // random models, random boxes and a random exact point inside each box, the interval step
 // either reports Undecided or its image encloses the image of the point, computed with
 // MPFR at 512 bits. The same for the value part of the Dual<Mpfi> step (the Lohner
@@ -26,6 +27,7 @@
 #include "bouncer/analysis/jacobian.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"
+#include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 
 namespace bouncer {
@@ -54,11 +56,10 @@ mpq_class dyadic(const mpz_class& n, unsigned k) {
   return q;
 }
 
-Mpfi enclose_q(const mpq_class& lo, const mpq_class& hi, long bits) {
-  Mpfr l(bits), h(bits);
-  mpfr_set_q(l.get(), lo.get_mpq_t(), MPFR_RNDD);
-  mpfr_set_q(h.get(), hi.get_mpq_t(), MPFR_RNDU);
-  return Mpfi(l, h);
+// Does the interval x hold the 512-bit point p?
+bool holds(const Mpfi& x, const Mpfr& p) { return x.contains(p); }
+bool holds(const DoubleInterval& x, const Mpfr& p) {
+  return !x.has_nan() && mpfr_cmp_d(p.get(), x.lower()) >= 0 && mpfr_cmp_d(p.get(), x.upper()) <= 0;
 }
 
 Mpfr exact_mpfr(const mpq_class& q) {
@@ -126,7 +127,9 @@ Draw draw(std::mt19937_64& rng) {
   return d;
 }
 
-TEST(IntervalContainment, RandomBoxesEncloseThe512BitImageOfAPoint) {
+template <class S>
+void random_boxes_enclose_the_512_bit_image_of_a_point() {
+  using SD = Dual<S>;
   const unsigned long s = seed();
   std::mt19937_64 rng(s);
   int decided = 0, undecided = 0, collapse_disagreements = 0, derivative_checks = 0;
@@ -134,15 +137,15 @@ TEST(IntervalContainment, RandomBoxesEncloseThe512BitImageOfAPoint) {
   for (int i = 0; i < kDraws; ++i) {
     const Draw d = draw(rng);
     const Model<Mpfr> mp = make_model<Mpfr>(d.spec, kTruthBits);
-    const Model<Mpfi> mi = make_model<Mpfi>(d.spec, d.bits);
-    const Model<IDual> md = convert_model<IDual>(mi, [](const Mpfi& x) { return IDual(x); });
+    const Model<S> mi = make_model<S>(d.spec, d.bits);
+    const Model<SD> md = convert_model<SD>(mi, [](const S& x) { return SD(x); });
     const ImpactMap<Mpfr> map_p(mp);
     const ImpactMap<Dual<Mpfr>> map_pd(dual_model(mp));
-    const ImpactMap<Mpfi> map_i(mi);
-    const ImpactMap<IDual> map_d(md);
+    const ImpactMap<S> map_i(mi);
+    const ImpactMap<SD> map_d(md);
     State<Mpfr> point{exact_mpfr(d.th), exact_mpfr(d.v)};
-    State<Mpfi> box{enclose_q(d.th_lo, d.th_hi, d.bits), enclose_q(d.v_lo, d.v_hi, d.bits)};
-    ASSERT_TRUE(box.theta.contains(point.theta) && box.v.contains(point.v));
+    State<S> box{enclose_as<S>(d.th_lo, d.th_hi, d.bits), enclose_as<S>(d.v_lo, d.v_hi, d.bits)};
+    ASSERT_TRUE(holds(box.theta, point.theta) && holds(box.v, point.v));
     // A few steps of the same box and point: the later boxes are images, wider and skewed.
     for (int n = 0; n < kStepsPerDraw; ++n) {
       SCOPED_TRACE("seed " + std::to_string(s) + ", draw " + std::to_string(i) + ", step " + std::to_string(n) + ": " +
@@ -159,18 +162,18 @@ TEST(IntervalContainment, RandomBoxesEncloseThe512BitImageOfAPoint) {
         break;
       }
       // The box in Mpfi and in Dual<Mpfi> (seeded: d/dtheta0, d/dv0).
-      StepResult<Mpfi> ri;
+      StepResult<S> ri;
       try {
         ri = map_i.step(box);
       } catch (const Undecided&) {
         ++undecided;
         break;
       }
-      StepResult<IDual> rd;
+      StepResult<SD> rd;
       try {
-        rd = map_d.step(State<IDual>{IDual::variable(box.theta, 0), IDual::variable(box.v, 1), box.knot});
+        rd = map_d.step(State<SD>{SD::variable(box.theta, 0), SD::variable(box.v, 1), box.knot});
       } catch (const Undecided& u) {
-        ADD_FAILURE() << "the Mpfi step decided but the Dual<Mpfi> step (same values) did not: " << u.what();
+        ADD_FAILURE() << "the interval step decided but its dual step (same values) did not: " << u.what();
         return;
       }
       // With the veldep collapse rule, ending a chatter is decided by a bound being
@@ -186,22 +189,23 @@ TEST(IntervalContainment, RandomBoxesEncloseThe512BitImageOfAPoint) {
       EXPECT_EQ(ri.kind, rp.kind);
       EXPECT_EQ(ri.periods, rp.periods);
       EXPECT_EQ(ri.segment, rp.segment);
-      EXPECT_TRUE(ri.next.theta.contains(rp.next.theta)) << "theta " << ri.next.theta << " misses " << rp.next.theta;
-      EXPECT_TRUE(ri.next.v.contains(rp.next.v)) << "v " << ri.next.v << " misses " << rp.next.v;
-      EXPECT_TRUE(ri.tau.contains(rp.tau)) << "tau " << ri.tau << " misses " << rp.tau;
+      using Tr = ScalarTraits<S>;
+      EXPECT_TRUE(holds(ri.next.theta, rp.next.theta)) << "theta " << Tr::to_string(ri.next.theta) << " misses " << rp.next.theta;
+      EXPECT_TRUE(holds(ri.next.v, rp.next.v)) << "v " << Tr::to_string(ri.next.v) << " misses " << rp.next.v;
+      EXPECT_TRUE(holds(ri.tau, rp.tau)) << "tau " << Tr::to_string(ri.tau) << " misses " << rp.tau;
       EXPECT_EQ(rd.kind, rp.kind);
-      EXPECT_TRUE(rd.next.theta.v.contains(rp.next.theta)) << "Dual<Mpfi> theta " << rd.next.theta.v;
-      EXPECT_TRUE(rd.next.v.v.contains(rp.next.v)) << "Dual<Mpfi> v " << rd.next.v.v;
+      EXPECT_TRUE(holds(rd.next.theta.v, rp.next.theta)) << "dual theta " << Tr::to_string(rd.next.theta.v);
+      EXPECT_TRUE(holds(rd.next.v.v, rp.next.v)) << "dual v " << Tr::to_string(rd.next.v.v);
       // The derivative enclosures hold the point's Jacobian (when they are bounded: a value
       // enclosure cut at 0 under a square root leaves them unbounded, which holds anything).
-      using DTr = ScalarTraits<IDual>;
+      using DTr = ScalarTraits<SD>;
       if (DTr::derivatives_finite(rd.next.theta) && DTr::derivatives_finite(rd.next.v)) {
         ++derivative_checks;
         for (int k = 0; k < 2; ++k) {
-          EXPECT_TRUE(rd.next.theta.d[k].contains(rpd.next.theta.d[k]))
-              << "d theta1/d x" << k << ": " << rd.next.theta.d[k] << " misses " << rpd.next.theta.d[k];
-          EXPECT_TRUE(rd.next.v.d[k].contains(rpd.next.v.d[k]))
-              << "d v1/d x" << k << ": " << rd.next.v.d[k] << " misses " << rpd.next.v.d[k];
+          EXPECT_TRUE(holds(rd.next.theta.d[k], rpd.next.theta.d[k]))
+              << "d theta1/d x" << k << ": " << Tr::to_string(rd.next.theta.d[k]) << " misses " << rpd.next.theta.d[k];
+          EXPECT_TRUE(holds(rd.next.v.d[k], rpd.next.v.d[k]))
+              << "d v1/d x" << k << ": " << Tr::to_string(rd.next.v.d[k]) << " misses " << rpd.next.v.d[k];
         }
       }
       if (::testing::Test::HasFailure()) {
@@ -214,16 +218,24 @@ TEST(IntervalContainment, RandomBoxesEncloseThe512BitImageOfAPoint) {
   }
   // The test must not pass vacuously: many steps are decided, in every model and of every
   // kind, and some are not (the boxes reach the limits of the interval step).
-  std::printf("seed %lu: %d draws of up to %d steps: %d steps decided (elastic %d, constant %d, veldep %d; "
+  std::printf("%s, seed %lu: %d draws of up to %d steps: %d steps decided (elastic %d, constant %d, veldep %d; "
               "impact %d, sticking %d, ride %d), %d undecided, %d veldep-collapse disagreements, "
               "%d Jacobians checked\n",
-              s, kDraws, kStepsPerDraw, decided, decided_by_law[0], decided_by_law[1], decided_by_law[2], by_kind[0],
+              ScalarTraits<S>::family, s, kDraws, kStepsPerDraw, decided, decided_by_law[0], decided_by_law[1], decided_by_law[2], by_kind[0],
               by_kind[1], by_kind[2], undecided, collapse_disagreements, derivative_checks);
   EXPECT_GE(decided, kDraws);
   for (int law = 0; law < 3; ++law) EXPECT_GE(decided_by_law[law], kDraws / 5) << "law " << law;
   EXPECT_GE(by_kind[static_cast<int>(EventKind::sticking)], 10);
   EXPECT_GE(undecided, kDraws / 20);
   EXPECT_GE(derivative_checks, decided / 2);
+}
+
+TEST(IntervalContainment, RandomBoxesEncloseThe512BitImageOfAPoint) {
+  random_boxes_enclose_the_512_bit_image_of_a_point<Mpfi>();
+}
+
+TEST(IntervalContainment, DoubleIntervalRandomBoxesEncloseThe512BitImageOfAPoint) {
+  random_boxes_enclose_the_512_bit_image_of_a_point<DoubleInterval>();
 }
 
 }  // namespace

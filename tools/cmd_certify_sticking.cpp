@@ -19,7 +19,7 @@ namespace {
 using json = nlohmann::ordered_json;
 
 const char* kDecimalNote =
-    "Decimal inputs are enclosed exactly: each decimal is enclosed by an MPFI interval with outward rounding, so "
+    "Decimal inputs are enclosed exactly: each decimal is enclosed by an interval (DoubleInterval or MPFI) with outward rounding, so "
     "every certified statement holds for the exact decimal values (not for their binary roundings).";
 
 const std::set<std::string>& certify_keys() {
@@ -72,7 +72,13 @@ Request request_from(Options& o) {
   r.q.a_range = range;
   r.q.max_steps = integer_from(o, "max-steps", 1, 1000000000LL, 100000);
   r.q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 4096);
-  r.q.schedule.start_bits = integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
+  // "double" (the default): interval:double first, then MPFI from 64 bits; BITS: MPFI only.
+  const std::string start = o.get_or("start-bits", "double");
+  r.q.schedule.double_first = start == "double";
+  if (!r.q.schedule.double_first && (start.empty() || start.find_first_not_of("0123456789") != std::string::npos))
+    throw InputError("start-bits", "'" + start + "' (allowed: double, or BITS with " + std::to_string(kMinBits) +
+                                       " <= BITS <= " + std::to_string(kMaxBits) + ")");
+  r.q.schedule.start_bits = r.q.schedule.double_first ? 64 : integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
   if (r.q.schedule.start_bits > r.q.schedule.max_bits)
     throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(r.q.schedule.max_bits) + ")");
   r.q.method = parse_enclosure_method("method", o.get_or("method", "lohner"));
@@ -104,7 +110,7 @@ bool agrees(const StickingCertificate& c, const PlainSticking& d) {
 json attempts_json(const std::vector<Attempt>& attempts) {
   json a = json::array();
   for (const Attempt& t : attempts)
-    a.push_back({{"bits", t.bits}, {"decided", t.decided}, {"steps", t.steps}, {"reason", t.reason}, {"seconds", t.seconds}});
+    a.push_back({{"scalar", t.scalar}, {"bits", t.bits}, {"decided", t.decided}, {"steps", t.steps}, {"reason", t.reason}, {"seconds", t.seconds}});
   return a;
 }
 
@@ -113,6 +119,7 @@ json certificate_json(const StickingCertificate& c, const PlainSticking& d, long
   j["certified"] = c.certified;
   j["outcome"] = name(c.outcome);
   j["period"] = null_or(c.period);
+  j["scalar"] = c.scalar.empty() ? json(nullptr) : json(c.scalar);
   j["bits"] = c.bits;
   j["steps_checked"] = c.steps_checked;
   j["statement"] = describe(c, max_steps);
@@ -140,7 +147,7 @@ json inputs_json(const Request& r) {
   in["downward_sticking"] = name(r.q.model.downward);
   in["max_steps"] = r.q.max_steps;
   in["max_bits"] = r.q.schedule.max_bits;
-  in["start_bits"] = r.q.schedule.start_bits;
+  in["start_bits"] = r.q.schedule.double_first ? json("double") : json(r.q.schedule.start_bits);
   in["method"] = name(r.q.method);
   return in;
 }
@@ -165,7 +172,7 @@ Command add_certify_sticking(CLI::App& app) {
   opts->add("v", "Start velocity (default 4: the release state)");
   opts->add("max-steps", "Follow the orbit at most this many steps, integer in [1, 1e9] (default 100000)");
   opts->add("max-bits", "Largest interval precision of the escalation schedule (default 4096)");
-  opts->add("start-bits", "First precision of the schedule 64, 128, 256, ... doubling (default 64)");
+  opts->add("start-bits", "First precision of the schedule: double (default: interval:double, then MPFI at 64, 128, 256, ... doubling) or BITS (MPFI at BITS, 2 BITS, ...)");
   opts->add("method", "Enclosure method: lohner (default: mean-value form, QR frame) | naive (interval boxes)");
   opts->add("a-range", "A0:A1: certify for every a in [A0, A1] by adaptive bisection (instead of --a)");
   opts->add("max-depth", "With --a-range: bisection depth limit, integer in [0, 40] (default 10)");
@@ -186,7 +193,7 @@ Command add_certify_sticking(CLI::App& app) {
     body["note"] = kDecimalNote;
     body["inputs"] = inputs_json(r);
     body["method"] = std::string(name(r.q.method)) +
-                     (r.q.method == EnclosureMethod::lohner ? " (mean-value form with a QR frame; interval Jacobian by Dual<Mpfi>)"
+                     (r.q.method == EnclosureMethod::lohner ? " (mean-value form with a QR frame; interval Jacobian by Dual<S> over the run's interval type)"
                                                             : " (interval boxes)");
     body["schedule"] = r.q.schedule.text();
     if (!r.q.a_range) {

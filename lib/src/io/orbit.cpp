@@ -248,7 +248,7 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
     OrbitOutcome o;
     State<T> s = starts[i];
     w.row(start_row(s, i));
-    std::optional<OrbitEnclosure> lohner;
+    std::optional<OrbitEnclosureOf<std::conditional_t<ScalarTraits<T>::is_interval, T, Mpfi>>> lohner;
     if constexpr (ScalarTraits<T>::is_interval) {
       if (req.method == EnclosureMethod::lohner) {
         lohner.emplace(map.model(), s, EnclosureMethod::lohner);
@@ -258,7 +258,7 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
     auto step = [&](const State<T>& from) -> StepResult<T> {
       if constexpr (ScalarTraits<T>::is_interval) {
         if (lohner) {
-          EnclosedStep e = lohner->step();
+          auto e = lohner->step();
           o.fallbacks = lohner->fallbacks();
           e.event.next = std::move(e.next);  // the Lohner box, tighter than the box image
           return std::move(e.event);

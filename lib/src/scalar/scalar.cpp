@@ -208,4 +208,86 @@ std::string ScalarTraits<Mpfi>::to_string(const Mpfi& x) {
   return s;
 }
 
+// ---- interval:double (scalar/interval_double.hpp) --------------------------------------
+
+namespace {
+
+// exp or log of x's ends by MPFR at 53 bits, rounded down for the lower end and up for the
+// upper one (both functions are increasing). A 53-bit MPFR number is a double exactly.
+template <int (*F)(mpfr_ptr, mpfr_srcptr, mpfr_rnd_t)>
+DoubleInterval directed(const DoubleInterval& x) {
+  thread_local struct Tmp {
+    mpfr_t t;
+    Tmp() { mpfr_init2(t, 53); }
+    ~Tmp() { mpfr_clear(t); }
+  } tmp;
+  mpfr_set_d(tmp.t, x.lower(), MPFR_RNDN);  // exact
+  F(tmp.t, tmp.t, MPFR_RNDD);
+  const double lo = mpfr_get_d(tmp.t, MPFR_RNDD);
+  mpfr_set_d(tmp.t, x.upper(), MPFR_RNDN);
+  F(tmp.t, tmp.t, MPFR_RNDU);
+  const double hi = mpfr_get_d(tmp.t, MPFR_RNDU);
+  return {lo, hi};
+}
+
+std::string double_to_string(double x, mpfr_rnd_t rnd) {
+  mpfr_t t;
+  mpfr_init2(t, 53);
+  mpfr_set_d(t, x, MPFR_RNDN);  // exact
+  std::string s = mpfr_to_string(t, rnd);
+  mpfr_clear(t);
+  return s;
+}
+
+}  // namespace
+
+DoubleInterval exp(const DoubleInterval& x) {
+  if (x.has_nan()) return DoubleInterval::nan_interval();
+  return directed<mpfr_exp>(x);
+}
+
+DoubleInterval log(const DoubleInterval& x) {
+  // As mpfi_log: defined for x > 0 only (an end <= 0 gives -inf or NaN: never finite).
+  if (x.has_nan() || x.upper() < 0) return DoubleInterval::nan_interval();
+  return directed<mpfr_log>(x);
+}
+
+DoubleInterval ScalarTraits<DoubleInterval>::from_decimal(std::string_view text, long) {
+  std::string s(text);
+  if (s.empty()) bad_decimal(text);
+  mpfr_t lo, hi;
+  mpfr_init2(lo, 53);
+  mpfr_init2(hi, 53);
+  char* end = nullptr;
+  mpfr_strtofr(lo, s.c_str(), &end, 10, MPFR_RNDD);
+  const bool ok = end && *end == '\0';
+  mpfr_strtofr(hi, s.c_str(), &end, 10, MPFR_RNDU);
+  const DoubleInterval r(mpfr_get_d(lo, MPFR_RNDD), mpfr_get_d(hi, MPFR_RNDU));
+  mpfr_clear(lo);
+  mpfr_clear(hi);
+  if (!ok) bad_decimal(text);
+  return r;
+}
+
+DoubleInterval ScalarTraits<DoubleInterval>::pow_3_5(const DoubleInterval& x) {
+  // As for Mpfi: exp(3/5 log x) with 3/5 enclosed; an enclosure touching 0 gives
+  // [0, upper^(3/5)] by monotonicity.
+  if (certainly(is_zero(x))) return x;
+  const DoubleInterval e = DoubleInterval(3L) / 5L;
+  const DoubleInterval p = nonneg(x);
+  if (p.lower() == 0) return {0.0, exp(e * log(DoubleInterval(p.upper(), p.upper()))).upper()};
+  return exp(e * log(p));
+}
+
+std::string ScalarTraits<DoubleInterval>::lower_string(const DoubleInterval& x) { return double_to_string(x.lower(), MPFR_RNDD); }
+std::string ScalarTraits<DoubleInterval>::upper_string(const DoubleInterval& x) { return double_to_string(x.upper(), MPFR_RNDU); }
+std::string ScalarTraits<DoubleInterval>::to_string(const DoubleInterval& x) {
+  std::string s = "[";
+  s += lower_string(x);
+  s += ", ";
+  s += upper_string(x);
+  s += ']';
+  return s;
+}
+
 }  // namespace bouncer

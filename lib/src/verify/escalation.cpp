@@ -12,9 +12,20 @@ std::vector<long> EscalationSchedule::bits() const {
   return out;
 }
 
+std::string Tier::text() const {
+  return double_interval ? std::string("interval:double") : "interval:" + std::to_string(bits);
+}
+
+std::vector<Tier> EscalationSchedule::tiers() const {
+  std::vector<Tier> out;
+  if (double_first) out.push_back(Tier{true, 53});
+  for (long b : bits()) out.push_back(Tier{false, b});
+  return out;
+}
+
 std::string EscalationSchedule::text() const {
   const std::vector<long> b = bits();
-  std::string s;
+  std::string s = double_first ? "interval:double, then " : "";
   for (size_t i = 0; i < b.size() && i < 3; ++i) s += (i ? ", " : "") + std::to_string(b[i]);
   if (b.size() > 3) s += ", ... doubling up to " + std::to_string(b.back());
   return s + " bits";
@@ -27,8 +38,10 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 std::string give_up_text(const Attempt& best, long max_bits) {
-  return "undecided at step " + std::to_string(best.steps + 1) + " at " + std::to_string(best.bits) +
-         " bits (the best run; max " + std::to_string(max_bits) + " bits): " + best.reason;
+  const std::string where = best.scalar == "interval:double" ? std::string("interval:double")
+                                                               : std::to_string(best.bits) + " bits";
+  return "undecided at step " + std::to_string(best.steps + 1) + " at " + where +
+         " (the best run; max " + std::to_string(max_bits) + " bits): " + best.reason;
 }
 
 }  // namespace detail

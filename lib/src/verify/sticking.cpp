@@ -8,6 +8,7 @@
 #include <deque>
 #include <functional>
 #include <sstream>
+#include <type_traits>
 
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/scalar_set.hpp"
@@ -53,20 +54,44 @@ struct RunResult {
   long long steps = 0;
   long long fallbacks = 0;
   std::optional<AttractorProof> attractor;
+  std::string release_theta, release_v;  // sticks: the exact release state, when thin
 };
 
-// Coordinates u = E^-1 (x - z) of a candidate trapping set K = z + E [-rho, rho]^2.
+// Coordinates u = E^-1 (x - z) of a candidate trapping set K = z + E [-rho, rho]^2, in the
+// interval type S of the run (Mpfi or DoubleInterval) with points P (Mpfr or double).
+template <class S>
 struct Frame {
-  Mpfr z[2];
-  Mpfr E[2][2];
-  Mpfi Einv[2][2];
+  using P = PointOfT<S>;
+  P z[2];
+  P E[2][2];
+  S Einv[2][2];
 };
 
-Mpfi thin(const Mpfr& x) { return Mpfi(x, x); }
+template <class S>
+S thin(const PointOfT<S>& x) { return S(x, x); }
+
+// A point of P from a double (exact: P has at least 53 bits).
+template <class P>
+P point_from(double x, long bits) {
+  if constexpr (std::is_same_v<P, Mpfr>) {
+    Mpfr r(bits);
+    mpfr_set_d(r.get(), x, MPFR_RNDN);
+    return r;
+  } else {
+    return x;
+  }
+}
+
+template <class P>
+std::string point_text(const P& x) {
+  if constexpr (std::is_same_v<P, Mpfr>) return ScalarTraits<Mpfr>::to_string(x);
+  else return ScalarTraits<double>::to_string(x);
+}
 
 // E = the eigenvectors of J (when real and distinct), else the identity.
-Frame make_frame(const Mpfr z[2], const double J[2][2], bool eigen, long bits) {
-  Frame f;
+template <class S>
+Frame<S> make_frame(const PointOfT<S> z[2], const double J[2][2], bool eigen, long bits) {
+  Frame<S> f;
   f.z[0] = z[0];
   f.z[1] = z[1];
   double e[2][2] = {{1, 0}, {0, 1}};
@@ -92,24 +117,22 @@ Frame make_frame(const Mpfr z[2], const double J[2][2], bool eigen, long bits) {
     }
   }
   for (int i = 0; i < 2; ++i)
-    for (int k = 0; k < 2; ++k) {
-      f.E[i][k] = Mpfr(bits);
-      mpfr_set_d(f.E[i][k].get(), e[i][k], MPFR_RNDN);
-    }
-  const Mpfi det = thin(f.E[0][0]) * thin(f.E[1][1]) - thin(f.E[0][1]) * thin(f.E[1][0]);
-  f.Einv[0][0] = thin(f.E[1][1]) / det;
-  f.Einv[0][1] = -thin(f.E[0][1]) / det;
-  f.Einv[1][0] = -thin(f.E[1][0]) / det;
-  f.Einv[1][1] = thin(f.E[0][0]) / det;
+    for (int k = 0; k < 2; ++k) f.E[i][k] = point_from<PointOfT<S>>(e[i][k], bits);
+  const S det = thin<S>(f.E[0][0]) * thin<S>(f.E[1][1]) - thin<S>(f.E[0][1]) * thin<S>(f.E[1][0]);
+  f.Einv[0][0] = thin<S>(f.E[1][1]) / det;
+  f.Einv[0][1] = -thin<S>(f.E[0][1]) / det;
+  f.Einv[1][0] = -thin<S>(f.E[1][0]) / det;
+  f.Einv[1][1] = thin<S>(f.E[0][0]) / det;
   return f;
 }
 
 // Is the set c + B r inside K = z + E [-rho, rho]^2? (interval arithmetic, rigorous)
-bool inside(const Frame& f, const Parallelogram& s, const Mpfi& rho) {
+template <class S>
+bool inside(const Frame<S>& f, const ParallelogramOf<S>& s, const S& rho) {
   for (int i = 0; i < 2; ++i) {
-    Mpfi u = f.Einv[i][0] * (thin(s.c[0]) - thin(f.z[0])) + f.Einv[i][1] * (thin(s.c[1]) - thin(f.z[1]));
-    for (int k = 0; k < 2; ++k) u += (f.Einv[i][0] * thin(s.B[0][k]) + f.Einv[i][1] * thin(s.B[1][k])) * s.r[k];
-    if (!ScalarTraits<Mpfi>::is_finite(u) || !rho.contains(u)) return false;
+    S u = f.Einv[i][0] * (thin<S>(s.c[0]) - thin<S>(f.z[0])) + f.Einv[i][1] * (thin<S>(s.c[1]) - thin<S>(f.z[1]));
+    for (int k = 0; k < 2; ++k) u += (f.Einv[i][0] * thin<S>(s.B[0][k]) + f.Einv[i][1] * thin<S>(s.B[1][k])) * s.r[k];
+    if (!ScalarTraits<S>::is_finite(u) || !rho.contains(u)) return false;
   }
   return true;
 }
@@ -119,7 +142,8 @@ bool inside(const Frame& f, const Parallelogram& s, const Mpfi& rho) {
 // K = z + E [-rho, rho]^2 around `now` (E: eigenvectors of DF^p, which makes K map into
 // itself even where DF^p is far from normal; the axes as a fallback) with F^(m p)(K)
 // inside K for some m <= 8, every step of the way certainly not sticking.
-std::optional<AttractorProof> prove_trapped(const Model<Mpfi>& m, const Parallelogram& now, const State<Mpfi>& box,
+template <class S>
+std::optional<AttractorProof> prove_trapped(const Model<S>& m, const ParallelogramOf<S>& now, const State<S>& box,
                                             const std::deque<std::pair<double, double>>& recent, long long steps,
                                             long bits) {
   if (recent.size() < 2) return std::nullopt;
@@ -136,30 +160,30 @@ std::optional<AttractorProof> prove_trapped(const Model<Mpfi>& m, const Parallel
     }
   }
   if (p == 0) return std::nullopt;
-  const Mpfr z[2] = {box.theta.mid(), box.v.mid()};
+  using P = PointOfT<S>;
+  const P z[2] = {box.theta.mid(), box.v.mid()};
   double J[2][2];
-  const bool have_j = jacobian_of_iterate(m, State<Mpfi>{thin(z[0]), thin(z[1])}, p, J);
+  const bool have_j = jacobian_of_iterate(m, State<S>{thin<S>(z[0]), thin<S>(z[1])}, p, J);
   const double base = std::max({dp, box_width(box), std::ldexp(1.0, -static_cast<int>(bits) + 16)});
   for (bool eigen : {true, false}) {
     if (eigen && !have_j) continue;
-    const Frame f = make_frame(z, J, eigen, bits);
+    const Frame<S> f = make_frame<S>(z, J, eigen, bits);
     for (double factor : {16.0, 256.0, 4096.0, 65536.0, 1048576.0}) {
       const double rho = base * factor;
       if (rho > 1e-3) break;
-      Mpfr r(bits);
-      mpfr_set_d(r.get(), rho, MPFR_RNDN);
-      const Mpfi pm(-r, r);
+      const P r = point_from<P>(rho, bits);
+      const S pm(-r, r);
       if (!inside(f, now, pm)) continue;
-      Parallelogram K;
+      ParallelogramOf<S> K;
       for (int i = 0; i < 2; ++i) {
         K.c[i] = z[i];
         K.r[i] = pm;
         for (int k = 0; k < 2; ++k) K.B[i][k] = f.E[i][k];
       }
-      OrbitEnclosure trap(m, K);
+      OrbitEnclosureOf<S> trap(m, K);
       try {
         for (long i = 1; i <= 8 * p; ++i) {
-          const EnclosedStep s = trap.step();
+          const EnclosedStepOf<S> s = trap.step();
           if (s.event.kind == EventKind::sticking) break;
           if (i % p == 0 && inside(f, trap.set(), pm)) {
             AttractorProof proof;
@@ -167,12 +191,11 @@ std::optional<AttractorProof> prove_trapped(const Model<Mpfi>& m, const Parallel
             proof.iterate = i;
             proof.entered_at = steps;
             std::ostringstream t;
-            t << "z + E [-rho, rho]^2 with z = (" << ScalarTraits<Mpfr>::to_string(z[0]) << ", "
-              << ScalarTraits<Mpfr>::to_string(z[1]) << "), rho = " << ScalarTraits<Mpfr>::to_string(r)
-              << ", E = [[" << ScalarTraits<Mpfr>::to_string(f.E[0][0]) << ", " << ScalarTraits<Mpfr>::to_string(f.E[0][1])
-              << "], [" << ScalarTraits<Mpfr>::to_string(f.E[1][0]) << ", " << ScalarTraits<Mpfr>::to_string(f.E[1][1])
-              << "]] (" << (eigen ? "eigenvectors of DF^p" : "axes") << "), inside the box "
-              << ScalarTraits<Mpfi>::to_string(trap.box().theta) << " x " << ScalarTraits<Mpfi>::to_string(trap.box().v);
+            t << "z + E [-rho, rho]^2 with z = (" << point_text(z[0]) << ", " << point_text(z[1])
+              << "), rho = " << point_text(r) << ", E = [[" << point_text(f.E[0][0]) << ", " << point_text(f.E[0][1])
+              << "], [" << point_text(f.E[1][0]) << ", " << point_text(f.E[1][1]) << "]] ("
+              << (eigen ? "eigenvectors of DF^p" : "axes") << "), inside the box "
+              << ScalarTraits<S>::to_string(trap.box().theta) << " x " << ScalarTraits<S>::to_string(trap.box().v);
             proof.box = t.str();
             return proof;
           }
@@ -184,24 +207,31 @@ std::optional<AttractorProof> prove_trapped(const Model<Mpfi>& m, const Parallel
   return std::nullopt;
 }
 
+template <class S>
 RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
-  const Model<Mpfi> m = interval_model(q.model, bits, q.a_range);
-  OrbitEnclosure orbit(m, make_state<Mpfi>(q.start, bits), q.method);
+  const Model<S> m = interval_model_of<S>(q.model, bits, q.a_range);
+  OrbitEnclosureOf<S> orbit(m, make_state<S>(q.start, bits), q.method);
   const size_t keep = q.prove_attractor ? static_cast<size_t>(q.max_attractor_period) + 1 : 0;
   std::deque<std::pair<double, double>> recent;
   RunResult r;
   for (long long n = 1; n <= q.max_steps; ++n) {
-    const EnclosedStep s = orbit.step();  // throws Undecided
+    const EnclosedStepOf<S> s = orbit.step();  // throws Undecided
     progress.steps = n;
     if (s.event.kind == EventKind::sticking) {
       r.outcome = StickingOutcome::sticks;
       r.period = n;
       r.steps = n;
       r.fallbacks = orbit.fallbacks();
+      using Tr = ScalarTraits<S>;
+      const State<S>& rel = s.event.next;  // the release: a wall corner, exact when thin
+      if (Tr::lower_string(rel.theta) == Tr::upper_string(rel.theta) && Tr::lower_string(rel.v) == Tr::upper_string(rel.v)) {
+        r.release_theta = Tr::lower_string(rel.theta);
+        r.release_v = Tr::lower_string(rel.v);
+      }
       return r;
     }
     if (keep) {
-      recent.emplace_back(s.next.theta.mid().to_double(), s.next.v.mid().to_double());
+      recent.emplace_back(ScalarTraits<S>::to_double(s.next.theta), ScalarTraits<S>::to_double(s.next.v));
       if (recent.size() > keep) recent.pop_front();
     }
   }
@@ -218,7 +248,9 @@ RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
 
 StickingCertificate certify_sticking(const StickingQuestion& q) {
   if (q.model.law != Law::constant) throw InputError("model", "sticking periods need --model constant");
-  auto e = escalate<RunResult>(q.schedule, [&](long bits, Progress& p) { return run_once(q, bits, p); });
+  auto e = escalate<RunResult>(q.schedule, [&](const Tier& t, Progress& p) {
+    return t.double_interval ? run_once<DoubleInterval>(q, t.bits, p) : run_once<Mpfi>(q, t.bits, p);
+  });
   StickingCertificate c;
   c.attempts = e.attempts;
   c.seconds = e.seconds;
@@ -228,9 +260,12 @@ StickingCertificate certify_sticking(const StickingQuestion& q) {
     c.certified = true;
     c.period = r.period;
     c.bits = e.bits;
+    c.scalar = e.scalar;
     c.steps_checked = r.outcome == StickingOutcome::sticks ? *r.period - 1 : r.steps;
     c.fallbacks = r.fallbacks;
     c.attractor = r.attractor;
+    c.release_theta = r.release_theta;
+    c.release_v = r.release_v;
   } else {
     c.outcome = StickingOutcome::undecided;
     c.certified = false;

@@ -33,7 +33,7 @@ namespace bouncer {
 namespace detail {
 
 // y^(num/den) for y >= 0 (num/den > 0) as exp((num/den) log y), which every scalar type of
-// the library provides (double, long double, Quad, Mpfr, Mpfi, Dual<...>). For Mpfi the
+// the library provides (double, long double, Quad, Mpfr, Mpfi, DoubleInterval, Dual<...>). For an interval the
 // result encloses the exact power (num/den itself enclosed); an enclosure touching 0 gives
 // [0, upper^(num/den)] by monotonicity. For an interval dual whose value touches 0 the
 // value is handled the same way and the derivatives are dropped (the bound is then a
@@ -47,11 +47,12 @@ T veldep_power(const T& y, long num, long den) {
   const T zero = Tr::from_int(0, bits);
   const T e = Tr::from_int(num, bits) / den;
   if (certainly(Tr::lt(zero, y))) return exp(e * log(y));
-  if constexpr (std::is_same_v<T, Mpfi>) {
+  if constexpr (Tr::is_interval && requires { y.upper(); }) {
+    // An interval type with its ends (Mpfi, DoubleInterval).
     if (certainly(Tr::le(y, zero))) return zero;
-    const Mpfi up(y.upper(), y.upper());
-    const Mpfi r = exp(e * log(up));
-    return Mpfi(Mpfr(0, bits), r.upper());
+    const T up(y.upper(), y.upper());
+    const T r = exp(e * log(up));
+    return T(zero.lower(), r.upper());
   } else if constexpr (Tr::is_interval && requires { y.v; }) {
     return T(veldep_power(y.v, num, den));
   } else {

@@ -29,7 +29,8 @@
   X(Mpfr, mpfr)
 // Interval types: an enclosure, rounded outward (three-valued comparisons only).
 #define BOUNCER_FOR_EACH_INTERVAL_SCALAR(X) \
-  X(Mpfi, interval)
+  X(Mpfi, interval)                         \
+  X(DoubleInterval, interval_double)
 // clang-format on
 
 // The whole set: the impact map and its model are instantiated for each (model/).

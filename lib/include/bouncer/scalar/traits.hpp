@@ -15,6 +15,7 @@
 #include <string_view>
 
 #include "bouncer/scalar/contract.hpp"
+#include "bouncer/scalar/interval_double.hpp"
 #include "bouncer/scalar/mpfi.hpp"
 #include "bouncer/scalar/mpfr.hpp"
 #include "bouncer/scalar/truth.hpp"
@@ -156,6 +157,54 @@ struct ScalarTraits<Mpfi> {
   static std::string to_string(const Mpfi& x);  // "[lo, hi]"
   static std::string lower_string(const Mpfi& x);  // rounded down
   static std::string upper_string(const Mpfi& x);  // rounded up
+};
+
+// interval:double, the fast certified scalar (scalar/interval_double.hpp: the rounding
+// argument). Its branch predicates are those of Mpfi on the two double ends.
+template <>
+struct ScalarTraits<DoubleInterval> {
+  using D = DoubleInterval;
+  static constexpr bool is_interval = true;
+  static constexpr const char* family = "interval:double";
+  static constexpr long fixed_bits = std::numeric_limits<double>::digits;
+  static D from_decimal(std::string_view text, long bits);  // the tightest enclosure
+  static D from_int(long n, long) { return D(n); }
+  static long bits(const D&) { return fixed_bits; }
+  static Truth lt(const D& x, const D& y) {
+    if (x.has_nan() || y.has_nan()) return Truth::invalid;
+    return x.upper() < y.lower() ? Truth::yes : x.lower() >= y.upper() ? Truth::no : Truth::unknown;
+  }
+  static Truth le(const D& x, const D& y) {
+    if (x.has_nan() || y.has_nan()) return Truth::invalid;
+    return x.upper() <= y.lower() ? Truth::yes : x.lower() > y.upper() ? Truth::no : Truth::unknown;
+  }
+  static Truth is_zero(const D& x) {
+    if (x.has_nan()) return Truth::invalid;
+    if (x.lower() == 0 && x.upper() == 0) return Truth::yes;
+    return x.lower() > 0 || x.upper() < 0 ? Truth::no : Truth::unknown;
+  }
+  static bool likely_negative(const D& x) { return x.mid() < 0; }
+  static D nonneg(const D& x) { return x.lower() >= 0 ? x : D(0.0, std::max(x.upper(), 0.0)); }
+  static D clamp(const D& x, const D& lo, const D& hi) { return intersect(x, hull(lo, hi)); }
+  static Truth floor_certain(const D& x, D& out) {
+    if (!is_finite(x)) return Truth::invalid;
+    const double lo = std::floor(x.lower()), hi = std::floor(x.upper());
+    if (lo != hi) return Truth::unknown;
+    out = D(lo, lo);
+    return Truth::yes;
+  }
+  static bool is_finite(const D& x) { return x.bounded(); }
+  static double to_double(const D& x) { return x.mid(); }
+  static int exponent(const D& x) {
+    const double m = std::max(std::fabs(x.lower()), std::fabs(x.upper()));
+    int e = 0;
+    std::frexp(m, &e);
+    return m == 0 ? 0 : e;
+  }
+  static D pow_3_5(const D& x);
+  static std::string to_string(const D& x);     // "[lo, hi]"
+  static std::string lower_string(const D& x);  // rounded down
+  static std::string upper_string(const D& x);  // rounded up
 };
 
 // A value to be assigned before it is read, with the precision `bits` where the type has

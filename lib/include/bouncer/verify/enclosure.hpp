@@ -1,5 +1,6 @@
 // Certified orbit enclosures: a set that provably contains the exact orbit of the exact
-// decimal inputs, step by step, in MPFI interval arithmetic.
+// decimal inputs, step by step, in interval arithmetic (MPFI at any precision, or the fast
+// DoubleInterval of scalar/interval_double.hpp).
 //
 // Two methods:
 //   naive   iterate the interval box with ImpactMap<Mpfi>. Simple, but a 2-D box that the
@@ -37,42 +38,71 @@ enum class EnclosureMethod { naive, lohner };
 const char* name(EnclosureMethod m);
 EnclosureMethod parse_enclosure_method(const std::string& field, const std::string& text);
 
-// Model<Mpfi> with every decimal enclosed at `bits`; with a_range, a is the interval
-// [lo, hi] (exact rationals enclosed outward) instead of the spec's a.
-Model<Mpfi> interval_model(const ModelSpec& spec, long bits,
+// The point type of an interval type's ends and midpoints: Mpfr for Mpfi, double for
+// DoubleInterval. Frames (c, B) are points; only the interval parts carry the rigour.
+template <class S>
+struct PointOf;
+template <>
+struct PointOf<Mpfi> {
+  using type = Mpfr;
+};
+template <>
+struct PointOf<DoubleInterval> {
+  using type = double;
+};
+template <class S>
+using PointOfT = typename PointOf<S>::type;
+
+// Model<S> with every decimal enclosed (at `bits` for Mpfi; DoubleInterval has 53); with
+// a_range, a is the interval [lo, hi] (exact rationals enclosed outward) instead of the
+// spec's a.
+template <class S>
+Model<S> interval_model_of(const ModelSpec& spec, long bits,
                            const std::optional<std::pair<mpq_class, mpq_class>>& a_range = std::nullopt);
+inline Model<Mpfi> interval_model(const ModelSpec& spec, long bits,
+                                  const std::optional<std::pair<mpq_class, mpq_class>>& a_range = std::nullopt) {
+  return interval_model_of<Mpfi>(spec, bits, a_range);
+}
 // The interval [lo, hi] of two exact rationals, rounded outward at `bits`.
 Mpfi enclose(const mpq_class& lo, const mpq_class& hi, long bits);
+template <class S>
+S enclose_as(const mpq_class& lo, const mpq_class& hi, long bits);
 
-struct EnclosedStep {
+template <class S>
+struct EnclosedStepOf {
   // The interval step over the box before the step (both methods compute it): its kind and
   // event fields (tau, periods, sticking, ...) enclose those of every state in the set, and
   // event.next is the box image.
-  StepResult<Mpfi> event;
-  State<Mpfi> next;          // box enclosing the exact state after the step (lohner: tighter)
+  StepResult<S> event;
+  State<S> next;             // box enclosing the exact state after the step (lohner: tighter)
   bool fallback = false;     // lohner only: this step used the naive box image
 };
+using EnclosedStep = EnclosedStepOf<Mpfi>;
 
 // The set c + B r (c a point, B an invertible matrix, r an interval vector).
-struct Parallelogram {
-  Mpfr c[2];
-  Mpfr B[2][2];
-  Mpfi r[2];
+template <class S>
+struct ParallelogramOf {
+  PointOfT<S> c[2];
+  PointOfT<S> B[2][2];
+  S r[2];
 };
+using Parallelogram = ParallelogramOf<Mpfi>;
 
-class OrbitEnclosure {
+// Instantiated for the enclosure scalars (scalar/scalar_set.hpp): Mpfi and DoubleInterval.
+template <class S>
+class OrbitEnclosureOf {
  public:
-  OrbitEnclosure(const Model<Mpfi>& model, const State<Mpfi>& start, EnclosureMethod method);
+  OrbitEnclosureOf(const Model<S>& model, const State<S>& start, EnclosureMethod method);
   // Lohner, starting from the set c + B r (B need not be orthogonal).
-  OrbitEnclosure(const Model<Mpfi>& model, const Parallelogram& start);
-  ~OrbitEnclosure();
-  OrbitEnclosure(OrbitEnclosure&&) noexcept;
-  OrbitEnclosure& operator=(OrbitEnclosure&&) noexcept;
+  OrbitEnclosureOf(const Model<S>& model, const ParallelogramOf<S>& start);
+  ~OrbitEnclosureOf();
+  OrbitEnclosureOf(OrbitEnclosureOf&&) noexcept;
+  OrbitEnclosureOf& operator=(OrbitEnclosureOf&&) noexcept;
 
   // One certified step. Throws Undecided when a branch is undecided for the set.
-  EnclosedStep step();
-  const State<Mpfi>& box() const;  // current enclosure (a box)
-  Parallelogram set() const;       // current enclosure (Lohner: c + B r; naive: the box)
+  EnclosedStepOf<S> step();
+  const State<S>& box() const;     // current enclosure (a box)
+  ParallelogramOf<S> set() const;  // current enclosure (Lohner: c + B r; naive: the box)
   long long steps() const;
   long long fallbacks() const;
   EnclosureMethod method() const;
@@ -81,14 +111,17 @@ class OrbitEnclosure {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+using OrbitEnclosure = OrbitEnclosureOf<Mpfi>;
 
 // Approximate Jacobian of F^q at the midpoint of x (the product of the step Jacobians at
 // the midpoints along its orbit; for building frames, not a rigorous enclosure); false if a
 // step is undecided or a derivative is not finite.
-bool jacobian_of_iterate(const Model<Mpfi>& model, const State<Mpfi>& x, long q, double J[2][2]);
+template <class S>
+bool jacobian_of_iterate(const Model<S>& model, const State<S>& x, long q, double J[2][2]);
 
 // Largest width of the box's two components, as a double (for reports).
-double box_width(const State<Mpfi>& s);
+template <class S>
+double box_width(const State<S>& s);
 
 // Steps certified from `start` at `bits` before the first undecided step (at most
 // max_steps); the reason when it stopped early.
@@ -98,6 +131,7 @@ struct Horizon {
   std::string reason;
   double seconds = 0;
 };
+template <class S = Mpfi>
 Horizon certified_horizon(const ModelSpec& spec, const InitialCondition& start, long bits, EnclosureMethod method,
                           long long max_steps);
 

@@ -45,7 +45,8 @@ struct StickingQuestion {
   InitialCondition start{Decimal::parse("0.5").value(), Decimal::from_int(4)};
   std::optional<std::pair<mpq_class, mpq_class>> a_range;  // a as the interval [lo, hi]
   long long max_steps = 100000;
-  EscalationSchedule schedule;
+  // interval:double first, then MPFI at 64, 128, ... 4096 bits.
+  EscalationSchedule schedule{64, 4096, false, true};
   EnclosureMethod method = EnclosureMethod::lohner;
   bool prove_attractor = true;     // try to prove never_sticks when no sticking is found
   long max_attractor_period = 2000;
@@ -64,12 +65,16 @@ struct StickingCertificate {
   bool certified = false;            // the outcome's statement is proved (all but undecided)
   std::optional<long long> period;   // sticks only
   long bits = 0;                     // bits of the run that certified it (0: none)
+  std::string scalar;                // its scalar: "interval:double" or "interval:BITS"
   long long steps_checked = 0;       // steps certified free of sticking (period - 1 if sticks)
   std::string reason;                // why it stopped (undecided) or extra detail
   std::vector<Attempt> attempts;
   double seconds = 0;
   long long fallbacks = 0;           // Lohner steps that used the naive box (certifying run)
   std::optional<AttractorProof> attractor;
+  // sticks: the release state after the sticking step (exact decimals), when its enclosure
+  // is a single number (it is a wall corner and the wall's velocity there); else empty.
+  std::string release_theta, release_v;
 };
 
 StickingCertificate certify_sticking(const StickingQuestion& q);

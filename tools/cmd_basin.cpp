@@ -12,6 +12,7 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/verify/certified_point.hpp"
 #include "bouncer/verify/sticking.hpp"  // exact_decimal
 #include "commands.hpp"
 #include "picture_common.hpp"
@@ -26,6 +27,9 @@ struct BasinRequest {
   Decimal t0, t1, v0, v1;
   ClassifyOptions classify;
   Precision precision;
+  // --certify: every point certified (verify/certified_point.hpp), double's answer beside it.
+  bool certify = false;
+  CertifyPointOptions cert;
 };
 
 // The default v range, as `scan` uses: from the wall's fastest upward velocity to the top of
@@ -71,6 +75,21 @@ BasinRequest basin_request(const Options& o) {
   }
   r.classify = classify_options_from(o);
   r.precision = point_precision(o);
+  const std::string certify = o.get_or("certify", "false");
+  if (certify != "true" && certify != "false") throw InputError("certify", "must be true or false (got '" + certify + "')");
+  r.certify = certify == "true";
+  if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is only used with --certify");
+  if (r.certify) {
+    if (r.model.law != Law::constant)
+      throw InputError("certify", "basin --certify needs --model constant (certified sticking periods and trapping sets); "
+                                  "certified basins of the velocity-dependent and elastic models are not implemented");
+    if (r.precision.kind != Precision::Kind::double_)
+      throw InputError("precision", "with --certify the twin run is double (the artefact map compares double with the "
+                                    "certified answer); got '" + r.precision.text() + "'");
+    r.cert.max_steps = r.classify.transient + r.classify.steps;
+    r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
+    r.cert.max_attractor_period = r.classify.max_period;
+  }
   return r;
 }
 
@@ -104,6 +123,153 @@ struct BasinGrid {
     return out.str();
   }
 };
+
+// --certify: item i is "theta,v,class,period,certified_steps,scalar,double_class,double_period,
+// agreement" (certified class and period, verify/certified_point.hpp; the double class of the
+// same start, as plain basin; compare_with_certified). T is double (basin_request).
+template <class T>
+struct CertifiedBasinGrid {
+  const BasinRequest& r;
+  BasinGrid<T> twin;
+  std::shared_ptr<ReleaseCache> releases = std::make_shared<ReleaseCache>();
+  explicit CertifiedBasinGrid(const BasinRequest& req) : r(req), twin(req) {}
+
+  std::string item(long i) const {
+    using Tr = ScalarTraits<T>;
+    const T theta = cell_centre(twin.t0, twin.t1, i % r.nx, r.nx);
+    const T v = cell_centre(twin.v0, twin.v1, i / r.nx, r.ny);
+    std::ostringstream out;
+    out << Tr::to_string(theta) << ',' << Tr::to_string(v) << ',';
+    const auto& wall = twin.map.model().wall;
+    if (v < wall.velocity[wall.segment_of(theta)]) {
+      out << "outside,0,0,,outside,0,outside";
+      return out.str();
+    }
+    // The exact start: the double grid point itself (a dyadic number, printed exactly).
+    const InitialCondition start{*Decimal::parse(exact_decimal(mpq_class(Tr::to_double(theta)))),
+                                 *Decimal::parse(exact_decimal(mpq_class(Tr::to_double(v))))};
+    const CertifiedPoint c = certify_point(r.model, start, r.cert, *releases);
+    const Classification d = classify<T>(twin.map, State<T>{theta, v}, r.classify);
+    out << c.cls << ',' << c.period << ',' << c.certified_steps << ',' << c.scalar << ',' << name(d.cls) << ','
+        << d.period << ',' << compare_with_certified(c, name(d.cls), d.period);
+    return out.str();
+  }
+};
+
+std::string certified_label(const std::string& cls, long period, long long max_steps, long max_bits) {
+  if (cls == "sticking") return "sticking, k = " + std::to_string(period);
+  if (cls == "fixed") return "never sticks: trapped at a fixed point";
+  if (cls == "periodic") return "never sticks: trapped, period " + std::to_string(period);
+  if (cls == "no_sticking") return "no (further) sticking in >= " + std::to_string(max_steps) + " steps";
+  if (cls == "undecided") return "undecided at " + std::to_string(max_bits) + " bits";
+  return "outside the phase space (v < wall velocity)";
+}
+
+void certified_basin_finish(const BasinRequest& r, const std::vector<std::string>& items, const RunFlags& f,
+                            const Provenance& prov) {
+  std::string csv = "theta,v,class,period,certified_steps,scalar,double_class,double_period,agreement\n";
+  struct Cell {
+    std::string cls;
+    long period = 0;
+    std::string agreement;
+  };
+  std::vector<Cell> cells(items.size());
+  std::map<std::pair<std::string, long>, long> count;
+  std::map<std::string, long> agreement;
+  std::map<std::string, long> scalars;
+  for (size_t i = 0; i < items.size(); ++i) {
+    csv += items[i];
+    csv += '\n';
+    std::istringstream ls(items[i]);
+    std::string cell[9];
+    for (auto& c : cell) std::getline(ls, c, ',');
+    cells[i] = {cell[2], std::atol(cell[3].c_str()), cell[8]};
+    ++count[{cells[i].cls, cells[i].period}];
+    ++agreement[cell[8]];
+    if (!cell[5].empty()) ++scalars[cell[5]];
+  }
+  const long outside = agreement.count("outside") ? agreement["outside"] : 0;
+  const double inside = static_cast<double>(items.size()) - static_cast<double>(outside);
+  auto share = [&](long n) {
+    char pct[32];
+    std::snprintf(pct, sizeof pct, " (%.1f%%)", inside > 0 ? 100.0 * n / inside : 0.0);
+    return std::string(pct);
+  };
+  std::vector<std::pair<std::pair<std::string, long>, long>> order(count.begin(), count.end());
+  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) {
+    return x.second != y.second ? x.second > y.second : x.first < y.first;
+  });
+  const Palette palette = f.picture.palette;
+  std::map<std::pair<std::string, long>, Rgb> color;
+  int periodic_rank = 0, sticking_rank = 0;
+  for (const auto& [k, n] : order) {
+    if (k.first == "no_sticking") color[k] = Rgb{86, 180, 233};  // sky blue: a weaker statement
+    else color[k] = attractor_color(k.first, periodic_rank, sticking_rank, palette);
+    if (k.first == "periodic") ++periodic_rank;
+    if (k.first == "sticking") ++sticking_rank;
+  }
+  const std::string params = "a = " + r.model.a.text() + ", ε = " + r.model.eps.text() + "; " + std::to_string(r.nx) +
+                             " x " + std::to_string(r.ny) + " exact starts, " + std::to_string(r.cert.max_steps) +
+                             " steps, interval:double then MPFI up to " + std::to_string(r.cert.max_bits) + " bits";
+  auto make_figure = [&](const std::string& title) {
+    ImageFigure fig;
+    fig.raster.nx = static_cast<int>(r.nx);
+    fig.raster.ny = static_cast<int>(r.ny);
+    set_exact_window(fig.raster, r.t0.value(), r.t1.value(), r.v0.value(), r.v1.value());
+    fig.raster.pixels.resize(items.size());
+    fig.title = title;
+    fig.subtitle = params;
+    fig.xlabel = "θ₀ (initial phase)";
+    fig.ylabel = "v₀ (initial velocity)";
+    fig.width = 1000;
+    fig.height = 700;
+    fig.metadata = png_metadata(prov, title);
+    return fig;
+  };
+  auto pixel = [&](size_t i) {
+    const long col = static_cast<long>(i) % r.nx, row = r.ny - 1 - static_cast<long>(i) / r.nx;
+    return static_cast<size_t>(row * r.nx + col);
+  };
+  ImageFigure cert = make_figure("Certified basins, " + model_title(r.model.law) + " model: each coloured pixel is proved");
+  for (size_t i = 0; i < items.size(); ++i) cert.raster.pixels[pixel(i)] = color[{cells[i].cls, cells[i].period}];
+  for (const auto& [k, n] : order)
+    cert.raster.legend.emplace_back(certified_label(k.first, k.second, r.cert.max_steps, r.cert.max_bits) +
+                                        (k.first == "outside" ? "" : share(n)),
+                                    color[k]);
+  // The artefact map: where double's class differs from the certified one.
+  const Rgb agree_rgb{205, 205, 205}, differ_rgb = palette == Palette::paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0},
+            undecided_rgb{90, 90, 90}, outside_rgb{255, 255, 255};
+  ImageFigure art = make_figure("Where double is wrong: double's class against the certified one");
+  for (size_t i = 0; i < items.size(); ++i) {
+    const std::string& a = cells[i].agreement;
+    art.raster.pixels[pixel(i)] = a == "agrees" ? agree_rgb : a == "differs" ? differ_rgb : a == "undecided" ? undecided_rgb : outside_rgb;
+  }
+  auto n_of = [&](const char* k) { return agreement.count(k) ? agreement[k] : 0L; };
+  art.raster.legend.emplace_back("double agrees" + share(n_of("agrees")), agree_rgb);
+  art.raster.legend.emplace_back("double differs: an artefact" + share(n_of("differs")), differ_rgb);
+  art.raster.legend.emplace_back("no certified answer" + share(n_of("undecided")), undecided_rgb);
+
+  nlohmann::ordered_json s;
+  s["command"] = "basin";
+  s["certified"] = true;
+  s["grid"] = {r.nx, r.ny};
+  s["theta_range"] = {r.t0.text(), r.t1.text()};
+  s["v_range"] = {r.v0.text(), r.v1.text()};
+  s["points"] = items.size();
+  s["points_in_phase_space"] = items.size() - static_cast<size_t>(outside);
+  s["max_steps"] = r.cert.max_steps;
+  s["schedule"] = "interval:double, then MPFI at 64, 128, ... up to " + std::to_string(r.cert.max_bits) + " bits";
+  nlohmann::ordered_json types = nlohmann::ordered_json::array();
+  for (const auto& [k, n] : order)
+    types.push_back({{"class", k.first}, {"period", k.second}, {"points", n},
+                     {"share_of_phase_space", k.first == "outside" || inside <= 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(n / inside)}});
+  s["classes"] = types;
+  s["double_vs_certified"] = {{"agrees", n_of("agrees")}, {"differs", n_of("differs")}, {"undecided", n_of("undecided")}};
+  s["decided_by"] = scalars;
+  s["twin_precision"] = r.precision.text();
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, cert, fmt, f.picture.render); }, s,
+                {{"artefacts", [&](const std::string& path, ImageFormat fmt) { write_figure(path, art, fmt, f.picture.render); }}});
+}
 
 std::string attractor_label(const std::string& cls, long period) {
   if (cls == "fixed") return "fixed point";
@@ -222,7 +388,8 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
 const std::set<std::string>& basin_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "recheck-factor", "precision"});
+    k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "recheck-factor", "precision",
+              "certify", "max-bits"});
     k.insert(run_keys().begin(), run_keys().end());
     k.insert(picture_keys().begin(), picture_keys().end());
     return k;
@@ -232,6 +399,7 @@ const std::set<std::string>& basin_keys() {
 
 int run_basin(const Options& o, const RunFlags& f) {
   const BasinRequest req = basin_request(o);
+  if (req.certify) return run_point_grid<CertifiedBasinGrid>("basin", o, f, req, req.nx * req.ny, 16, certified_basin_finish);
   return run_point_grid<BasinGrid>("basin", o, f, req, req.nx * req.ny, 256, basin_finish);
 }
 
@@ -246,9 +414,16 @@ Command add_basin(CLI::App& app) {
   opts->add("v-range", "V0:V1, the initial velocities (default: the trapping region, as scan; needed for elastic; points below the wall velocity are 'outside')");
   add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
+  opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
   auto flags = add_run_options(sub, *opts);
-  auto run = [opts, scene, flags](const std::string& argv_text) {
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
+  auto certify = std::make_shared<bool>(false);
+  sub->add_flag("--certify", *certify,
+                "Certify every point (constant model): sticking period, trapping set or 'undecided', with double's answer "
+                "beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
+  auto run = [opts, scene, flags, certify](const std::string& argv_text) {
+    Options cl = opts->collected();
+    if (*certify) cl.set("certify", "true");
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), cl);
     return run_basin(o, run_flags_from(o, *flags, argv_text));
   };
   return {sub, run};

@@ -272,9 +272,16 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
 // pictures of --format (PREFIX.png/.pdf/.svg through `draw`), PREFIX.json (provenance +
 // summary), all or none; without --out the CSV goes to stdout unless --json. With --json the
 // summary is printed on stdout.
+// A second picture of the same run, written as PREFIX-SUFFIX.png/.pdf/.svg (e.g. the
+// artefact map of a certified basin, "artefacts").
+struct ExtraFigure {
+  std::string suffix;
+  std::function<void(const std::string&, ImageFormat)> draw;
+};
+
 inline void write_outputs(const RunFlags& f, const Provenance& p, const std::string& csv_body,
                           const std::function<void(const std::string&, ImageFormat)>& draw,
-                          const nlohmann::ordered_json& summary) {
+                          const nlohmann::ordered_json& summary, const std::vector<ExtraFigure>& extra = {}) {
   nlohmann::ordered_json doc;
   doc["provenance"] = nlohmann::ordered_json::parse(p.as_json());
   doc["summary"] = summary;
@@ -284,6 +291,11 @@ inline void write_outputs(const RunFlags& f, const Provenance& p, const std::str
     doc["files"]["json"] = *f.out + ".json";
     std::vector<OutputFile> files{{*f.out + ".csv", text_file([&](std::ostream& s) { s << p.as_comment_lines() << csv_body; })}};
     for (OutputFile& pic : picture_files(*f.out, f.picture, draw)) files.push_back(std::move(pic));
+    for (const ExtraFigure& e : extra) {
+      for (ImageFormat fmt : f.picture.formats)
+        doc["files"][e.suffix + "_" + format_name(fmt)] = *f.out + "-" + e.suffix + "." + format_name(fmt);
+      for (OutputFile& pic : picture_files(*f.out + "-" + e.suffix, f.picture, e.draw)) files.push_back(std::move(pic));
+    }
     files.push_back({*f.out + ".json", text_file([&](std::ostream& s) { s << doc.dump(2) << "\n"; })});
     write_output_set(files);
     if (!f.keep_tiles) {

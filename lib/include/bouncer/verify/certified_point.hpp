@@ -1,0 +1,73 @@
+// A certified long-run answer for one exact start (constant restitution): what every pixel
+// of `basin --certify` states, with the double answer next to it (the artefact map).
+//
+// The start's orbit is followed in interval arithmetic (certify_sticking: interval:double,
+// then MPFI at 64, 128, ... up to max_bits) for at most max_steps steps:
+//   sticking k   certified: the orbit sticks (first at step `first_sticking`); after the
+//                release it sticks again every k steps (the release orbit's own certificate,
+//                computed once per release state and shared by every start that sticks);
+//   fixed        certified: the orbit never sticks and lies, from step `certified_steps` on,
+//   periodic p   in a set K with F^q(K) inside K around a period-p attractor (p = 1: fixed);
+//                also when the orbit sticks and its release orbit is so trapped;
+//   no_sticking  certified: no sticking in steps 1..certified_steps (= max_steps), and no
+//                trapping set was found; or, after a first sticking, the release orbit is
+//                certified free of sticking for free_steps >= max_steps steps;
+//   undecided    steps 1..certified_steps are certified free of sticking, the next step was
+//                undecided at every precision of the schedule (`reason`).
+// The release orbit, shared by every start that sticks, gets the full schedule (MPFI up to
+// 4096 bits) and at least 20000 steps: its certificate decides whether double's sticking
+// period is real (at eps = 0.5, a = 15 double's 3773 is not: certified free through 13672).
+// Nothing here is guessed: a class other than undecided is a theorem about the exact orbit
+// of the exact start (a double grid point is an exact dyadic number) and the exact decimal
+// parameters.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+
+#include "bouncer/analysis/classify.hpp"
+#include "bouncer/model/spec.hpp"
+#include "bouncer/verify/sticking.hpp"
+
+namespace bouncer {
+
+struct CertifiedPoint {
+  std::string cls = "undecided";     // sticking | fixed | periodic | no_sticking | undecided
+  long period = 0;                   // sticking: k; fixed / periodic: the attractor's period
+  long long first_sticking = 0;      // sticking (and classes reached through a release): step
+  long long certified_steps = 0;     // steps of the start's own run certified
+  long long free_steps = 0;          // after a first sticking: release steps certified free of it
+  std::string scalar;                // the tier that decided the start's run ("" if none)
+  std::string reason;                // undecided: why
+};
+
+struct CertifyPointOptions {
+  long long max_steps = 5500;        // steps followed from the start (and from a release)
+  long max_bits = 256;               // the schedule's last MPFI precision
+  long max_attractor_period = 64;    // longest attractor period looked for
+};
+
+// Certificates of release states, computed once each and shared between threads.
+class ReleaseCache {
+ public:
+  StickingCertificate get(const ModelSpec& model, const std::string& theta, const std::string& v,
+                          const CertifyPointOptions& opt);
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, StickingCertificate> done_;
+};
+
+// Certifies the orbit of the exact start (theta, v) (decimal text, exact).
+CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& start, const CertifyPointOptions& opt,
+                             ReleaseCache& releases);
+
+// Does a point answer agree with the certified one? "agrees", "differs" (the point answer
+// is an artefact of its precision) or "undecided" (no certified answer to compare with).
+// double_class / double_period: bouncer::classify's class name and period (a double run of
+// the grid's transient + steps <= max_steps, so a double "sticking" stuck within max_steps).
+std::string compare_with_certified(const CertifiedPoint& c, const std::string& double_class, long double_period);
+
+}  // namespace bouncer

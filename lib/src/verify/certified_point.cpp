@@ -1,0 +1,102 @@
+// Certified long-run answers for single starts (verify/certified_point.hpp).
+#include "bouncer/verify/certified_point.hpp"
+
+#include <algorithm>
+
+namespace bouncer {
+
+namespace {
+
+StickingQuestion question(const ModelSpec& model, const InitialCondition& start, const CertifyPointOptions& opt) {
+  StickingQuestion q;
+  q.model = model;
+  q.start = start;
+  q.max_steps = opt.max_steps;
+  q.schedule.double_first = true;
+  q.schedule.start_bits = 64;
+  q.schedule.max_bits = opt.max_bits;
+  q.prove_attractor = true;
+  q.max_attractor_period = opt.max_attractor_period;
+  return q;
+}
+
+// The class a non-sticking certificate states.
+void set_from_trap_or_none(CertifiedPoint& p, const StickingCertificate& c) {
+  switch (c.outcome) {
+    case StickingOutcome::never_sticks:
+      p.period = c.attractor->period;
+      p.cls = p.period == 1 ? "fixed" : "periodic";
+      break;
+    case StickingOutcome::no_sticking_within_max_steps:
+      p.cls = "no_sticking";
+      break;
+    default:
+      p.cls = "undecided";
+      p.reason = c.reason;
+      break;
+  }
+}
+
+}  // namespace
+
+StickingCertificate ReleaseCache::get(const ModelSpec& model, const std::string& theta, const std::string& v,
+                                      const CertifyPointOptions& opt) {
+  const std::string key = theta + "," + v;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = done_.find(key);
+    if (it != done_.end()) return it->second;
+  }
+  // Computed outside the lock (two threads may both compute it: the same pure result).
+  const InitialCondition start{*Decimal::parse(theta), *Decimal::parse(v)};
+  StickingQuestion q = question(model, start, opt);
+  q.schedule.max_bits = std::max(opt.max_bits, 4096L);
+  q.max_steps = std::max(opt.max_steps, 20000LL);
+  StickingCertificate c = certify_sticking(q);
+  std::lock_guard<std::mutex> lock(mutex_);
+  return done_.emplace(key, std::move(c)).first->second;
+}
+
+CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& start, const CertifyPointOptions& opt,
+                             ReleaseCache& releases) {
+  CertifiedPoint p;
+  const StickingCertificate c = certify_sticking(question(model, start, opt));
+  p.certified_steps = c.steps_checked;
+  p.scalar = c.scalar;
+  if (c.outcome != StickingOutcome::sticks) {
+    set_from_trap_or_none(p, c);
+    return p;
+  }
+  p.first_sticking = *c.period;
+  if (c.release_theta.empty()) {
+    p.cls = "undecided";
+    p.reason = "sticks at step " + std::to_string(*c.period) + "; the release state is not a single number";
+    return p;
+  }
+  const StickingCertificate r = releases.get(model, c.release_theta, c.release_v, opt);
+  if (r.outcome == StickingOutcome::sticks) {
+    p.cls = "sticking";
+    p.period = *r.period;
+    return p;
+  }
+  set_from_trap_or_none(p, r);
+  p.free_steps = r.steps_checked;
+  if (p.cls == "undecided" && r.steps_checked >= opt.max_steps) p.cls = "no_sticking";
+  if (p.cls == "undecided") p.reason = "sticks at step " + std::to_string(*c.period) + ", then the release orbit: " + r.reason;
+  return p;
+}
+
+std::string compare_with_certified(const CertifiedPoint& c, const std::string& double_class, long double_period) {
+  if (c.cls == "undecided") return "undecided";
+  if (c.cls == "sticking") return double_class == "sticking" && double_period == c.period ? "agrees" : "differs";
+  if (c.cls == "fixed" || c.cls == "periodic") {
+    const bool periodic = double_class == "fixed" || double_class == "periodic";
+    return periodic && double_period == c.period ? "agrees" : "differs";
+  }
+  // no_sticking: the certified statement is only that it does not stick (again) for a while.
+  if (double_class != "sticking") return "agrees";
+  if (c.first_sticking == 0) return "differs";  // double stuck within max_steps, the exact orbit does not
+  return double_period <= c.free_steps ? "differs" : "undecided";
+}
+
+}  // namespace bouncer

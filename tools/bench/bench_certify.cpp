@@ -7,13 +7,20 @@
 //   3. certified horizon per bit, naive interval boxes vs Lohner's QR mean-value form,
 //      on both orbits;
 //   4. certified periodic orbits (Krawczyk): an isolated orbit, a parameter range, a family
-//      and the period-103 attractor of claim 9.
+//      and the period-103 attractor of claim 9;
+//   5. the certified step per precision: the interval step (ImpactMap<S>) and the Lohner
+//      step of the eps = 0.96, a = 28.82 orbit in interval:double and in MPFI at several
+//      precisions, each as a ratio to the double step of the same orbit timed in the same
+//      run (thread CPU time).
 // Wall-clock timings on a shared machine: indicative only; nothing is asserted.
 //
 // Usage: bench_certify [--quick]
+#include <time.h>
+
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
@@ -33,6 +40,38 @@ ModelSpec model(const char* a) {
 }
 
 InitialCondition release() { return {*Decimal::parse("0.5"), Decimal::from_int(4)}; }
+
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// Nanoseconds per step of `n` steps of the point or interval step from the release state
+// (the orbit never sticks and never becomes undecided in this range; restarted if it does).
+template <class T>
+double step_ns(const ModelSpec& spec, long bits, long n) {
+  const ImpactMap<T> map(make_model<T>(spec, bits));
+  const State<T> start = make_state<T>(release(), bits);
+  State<T> s = start;
+  const double t0 = thread_seconds();
+  for (long i = 0; i < n; ++i) {
+    try {
+      s = map.step(s).next;
+    } catch (const Undecided&) {
+      s = start;
+    }
+  }
+  return 1e9 * (thread_seconds() - t0) / static_cast<double>(n);
+}
+
+template <class S>
+double lohner_ns(const ModelSpec& spec, long bits, long n) {
+  OrbitEnclosureOf<S> orbit(interval_model_of<S>(spec, bits), make_state<S>(release(), bits), EnclosureMethod::lohner);
+  const double t0 = thread_seconds();
+  for (long i = 0; i < n; ++i) orbit.step();
+  return 1e9 * (thread_seconds() - t0) / static_cast<double>(n);
+}
 
 }  // namespace
 
@@ -129,5 +168,19 @@ int main(int argc, char** argv) {
                   c.seconds);
     }
   }
+
+  std::printf("\n== 5. the certified step per precision (eps = 0.96, a = 28.82 from (1/2, 4); thread CPU time) ==\n");
+  const long n = quick ? 2000 : 20000;
+  const ModelSpec m = model("28.82");
+  const double dbl = step_ns<double>(m, 53, n * 20);
+  std::printf("%-18s %-16s %-10s %-16s %s\n", "scalar", "interval step ns", "/double", "Lohner step ns", "/double");
+  std::printf("%-18s %-16.1f %-10s %-16s %s\n", "double (point)", dbl, "1.00x", "-", "-");
+  auto row = [&](const char* label, double iv, double lo) {
+    std::printf("%-18s %-16.1f %-10s %-16.1f %.1fx\n", label, iv, (std::to_string(iv / dbl).substr(0, 5) + "x").c_str(), lo,
+                lo / dbl);
+  };
+  row("interval:double", step_ns<DoubleInterval>(m, 53, n * 5), lohner_ns<DoubleInterval>(m, 53, n));
+  for (long bits : quick ? std::vector<long>{64, 256} : std::vector<long>{53, 64, 128, 256, 1024})
+    row(("interval:" + std::to_string(bits)).c_str(), step_ns<Mpfi>(m, bits, n), lohner_ns<Mpfi>(m, bits, n / 2));
   return 0;
 }

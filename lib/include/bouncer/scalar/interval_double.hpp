@@ -154,15 +154,43 @@ class DoubleInterval {
   friend DoubleInterval operator-(const DoubleInterval& x, const DoubleInterval& y) {
     return {interval_double_detail::add(x.lo_, -y.hi_).down, interval_double_detail::add(x.hi_, -y.lo_).up};
   }
+  // Products and quotients by the signs of the ends: which corner gives each end is known
+  // from the signs, so two rounded operations suffice (four only for a product of two
+  // intervals that both hold 0). NaN ends propagate (has_nan: invalid).
   friend DoubleInterval operator*(const DoubleInterval& x, const DoubleInterval& y) {
     using interval_double_detail::mul;
-    return corners(mul(x.lo_, y.lo_), mul(x.lo_, y.hi_), mul(x.hi_, y.lo_), mul(x.hi_, y.hi_));
+    const double xl = x.lo_, xh = x.hi_, yl = y.lo_, yh = y.hi_;
+    if (x.has_nan() || y.has_nan()) return nan_interval();
+    if (xl >= 0) {
+      if (yl >= 0) return {mul(xl, yl).down, mul(xh, yh).up};
+      if (yh <= 0) return {mul(xh, yl).down, mul(xl, yh).up};
+      return {mul(xh, yl).down, mul(xh, yh).up};
+    }
+    if (xh <= 0) {
+      if (yl >= 0) return {mul(xl, yh).down, mul(xh, yl).up};
+      if (yh <= 0) return {mul(xh, yh).down, mul(xl, yl).up};
+      return {mul(xl, yh).down, mul(xl, yl).up};
+    }
+    if (yl >= 0) return {mul(xl, yh).down, mul(xh, yh).up};
+    if (yh <= 0) return {mul(xh, yl).down, mul(xl, yl).up};
+    return corners(mul(xl, yl), mul(xl, yh), mul(xh, yl), mul(xh, yh));
   }
   friend DoubleInterval operator/(const DoubleInterval& x, const DoubleInterval& y) {
     using interval_double_detail::div;
+    const double xl = x.lo_, xh = x.hi_, yl = y.lo_, yh = y.hi_;
+    if (x.has_nan() || y.has_nan()) return nan_interval();
     // A divisor that may be 0: NaN (as an undefined quotient; the step is then undecided).
-    if (!(y.lo_ > 0 || y.hi_ < 0)) return nan_interval();
-    return corners(div(x.lo_, y.lo_), div(x.lo_, y.hi_), div(x.hi_, y.lo_), div(x.hi_, y.hi_));
+    if (yl > 0) {
+      if (xl >= 0) return {div(xl, yh).down, div(xh, yl).up};
+      if (xh <= 0) return {div(xl, yl).down, div(xh, yh).up};
+      return {div(xl, yl).down, div(xh, yl).up};
+    }
+    if (yh < 0) {
+      if (xl >= 0) return {div(xh, yh).down, div(xl, yl).up};
+      if (xh <= 0) return {div(xh, yl).down, div(xl, yh).up};
+      return {div(xh, yh).down, div(xl, yh).up};
+    }
+    return nan_interval();
   }
   // Negation and exact-integer conversions are exact: no widening.
   friend DoubleInterval operator-(const DoubleInterval& x) { return {-x.hi_, -x.lo_}; }

@@ -112,7 +112,6 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
   Figure fig;
   const double ax0 = r.a_range.first.approx(), ax1 = r.a_range.second.approx();
   const double ey0 = r.eps_range.first.approx(), ey1 = r.eps_range.second.approx();
-  const double sx = 1 / (ax1 - ax0), sy = 1 / (ey1 - ey0);
   Series switches;
   switches.label = "switch: ε = 1/(4p-1), a = 16/(2p-1)";
   switches.color = Rgb{0, 0, 0};

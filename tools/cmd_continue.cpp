@@ -446,6 +446,10 @@ Command add_continue(CLI::App& app) {
   opts->add("out", "Write PREFIX.csv, PREFIX.json and the pictures PREFIX.png/.pdf/.svg of --format");
   add_picture_options(*opts);
   sub->add_flag("--json", *json_flag, "Print the JSON summary on stdout");
+  // Accepted like the grid commands' --quiet (reproduce passes it to every panel); continue
+  // draws no progress bar, so it changes nothing.
+  auto quiet = std::make_shared<bool>(false);
+  sub->add_flag("--quiet", *quiet, "Accepted like the picture commands (continue prints no progress)");
   sub->add_flag("--certify", *certify,
                  "Krawczyk on the branch side of each border end: a certified one-sided bound on a*");
   auto run = [opts, scene, json_flag, certify](const std::string& argv_text) {

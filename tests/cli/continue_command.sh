@@ -69,6 +69,10 @@ grep -q IDENTICAL "$TMP/audit.txt" || fail audit "not identical: $(cat "$TMP/aud
 check knot.reason '.summary.high.reason' border "$TMP/k.json"
 check knot.astar '((.summary.high.param | tonumber) - 32 | fabs) < 32e-10' true "$TMP/k.json"
 check knot.knot '.summary.high.knot' 0 "$TMP/k.json"
+# --quiet is accepted (as by every picture command) and changes nothing but the invocation.
+"$BOUNCER" continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 24:33.5 --json --quiet >"$TMP/kq.json" ||
+  fail quiet "exit $?"
+cmp -s <(jq -S 'del(.provenance)' "$TMP/k.json") <(jq -S 'del(.provenance)' "$TMP/kq.json") || fail quiet "--quiet changed the result"
 cat >"$TMP/scene.toml" <<'EOF'
 command = "continue"
 model = "constant"

@@ -7,7 +7,8 @@
 //           raw-mpfr: the same algorithm on mpfr_t, every temporary allocated once
 //           (mpfr_init2 at start-up), the same MPFR calls in the same order; checked
 //           bitwise against ImpactMap<Mpfr> first.
-//   rows    ImpactMap<T> for double, long double, quad, Mpfr and Mpfi at several precisions.
+//   rows    ImpactMap<T> for double, long double, quad, DoubleInterval (interval:double, timed
+//           against the plain-double floor), Mpfr and Mpfi at several precisions.
 //           Each repetition starts at the model's initial condition; the state is reset
 //           to it when an interval step is undecided or when v exceeds 1e4.
 //
@@ -96,6 +97,7 @@ inline bool vbig(long double v) { return v > kVReset; }
 inline bool vbig(const Quad& v) { return v > kVReset; }
 inline bool vbig(const Mpfr& v) { return mpfr_cmp_si(v.get(), 10000) > 0; }
 inline bool vbig(const Mpfi& v) { return mpfr_cmp_si(&v.get()->right, 10000) > 0; }
+inline bool vbig(const DoubleInterval& v) { return v.upper() > kVReset; }
 
 // ---------------------------------------------------------------------------------------
 // Floor 1: plain double
@@ -964,13 +966,13 @@ struct Row {
 };
 
 void print_header_row() {
-  std::printf("%-19s %-9s %5s %10s %6s %10s %-16s %7s %5s %8s\n", "model", "scalar", "bits", "ns/step", "spread",
+  std::printf("%-19s %-15s %5s %10s %6s %10s %-16s %7s %5s %8s\n", "model", "scalar", "bits", "ns/step", "spread",
               "floor ns", "floor", "ratio", "cpu%", "resets/k");
 }
 
 void print_row(const Row& r) {
   const double spread = r.t.median_ns > 0 ? 100.0 * (r.t.max_ns - r.t.min_ns) / r.t.median_ns : 0;
-  std::printf("%-19s %-9s %5ld %10.1f %5.0f%% %10s %-16s %7s %4.0f%% %8s\n", r.model.c_str(), r.scalar.c_str(),
+  std::printf("%-19s %-15s %5ld %10.1f %5.0f%% %10s %-16s %7s %4.0f%% %8s\n", r.model.c_str(), r.scalar.c_str(),
               r.bits, r.t.median_ns, spread, r.floor ? fmt("%.1f", r.floor->median_ns).c_str() : "-",
               r.floor ? r.floor_name.c_str() : "(floor)",
               r.floor ? fmt("%.2fx", paired_ratio(r.t, *r.floor)).c_str() : "-", 100 * r.t.cpu_share,
@@ -1103,7 +1105,8 @@ int main(int argc, char** argv) {
       // Double family, timed in rounds with the plain-double floor.
       PlainRunner floor(k);
       MapRunner<double> d(k, 53);
-      std::vector<Runner*> g{&floor, &d};
+      MapRunner<DoubleInterval> di(k, 53);  // the fast certified type, against the same floor
+      std::vector<Runner*> g{&floor, &d, &di};
       std::unique_ptr<MapRunner<long double>> ld;
       std::unique_ptr<MapRunner<Quad>> qd;
       if (!opt.quick) {
@@ -1115,7 +1118,8 @@ int main(int argc, char** argv) {
       const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
       print_row({k.name, "plain", 53, t[0], nullptr, ""});
       print_row({k.name, "double", 53, t[1], &t[0], "plain-double"});
-      size_t i = 2;
+      print_row({k.name, "interval:double", 53, t[2], &t[0], "plain-double"});
+      size_t i = 3;
       if (!opt.quick) {
         print_row({k.name, "long", 64, t[i++], &t[0], "plain-double"});
         print_row({k.name, "quad", 113, t[i++], &t[0], "plain-double"});

@@ -3,11 +3,18 @@
 // rows (param, n, theta, v, sticking), a density image of theta (or v) against the
 // parameter with the sticking releases marked in red at theta = 1/2 as in the paper, and a
 // JSON summary. Each parameter value is one grid item (independent unless --carry).
+// --certify (constant model, a varied, double): each column also gets a certified answer for
+// the exact orbit at the exact double value of a (verify/certified_point.hpp) and double's
+// class of the same orbit; the picture shades the columns where double is refuted
+// (vermillion) or nothing is certified (grey).
 #include <cmath>
+#include <map>
 #include <memory>
 #include <sstream>
 
+#include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/verify/certified_point.hpp"
 #include "commands.hpp"
 #include "picture_common.hpp"
 
@@ -26,6 +33,8 @@ struct BifurcationRequest {
   Precision precision;
   std::string show = "theta";
   long bins = 400;
+  bool certify = false;
+  CertifyPointOptions cert;
 };
 
 BifurcationRequest bifurcation_request(const Options& given) {
@@ -55,6 +64,20 @@ BifurcationRequest bifurcation_request(const Options& given) {
   r.show = o.get_or("show", "theta");
   if (r.show != "theta" && r.show != "v") throw InputError("show", "must be theta or v (got '" + r.show + "')");
   r.bins = integer_from(o, "bins", 10, 4000, 400);
+  const std::string certify = o.get_or("certify", "false");
+  if (certify != "true" && certify != "false") throw InputError("certify", "must be true or false (got '" + certify + "')");
+  r.certify = certify == "true";
+  if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is only used with --certify");
+  if (r.certify) {
+    if (r.model.law != Law::constant || r.vary != "a")
+      throw InputError("certify", "bifurcation --certify needs --model constant and --vary a (certified sticking periods "
+                                  "and trapping sets over a); other models and parameters are not implemented");
+    if (r.carry) throw InputError("carry", "cannot be used with --certify (each column is certified from its own start)");
+    if (r.precision.kind != Precision::Kind::double_)
+      throw InputError("precision", "with --certify the twin run is double; got '" + r.precision.text() + "'");
+    r.cert.max_steps = r.transient + r.record;
+    r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
+  }
   return r;
 }
 
@@ -98,7 +121,35 @@ struct Sweep {
       out << "# undecided: " << r.vary << "=" << ptext << " step " << n + 1 << ": " << u.what() << "\n";
       carried.reset();
     }
+    if (r.certify) out << certificate_line(p);
     return out.str();
+  }
+
+  // --certify: "# certified: a,class,period,certified_steps,scalar,double_class,double_period,
+  // agreement" for the exact orbit at the exact value of p (a double, printed exactly).
+  std::string certificate_line(const T& p) const {
+    if constexpr (std::is_same_v<T, double>) {
+      CertifyPointOptions opt = r.cert;
+      const mpq_class exact(p);
+      opt.a_range = std::make_pair(exact, exact);
+      opt.max_attractor_period = std::min<long>(64, std::max<long>(1, r.record / 2));
+      ReleaseCache releases;
+      const CertifiedPoint c = certify_point(r.model, r.ic, opt, releases);
+      ClassifyOptions co;
+      co.transient = r.transient;
+      co.steps = std::max<long>(8, r.record);
+      co.max_period = opt.max_attractor_period;
+      co.recheck_factor = 0;
+      const ImpactMap<T> map(model_at(p));
+      const Classification d = classify<T>(map, make_state<T>(r.ic, 53), co);
+      std::ostringstream out;
+      out << "# certified: " << exact_decimal(exact) << ',' << c.cls << ',' << c.period << ',' << c.certified_steps << ','
+          << c.scalar << ',' << name(d.cls) << ',' << d.period << ',' << compare_with_certified(c, name(d.cls), d.period)
+          << '\n';
+      return out.str();
+    } else {
+      return "";
+    }
   }
 };
 
@@ -110,6 +161,7 @@ struct Point {
 void finish(const BifurcationRequest& r, const std::vector<std::string>& items, const RunFlags& f, const Provenance& prov) {
   std::string csv = r.vary + ",n,theta,v,sticking\n";
   std::vector<std::vector<Point>> per(items.size());
+  std::vector<std::string> certified(items.size());  // --certify: the column's certificate line
   long rows = 0, undecided = 0, sticking_samples = 0, sticking_events = 0;
   for (size_t k = 0; k < items.size(); ++k) {
     csv += items[k];
@@ -118,6 +170,10 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
     bool stuck = false;
     while (std::getline(in, line)) {
       if (line.empty()) continue;
+      if (line.rfind("# certified: ", 0) == 0) {
+        certified[k] = line.substr(13);
+        continue;
+      }
       if (line[0] == '#') { ++undecided; continue; }
       Point pt{};
       int flag = 0;
@@ -190,13 +246,37 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   const bool paper = f.picture.palette == Palette::paper;
   const Rgb red = paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0};
   auto density = [&](double t) { return paper ? ramp_color(0.45 + 0.55 * t) : viridis_color(0.75 * (1 - t)); };
+  // --certify: the background of each column says what the certificate says of double there.
+  const Rgb refuted_bg{250, 205, 185}, undecided_bg{222, 222, 222};
+  std::vector<Rgb> column_bg(static_cast<size_t>(nx), Rgb{255, 255, 255});
+  std::map<std::string, long> agreement;
+  nlohmann::ordered_json columns = nlohmann::ordered_json::array();
+  if (r.certify) {
+    for (size_t k = 0; k < certified.size(); ++k) {
+      std::istringstream ls(certified[k]);
+      std::string cell[8];
+      for (auto& c : cell) std::getline(ls, c, ',');
+      ++agreement[cell[7]];
+      const int col = r.samples == 1 ? 0 : static_cast<int>(static_cast<double>(k) * nx / r.samples);
+      if (cell[7] == "differs") column_bg[static_cast<size_t>(col)] = refuted_bg;
+      else if (cell[7] == "undecided" && column_bg[static_cast<size_t>(col)].r == 255) column_bg[static_cast<size_t>(col)] = undecided_bg;
+      columns.push_back({{"a", cell[0]}, {"class", cell[1]}, {"period", std::atol(cell[2].c_str())},
+                         {"certified_steps", std::atoll(cell[3].c_str())}, {"scalar", cell[4]}, {"double_class", cell[5]},
+                         {"double_period", std::atol(cell[6].c_str())}, {"agreement", cell[7]}});
+    }
+  }
   for (size_t i = 0; i < count.size(); ++i) {
     if (stick[i]) ras.pixels.push_back(red);
-    else if (count[i] == 0) ras.pixels.push_back(Rgb{255, 255, 255});
+    else if (count[i] == 0) ras.pixels.push_back(column_bg[i % static_cast<size_t>(nx)]);
     else ras.pixels.push_back(density(std::log1p(static_cast<double>(count[i])) / std::log1p(static_cast<double>(max_count))));
   }
   ras.legend = {{paper ? "orbit points (darker: denser)" : "orbit points (green: sparse, purple: dense)", density(1.0)},
                 {show_theta ? "sticking release (θ = 1/2)" : "sticking release (v = 4)", red}};
+  if (r.certify) {
+    auto n_of = [&](const char* k) { return agreement.count(k) ? agreement[k] : 0L; };
+    ras.legend.emplace_back("double refuted by the certificate (" + std::to_string(n_of("differs")) + " values)", refuted_bg);
+    ras.legend.emplace_back("no certified answer (" + std::to_string(n_of("undecided")) + " values)", undecided_bg);
+  }
   ras.colorbar.clear();  // grey level ~ log(points per cell); the legend names the marks
   ras.legend_below = true;
   const std::string par = r.vary == "eps" ? "ε" : r.vary;
@@ -224,6 +304,14 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   s["sticking_events"] = sticking_events;
   s["undecided_samples"] = undecided;
   s["precision"] = r.precision.text();
+  if (r.certify) {
+    auto n_of = [&](const char* k) { return agreement.count(k) ? agreement[k] : 0L; };
+    s["certified"] = true;
+    s["max_steps"] = r.cert.max_steps;
+    s["schedule"] = "interval:double, then MPFI at 64, 128, ... up to " + std::to_string(r.cert.max_bits) + " bits";
+    s["double_vs_certified"] = {{"agrees", n_of("agrees")}, {"differs", n_of("differs")}, {"undecided", n_of("undecided")}};
+    s["columns"] = columns;
+  }
   write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
 }
 
@@ -232,7 +320,8 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
 const std::set<std::string>& bifurcation_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"vary", "range", "samples", "transient", "record", "theta", "v", "carry", "precision", "show", "bins"});
+    k.insert({"vary", "range", "samples", "transient", "record", "theta", "v", "carry", "precision", "show", "bins",
+              "certify", "max-bits"});
     k.insert(run_keys().begin(), run_keys().end());
     k.insert(picture_keys().begin(), picture_keys().end());
     return k;
@@ -280,11 +369,17 @@ Command add_bifurcation(CLI::App& app) {
   opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: theta (default) or v against the parameter");
   opts->add("bins", "Rows of the density image, 10..4000 (default 400)");
+  opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
   sub->add_flag("--carry", *carry, "Start each value from the last state of the previous one (one worker)");
+  auto certify = std::make_shared<bool>(false);
+  sub->add_flag("--certify", *certify,
+                "Certify each column (constant model, --vary a): the exact orbit at the exact double value of a; shade the "
+                "columns where double's class is refuted or nothing is certified");
   auto flags = add_run_options(sub, *opts);
-  auto run = [opts, scene, carry, flags](const std::string& argv_text) {
+  auto run = [opts, scene, carry, certify, flags](const std::string& argv_text) {
     Options cl = opts->collected();
     if (*carry) cl.set("carry", "true");
+    if (*certify) cl.set("certify", "true");
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "bifurcation", bifurcation_keys()), cl);
     return run_bifurcation(o, run_flags_from(o, *flags, argv_text));
   };

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# End-to-end: `bouncer basin --certify` (certified pictures, constant restitution).
+# End-to-end: `bouncer basin --certify` and `bouncer bifurcation --certify` (certified
+# pictures, constant restitution).
 #   - every in-phase-space point has a certified class or is undecided; the CSV columns are
 #     as documented, and the JSON counts are those of the CSV;
 #   - the certified classes agree with `bouncer certify-sticking` run by hand at sample
@@ -8,7 +9,10 @@
 #     double sticks with period 3773 there, the certified orbit does not stick through
 #     its certified steps, so every point whose double orbit sticks is marked "differs";
 #   - double's class is recomputed by `bouncer basin` without --certify (same column);
-#   - PREFIX-artefacts.png is written; bad options exit 2 with one line and no file.
+#   - PREFIX-artefacts.png is written; bad options exit 2 with one line and no file;
+#   - bifurcation --certify: each column's certificate equals certify-sticking's at the exact
+#     double value of a (printed exactly), and at eps = 0.5, a ~ 15.2 double's sticking at step
+#     283 is refuted (the exact orbit does not stick in 700 steps).
 # Usage: bash certified_basin.sh <bouncer-binary> <source-dir>
 set -uo pipefail
 BOUNCER=${1:?usage: bash certified_basin.sh <bouncer-binary> <source-dir>}
@@ -84,6 +88,42 @@ check(j15["double_vs_certified"]["differs"] > 0, "a = 15: the artefact map finds
 sys.exit(1 if bad else 0)
 PY
 
+# bifurcation --certify: two columns, a = 15.2 and 15.3 as doubles, from the release state.
+"$BOUNCER" bifurcation --model constant --eps 0.5 --range 15.2:15.3 --samples 2 --transient 600 --record 100 \
+  --theta 0.5 --v 4 --certify --max-bits 256 --quiet --out bc || fail bc "exit $?"
+[[ -s bc.png && -s bc.json && -s bc.csv ]] || fail bc "missing outputs"
+python3 - "$BOUNCER" <<'PY' || fail bifurcation "see above"
+import json, subprocess, sys
+bouncer = sys.argv[1]
+bad = 0
+def check(cond, what):
+    global bad
+    if not cond:
+        print("FAIL:", what, file=sys.stderr)
+        bad += 1
+j = json.load(open("bc.json"))["summary"]
+cols = j["columns"]
+check(len(cols) == 2 and j["certified"] is True, "two certified columns")
+check(cols[0]["a"].startswith("15.19999999999999928945"), "column a is the exact double: %s" % cols[0]["a"])
+for c in cols:
+    out = subprocess.run([bouncer, "certify-sticking", "--eps", "0.5", "--a", c["a"], "--max-steps", "700",
+                          "--max-bits", "256", "--json"], capture_output=True, text=True)
+    h = json.loads(out.stdout)
+    if c["class"] == "no_sticking":
+        check(h["outcome"] == "no_sticking_within_max_steps" and h["steps_checked"] == 700, "a=%s: %s" % (c["a"], h["statement"]))
+    if c["class"] == "sticking":
+        check(h["outcome"] == "sticks" and h["period"] == c["period"], "a=%s: %s vs %s" % (c["a"], c, h["statement"]))
+        # double's own answer at the same double a, as certify-sticking reports it
+        check(h["double_period"] == c["double_period"], "double period %s vs %s" % (h["double_period"], c["double_period"]))
+        check((c["agreement"] == "agrees") == (c["double_period"] == c["period"]), "agreement %s" % c)
+# a = 15.2: the exact orbit does not stick in 700 steps (its first sticking is at step 1320,
+# certify-sticking --max-steps 2000 --max-bits 512); double sticks at step 283: refuted.
+check(cols[0]["class"] == "no_sticking" and cols[0]["double_class"] == "sticking" and cols[0]["double_period"] == 283
+      and cols[0]["agreement"] == "differs", "a = 15.2: double's 283 refuted: %s" % cols[0])
+check(j["double_vs_certified"]["differs"] >= 1, "the refuted column is counted")
+sys.exit(1 if bad else 0)
+PY
+
 # Bad input: exit 2, one line, no files.
 expect_bad() {
   local name=$1; shift
@@ -97,6 +137,17 @@ expect_bad veldep --model veldep --a 25 --c 1000 --grid 4x4 --certify
 expect_bad twin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --precision mpfr:100
 expect_bad bits --model constant --eps 0.5 --a 24 --grid 4x4 --certify --max-bits 9999
 expect_bad bits-alone --model constant --eps 0.5 --a 24 --grid 4x4 --max-bits 128
+expect_bad_bif() {
+  local name=$1; shift
+  rm -f bad.*
+  out=$("$BOUNCER" bifurcation "$@" --out bad 2>&1 >/dev/null); rc=$?
+  [[ $rc -eq 2 ]] || fail "$name" "exit $rc, want 2: $out"
+  [[ $(printf '%s\n' "$out" | wc -l) -eq 1 ]] || fail "$name" "not one line: $out"
+  ls bad.* >/dev/null 2>&1 && fail "$name" "left files"
+}
+expect_bad_bif bif-eps --model constant --a 20 --eps 0.5 --vary eps --range 0.5:0.6 --samples 2 --certify
+expect_bad_bif bif-carry --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
+expect_bad_bif bif-veldep --model veldep --c 1000 --range 20:21 --samples 2 --certify
 
 [[ $failures -eq 0 ]] && echo "certified_basin: all checks passed"
 exit $((failures > 0))

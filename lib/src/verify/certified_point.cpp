@@ -17,6 +17,7 @@ StickingQuestion question(const ModelSpec& model, const InitialCondition& start,
   q.schedule.max_bits = opt.max_bits;
   q.prove_attractor = true;
   q.max_attractor_period = opt.max_attractor_period;
+  q.a_range = opt.a_range;
   return q;
 }
 
@@ -41,7 +42,16 @@ void set_from_trap_or_none(CertifiedPoint& p, const StickingCertificate& c) {
 
 StickingCertificate ReleaseCache::get(const ModelSpec& model, const std::string& theta, const std::string& v,
                                       const CertifyPointOptions& opt) {
-  const std::string key = theta + "," + v;
+  // Appended piece by piece ("," + temporary trips GCC 12's -Wrestrict).
+  std::string key = theta;
+  key += ',';
+  key += v;
+  if (opt.a_range) {
+    key += ',';
+    key += opt.a_range->first.get_str();
+    key += ',';
+    key += opt.a_range->second.get_str();
+  }
   {
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = done_.find(key);

@@ -25,6 +25,8 @@
 #include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <utility>
 #include <string>
 
 #include "bouncer/analysis/classify.hpp"
@@ -47,6 +49,9 @@ struct CertifyPointOptions {
   long long max_steps = 5500;        // steps followed from the start (and from a release)
   long max_bits = 256;               // the schedule's last MPFI precision
   long max_attractor_period = 64;    // longest attractor period looked for
+  // a as the exact rational [lo, hi] instead of the model's decimal a (bifurcation columns:
+  // the double parameter value itself, lo = hi).
+  std::optional<std::pair<mpq_class, mpq_class>> a_range;
 };
 
 // Certificates of release states, computed once each and shared between threads.

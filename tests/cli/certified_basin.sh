@@ -30,6 +30,10 @@ for p in c24 c15; do
   for f in $p.csv $p.png $p.json $p-artefacts.png; do [[ -s $f ]] || fail "$p" "missing $f"; done
 done
 
+# bifurcation --certify: two columns, a = 15.2 and 15.3 as doubles, from the release state.
+"$BOUNCER" bifurcation --model constant --eps 0.5 --range 15.2:15.3 --samples 2 --transient 600 --record 100 \
+  --theta 0.5 --v 4 --certify --max-bits 256 --quiet --out bc || fail bc "exit $?"
+[[ -s bc.png && -s bc.json && -s bc.csv ]] || fail bc "missing outputs"
 python3 - "$BOUNCER" <<'PY' || fail properties "see above"
 import csv, json, subprocess, sys
 bouncer = sys.argv[1]
@@ -85,25 +89,10 @@ check(len(double_sticks) > 0, "a = 15: double should stick somewhere (the known 
 check(all(r["agreement"] in ("differs", "undecided") for r in double_sticks), "a = 15: artefacts not flagged")
 j15 = json.load(open("c15.json"))["summary"]
 check(j15["double_vs_certified"]["differs"] > 0, "a = 15: the artefact map finds no artefact")
-sys.exit(1 if bad else 0)
-PY
-
 # bifurcation --certify: two columns, a = 15.2 and 15.3 as doubles, from the release state.
-"$BOUNCER" bifurcation --model constant --eps 0.5 --range 15.2:15.3 --samples 2 --transient 600 --record 100 \
-  --theta 0.5 --v 4 --certify --max-bits 256 --quiet --out bc || fail bc "exit $?"
-[[ -s bc.png && -s bc.json && -s bc.csv ]] || fail bc "missing outputs"
-python3 - "$BOUNCER" <<'PY' || fail bifurcation "see above"
-import json, subprocess, sys
-bouncer = sys.argv[1]
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
-j = json.load(open("bc.json"))["summary"]
-cols = j["columns"]
-check(len(cols) == 2 and j["certified"] is True, "two certified columns")
+jb = json.load(open("bc.json"))["summary"]
+cols = jb["columns"]
+check(len(cols) == 2 and jb["certified"] is True, "two certified columns")
 check(cols[0]["a"].startswith("15.19999999999999928945"), "column a is the exact double: %s" % cols[0]["a"])
 for c in cols:
     out = subprocess.run([bouncer, "certify-sticking", "--eps", "0.5", "--a", c["a"], "--max-steps", "700",
@@ -120,34 +109,26 @@ for c in cols:
 # certify-sticking --max-steps 2000 --max-bits 512); double sticks at step 283: refuted.
 check(cols[0]["class"] == "no_sticking" and cols[0]["double_class"] == "sticking" and cols[0]["double_period"] == 283
       and cols[0]["agreement"] == "differs", "a = 15.2: double's 283 refuted: %s" % cols[0])
-check(j["double_vs_certified"]["differs"] >= 1, "the refuted column is counted")
+check(jb["double_vs_certified"]["differs"] >= 1, "the refuted column is counted")
 sys.exit(1 if bad else 0)
 PY
 
 # Bad input: exit 2, one line, no files.
 expect_bad() {
-  local name=$1; shift
+  local name=$1 command=$2; shift 2
   rm -f bad.*
-  out=$("$BOUNCER" basin "$@" --out bad 2>&1 >/dev/null); rc=$?
+  out=$("$BOUNCER" "$command" "$@" --out bad 2>&1 >/dev/null); rc=$?
   [[ $rc -eq 2 ]] || fail "$name" "exit $rc, want 2: $out"
   [[ $(printf '%s\n' "$out" | wc -l) -eq 1 ]] || fail "$name" "not one line: $out"
   ls bad.* >/dev/null 2>&1 && fail "$name" "left files"
 }
-expect_bad veldep --model veldep --a 25 --c 1000 --grid 4x4 --certify
-expect_bad twin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --precision mpfr:100
-expect_bad bits --model constant --eps 0.5 --a 24 --grid 4x4 --certify --max-bits 9999
-expect_bad bits-alone --model constant --eps 0.5 --a 24 --grid 4x4 --max-bits 128
-expect_bad_bif() {
-  local name=$1; shift
-  rm -f bad.*
-  out=$("$BOUNCER" bifurcation "$@" --out bad 2>&1 >/dev/null); rc=$?
-  [[ $rc -eq 2 ]] || fail "$name" "exit $rc, want 2: $out"
-  [[ $(printf '%s\n' "$out" | wc -l) -eq 1 ]] || fail "$name" "not one line: $out"
-  ls bad.* >/dev/null 2>&1 && fail "$name" "left files"
-}
-expect_bad_bif bif-eps --model constant --a 20 --eps 0.5 --vary eps --range 0.5:0.6 --samples 2 --certify
-expect_bad_bif bif-carry --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
-expect_bad_bif bif-veldep --model veldep --c 1000 --range 20:21 --samples 2 --certify
+expect_bad veldep basin --model veldep --a 25 --c 1000 --grid 4x4 --certify
+expect_bad twin basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --precision mpfr:100
+expect_bad bits basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --max-bits 9999
+expect_bad bits-alone basin --model constant --eps 0.5 --a 24 --grid 4x4 --max-bits 128
+expect_bad bif-eps bifurcation --model constant --a 20 --eps 0.5 --vary eps --range 0.5:0.6 --samples 2 --certify
+expect_bad bif-carry bifurcation --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
+expect_bad bif-veldep bifurcation --model veldep --c 1000 --range 20:21 --samples 2 --certify
 
 [[ $failures -eq 0 ]] && echo "certified_basin: all checks passed"
 exit $((failures > 0))

@@ -452,7 +452,9 @@ Command add_continue(CLI::App& app) {
   sub->add_flag("--quiet", *quiet, "Accepted like the picture commands (continue prints no progress)");
   sub->add_flag("--certify", *certify,
                  "Krawczyk on the branch side of each border end: a certified one-sided bound on a*");
-  auto run = [opts, scene, json_flag, certify](const std::string& argv_text) {
+  // The lambda holds every flag's storage: CLI11 writes through the references after
+  // add_continue has returned.
+  auto run = [opts, scene, json_flag, certify, quiet](const std::string& argv_text) {
     Options cl = opts->collected();
     if (*certify) cl.set("certify", "true");
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), cl);

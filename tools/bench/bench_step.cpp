@@ -7,8 +7,12 @@
 //           raw-mpfr: the same algorithm on mpfr_t, every temporary allocated once
 //           (mpfr_init2 at start-up), the same MPFR calls in the same order; checked
 //           bitwise against ImpactMap<Mpfr> first.
+//           raw-mpfi: the same on mpfi_t, with ImpactMap<Mpfi>'s mpfi calls and its
+//           three-valued decisions (false where ImpactMap throws Undecided); checked bitwise
+//           (both interval ends, undecided at the same steps) against ImpactMap<Mpfi> first.
 //   rows    ImpactMap<T> for double, long double, quad, DoubleInterval (interval:double, timed
-//           against the plain-double floor), Mpfr and Mpfi at several precisions.
+//           against the plain-double floor), Mpfr and Mpfi (against raw-mpfi) at several
+//           precisions.
 //           Each repetition starts at the model's initial condition; the state is reset
 //           to it when an interval step is undecided or when v exceeds 1e4.
 //
@@ -36,6 +40,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <stdexcept>
@@ -627,6 +632,402 @@ class RawMpfrMap {
   }
 };
 
+// ---------------------------------------------------------------------------------------
+// Floor 3: raw MPFI, every temporary allocated once
+// ---------------------------------------------------------------------------------------
+//
+// ImpactMap<Mpfi>'s step written against mpfi_t: the same mpfi_* calls on the same operands
+// in the same order (so every interval end comes out bit for bit the same), the same
+// three-valued decisions, and an undecided branch returns false where ImpactMap throws
+// Undecided. What it leaves out is what the wrapper adds: value-returning temporaries,
+// copies, out-of-line predicates, exceptions. Where the library gets a value by a detour
+// that cannot change its bits, the floor takes the direct way and says so (hull of two
+// constants precomputed, nonneg in place, floor_certain without Mpfr copies).
+
+struct RawIntervalResult {
+  mpfi_t theta, v, tau, stuck_theta, stuck_v;
+  int knot;  // State::knot of the result (-1: not exactly at a knot)
+  long long periods;
+  int segment;
+  EventKind kind;
+  bool corner;
+  Truth indirect;
+  int stick_segment;
+  bool passed_upward_turn;
+  int phase_bits_lost;
+};
+
+// The three-valued predicates of ScalarTraits<Mpfi> (lib/src/scalar/scalar.cpp), inline.
+inline bool nan_p(mpfi_srcptr x) { return mpfr_nan_p(&x->left) || mpfr_nan_p(&x->right); }
+inline Truth lt(mpfi_srcptr x, mpfi_srcptr y) {
+  if (nan_p(x) || nan_p(y)) return Truth::invalid;
+  if (mpfr_less_p(&x->right, &y->left)) return Truth::yes;
+  if (mpfr_greaterequal_p(&x->left, &y->right)) return Truth::no;
+  return Truth::unknown;
+}
+inline Truth le(mpfi_srcptr x, mpfi_srcptr y) {
+  if (nan_p(x) || nan_p(y)) return Truth::invalid;
+  if (mpfr_lessequal_p(&x->right, &y->left)) return Truth::yes;
+  if (mpfr_greater_p(&x->left, &y->right)) return Truth::no;
+  return Truth::unknown;
+}
+inline Truth is_zero(mpfi_srcptr x) {
+  if (nan_p(x)) return Truth::invalid;
+  if (mpfr_zero_p(&x->left) && mpfr_zero_p(&x->right)) return Truth::yes;
+  if (mpfr_sgn(&x->left) > 0 || mpfr_sgn(&x->right) < 0) return Truth::no;  // !mpfi_has_zero
+  return Truth::unknown;
+}
+// Where ImpactMap's decide() would throw.
+inline bool open(Truth t) { return t != Truth::yes && t != Truth::no; }
+inline Truth both(Truth x, Truth y) {  // detail::both of impact_map_impl.hpp
+  if (x == Truth::no || y == Truth::no) return Truth::no;
+  if (x == Truth::yes && y == Truth::yes) return Truth::yes;
+  return Truth::unknown;
+}
+inline bool finite(mpfi_srcptr x) { return mpfr_number_p(&x->left) && mpfr_number_p(&x->right); }
+
+class RawMpfiMap {
+ public:
+  RawIntervalResult r;
+
+  RawMpfiMap(const Model<Mpfi>& m, long bits) : bits_(bits) {
+    require_default_options(m);
+    law_ = m.law;
+    paper_ = m.downward == DownwardSticking::paper;
+    n_ = m.wall.segments();
+    if (n_ > kMaxSeg) throw std::runtime_error("too many wall segments for the floor");
+    for (mpfi_t* p : intervals()) mpfi_init2(*p, bits);
+    for (mpfr_t* p : {&mid_, &fr_zero_, &floor_lo_, &floor_hi_}) mpfr_init2(*p, bits);
+    for (int j = 0; j < n_; ++j) {
+      for (mpfi_t* p : {&start_[j], &end_[j], &height_[j], &vel_[j], &span_[j]}) mpfi_init2(*p, bits);
+      mpfi_set(start_[j], m.wall.start[j].get());
+      mpfi_set(end_[j], m.wall.end[j].get());
+      mpfi_set(height_[j], m.wall.height[j].get());
+      mpfi_set(vel_[j], m.wall.velocity[j].get());
+      mpfi_union(span_[j], start_[j], end_[j]);  // hull(start, end) of the phase clamp
+      turn_[j] = m.wall.turn[j];
+    }
+    mpfi_set(a_, m.a.get());
+    mpfi_set(eps_, m.eps.get());
+    mpfi_set(c_, m.c.get());
+    mpfi_set(collapse_, m.collapse.get());
+    mpfi_set(top_, m.wall.top.get());
+    mpfi_set_si(zero_, 0);
+    mpfr_set_si(fr_zero_, 0, MPFR_RNDN);
+    mpfi_union(phase_span_, zero_, end_[n_ - 1]);  // hull(0, 1) of the clamp after a jump
+    mpfi_set_si(three_fifths_, 3);                 // Mpfi(3, bits) / 5 of pow_3_5
+    mpfi_div_si(three_fifths_, three_fifths_, 5);
+    mpfi_set_si(longest_walk_, 64);                // detail::kLongestWalkedFlight
+  }
+  RawMpfiMap(const RawMpfiMap&) = delete;
+  RawMpfiMap& operator=(const RawMpfiMap&) = delete;
+  ~RawMpfiMap() {
+    for (mpfi_t* p : intervals()) mpfi_clear(*p);
+    for (mpfr_t* p : {&mid_, &fr_zero_, &floor_lo_, &floor_hi_}) mpfr_clear(*p);
+    for (int j = 0; j < n_; ++j)
+      for (mpfi_t* p : {&start_[j], &end_[j], &height_[j], &vel_[j], &span_[j]}) mpfi_clear(*p);
+  }
+  long bits() const { return bits_; }
+
+  // One step from (theta0, v0) with State::knot knot0 into r; false where ImpactMap<Mpfi>
+  // throws Undecided. theta0 and v0 must not alias r.theta / r.v.
+  [[gnu::noinline]] bool step(mpfi_srcptr theta0, mpfi_srcptr v0, int knot0) {
+    r.knot = -1;
+    r.periods = 0;
+    r.segment = 0;
+    r.kind = EventKind::impact;
+    r.corner = false;
+    r.indirect = Truth::no;
+    r.stick_segment = -1;
+    r.passed_upward_turn = false;
+    r.phase_bits_lost = 0;
+    mpfi_set(r.tau, zero_);
+    int j = knot0;
+    if (knot0 < 0) {
+      j = segment_of(theta0);
+      if (j < 0 || open(lt(theta0, end_[j]))) return false;
+    }
+    const int j0 = j;
+    mpfi_sub(W_, v0, vel_[j]);
+    const Truth riding = is_zero(W_);
+    if (open(riding)) return false;
+    bool done;
+    if (riding == Truth::yes) {
+      r.kind = EventKind::ride;
+      done = ride(j, theta0);
+    } else {
+      mpfi_srcptr pos = theta0;  // phase at which the current piece begins (fall_ after a jump)
+      mpfi_sub(L_, end_[j], theta0);
+      mpfi_set(G_, zero_);
+      bool on_wall = true, jumped = false;
+      for (long iter = 0;; ++iter) {
+        if (iter > kWalkLimit) return false;
+        if (on_wall) {
+          mpfi_add(t1_, W_, W_);
+          mpfi_div(sigma_, t1_, a_);
+        } else {
+          mpfi_mul(t1_, W_, W_);
+          mpfi_mul_si(t2_, a_, 2);
+          mpfi_mul(t2_, t2_, G_);
+          mpfi_add(q_, t1_, t2_);
+          nonneg(q_);
+          mpfi_sqrt(q_, q_);
+          mpfi_mid(mid_, W_);  // likely_negative: picks one of two equal formulas
+          if (mpfr_sgn(mid_) < 0) {
+            mpfi_mul_si(t1_, G_, 2);
+            mpfi_sub(t2_, q_, W_);
+            mpfi_div(sigma_, t1_, t2_);
+          } else {
+            mpfi_add(t1_, W_, q_);
+            mpfi_div(sigma_, t1_, a_);
+          }
+        }
+        mpfi_srcptr q = on_wall ? W_ : q_;
+        const Truth inside = lt(sigma_, L_);
+        if (open(inside)) return false;
+        if (inside == Truth::yes) {
+          mpfi_add(r.tau, r.tau, sigma_);
+          mpfi_add(th_, pos, sigma_);
+          mpfi_intersect(th_, th_, span_[j]);
+          r.indirect = jumped ? Truth::yes : left_zone(theta0, v0, j0, vel_[j], q);
+          r.corner = pos == fall_ && is_zero(sigma_) == Truth::yes &&
+                     (mpfi_sub(t1_, fall_, start_[j]), is_zero(t1_) == Truth::yes);
+          done = collide(j, th_, q, -1);
+          break;
+        }
+        const int k = next(j);
+        mpfi_add(r.tau, r.tau, L_);
+        if (k == 0) ++r.periods;
+        const Truth before = lt(L_, sigma_);
+        if (open(before)) return false;
+        if (before == Truth::no) {
+          mpfi_mul(t1_, a_, L_);
+          mpfi_sub(W_, W_, t1_);
+          mpfi_add(W_, W_, vel_[j]);
+          mpfi_sub(W_, W_, vel_[k]);
+          const Truth approach = le(W_, zero_);
+          if (open(approach)) return false;
+          if (approach == Truth::yes) {
+            r.corner = true;
+            mpfi_neg(speed_, W_);
+            r.indirect = jumped ? Truth::yes : left_zone(theta0, v0, j0, vel_[k], speed_);
+            done = collide(k, start_[k], speed_, k);
+            break;
+          }
+          mpfi_set(G_, zero_);
+          on_wall = true;
+        } else {
+          mpfi_sub(t1_, sigma_, L_);
+          mpfi_mul(gap_, a_, t1_);
+          if (on_wall) {
+            mpfi_mul(gap_, gap_, L_);
+          } else {
+            mpfi_mul_si(t1_, G_, 2);
+            mpfi_mul(t2_, a_, sigma_);
+            mpfi_div(t1_, t1_, t2_);
+            mpfi_add(t1_, L_, t1_);
+            mpfi_mul(gap_, gap_, t1_);
+          }
+          mpfi_div_si(gap_, gap_, 2);
+          mpfi_mul(t1_, a_, L_);
+          mpfi_sub(W_, W_, t1_);
+          mpfi_add(W_, W_, vel_[j]);
+          mpfi_sub(W_, W_, vel_[k]);
+          nonneg(gap_);
+          mpfi_swap(G_, gap_);
+          on_wall = false;
+        }
+        j = k;
+        pos = start_[k];
+        mpfi_sub(L_, end_[k], start_[k]);
+        if (jumped) continue;
+        mpfi_add(t1_, height_[j], G_);
+        if (lt(top_, t1_) != Truth::yes) continue;
+        // Above the top: the analytic jump to the fall back onto it (shortcut where certain).
+        jumped = true;
+        height_at(f0_, j0, theta0);
+        mpfi_mul(t1_, v0, v0);
+        mpfi_mul_si(t2_, a_, 2);
+        mpfi_sub(t3_, top_, f0_);
+        mpfi_mul(t2_, t2_, t3_);
+        mpfi_sub(root_, t1_, t2_);
+        nonneg(root_);
+        mpfi_sqrt(root_, root_);
+        mpfi_add(t1_, v0, root_);
+        mpfi_div(tau_fall_, t1_, a_);
+        mpfi_add(x_, theta0, tau_fall_);
+        // floor_certain: both ends have the same integer part (NaN: not equal, unknown).
+        mpfr_floor(floor_lo_, &x_->left);
+        mpfr_floor(floor_hi_, &x_->right);
+        if (mpfr_equal_p(floor_lo_, floor_hi_)) {
+          mpfi_interv_fr(whole_, floor_lo_, floor_lo_);
+          mpfi_sub(fall_, x_, whole_);
+          mpfi_intersect(fall_, fall_, phase_span_);
+          const int jf = segment_if_certain(fall_);
+          if (jf >= 0) {
+            // whole_periods: to_double of [w, w] is the double nearest w.
+            const double d = mpfr_get_d(floor_lo_, MPFR_RNDN);
+            r.periods = d > 9e18 ? static_cast<long long>(9e18) : static_cast<long long>(d);
+            mpfi_abs(t1_, x_);
+            r.phase_bits_lost =
+                std::max(0, mpfr_zero_p(&t1_->right) ? 0 : static_cast<int>(mpfr_get_exp(&t1_->right)));
+            mpfi_set(r.tau, tau_fall_);
+            j = jf;
+            pos = fall_;
+            mpfi_sub(L_, end_[j], fall_);
+            height_at(t1_, j, fall_);
+            mpfi_sub(G_, top_, t1_);
+            nonneg(G_);
+            mpfi_neg(t2_, root_);
+            mpfi_sub(W_, t2_, vel_[j]);
+            on_wall = false;
+            continue;
+          }
+        }
+        if (lt(longest_walk_, tau_fall_) == Truth::yes) return false;
+      }
+    }
+    return done && finite(r.theta) && finite(r.v);
+  }
+
+ private:
+  long bits_;
+  Law law_;
+  bool paper_;
+  int n_;
+  mpfi_t a_, eps_, c_, collapse_, top_, zero_, phase_span_, three_fifths_, longest_walk_;
+  mpfi_t start_[kMaxSeg], end_[kMaxSeg], height_[kMaxSeg], vel_[kMaxSeg], span_[kMaxSeg];
+  Turn turn_[kMaxSeg];
+  mpfi_t L_, G_, W_, q_, sigma_, gap_, t1_, t2_, t3_, th_, speed_, speed2_, out_, up_, f0_, root_, tau_fall_, x_,
+      whole_, fall_;
+  mpfr_t mid_, fr_zero_, floor_lo_, floor_hi_;
+
+  std::vector<mpfi_t*> intervals() {
+    return {&a_,    &eps_,  &c_,     &collapse_, &top_,   &zero_,  &phase_span_,   &three_fifths_, &longest_walk_,
+            &L_,    &G_,    &W_,     &q_,        &sigma_, &gap_,   &t1_,           &t2_,           &t3_,
+            &th_,   &speed_, &speed2_, &out_,    &up_,    &f0_,    &root_,         &tau_fall_,     &x_,
+            &whole_, &fall_, &r.theta, &r.v,     &r.tau,  &r.stuck_theta, &r.stuck_v};
+  }
+  int next(int j) const { return j + 1 == n_ ? 0 : j + 1; }
+  // Wall::segment_of, -1 where it is undecided.
+  int segment_of(mpfi_srcptr theta) const {
+    for (int j = n_ - 1; j > 0; --j) {
+      const Truth t = le(start_[j], theta);
+      if (t == Truth::yes) return j;
+      if (t != Truth::no) return -1;
+    }
+    return 0;
+  }
+  int segment_if_certain(mpfi_srcptr theta) const {
+    for (int j = n_ - 1; j >= 0; --j) {
+      const Truth after_start = j == 0 ? Truth::yes : le(start_[j], theta);
+      if (after_start == Truth::yes) return lt(theta, end_[j]) == Truth::yes ? j : -1;
+      if (after_start != Truth::no) return -1;
+    }
+    return -1;
+  }
+  // ScalarTraits<Mpfi>::nonneg in place: [0, max(hi, 0)] when the lower end is negative
+  // (mpfi_interv_fr also gives the upper end MPFI's -0 when it is zero).
+  void nonneg(mpfi_ptr x) {
+    if (mpfr_sgn(&x->left) >= 0) return;
+    mpfi_interv_fr(x, fr_zero_, mpfr_sgn(&x->right) < 0 ? fr_zero_ : &x->right);
+  }
+  void height_at(mpfi_ptr out, int j, mpfi_srcptr theta) const {
+    mpfi_sub(out, theta, start_[j]);
+    mpfi_mul(out, vel_[j], out);
+    mpfi_add(out, height_[j], out);
+  }
+
+  Truth left_zone(mpfi_srcptr theta0, mpfi_srcptr v0, int j0, mpfi_srcptr u, mpfi_srcptr q) {
+    const Truth falling = lt(u, q);
+    if (falling == Truth::no) return Truth::no;
+    height_at(f0_, j0, theta0);
+    mpfi_sub(f0_, top_, f0_);
+    mpfi_mul(f0_, f0_, a_);
+    mpfi_mul_si(t1_, f0_, 2);
+    mpfi_mul(t2_, v0, v0);
+    return both(lt(t1_, t2_), falling);
+  }
+  // ScalarTraits<Mpfi>::pow_3_5 of x, in place.
+  void pow_3_5(mpfi_ptr x) {
+    if (is_zero(x) == Truth::yes) return;
+    nonneg(x);
+    if (mpfr_zero_p(&x->left)) {  // [0, u]: [0, upper end of u^(3/5)]
+      mpfi_interv_fr(up_, &x->right, &x->right);
+      mpfi_log(up_, up_);
+      mpfi_mul(up_, three_fifths_, up_);
+      mpfi_exp(up_, up_);
+      mpfi_interv_fr(x, fr_zero_, &up_->right);
+      return;
+    }
+    mpfi_log(x, x);
+    mpfi_mul(x, three_fifths_, x);
+    mpfi_exp(x, x);
+  }
+  // false: undecided.
+  bool collide(int j, mpfi_srcptr theta, mpfi_srcptr speed, int knot) {
+    mpfi_srcptr out = out_;
+    switch (law_) {
+      case Law::elastic: out = speed; break;
+      case Law::constant: mpfi_mul(out_, speed, eps_); break;
+      case Law::veldep:
+        mpfi_div(out_, speed, c_);
+        pow_3_5(out_);
+        mpfi_neg(out_, out_);
+        mpfi_exp(out_, out_);
+        mpfi_mul(out_, speed, out_);
+        break;
+    }
+    r.segment = j;
+    mpfi_add(r.v, vel_[j], out);
+    if (law_ == Law::constant) {
+      mpfi_sub(t2_, end_[j], theta);
+      mpfi_mul(t2_, collapse_, t2_);
+      const Truth sticks = le(out, t2_);
+      if (open(sticks)) return false;
+      if (sticks == Truth::yes) {
+        if (r.kind != EventKind::sticking) {
+          r.kind = EventKind::sticking;
+          r.stick_segment = j;
+          mpfi_set(r.stuck_theta, theta);
+          mpfi_set(r.stuck_v, r.v);
+        }
+        return ride(j, theta);
+      }
+    }
+    mpfi_set(r.theta, theta);
+    r.knot = knot;
+    return true;
+  }
+
+  bool ride(int j, mpfi_srcptr pos) {
+    for (;;) {
+      mpfi_sub(t1_, end_[j], pos);
+      mpfi_add(r.tau, r.tau, t1_);
+      const int k = next(j);
+      if (k == 0) ++r.periods;
+      r.segment = j;
+      switch (turn_[j]) {
+        case Turn::down:
+          mpfi_set(r.theta, start_[k]);
+          mpfi_set(r.v, vel_[j]);
+          r.knot = k;
+          return true;
+        case Turn::none:
+          break;
+        case Turn::up:
+          r.passed_upward_turn = true;
+          if (law_ == Law::constant && paper_) break;
+          r.corner = true;
+          mpfi_sub(speed2_, vel_[k], vel_[j]);
+          return collide(k, start_[k], speed2_, k);
+      }
+      j = k;
+      pos = start_[k];
+    }
+  }
+};
+
 
 // ---------------------------------------------------------------------------------------
 // Bitwise checks of the floors against ImpactMap
@@ -649,15 +1050,18 @@ bool same_flags(const R& f, const StepResult<S>& t) {
 struct Check {
   long steps = 0;       // steps compared
   long stickings = 0;   // of which sticking
+  long undecided = -1;  // of which undecided in both (interval checks only; -1: not counted)
   long first_bad = -1;  // first mismatching step (1-based), -1 if none
   std::string what;
 };
 
 std::string describe(const Check& c) {
   std::ostringstream o;
-  if (c.first_bad < 0)
-    o << "MATCH (" << c.steps << " steps, " << c.stickings << " sticking)";
-  else
+  if (c.first_bad < 0) {
+    o << "MATCH (" << c.steps << " steps, " << c.stickings << " sticking";
+    if (c.undecided >= 0) o << ", " << c.undecided << " undecided";
+    o << ")";
+  } else
     o << "MISMATCH at step " << c.first_bad << ": " << c.what;
   return o.str();
 }
@@ -717,6 +1121,65 @@ Check check_raw(const Case& k, long bits, long steps) {
     c.stickings += t.kind == EventKind::sticking;
     s = t.next;
     if (vbig(s.v)) s = make_state<Mpfr>(k.ic, bits);
+  }
+  return c;
+}
+
+std::string interval_text(mpfi_srcptr x) {
+  std::string s = "[";  // appended piece by piece: "[" + temporary trips GCC 12's -Wrestrict
+  s += mpfr_to_string(&x->left, MPFR_RNDD);
+  s += ", ";
+  s += mpfr_to_string(&x->right, MPFR_RNDU);
+  s += ']';
+  return s;
+}
+bool same_bits(mpfi_srcptr x, mpfi_srcptr y) { return same_bits(&x->left, &y->left) && same_bits(&x->right, &y->right); }
+
+// ImpactMap<Mpfi> and the raw-MPFI floor from the same states: both undecided at the same
+// steps (then both restart from the initial condition, as the runners do), otherwise every
+// field equal, both ends of every interval bit for bit.
+Check check_raw_mpfi(const Case& k, long bits, long steps) {
+  const Model<Mpfi> model = make_model<Mpfi>(k.spec, bits);
+  const ImpactMap<Mpfi> map(model);
+  RawMpfiMap raw(model, bits);
+  const State<Mpfi> start = make_state<Mpfi>(k.ic, bits);
+  State<Mpfi> s = start;
+  Check c;
+  c.undecided = 0;
+  for (long n = 1; n <= steps; ++n) {
+    std::optional<StepResult<Mpfi>> t;
+    try {
+      t = map.step(s);
+    } catch (const Undecided&) {
+    }
+    const bool decided = raw.step(s.theta.get(), s.v.get(), s.knot);
+    const RawIntervalResult& f = raw.r;
+    const char* bad = nullptr;
+    if (decided != t.has_value()) bad = decided ? "undecided in ImpactMap only" : "undecided in the floor only";
+    else if (t) {
+      if (!same_bits(f.theta, t->next.theta.get())) bad = "theta";
+      else if (!same_bits(f.v, t->next.v.get())) bad = "v";
+      else if (!same_bits(f.tau, t->tau.get())) bad = "tau";
+      else if (f.knot != t->next.knot || !same_flags(f, *t)) bad = "a discrete field";
+      else if (t->kind == EventKind::sticking &&
+               !(same_bits(f.stuck_theta, t->stuck_theta.get()) && same_bits(f.stuck_v, t->stuck_v.get())))
+        bad = "stuck theta/v";
+    }
+    if (bad) {
+      c.first_bad = n;
+      c.what = std::string(bad) + "; from theta " + ScalarTraits<Mpfi>::to_string(s.theta) +
+               (t ? "; " + mismatch_text(ScalarTraits<Mpfi>::to_string(t->next.theta), interval_text(f.theta)) : "");
+      return c;
+    }
+    c.steps = n;
+    if (!t) {
+      ++c.undecided;
+      s = start;
+      continue;
+    }
+    c.stickings += t->kind == EventKind::sticking;
+    s = t->next;
+    if (vbig(s.v)) s = start;
   }
   return c;
 }
@@ -840,6 +1303,43 @@ struct RawRunner : Runner {
     }
   }
   bool vbig_raw() const { return mpfr_cmp_si(v, 10000) > 0; }
+};
+
+struct RawMpfiRunner : Runner {
+  RawMpfiMap map;
+  mpfi_t theta0, v0, theta, v;
+  int knot = -1;
+  RawMpfiRunner(const Case& k, long bits) : map(make_model<Mpfi>(k.spec, bits), bits) {
+    const State<Mpfi> s = make_state<Mpfi>(k.ic, bits);
+    for (mpfi_t* p : {&theta0, &v0, &theta, &v}) mpfi_init2(*p, bits);
+    mpfi_set(theta0, s.theta.get());
+    mpfi_set(v0, s.v.get());
+    reset();
+  }
+  ~RawMpfiRunner() override { for (mpfi_t* p : {&theta0, &v0, &theta, &v}) mpfi_clear(*p); }
+  void reset() override {
+    restart();
+    resets = 0;
+  }
+  void restart() {
+    mpfi_set(theta, theta0);
+    mpfi_set(v, v0);
+    knot = -1;
+    ++resets;
+  }
+  // As MapRunner<Mpfi>: an undecided step counts as a step and restarts.
+  void run(long n) override {
+    for (long done = 0; done < n; ++done) {
+      if (!map.step(theta, v, knot)) {
+        restart();
+        continue;
+      }
+      mpfi_swap(theta, map.r.theta);
+      mpfi_swap(v, map.r.v);
+      knot = map.r.knot;
+      if (mpfr_cmp_si(&v->right, 10000) > 0) restart();
+    }
+  }
 };
 
 // ---------------------------------------------------------------------------------------
@@ -985,7 +1485,7 @@ struct Options {
   double time_s = 0.2;
   int reps = 5;
   std::string model_filter;
-  std::string profile;  // run one runner only (for callgrind): plain|double|raw|mpfr|interval
+  std::string profile;  // run one runner only (for callgrind): plain|double|raw|mpfr|rawi|interval
   long bits = 113;
   long steps = 100000;
 };
@@ -993,11 +1493,13 @@ struct Options {
 [[noreturn]] void usage(int code) {
   std::printf(
       "usage: bench_step [--quick] [--time SECONDS] [--reps N] [--model SUBSTRING]\n"
-      "       bench_step --profile plain|double|raw|mpfr|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
-      "         (runs one runner N steps without timing, for valgrind --tool=callgrind)\n"
+      "       bench_step --profile plain|double|raw|mpfr|rawi|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
+      "         (runs one runner N steps without timing, for valgrind --tool=callgrind;\n"
+      "          raw = raw-MPFR floor, rawi = raw-MPFI floor, interval = ImpactMap<Mpfi>)\n"
       "  Times ImpactMap<T>::step for each model and scalar type next to hand-written floors\n"
-      "  (plain double; raw MPFR with preallocated temporaries), after checking bitwise that the\n"
-      "  floors compute the same orbits. --quick: a small subset, short runs (smoke test).\n"
+      "  (plain double; raw MPFR and raw MPFI with preallocated temporaries), after checking\n"
+      "  bitwise that the floors compute the same orbits (and, for MPFI, are undecided at the\n"
+      "  same steps). --quick: a small subset, short runs (smoke test).\n"
       "  Exit code 1 if a floor does not reproduce ImpactMap bitwise; timings are never checked.\n");
   std::exit(code);
 }
@@ -1049,6 +1551,7 @@ int main(int argc, char** argv) {
     else if (opt.profile == "raw") r = std::make_unique<RawRunner>(k, opt.bits);
     else if (opt.profile == "mpfr") r = std::make_unique<MapRunner<Mpfr>>(k, opt.bits);
     else if (opt.profile == "interval") r = std::make_unique<MapRunner<Mpfi>>(k, opt.bits);
+    else if (opt.profile == "rawi") r = std::make_unique<RawMpfiRunner>(k, opt.bits);
     else usage(2);
     r->reset();
     r->run(opt.steps);
@@ -1083,7 +1586,8 @@ int main(int argc, char** argv) {
   // --- correctness of the floors -------------------------------------------------------
   bool all_ok = true;
   std::printf("#\n# floor checks (bitwise: theta, v, tau, stuck theta/v, periods, segment, kind, corner,\n"
-              "#   indirect, sticking segment, upward turn, phase bits lost):\n");
+              "#   indirect, sticking segment, upward turn, phase bits lost; for MPFI both ends of each\n"
+              "#   interval, the knot, and undecided at the same steps):\n");
   for (const Case& k : (opt.quick ? all_cases() : cases)) {
     const Check c = check_plain(k, 1000);
     std::printf("#   %-19s plain-double vs ImpactMap<double>: %s\n", k.name.c_str(), describe(c).c_str());
@@ -1092,6 +1596,15 @@ int main(int argc, char** argv) {
       if (opt.quick && bits != 256) continue;
       const Check r = check_raw(k, bits, 200);
       std::printf("#   %-19s raw-mpfr:%-4ld vs ImpactMap<Mpfr>:   %s\n", k.name.c_str(), bits, describe(r).c_str());
+      all_ok = all_ok && r.first_bad < 0;
+    }
+    // The interval floor at the timed precisions and at 64 and 128 bits (inline limbs up to
+    // 1024 bits in Mpfi; 4096 on the heap). Intervals widen until a step is undecided, so a
+    // check sees undecided steps (both must agree on them) as well as decided ones.
+    for (long bits : {53L, 64L, 113L, 128L, 256L, 1024L, 4096L}) {
+      if (opt.quick && bits != 64 && bits != 128 && bits != 256) continue;
+      const Check r = check_raw_mpfi(k, bits, opt.quick ? 1000 : 2000);
+      std::printf("#   %-19s raw-mpfi:%-4ld vs ImpactMap<Mpfi>:   %s\n", k.name.c_str(), bits, describe(r).c_str());
       all_ok = all_ok && r.first_bad < 0;
     }
   }
@@ -1126,14 +1639,17 @@ int main(int argc, char** argv) {
       }
     }
     for (long bits : bit_list) {
+      // Both floors and their rows in the same rounds.
       RawRunner floor(k, bits);
       MapRunner<Mpfr> m(k, bits);
+      RawMpfiRunner ifloor(k, bits);
       MapRunner<Mpfi> i(k, bits);
-      std::vector<Runner*> g{&floor, &m, &i};
+      std::vector<Runner*> g{&floor, &m, &ifloor, &i};
       const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
       print_row({k.name, "raw-mpfr", bits, t[0], nullptr, ""});
       print_row({k.name, "mpfr", bits, t[1], &t[0], "raw-mpfr"});
-      print_row({k.name, "interval", bits, t[2], &t[0], "raw-mpfr(point)"});
+      print_row({k.name, "raw-mpfi", bits, t[2], nullptr, ""});
+      print_row({k.name, "interval", bits, t[3], &t[2], "raw-mpfi"});
     }
   }
   std::printf("# load average at end: %s\n", read_first_line("/proc/loadavg").c_str());

@@ -287,7 +287,9 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   if (r.model.law == Law::veldep && r.vary != "c") fixed += "c = " + r.model.c.text() + ", ";
   fig.subtitle = fixed + "θ₀ = " + r.ic.theta.text() + ", v₀ = " + r.ic.v.text() + "; " + std::to_string(r.transient) +
                  " + " + std::to_string(r.record) + " steps x " + std::to_string(r.samples) + (r.carry ? " (carried)" : "") +
-                 ", " + r.precision.text();
+                 ", " + r.precision.text() +
+                 (r.certify ? "; columns certified (interval:double, then MPFI up to " + std::to_string(r.cert.max_bits) + " bits)"
+                            : "");
   fig.xlabel = par;
   fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
   fig.metadata = png_metadata(prov, fig.title);

@@ -128,6 +128,7 @@ expect_bad bits basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --m
 expect_bad bits-alone basin --model constant --eps 0.5 --a 24 --grid 4x4 --max-bits 128
 expect_bad bif-eps bifurcation --model constant --a 20 --eps 0.5 --vary eps --range 0.5:0.6 --samples 2 --certify
 expect_bad bif-carry bifurcation --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
+expect_bad start-bits-typo certify-sticking --eps 0.5 --a 24 --start-bits doubel
 expect_bad bif-veldep bifurcation --model veldep --c 1000 --range 20:21 --samples 2 --certify
 
 [[ $failures -eq 0 ]] && echo "certified_basin: all checks passed"

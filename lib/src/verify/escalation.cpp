@@ -38,8 +38,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 }
 
 std::string give_up_text(const Attempt& best, long max_bits) {
-  const std::string where = best.scalar == "interval:double" ? std::string("interval:double")
-                                                               : std::to_string(best.bits) + " bits";
+  const std::string where = best.double_interval ? std::string("interval:double") : std::to_string(best.bits) + " bits";
   return "undecided at step " + std::to_string(best.steps + 1) + " at " + where +
          " (the best run; max " + std::to_string(max_bits) + " bits): " + best.reason;
 }

@@ -55,6 +55,7 @@ struct Progress {
 
 struct Attempt {
   long bits = 0;
+  bool double_interval = false;  // this run was the interval:double tier
   std::string scalar;        // "interval:double" or "interval:BITS" (Tier::text)
   bool decided = false;      // the run finished (its result is certified)
   long long steps = 0;       // steps certified in this run
@@ -90,6 +91,7 @@ Escalated<R> escalate(const EscalationSchedule& schedule, F&& run) {
     if (!kTiers && tier.double_interval) continue;  // a bits-only computation: MPFI tiers
     Attempt a;
     a.bits = tier.bits;
+    a.double_interval = tier.double_interval;
     a.scalar = tier.text();
     Progress p;
     const auto t0 = std::chrono::steady_clock::now();
@@ -110,9 +112,9 @@ Escalated<R> escalate(const EscalationSchedule& schedule, F&& run) {
       out.scalar = a.scalar;
       break;
     }
-    // A stall is judged between MPFI runs (the double tier is a cheap first try).
-    if (schedule.stop_when_stalled && !tier.double_interval && out.attempts.size() >= 2 &&
-        a.steps <= out.attempts[out.attempts.size() - 2].steps && out.attempts[out.attempts.size() - 2].scalar != "interval:double")
+    // A stall is judged between two MPFI runs (the double tier is a cheap first try).
+    const Attempt* before = out.attempts.size() >= 2 ? &out.attempts[out.attempts.size() - 2] : nullptr;
+    if (schedule.stop_when_stalled && before && !before->double_interval && !a.double_interval && a.steps <= before->steps)
       break;
   }
   out.best_steps = best.steps;

@@ -1,15 +1,17 @@
 # Imported targets for the C numerics libraries, which ship no CMake package of their own
-# (Debian: libgmp-dev, libmpfr-dev, libmpfi-dev): bouncer::gmp, bouncer::gmpxx,
-# bouncer::mpfr, bouncer::mpfi. Used by the build and installed with the package config, so
+# (Debian: libgmp-dev, libmpfr-dev, libmpfi-dev, libqd-dev): bouncer::gmp, bouncer::gmpxx,
+# bouncer::mpfr, bouncer::mpfi, bouncer::qd (QD, double-double exp/log for --precision dd). Used by the build and installed with the package config, so
 # that an installed bouncer refers to these targets, never to the build machine's paths.
 include(FindPackageHandleStandardArgs)
-foreach(lib IN ITEMS gmp gmpxx mpfr mpfi)
+foreach(lib IN ITEMS gmp gmpxx mpfr mpfi qd)
   if(TARGET bouncer::${lib})
     continue()
   endif()
   set(header ${lib}.h)
   if(lib STREQUAL "gmpxx")
     set(header gmpxx.h)
+  elseif(lib STREQUAL "qd")
+    set(header qd/dd_real.h)
   endif()
   find_path(BOUNCER_${lib}_INCLUDE_DIR ${header})
   find_library(BOUNCER_${lib}_LIBRARY ${lib})
@@ -17,7 +19,7 @@ foreach(lib IN ITEMS gmp gmpxx mpfr mpfi)
                                     NAME_MISMATCHED)
   if(NOT bouncer_${lib}_FOUND)
     set(pkg libgmp-dev)
-    if(lib MATCHES "^mpf")
+    if(lib MATCHES "^(mpf|qd)")
       set(pkg lib${lib}-dev)
     endif()
     message(FATAL_ERROR "bouncer: library ${lib} not found: install the Debian package '${pkg}' (apt-get install ${pkg})")

@@ -54,6 +54,8 @@ inline mpq_class exact(const Quad& x) {
   return v < 0 ? mpq_class(-q) : q;
 }
 
+inline mpq_class exact(const DoubleDouble& x) { return mpq_class(x.hi()) + mpq_class(x.lo()); }
+
 inline mpq_class inv_pow2(long k) { return mpq_class(mpz_class(1), mpz_class(1) << static_cast<unsigned>(k)); }
 
 // The exact value of a decimal string, built without Decimal: [-]digits[.digits][e[-]n].

@@ -53,6 +53,14 @@ struct Cfg<long double> {
   static constexpr const char* name = "long double";
 };
 template <>
+struct Cfg<DoubleDouble> {
+  static constexpr long bits = 106;
+  static constexpr double tol = 1e-26;
+  static constexpr double margin = 1e-23;
+  static constexpr const char* margin_text = "1e-23";
+  static constexpr const char* name = "dd";
+};
+template <>
 struct Cfg<Quad> {
   static constexpr long bits = 113;
   static constexpr double tol = 1e-28;
@@ -83,6 +91,12 @@ constexpr long kWide = 1200;
 Mpfr wide(double x) { Mpfr r(kWide); mpfr_set_d(r.get(), x, MPFR_RNDN); return r; }
 Mpfr wide(long double x) { Mpfr r(kWide); mpfr_set_ld(r.get(), x, MPFR_RNDN); return r; }
 Mpfr wide(const Mpfr& x) { Mpfr r(kWide); mpfr_set(r.get(), x.get(), MPFR_RNDN); return r; }
+Mpfr wide(const DoubleDouble& x) {  // hi + lo exactly (kWide bits cover any finite pair)
+  Mpfr r(kWide);
+  mpfr_set_d(r.get(), x.hi(), MPFR_RNDN);
+  mpfr_add_d(r.get(), r.get(), x.lo(), MPFR_RNDN);
+  return r;
+}
 Mpfr wide(const Quad& q) {
   const __float128 v = q.backend().value();
   Mpfr r(kWide);
@@ -1288,6 +1302,7 @@ TEST(ImpactMapPrecisions, AgreeOnTheFirstSteps) {
     const std::vector<Other> others = {
         {"double", trajectory<double>(m, sc.theta, sc.v, steps, 53), 1e-9},
         {"long double", trajectory<long double>(m, sc.theta, sc.v, steps, 64), 1e-12},
+        {"dd", trajectory<DoubleDouble>(m, sc.theta, sc.v, steps, 106), 1e-23},
         {"quad", trajectory<Quad>(m, sc.theta, sc.v, steps, 113), 1e-25},
         {"mpfr:256", trajectory<Mpfr>(m, sc.theta, sc.v, steps, 256), 1e-60}};
     for (const Other& o : others) {

@@ -231,6 +231,13 @@ Mpfr hp(const Quad& x, long bits) {
   }
   return r;
 }
+Mpfr hp(const DoubleDouble& x, long bits) {
+  // hi + lo: exact when bits covers the pair's span (about 106 bits for the map's values).
+  Mpfr r(bits);
+  mpfr_set_d(r.get(), x.hi(), MPFR_RNDN);
+  mpfr_add_d(r.get(), r.get(), x.lo(), MPFR_RNDN);
+  return r;
+}
 Mpfr hp(const Mpfr& x, long bits) {
   Mpfr r(bits);
   mpfr_set(r.get(), x.get(), MPFR_RNDN);

@@ -5,6 +5,9 @@
 #include <stdexcept>
 #include <string>
 
+#include <qd/dd_real.h>
+
+#include "bouncer/scalar/decimal.hpp"
 #include "bouncer/scalar/traits.hpp"
 
 namespace bouncer {
@@ -36,11 +39,14 @@ namespace {
 }  // namespace
 
 std::string mpfr_to_string(mpfr_srcptr x, mpfr_rnd_t rnd) {
+  // Enough digits that reading the string back at this precision gives x again.
+  return mpfr_to_string_digits(x, rnd, mpfr_get_str_ndigits(10, mpfr_get_prec(x)));
+}
+
+std::string mpfr_to_string_digits(mpfr_srcptr x, mpfr_rnd_t rnd, size_t digits) {
   if (mpfr_nan_p(x)) return "nan";
   if (mpfr_inf_p(x)) return mpfr_sgn(x) > 0 ? "inf" : "-inf";
   if (mpfr_zero_p(x)) return mpfr_signbit(x) ? "-0" : "0";
-  // Enough digits that reading the string back at this precision gives x again.
-  const size_t digits = mpfr_get_str_ndigits(10, mpfr_get_prec(x));
   mpfr_exp_t e = 0;
   char* s = mpfr_get_str(nullptr, &e, 10, digits, x, rnd);
   std::string m(s);
@@ -205,6 +211,79 @@ std::string ScalarTraits<Mpfi>::to_string(const Mpfi& x) {
   s += ", ";
   s += upper_string(x);
   s += ']';
+  return s;
+}
+
+// ---- dd (scalar/double_double.hpp) ------------------------------------------------------
+
+namespace {
+
+dd_real to_qd(const DoubleDouble& x) { return dd_real(x.hi(), x.lo()); }
+DoubleDouble from_qd(const dd_real& x) { return DoubleDouble::from_pair(x.x[0], x.x[1]); }
+
+}  // namespace
+
+DoubleDouble exp(const DoubleDouble& x) {
+  if (x.is_nan()) return DoubleDouble::nan_value();
+  return from_qd(exp(to_qd(x)));
+}
+
+DoubleDouble log(const DoubleDouble& x) {
+  // Guarded here: QD prints a message on stderr for a non-positive argument.
+  if (x.is_nan() || x.hi() < 0) return DoubleDouble::nan_value();
+  if (x.hi() == 0) return DoubleDouble(-std::numeric_limits<double>::infinity());
+  return from_qd(log(to_qd(x)));
+}
+
+DoubleDouble ScalarTraits<DoubleDouble>::from_decimal(std::string_view text, long) {
+  const std::optional<Decimal> d = Decimal::parse(text);
+  if (!d) bad_decimal(text);
+  // hi = RN(d), lo = RN(d - hi): mpfr_set_q rounds an exact rational correctly.
+  mpfr_t t;
+  mpfr_init2(t, 53);
+  mpfr_set_q(t, d->value().get_mpq_t(), MPFR_RNDN);
+  const double hi = mpfr_get_d(t, MPFR_RNDN);  // exact (a 53-bit number)
+  const mpq_class rest = d->value() - mpq_class(hi);
+  mpfr_set_q(t, rest.get_mpq_t(), MPFR_RNDN);
+  const double lo = mpfr_get_d(t, MPFR_RNDN);
+  mpfr_clear(t);
+  return DoubleDouble::from_pair(hi, lo);
+}
+
+DoubleDouble ScalarTraits<DoubleDouble>::pow_3_5(const DoubleDouble& x) {
+  // (x^3)^(1/5), as for Mpfr: QD's nroot (a Newton step on the fifth root).
+  if (x.is_nan() || x.hi() < 0) return DoubleDouble::nan_value();
+  if (x.hi() == 0) return DoubleDouble();
+  return from_qd(nroot(to_qd(x * x * x), 5));
+}
+
+std::string ScalarTraits<DoubleDouble>::to_string(const DoubleDouble& x) {
+  if (!x.is_finite() || x.hi() == 0) {
+    mpfr_t t;
+    mpfr_init2(t, 53);
+    mpfr_set_d(t, x.hi(), MPFR_RNDN);
+    std::string s = mpfr_to_string(t, MPFR_RNDN);
+    mpfr_clear(t);
+    return s;
+  }
+  // The exact value hi + lo, in as many bits as the pair spans.
+  int eh = 0, el = 0;
+  std::frexp(x.hi(), &eh);
+  if (x.lo() != 0) std::frexp(x.lo(), &el);
+  const mpfr_prec_t prec = x.lo() == 0 ? 53 : 53 + std::max(0, eh - el) + 1;
+  mpfr_t v;
+  mpfr_init2(v, prec);
+  mpfr_set_d(v, x.hi(), MPFR_RNDN);
+  mpfr_add_d(v, v, x.lo(), MPFR_RNDN);  // exact
+  // The shortest of 32, 33, ... digits that reads back to the same pair; past 40 the digit
+  // count doubles, and at the exact value's length (finite: the value is dyadic) reading back
+  // gives hi = RN(value) and lo = value - hi, the same canonical pair.
+  std::string s;
+  for (size_t n = 32;; n = n < 40 ? n + 1 : 2 * n) {
+    s = mpfr_to_string_digits(v, MPFR_RNDN, n);
+    if (from_decimal(s, 106) == x || n > 8192) break;
+  }
+  mpfr_clear(v);
   return s;
 }
 

@@ -45,6 +45,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "bouncer/scalar/error_free.hpp"
+
 namespace bouncer {
 
 namespace interval_double_detail {
@@ -73,21 +75,14 @@ inline Rounded widened(double c) { return {next_down(c), next_up(c)}; }
 constexpr double kBig = 0x1p995;     // operands below this: no overflow in the splitting
 constexpr double kSmall = 0x1p-960;  // results above this: the error terms do not underflow
 
-// Dekker's TwoProduct: a b = h + l exactly (|a|, |b| < kBig and |h| > kSmall or h == 0
-// with a or b zero).
-inline void two_product(double a, double b, double& h, double& l) {
-  constexpr double split = 134217729.0;  // 2^27 + 1
-  h = a * b;
-  const double ta = split * a, ah = ta - (ta - a), al = a - ah;
-  const double tb = split * b, bh = tb - (tb - b), bl = b - bh;
-  l = ((ah * bh - h) + ah * bl + al * bh) + al * bl;
-}
+// Dekker's TwoProduct (scalar/error_free.hpp), exact for |a|, |b| < kBig and |h| > kSmall
+// (or h == 0 with a or b zero).
+using error_free::two_product;
 
 inline Rounded add(double a, double b) {
-  const double c = a + b;
+  double c, e;
+  error_free::two_sum(a, b, c, e);  // e = (a + b) - c exactly
   if (!std::isfinite(c)) return std::isnan(c) ? Rounded{c, c} : widened(c);
-  const double bb = c - a;
-  const double e = (a - (c - bb)) + (b - bb);  // TwoSum: exactly (a + b) - c
   return directed(c, e);
 }
 inline Rounded mul(double a, double b) {

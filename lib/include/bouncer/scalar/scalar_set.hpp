@@ -25,6 +25,7 @@
 #define BOUNCER_FOR_EACH_POINT_SCALAR(X) \
   X(double, double_)                     \
   X(long double, long_double)            \
+  X(DoubleDouble, dd)                    \
   X(Quad, quad)                          \
   X(Mpfr, mpfr)
 // Interval types: an enclosure, rounded outward (three-valued comparisons only).

@@ -15,6 +15,7 @@
 #include <string_view>
 
 #include "bouncer/scalar/contract.hpp"
+#include "bouncer/scalar/double_double.hpp"
 #include "bouncer/scalar/interval_double.hpp"
 #include "bouncer/scalar/mpfi.hpp"
 #include "bouncer/scalar/mpfr.hpp"
@@ -27,6 +28,8 @@ using Quad = boost::multiprecision::float128;
 // Decimal text of an MPFR number with enough digits to round-trip at its precision,
 // rounded in the given direction (RNDN for points; RNDD/RNDU for interval ends).
 std::string mpfr_to_string(mpfr_srcptr x, mpfr_rnd_t rnd);
+// The same with a given number of significant digits.
+std::string mpfr_to_string_digits(mpfr_srcptr x, mpfr_rnd_t rnd, size_t digits);
 
 namespace detail {
 
@@ -87,6 +90,41 @@ struct ScalarTraits<long double> : detail::PointTraits<long double> {
   static long double floor(const long double& x) { return std::floor(x); }
   static long double pow_3_5(const long double& x) { return std::pow(x, 0.6L); }
   static std::string to_string(const long double& x);
+};
+
+// dd: double-word arithmetic (scalar/double_double.hpp: the algorithms and their error
+// bounds). 106 bits: hi and lo carry 53 each (|lo| <= ulp(hi)/2, so one more bit is implicit
+// in lo's sign; 106 is the precision its operations are tested to).
+template <>
+struct ScalarTraits<DoubleDouble> : detail::PointGuards<DoubleDouble> {
+  using D = DoubleDouble;
+  static constexpr bool is_interval = false;
+  static constexpr const char* family = "dd";
+  static constexpr long fixed_bits = 106;
+  static D from_decimal(std::string_view text, long bits);  // hi = RN(d), lo = RN(d - hi)
+  static D from_int(long n, long) { return D(n); }
+  static long bits(const D&) { return fixed_bits; }
+  static Truth lt(const D& x, const D& y) { return x < y ? Truth::yes : x >= y ? Truth::no : Truth::invalid; }
+  static Truth le(const D& x, const D& y) { return x <= y ? Truth::yes : x > y ? Truth::no : Truth::invalid; }
+  static Truth is_zero(const D& x) { return x.is_nan() ? Truth::invalid : truth(x.hi() == 0); }
+  static bool likely_negative(const D& x) { return x.hi() < 0; }
+  static D nonneg(const D& x) { return x.hi() < 0 ? D() : x; }
+  static bool is_finite(const D& x) { return x.is_finite(); }
+  static double to_double(const D& x) { return x.hi(); }  // canonical: hi = RN(value)
+  // The largest dd below x: lo moved one double down (hi + lo' < hi + lo exactly).
+  static D below(const D& x) { return D::from_pair(x.hi(), std::nextafter(x.lo(), -std::numeric_limits<double>::infinity())); }
+  static int exponent(const D& x) {
+    if (x.hi() == 0) return 0;
+    int e = 0;
+    const double m = std::frexp(x.hi(), &e);
+    // hi = RN(value) may have rounded up to a power of two: the value is then below it.
+    if (std::fabs(m) == 0.5 && x.lo() != 0 && (x.lo() < 0) != (x.hi() < 0)) --e;
+    return e;
+  }
+  static D floor(const D& x) { return bouncer::floor(x); }
+  static D pow_3_5(const D& x);
+  static std::string to_string(const D& x);
+  static bool nan(const D& x, const D& y) { return x.is_nan() || y.is_nan(); }
 };
 
 template <>

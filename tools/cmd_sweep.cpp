@@ -218,7 +218,7 @@ Command add_sweep(CLI::App& app) {
     if (*as_json) o.set("json", "true");
     const Request r = request_from(o);
     Provenance p = provenance_for("sweep", o, Precision{Precision::Kind::interval, r.q.reference.max_bits}, argv_text);
-    p.precision = "double, long, quad, mpfr:64..4096 against interval (escalated " + r.q.reference.text() + ")";
+    p.precision = "double, long, dd, quad, mpfr:64..4096 against interval (escalated " + r.q.reference.text() + ")";
     const SweepReport rep = precision_sweep(r.q);
     p.bits = rep.reference_bits;
     const json j = report_json(r, rep, p);

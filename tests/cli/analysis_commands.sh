@@ -117,7 +117,7 @@ bad periodic.noperiod 'period' periodic --model constant --a 24 --eps 0.5
 bad periodic.period0 'period.*\[1, 100\]' periodic --model constant --a 24 --eps 0.5 --period 0
 bad periodic.guess 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3
 bad periodic.guessbelow 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,1
-bad periodic.precision 'precision.*allowed: double, long, quad, mpfr:BITS' periodic --model constant --a 24 --eps 0.5 --period 1 --precision interval:64
+bad periodic.precision 'precision.*allowed: double, long, dd, quad, mpfr:BITS' periodic --model constant --a 24 --eps 0.5 --period 1 --precision interval:64
 bad lyapunov.theta 'theta' lyapunov --model elastic --a 20 --theta 1.5 --v 9
 bad lyapunov.steps 'steps' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --steps 0
 bad lyapunov.precision 'precision.*allowed' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --precision interval:128

@@ -68,17 +68,17 @@ fi
 if run sweep sweep --model constant --eps 0.96 --a 31 --theta 0.5 --v 4 --steps 1500 --out "$TMP/sw"; then
   for ext in json csv png; do [[ -s "$TMP/sw.$ext" ]] || fail sweep "no $TMP/sw.$ext"; done
   cp "$TMP/sw.json" "$TMP/swj.out"
-  check swj '[r["precision"] for r in j["rows"]] == ["double","long","quad","mpfr:64","mpfr:128","mpfr:256","mpfr:512","mpfr:1024","mpfr:2048","mpfr:4096"]'
+  check swj '[r["precision"] for r in j["rows"]] == ["double","long","dd","quad","mpfr:64","mpfr:128","mpfr:256","mpfr:512","mpfr:1024","mpfr:2048","mpfr:4096"]'
   check swj 'all(set(["precision","bits","leaves_enclosure_at","answer"]) <= set(r) for r in j["rows"]) and "implied_lyapunov" in j'
   check swj 'j["reference"]["steps"] == 1500 and j["rows"][0]["leaves_enclosure_at"] is not None'
   # more bits never leave earlier than fewer bits of the same kind (mpfr rows)
-  check swj 'all((a["leaves_enclosure_at"] or 10**9) <= (b["leaves_enclosure_at"] or 10**9) for a, b in zip(j["rows"][3:], j["rows"][4:]))'
+  check swj 'all((a["leaves_enclosure_at"] or 10**9) <= (b["leaves_enclosure_at"] or 10**9) for a, b in zip(j["rows"][4:], j["rows"][5:]))'
   head -c 8 "$TMP/sw.png" | od -An -tx1 | grep -q '89 50 4e 47' || fail sweep "PREFIX.png is not a PNG"
   grep -q '^precision,bits,leaves_enclosure_at,answer$' "$TMP/sw.csv" || fail sweep "CSV header"
   [[ $(grep -c '^mpfr:' "$TMP/sw.csv") -eq 7 ]] || fail sweep "CSV rows"
 fi
 if run sweepj sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 100 --json; then
-  check sweepj 'len(j["rows"]) == 10 and all(r["answer"].startswith("sticks at step 4") for r in j["rows"])'
+  check sweepj 'len(j["rows"]) == 11 and all(r["answer"].startswith("sticks at step 4") for r in j["rows"])'
   check sweepj 'all(r["class"] is None and r["lambda"] is None for r in j["rows"])'  # sticking: no classification
 fi
 # A chaotic elastic orbit: no sticking, no period, so each row classifies what its precision
@@ -86,8 +86,8 @@ fi
 # far below double), so they must agree on a chaotic class and on one positive exponent.
 if run sweepc sweep --model elastic --a 19 --theta 0.1 --v 5 --steps 1000 --json; then
   check sweepc 'all(r["class"] is not None and "over 500 more steps: " + r["class"] in r["answer"] for r in j["rows"])'
-  check sweepc 'all(r["class"] == "chaotic" and r["lambda"] > 0.01 for r in j["rows"][6:])'
-  check sweepc 'max(r["lambda"] for r in j["rows"][6:]) - min(r["lambda"] for r in j["rows"][6:]) < 1e-9'
+  check sweepc 'all(r["class"] == "chaotic" and r["lambda"] > 0.01 for r in j["rows"][7:])'
+  check sweepc 'max(r["lambda"] for r in j["rows"][7:]) - min(r["lambda"] for r in j["rows"][7:]) < 1e-9'
 fi
 if run sweepw sweep --model elastic --a 19 --theta 0.1 --v 5 --steps 300 --classify-steps 100 --json; then
   check sweepw 'any(r["class"] for r in j["rows"]) and all("over 100 more steps: " in r["answer"] for r in j["rows"] if r["class"])'

@@ -2,7 +2,7 @@
 # End-to-end: the precisions agree, and intervals enclose.
 # On the default scene (eps = 0.5, a = 24; orbit 0 = the fixed point (0.25, 12) of the
 # paper's eq. 5, orbit 1 = a chaotic transient from (0.05, 10.5)) over 10 steps:
-#   - double, long and quad agree with mpfr:256 to 1e-12, 1e-15, 1e-28 (same events);
+#   - double, long, dd and quad agree with mpfr:256 to 1e-12, 1e-15, 1e-26, 1e-28 (same events);
 #   - interval:256 encloses the mpfr:256 state at every row and stays narrow (< 1e-60);
 #   - the fixed point is exact: interval:256 encloses (0.25, 12) itself at every row
 #     (the exact decimal orbit IS the fixed point), and mpfr:256 stays within 1e-70 of it.
@@ -16,7 +16,7 @@ command -v python3 >/dev/null || { echo "FAIL: python3 is needed" >&2; exit 1; }
 SCENE=$SRC/data/scenes/default.toml
 [[ -f $SCENE ]] || { echo "FAIL: no default scene at $SCENE" >&2; exit 1; }
 
-for p in double long quad mpfr:256 interval:256; do
+for p in double long dd quad mpfr:256 interval:256; do
   rc=0
   "$BOUNCER" orbit --scene "$SCENE" --theta 0.25,0.05 --v 12,10.5 --steps 10 --every 1 --format csv \
     --precision "$p" >"$TMP/$p.csv" 2>"$TMP/$p.err" || rc=$?
@@ -41,7 +41,7 @@ ref = rows("mpfr:256")
 bad = []
 if [(r["orbit"], r["n"]) for r in ref] != [(str(o), str(n)) for o in range(2) for n in range(11)]:
     bad.append(f"mpfr:256 rows are not orbits 0,1 x n = 0..10: {[(r['orbit'], r['n']) for r in ref]}")
-for p, tol in (("double", F(1, 10**12)), ("long", F(1, 10**15)), ("quad", F(1, 10**28))):
+for p, tol in (("double", F(1, 10**12)), ("long", F(1, 10**15)), ("dd", F(1, 10**26)), ("quad", F(1, 10**28))):
     worst = F(0)
     for a, b in zip(rows(p), ref):
         if (a["orbit"], a["n"], a["event"]) != (b["orbit"], b["n"], b["event"]):

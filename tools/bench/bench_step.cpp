@@ -11,7 +11,8 @@
 //           three-valued decisions (false where ImpactMap throws Undecided); checked bitwise
 //           (both interval ends, undecided at the same steps) against ImpactMap<Mpfi> first.
 //   rows    ImpactMap<T> for double, long double, quad, DoubleInterval (interval:double, timed
-//           against the plain-double floor), Mpfr and Mpfi (against raw-mpfi) at several
+//           against the plain-double floor), DoubleDouble (dd, against ImpactMap<double>:
+//           its target is 10x the double step), Mpfr and Mpfi (against raw-mpfi) at several
 //           precisions.
 //           Each repetition starts at the model's initial condition; the state is reset
 //           to it when an interval step is undecided or when v exceeds 1e4.
@@ -100,6 +101,7 @@ constexpr double kVReset = 1e4;  // (the MPFR versions compare with the integer 
 inline bool vbig(double v) { return v > kVReset; }
 inline bool vbig(long double v) { return v > kVReset; }
 inline bool vbig(const Quad& v) { return v > kVReset; }
+inline bool vbig(const DoubleDouble& v) { return v > DoubleDouble(kVReset); }
 inline bool vbig(const Mpfr& v) { return mpfr_cmp_si(v.get(), 10000) > 0; }
 inline bool vbig(const Mpfi& v) { return mpfr_cmp_si(&v.get()->right, 10000) > 0; }
 inline bool vbig(const DoubleInterval& v) { return v.upper() > kVReset; }
@@ -1619,7 +1621,8 @@ int main(int argc, char** argv) {
       PlainRunner floor(k);
       MapRunner<double> d(k, 53);
       MapRunner<DoubleInterval> di(k, 53);  // the fast certified type, against the same floor
-      std::vector<Runner*> g{&floor, &d, &di};
+      MapRunner<DoubleDouble> dd(k, 106);   // double-word: its target is 10x the double step
+      std::vector<Runner*> g{&floor, &d, &di, &dd};
       std::unique_ptr<MapRunner<long double>> ld;
       std::unique_ptr<MapRunner<Quad>> qd;
       if (!opt.quick) {
@@ -1632,7 +1635,8 @@ int main(int argc, char** argv) {
       print_row({k.name, "plain", 53, t[0], nullptr, ""});
       print_row({k.name, "double", 53, t[1], &t[0], "plain-double"});
       print_row({k.name, "interval:double", 53, t[2], &t[0], "plain-double"});
-      size_t i = 3;
+      print_row({k.name, "dd", 106, t[3], &t[1], "double"});
+      size_t i = 4;
       if (!opt.quick) {
         print_row({k.name, "long", 64, t[i++], &t[0], "plain-double"});
         print_row({k.name, "quad", 113, t[i++], &t[0], "plain-double"});

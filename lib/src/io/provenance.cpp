@@ -8,12 +8,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#ifndef BOUNCER_QD_VERSION
+#define BOUNCER_QD_VERSION "unknown"
+#endif
+
 namespace bouncer {
 
 std::string library_versions() {
   std::ostringstream s;
   s << "boost " << BOOST_VERSION / 100000 << "." << BOOST_VERSION / 100 % 1000 << "." << BOOST_VERSION % 100
-    << ", mpfr " << mpfr_get_version() << ", mpfi " << MPFI_VERSION_STRING << ", gmp " << gmp_version;
+    << ", mpfr " << mpfr_get_version() << ", mpfi " << MPFI_VERSION_STRING << ", gmp " << gmp_version << ", qd " << BOUNCER_QD_VERSION;
   return s.str();
 }
 

@@ -251,10 +251,14 @@ DoubleDouble ScalarTraits<DoubleDouble>::from_decimal(std::string_view text, lon
 }
 
 DoubleDouble ScalarTraits<DoubleDouble>::pow_3_5(const DoubleDouble& x) {
-  // (x^3)^(1/5), as for Mpfr: QD's nroot (a Newton step on the fifth root).
+  // (x^3)^(1/5), as for Mpfr: QD's nroot (measured up to 125 units of 2^-106 off), then one
+  // Newton step r - (r^5 - y) / (5 r^4) in dd, which brings it to a few units.
   if (x.is_nan() || x.hi() < 0) return DoubleDouble::nan_value();
   if (x.hi() == 0) return DoubleDouble();
-  return from_qd(nroot(to_qd(x * x * x), 5));
+  const DoubleDouble y = x * x * x;
+  const DoubleDouble r = from_qd(nroot(to_qd(y), 5));
+  const DoubleDouble r2 = r * r, r4 = r2 * r2;
+  return r - (r4 * r - y) / (5L * r4);
 }
 
 std::string ScalarTraits<DoubleDouble>::to_string(const DoubleDouble& x) {
@@ -275,11 +279,14 @@ std::string ScalarTraits<DoubleDouble>::to_string(const DoubleDouble& x) {
   mpfr_init2(v, prec);
   mpfr_set_d(v, x.hi(), MPFR_RNDN);
   mpfr_add_d(v, v, x.lo(), MPFR_RNDN);  // exact
-  // The shortest of 32, 33, ... digits that reads back to the same pair; past 40 the digit
-  // count doubles, and at the exact value's length (finite: the value is dyadic) reading back
-  // gives hi = RN(value) and lo = value - hi, the same canonical pair.
+  // Digits: those that read back to the same P-bit number (P = the bits the pair spans;
+  // mpfr_get_str_ndigits), which then reads back to the same pair unless the value sits
+  // within 2^-P of a tie of the double grid; up to four fewer are tried first (often enough)
+  // and more after, doubling past 2P digits, where the string is the exact (dyadic, finite)
+  // value: then hi = RN(value) and lo = value - hi, the same canonical pair.
+  const size_t exact_at_p = mpfr_get_str_ndigits(10, prec);
   std::string s;
-  for (size_t n = 32;; n = n < 40 ? n + 1 : 2 * n) {
+  for (size_t n = std::max<size_t>(17, exact_at_p - 4);; n = n < 2 * exact_at_p ? n + 1 : 2 * n) {
     s = mpfr_to_string_digits(v, MPFR_RNDN, n);
     if (from_decimal(s, 106) == x || n > 8192) break;
   }

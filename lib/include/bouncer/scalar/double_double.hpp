@@ -12,19 +12,25 @@
 // The algorithms are the accurate ones of Joldes, Muller and Popescu, "Tight and rigorous
 // error bounds for basic building blocks of double-word arithmetic" (ACM TOMS 44, 2017), with
 // their proved relative error bounds (u = 2^-53):
-//   dd + dd      AccurateDWPlusDW (Alg. 6)        3u^2 + 13u^3 ~ 2^-104.4
-//   dd * dd      DWTimesDW1 (Alg. 10, no FMA)     7u^2           ~ 2^-103.2
-//   dd / dd      long division with two corrections (QD's accurate_div: q1 = xh/yh, the
-//                remainder computed in dd, twice), tested against MPFR at 106 bits
-//   sqrt         one Newton correction of sqrt(hi) with the dd remainder (as QD), tested
-// Integer operands are converted exactly (|n| < 2^106). exp and log are QD's dd_real
-// functions (libqd, Hida, Li and Bailey; relative error a few 2^-104, tested against MPFR).
-// QD's own + and / are not used: Debian builds it with QD_SLOPPY_ADD (no IEEE add), whose
-// error is unbounded under cancellation, which the impact map meets at every impact.
+//   dd + dd      AccurateDWPlusDW                 3u^2 (+ O(u^3))
+//   dd * dd      DWTimesDW1 (no FMA)              7u^2
+//   dd / dd      DWDivDW2                         15u^2 (+ O(u^3))
+//   sqrt         one Newton correction of sqrt(hi) with the remainder x - s^2 from
+//                TwoProduct (as QD's sqrt); tested against MPFR
+// Integer operands (exact as doubles: |n| < 2^53) take the double-word-by-double
+// algorithms DWPlusFP, DWTimesFP1 and DWDivFP1 (bounds of 2u^2, 1.5u^2 and 3.5u^2 in JMP).
+// The tests measure the largest errors on random operands (tests/test_double_double.cpp):
+// 1.5, 3.0, 4.9 and 2.5 u^2 for +, *, / and sqrt. exp and log are QD's dd_real functions
+// (libqd, Hida, Li and Bailey; measured up to 18 u^2), x^(3/5) is QD's fifth root of x^3
+// corrected by one Newton step in dd (QD's alone: 125 u^2). QD's own + and / are not used:
+// Debian builds it without QD_IEEE_ADD (the sloppy add), whose relative error is unbounded
+// under cancellation, which the impact map meets at every impact.
 //
 // Decimal input: hi = RN(d), lo = RN(d - hi) for the exact rational d (GMP and MPFR, both
-// correctly rounded), then renormalised. Decimal output: the shortest decimal (>= 32 digits)
-// that reads back to the same pair, checked by reading it back; at worst the exact value.
+// correctly rounded), then renormalised. Decimal output: a decimal that reads back to the
+// same pair, checked by reading it back: about as many digits as the bits hi and lo span
+// (33 when lo fills the bits below hi, more when lo is much smaller: 0.25 - 4.7e-33 needs
+// 49), at worst the exact value.
 //
 // Overflow: values beyond about 2^996 overflow the Veltkamp splitting of the product; the
 // map's values are many orders of magnitude below, and a NaN or infinity is caught as
@@ -66,7 +72,7 @@ class DoubleDouble {
   DoubleDouble& operator*=(long n) { return *this = *this * n; }
   DoubleDouble& operator/=(long n) { return *this = *this / n; }
 
-  // AccurateDWPlusDW (JMP 2017, Alg. 6).
+  // AccurateDWPlusDW (JMP 2017).
   friend DoubleDouble operator+(const DoubleDouble& x, const DoubleDouble& y) {
     double sh, sl, th, tl;
     error_free::two_sum(x.hi_, y.hi_, sh, sl);
@@ -85,7 +91,7 @@ class DoubleDouble {
     return r;
   }
   friend DoubleDouble operator-(const DoubleDouble& x, const DoubleDouble& y) { return x + (-y); }
-  // DWTimesDW1 (JMP 2017, Alg. 10) with Dekker's TwoProduct.
+  // DWTimesDW1 (JMP 2017) with Dekker's TwoProduct.
   friend DoubleDouble operator*(const DoubleDouble& x, const DoubleDouble& y) {
     double ch, cl1;
     error_free::two_product(x.hi_, y.hi_, ch, cl1);
@@ -97,24 +103,27 @@ class DoubleDouble {
     r.set_fast(ch, cl3);
     return r;
   }
-  // Long division: q1 = xh / yh, r = x - q1 y in dd; q2 = rh / yh, r -= q2 y; q3 = rh / yh.
+  // DWDivDW2 (JMP 2017): th = xh / yh, the remainder x - th y in dd, one correction.
   friend DoubleDouble operator/(const DoubleDouble& x, const DoubleDouble& y) {
-    const double q1 = x.hi_ / y.hi_;
-    DoubleDouble r = x - y * DoubleDouble(q1);
-    const double q2 = r.hi_ / y.hi_;
-    r -= y * DoubleDouble(q2);
-    const double q3 = r.hi_ / y.hi_;
+    const double th = x.hi_ / y.hi_;
+    const DoubleDouble r = y.times(th);
+    const double pi_h = x.hi_ - r.hi_;
+    const double d_l = x.lo_ - r.lo_;
+    const double d = pi_h + d_l;
+    const double tl = d / y.hi_;
     DoubleDouble q;
-    q.set_fast(q1, q2);
-    return q + DoubleDouble(q3);
+    q.set_fast(th, tl);
+    return q;
   }
-  friend DoubleDouble operator+(const DoubleDouble& x, long n) { return x + DoubleDouble(n); }
-  friend DoubleDouble operator+(long n, const DoubleDouble& x) { return x + DoubleDouble(n); }
-  friend DoubleDouble operator-(const DoubleDouble& x, long n) { return x - DoubleDouble(n); }
-  friend DoubleDouble operator-(long n, const DoubleDouble& x) { return DoubleDouble(n) - x; }
-  friend DoubleDouble operator*(const DoubleDouble& x, long n) { return x * DoubleDouble(n); }
-  friend DoubleDouble operator*(long n, const DoubleDouble& x) { return x * DoubleDouble(n); }
-  friend DoubleDouble operator/(const DoubleDouble& x, long n) { return x / DoubleDouble(n); }
+  // With an integer: exact as a double (|n| < 2^53, every integer the map uses), then the
+  // double-word-by-double algorithms, cheaper than converting n to a pair.
+  friend DoubleDouble operator+(const DoubleDouble& x, long n) { return x.plus(static_cast<double>(n)); }
+  friend DoubleDouble operator+(long n, const DoubleDouble& x) { return x.plus(static_cast<double>(n)); }
+  friend DoubleDouble operator-(const DoubleDouble& x, long n) { return x.plus(-static_cast<double>(n)); }
+  friend DoubleDouble operator-(long n, const DoubleDouble& x) { return (-x).plus(static_cast<double>(n)); }
+  friend DoubleDouble operator*(const DoubleDouble& x, long n) { return x.times(static_cast<double>(n)); }
+  friend DoubleDouble operator*(long n, const DoubleDouble& x) { return x.times(static_cast<double>(n)); }
+  friend DoubleDouble operator/(const DoubleDouble& x, long n) { return x.divided_by(static_cast<double>(n)); }
   friend DoubleDouble operator/(long n, const DoubleDouble& x) { return DoubleDouble(n) / x; }
 
   // sqrt(x) = s + (x - s^2) / (2 s) with s = sqrt(xh) in double, the remainder in dd. 0 for
@@ -122,8 +131,11 @@ class DoubleDouble {
   friend DoubleDouble sqrt(const DoubleDouble& x) {
     if (x.hi_ <= 0) return x.hi_ == 0 ? DoubleDouble() : nan_value();
     const double s = std::sqrt(x.hi_);
-    const DoubleDouble rem = x - DoubleDouble(s) * DoubleDouble(s);
-    const double corr = rem.hi_ / (2 * s);
+    double ph, pl;
+    error_free::two_product(s, s, ph, pl);
+    // x - s^2: xh - ph is exact (Sterbenz: ph is within an ulp of xh).
+    const double rem = ((x.hi_ - ph) - pl) + x.lo_;
+    const double corr = rem / (2 * s);
     DoubleDouble r;
     r.set_sum(s, corr);
     return r;
@@ -172,6 +184,37 @@ class DoubleDouble {
     }
     lo_ = l - (s - h);
     hi_ = s;
+  }
+  // DWPlusFP (JMP 2017): x + y for a double y.
+  DoubleDouble plus(double y) const {
+    double sh, sl;
+    error_free::two_sum(hi_, y, sh, sl);
+    DoubleDouble r;
+    r.set_fast(sh, lo_ + sl);
+    return r;
+  }
+  // DWTimesFP1 (JMP 2017, without FMA): x y for a double y.
+  DoubleDouble times(double y) const {
+    double ch, cl1;
+    error_free::two_product(hi_, y, ch, cl1);
+    const double cl2 = lo_ * y;
+    double th, tl1;
+    error_free::fast_two_sum(ch, cl2, th, tl1);
+    DoubleDouble r;
+    r.set_fast(th, tl1 + cl1);
+    return r;
+  }
+  // DWDivFP1 (JMP 2017, without FMA): x / y for a double y.
+  DoubleDouble divided_by(double y) const {
+    const double th = hi_ / y;
+    double ph, pl;
+    error_free::two_product(th, y, ph, pl);
+    const double dh = hi_ - ph;
+    const double dt = dh - pl;
+    const double d = dt + lo_;
+    DoubleDouble r;
+    r.set_fast(th, d / y);
+    return r;
   }
   // TwoSum: any order of magnitude.
   void set_sum(double h, double l) {

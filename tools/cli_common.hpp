@@ -223,7 +223,7 @@ inline void add_model_options(OptionSet& o) {
 }
 
 // Help text of --precision for the commands that follow point orbits.
-inline const char* kPointPrecisionHelp = "double (default) | long | quad | mpfr:BITS (16 <= BITS <= 1048576)";
+inline const char* kPointPrecisionHelp = "double (default) | long | dd | quad | mpfr:BITS (16 <= BITS <= 1048576)";
 
 // The single initial condition (--theta, --v) of an orbit command, validated against the model.
 inline void add_start_options(OptionSet& o) {

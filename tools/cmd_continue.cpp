@@ -436,7 +436,7 @@ Command add_continue(CLI::App& app) {
   opts->add_list("guess", "Starting point theta,v near the orbit at the start value (required)");
   opts->add("vary", "Parameter to continue in: a (default) | eps (constant model) | c (veldep model)");
   opts->add("range", "Interval LO:HI of the parameter (required); the start is the model's value (default LO)");
-  opts->add("precision", "double (default) | long | quad | mpfr:BITS (16 <= BITS <= 1048576)");
+  opts->add("precision", "double (default) | long | dd | quad | mpfr:BITS (16 <= BITS <= 1048576)");
   opts->add("step", "First continuation step, decimal in (0, HI - LO] (default (HI - LO)/100)");
   opts->add("max-points", "Most branch points, both directions together, integer in [2, 100000] (default 2000)");
   opts->add("max-iter", "Newton iterations per corrector run, integer in [1, 10000] (default 30)");

@@ -17,7 +17,7 @@ Command add_orbit(CLI::App& app) {
   opts->add_list("theta", "Initial phase(s) in [0, 1); a comma list runs several orbits");
   opts->add_list("v", "Initial velocity(ies) after impact, >= the wall velocity at theta (<= 1e15)");
   opts->add("steps", "Number of impact-map steps, integer >= 0 (default 10)");
-  opts->add("precision", "double | long | quad | mpfr:BITS | interval:BITS (16 <= BITS <= 1048576)");
+  opts->add("precision", "double | long | dd | quad | mpfr:BITS | interval:BITS | interval:double (16 <= BITS <= 1048576)");
   opts->add("format", "csv (default) | json | table");
   opts->add("method", "Interval runs: lohner (default, as the certified commands: Lohner's QR method, "
                       "tight enclosures, about 5x the cost per step) | naive (iterate the box)");

@@ -691,7 +691,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"elastic", "constant", "veldep", "all"}));
   app.add_option("--wall", ch.wall, "triangle | sawtooth | asymmetric | knots | all (default all)")
       ->check(CLI::IsMember({"triangle", "sawtooth", "asymmetric", "knots", "all"}));
-  app.add_option("--precision", precision_text, "double (default) | long | quad | mpfr:BITS");
+  app.add_option("--precision", precision_text, "double (default) | long | dd | quad | mpfr:BITS");
   app.add_option("--first-start", first_start, "Index of the first start (default 0): --first-start I --states 1 "
                                                "re-runs start I of a seed alone")
       ->check(CLI::Range(0LL, 1000000000000LL));

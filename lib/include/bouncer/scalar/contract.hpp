@@ -14,7 +14,9 @@
 //                      fixed_bits      constant: significand bits of every value, or 0 when
 //                                      each value carries its own precision (family:BITS);
 //                      from_decimal(text, bits)  a decimal (validated before, by Decimal)
-//                                      correctly rounded (points) or enclosed (intervals);
+//                                      correctly rounded (points; dd: hi = RN(d) and
+//                                      lo = RN(d - hi), see scalar/double_double.hpp) or
+//                                      enclosed (intervals);
 //                                      throws std::invalid_argument for text that is not a
 //                                      number at all;
 //                      from_int(n, bits)  exact (for |n| < 2^bits);

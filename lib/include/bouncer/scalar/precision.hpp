@@ -15,13 +15,13 @@
 namespace bouncer {
 
 struct Precision {
-  // One enumerator per type of the scalar set, named there: double_, long_double, quad,
+  // One enumerator per type of the scalar set, named there: double_, long_double, dd, quad,
   // mpfr, interval.
 #define BOUNCER_PRECISION_KIND(T, kind) kind,
   enum class Kind { BOUNCER_FOR_EACH_SCALAR(BOUNCER_PRECISION_KIND) } kind = Kind::double_;
 #undef BOUNCER_PRECISION_KIND
   long bits = 53;  // significand bits really used
-  std::string text() const;  // double | long | quad | mpfr:BITS | interval:BITS
+  std::string text() const;  // double | long | dd | quad | mpfr:BITS | interval:BITS | interval:double
   bool is_interval() const;  // an interval type (certified enclosures)
   bool is_analysis() const;  // an analysis scalar (follows one point orbit)
 };

@@ -10,6 +10,7 @@
 #     its certified steps, so every point whose double orbit sticks is marked "differs";
 #   - double's class is recomputed by `bouncer basin` without --certify (same column);
 #   - PREFIX-artefacts.png is written; bad options exit 2 with one line and no file;
+#   - threads and shards: --threads 1, --threads 2 and two shards merged give the same rows;
 #   - bifurcation --certify: each column's certificate equals certify-sticking's at the exact
 #     double value of a (printed exactly), and at eps = 0.5, a ~ 15.2 double's sticking at step
 #     283 is refuted (the exact orbit does not stick in 700 steps).
@@ -130,6 +131,35 @@ expect_bad bif-eps bifurcation --model constant --a 20 --eps 0.5 --vary eps --ra
 expect_bad bif-carry bifurcation --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
 expect_bad start-bits-typo certify-sticking --eps 0.5 --a 24 --start-bits doubel
 expect_bad bif-veldep bifurcation --model veldep --c 1000 --range 20:21 --samples 2 --certify
+
+# The grid runner's threads and shards: one thread, two threads, and two shards merged give the
+# same certified rows and the same JSON (apart from the invocation and the file names).
+cg=(--model constant --transient 300 --steps 100 --quiet --eps 0.5 --a 24 --grid 12x8 --certify)
+"$BOUNCER" basin "${cg[@]}" --threads 1 --out g1 || fail g1 "exit $?"
+"$BOUNCER" basin "${cg[@]}" --threads 2 --out g2 || fail g2 "exit $?"
+"$BOUNCER" basin "${cg[@]}" --shard 0/2 --out gs || fail gs0 "exit $?"
+[[ ! -e gs.csv ]] || fail gs0 "a shard wrote the outputs before the merge"
+"$BOUNCER" basin "${cg[@]}" --shard 1/2 --out gs || fail gs1 "exit $?"
+"$BOUNCER" merge gs || fail merge "exit $?"
+python3 - <<'PY' || fail threads-shards "see above"
+import json, sys
+def rows(p):
+    return [l for l in open(p + ".csv") if not l.startswith("#")]
+def doc(p):
+    j = json.load(open(p + ".json"))
+    j["provenance"].pop("invocation", None)
+    j.pop("files", None)
+    return j
+bad = 0
+for p in ("g2", "gs"):
+    if rows(p) != rows("g1"):
+        print(f"{p}.csv rows differ from g1.csv"); bad += 1
+    if doc(p) != doc("g1"):
+        print(f"{p}.json differs from g1.json beyond invocation and files"); bad += 1
+if len(rows("g1")) != 1 + 12 * 8:
+    print("g1.csv: expected 96 rows"); bad += 1
+sys.exit(bad > 0)
+PY
 
 [[ $failures -eq 0 ]] && echo "certified_basin: all checks passed"
 exit $((failures > 0))

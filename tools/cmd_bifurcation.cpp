@@ -3,8 +3,8 @@
 // rows (param, n, theta, v, sticking), a density image of theta (or v) against the
 // parameter with the sticking releases marked in red at theta = 1/2 as in the paper, and a
 // JSON summary. Each parameter value is one grid item (independent unless --carry).
-// --certify (constant model, a varied, double): each column also gets a certified answer for
-// the exact orbit at the exact double value of a (verify/certified_point.hpp) and double's
+// --certify (constant model, a or eps varied, double): each column also gets a certified answer
+// for the exact orbit at the exact double value of the parameter (verify/certified_point.hpp) and double's
 // class of the same orbit; the picture shades the columns where double is refuted
 // (vermillion) or nothing is certified (grey).
 #include <cmath>
@@ -69,9 +69,9 @@ BifurcationRequest bifurcation_request(const Options& given) {
   r.certify = certify == "true";
   if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is only used with --certify");
   if (r.certify) {
-    if (r.model.law != Law::constant || r.vary != "a")
-      throw InputError("certify", "bifurcation --certify needs --model constant and --vary a (certified sticking periods "
-                                  "and trapping sets over a); other models and parameters are not implemented");
+    if (r.model.law != Law::constant || (r.vary != "a" && r.vary != "eps"))
+      throw InputError("certify", "bifurcation --certify needs --model constant and --vary a or eps (certified sticking "
+                                  "periods and trapping sets); other models and parameters are not implemented");
     if (r.carry) throw InputError("carry", "cannot be used with --certify (each column is certified from its own start)");
     if (r.precision.kind != Precision::Kind::double_)
       throw InputError("precision", "with --certify the twin run is double; got '" + r.precision.text() + "'");
@@ -131,10 +131,12 @@ struct Sweep {
     if constexpr (std::is_same_v<T, double>) {
       CertifyPointOptions opt = r.cert;
       const mpq_class exact(p);
-      opt.a_range = std::make_pair(exact, exact);
+      // The column's parameter is the double p exactly: a dyadic number, a finite decimal.
+      ModelSpec spec = r.model;
+      (r.vary == "a" ? spec.a : spec.eps) = *Decimal::parse(exact_decimal(exact));
       opt.max_attractor_period = std::min<long>(64, std::max<long>(1, r.record / 2));
       ReleaseCache releases;
-      const CertifiedPoint c = certify_point(r.model, r.ic, opt, releases);
+      const CertifiedPoint c = certify_point(spec, r.ic, opt, releases);
       ClassifyOptions co;
       co.transient = r.transient;
       co.steps = std::max<long>(8, r.record);
@@ -260,7 +262,7 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
       const int col = r.samples == 1 ? 0 : static_cast<int>(static_cast<double>(k) * nx / r.samples);
       if (cell[7] == "differs") column_bg[static_cast<size_t>(col)] = refuted_bg;
       else if (cell[7] == "undecided" && column_bg[static_cast<size_t>(col)].r == 255) column_bg[static_cast<size_t>(col)] = undecided_bg;
-      columns.push_back({{"a", cell[0]}, {"class", cell[1]}, {"period", std::atol(cell[2].c_str())},
+      columns.push_back({{r.vary, cell[0]}, {"class", cell[1]}, {"period", std::atol(cell[2].c_str())},
                          {"certified_steps", std::atoll(cell[3].c_str())}, {"scalar", cell[4]}, {"double_class", cell[5]},
                          {"double_period", std::atol(cell[6].c_str())}, {"agreement", cell[7]}});
     }
@@ -375,7 +377,7 @@ Command add_bifurcation(CLI::App& app) {
   sub->add_flag("--carry", *carry, "Start each value from the last state of the previous one (one worker)");
   auto certify = std::make_shared<bool>(false);
   sub->add_flag("--certify", *certify,
-                "Certify each column (constant model, --vary a): the exact orbit at the exact double value of a; shade the "
+                "Certify each column (constant model, --vary a or eps): the exact orbit at the exact double value of the parameter; shade the "
                 "columns where double's class is refuted or nothing is certified");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, carry, certify, flags](const std::string& argv_text) {

@@ -13,7 +13,8 @@
 #   - threads and shards: --threads 1, --threads 2 and two shards merged give the same rows;
 #   - bifurcation --certify: each column's certificate equals certify-sticking's at the exact
 #     double value of a (printed exactly), and at eps = 0.5, a ~ 15.2 double's sticking at step
-#     283 is refuted (the exact orbit does not stick in 700 steps).
+#     283 is refuted (the exact orbit does not stick in 700 steps); with --vary eps each column
+#     is certified at the exact double eps, as certify-sticking there.
 # Usage: bash certified_basin.sh <bouncer-binary> <source-dir>
 set -uo pipefail
 BOUNCER=${1:?usage: bash certified_basin.sh <bouncer-binary> <source-dir>}
@@ -114,6 +115,28 @@ check(jb["double_vs_certified"]["differs"] >= 1, "the refuted column is counted"
 sys.exit(1 if bad else 0)
 PY
 
+# bifurcation --certify --vary eps: each column is the exact orbit at the exact double eps;
+# its certificate equals certify-sticking's there (eps = 0.49 as a double: sticks, period 31).
+"$BOUNCER" bifurcation --model constant --a 15 --vary eps --range 0.49:0.51 --samples 3 --transient 600 --record 100 \
+  --theta 0.5 --v 4 --certify --max-bits 256 --quiet --out be || fail be "exit $?"
+python3 - "$BOUNCER" <<'PY' || fail bif-eps "see above"
+import json, subprocess, sys
+bouncer = sys.argv[1]
+cols = json.load(open("be.json"))["summary"]["columns"]
+bad = 0
+if [c["eps"][:6] for c in cols] != ["0.4899", "0.5", "0.5100"]:
+    print("eps columns: %s" % [c["eps"] for c in cols]); bad += 1
+for c in cols:
+    h = json.loads(subprocess.run([bouncer, "certify-sticking", "--a", "15", "--eps", c["eps"], "--max-steps", "700",
+                                   "--max-bits", "256", "--json"], capture_output=True, text=True).stdout)
+    want = {"sticks": "sticking", "no_sticking_within_max_steps": "no_sticking"}.get(h["outcome"], h["outcome"])
+    if want != c["class"] or (want == "sticking" and h["period"] != c["period"]):
+        print("eps=%s: column %s, certify-sticking %s" % (c["eps"], c, h["statement"])); bad += 1
+if not (cols[0]["class"] == "sticking" and cols[0]["period"] == 31):
+    print("eps = 0.49: want sticking period 31, got %s" % cols[0]); bad += 1
+sys.exit(bad > 0)
+PY
+
 # Bad input: exit 2, one line, no files.
 expect_bad() {
   local name=$1 command=$2; shift 2
@@ -127,7 +150,6 @@ expect_bad veldep basin --model veldep --a 25 --c 1000 --grid 4x4 --certify
 expect_bad twin basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --precision mpfr:100
 expect_bad bits basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --max-bits 9999
 expect_bad bits-alone basin --model constant --eps 0.5 --a 24 --grid 4x4 --max-bits 128
-expect_bad bif-eps bifurcation --model constant --a 20 --eps 0.5 --vary eps --range 0.5:0.6 --samples 2 --certify
 expect_bad bif-carry bifurcation --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
 expect_bad start-bits-typo certify-sticking --eps 0.5 --a 24 --start-bits doubel
 expect_bad bif-veldep bifurcation --model veldep --c 1000 --range 20:21 --samples 2 --certify

@@ -1484,6 +1484,7 @@ void print_row(const Row& r) {
 
 struct Options {
   bool quick = false;
+  bool check_only = false;  // --check: the bitwise floor checks, no timing (a ctest test)
   double time_s = 0.2;
   int reps = 5;
   std::string model_filter;
@@ -1494,14 +1495,15 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
   std::printf(
-      "usage: bench_step [--quick] [--time SECONDS] [--reps N] [--model SUBSTRING]\n"
+      "usage: bench_step [--quick | --check] [--time SECONDS] [--reps N] [--model SUBSTRING]\n"
       "       bench_step --profile plain|double|raw|mpfr|rawi|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
       "         (runs one runner N steps without timing, for valgrind --tool=callgrind;\n"
       "          raw = raw-MPFR floor, rawi = raw-MPFI floor, interval = ImpactMap<Mpfi>)\n"
       "  Times ImpactMap<T>::step for each model and scalar type next to hand-written floors\n"
       "  (plain double; raw MPFR and raw MPFI with preallocated temporaries), after checking\n"
       "  bitwise that the floors compute the same orbits (and, for MPFI, are undecided at the\n"
-      "  same steps). --quick: a small subset, short runs (smoke test).\n"
+      "  same steps). --quick: a small subset, short runs (smoke test). --check: the --quick\n"
+      "  checks only, no timing (registered with ctest as bench.step_floors_match).\n"
       "  Exit code 1 if a floor does not reproduce ImpactMap bitwise; timings are never checked.\n");
   std::exit(code);
 }
@@ -1515,6 +1517,7 @@ Options parse_args(int argc, char** argv) {
       return argv[++i];
     };
     if (a == "--quick") o.quick = true;
+    else if (a == "--check") o.check_only = o.quick = true;
     else if (a == "--no-experiment") {}  // accepted for old command lines: there are no experiments now
     else if (a == "--time") o.time_s = std::atof(value().c_str());
     else if (a == "--reps") o.reps = std::atoi(value().c_str());
@@ -1612,6 +1615,10 @@ int main(int argc, char** argv) {
   }
   std::fflush(stdout);
 
+  if (opt.check_only) {
+    std::printf("# %s\n", all_ok ? "every floor reproduces ImpactMap bitwise" : "FAILED: a floor does not reproduce ImpactMap bitwise");
+    return all_ok ? 0 : 1;
+  }
   // --- timing --------------------------------------------------------------------------
   std::printf("#\n");
   print_header_row();

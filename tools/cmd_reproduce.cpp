@@ -53,7 +53,9 @@ namespace fs = std::filesystem;
 using json = nlohmann::ordered_json;
 
 struct Panel {
-  std::string label, figure, panel, caption, note, scene, status, reason;
+  // twin_of: not a panel of the paper but bouncer's certified twin of one (label
+  // fig:NAME-certified): the same picture from `basin --certify`, with its artefact map.
+  std::string label, figure, panel, caption, note, scene, status, reason, twin_of;
   std::vector<std::pair<std::string, std::string>> params;
   std::vector<std::string> quick, full;
   std::string name() const { return label.rfind("fig:", 0) == 0 ? label.substr(4) : label; }
@@ -131,6 +133,7 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
       p.scene = str(*t, "scene", where, false);
       p.status = str(*t, "status", where);
       p.reason = str(*t, "reason", where, false);
+      p.twin_of = str(*t, "twin_of", where, false);
       if (const toml::table* params = (*t)["params"].as_table())
         for (const auto& [k, v] : *params) p.params.emplace_back(std::string(k.str()), v.value<std::string>().value_or(""));
       p.quick = argv_of(*t, "quick", where);
@@ -480,6 +483,8 @@ int run_reproduce(const Options_& o) {
     // (vector) for print. All picture commands take --format.
     it.outputs = {"panels/" + p.name() + ".png", "panels/" + p.name() + ".pdf", "panels/" + p.name() + ".svg",
                   "panels/" + p.name() + ".json", "panels/" + p.name() + ".csv"};
+    if (!p.twin_of.empty())  // a certified twin also draws where double is wrong
+      for (const char* ext : {".png", ".pdf", ".svg"}) it.outputs.push_back("panels/" + p.name() + "-artefacts" + ext);
     it.exec = it.argv;
     it.exec.insert(it.exec.end(), {"--out", prefix, "--quiet", "--format", "png,pdf,svg"});
     it.stdout_path = (dir / "logs" / (p.name() + ".stdout")).string();
@@ -610,6 +615,7 @@ int run_reproduce(const Options_& o) {
       json j{{"label", p.label}, {"figure", p.figure}, {"status", it.state == "skipped" ? "pending" : it.state == "cached" ? "done" : it.state}};
       // (a resumed item is "done" here: whether it was rerun is a run detail, kept under times)
       if (it.state == "skipped") j["reason"] = p.reason;
+      if (!p.twin_of.empty()) j["twin_of"] = p.twin_of;
       if (!it.argv.empty()) j["command"] = command_text(it.argv);
       if (it.state == "done" || it.state == "cached") j["files"] = it.outputs;
       if (it.state == "failed") j["problem"] = it.problem;
@@ -697,10 +703,14 @@ int run_reproduce(const Options_& o) {
       figure = p.figure;
       md << "\n### " << figure << "\n\n> " << md_cell(p.caption) << "\n";
     }
-    md << "\n#### " << p.label << (p.panel.empty() ? "" : " " + p.panel) << "\n\n";
-    if (it.state == "done" || it.state == "cached")
-      md << "![" << p.label << "](panels/" << p.name() << ".png)\n\n[PDF](panels/" << p.name() << ".pdf) · [SVG](panels/"
-         << p.name() << ".svg) · [CSV](panels/" << p.name() << ".csv)\n\n";
+    md << "\n#### " << p.label << (p.panel.empty() ? "" : " " + p.panel)
+       << (p.twin_of.empty() ? "" : " (certified twin of " + p.twin_of + ", not a panel of the paper)") << "\n\n";
+    if (it.state == "done" || it.state == "cached") {
+      md << "![" << p.label << "](panels/" << p.name() << ".png)\n\n";
+      if (!p.twin_of.empty()) md << "![where double is wrong](panels/" << p.name() << "-artefacts.png)\n\n";
+      md << "[PDF](panels/" << p.name() << ".pdf) · [SVG](panels/" << p.name() << ".svg) · [CSV](panels/" << p.name()
+         << ".csv)\n\n";
+    }
     else if (it.state == "skipped")
       md << "**Pending:** " << p.reason << ".\n\n";
     else
@@ -762,13 +772,16 @@ int run_reproduce(const Options_& o) {
     h << "<figure id=\"" << html_escape(p.label) << "\">\n";
     if (it.state == "done" || it.state == "cached")
       h << "<img src=\"panels/" << html_escape(p.name()) << ".png\" alt=\"" << html_escape(p.label) << "\">\n"
+        << (p.twin_of.empty() ? std::string()
+                              : "<img src=\"panels/" + html_escape(p.name()) + "-artefacts.png\" alt=\"where double is wrong\">\n")
         << "<p class=\"files\"><a href=\"panels/" << html_escape(p.name()) << ".pdf\">PDF</a> · <a href=\"panels/"
         << html_escape(p.name()) << ".svg\">SVG</a> · <a href=\"panels/" << html_escape(p.name()) << ".csv\">CSV</a></p>\n";
     else if (it.state == "skipped")
       h << "<p><strong>Pending:</strong> " << html_escape(p.reason) << ".</p>\n";
     else
       h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
-    h << "<figcaption>" << html_escape(p.label) << (p.panel.empty() ? "" : " " + html_escape(p.panel)) << ". Paper: "
+    h << "<figcaption>" << html_escape(p.label) << (p.panel.empty() ? "" : " " + html_escape(p.panel))
+      << (p.twin_of.empty() ? "" : " (certified twin of " + html_escape(p.twin_of) + ", not a panel of the paper)") << ". Paper: "
       << html_escape(p.caption) << "</figcaption>\n";
     if (!p.params.empty()) {
       h << "<p>Parameters:";

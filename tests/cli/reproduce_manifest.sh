@@ -8,6 +8,8 @@
 #     \label{fig:...} in order;
 #   * every panel is ready (quick and full commands, starting with bouncer) or pending with a
 #     reason; a ready panel's caption is the .tex caption of its figure (when the .tex is there);
+#   * a certified twin (twin_of) is labelled PANEL-certified, in PANEL's figure, with its
+#     caption, and its commands certify;
 #   * every claim has an expected verdict from the five words, a run command and checks, and
 #     together the claims cover all 11 claim groups of DESIGN.md section 4 and README rows
 #     1-15.
@@ -21,11 +23,28 @@ manifest, labels_file, tex = sys.argv[1:4]
 m = tomllib.load(open(manifest, "rb"))
 errors = []
 labels = [l.strip() for l in open(labels_file) if l.strip() and not l.startswith("#")]
-panels = m.get("panel", [])
+all_panels = m.get("panel", [])
+# Certified twins (twin_of) are bouncer's, not the paper's: label = the twin's label +
+# "-certified", same figure, a `basin --certify` command; the rest of the checks are on the
+# paper's panels.
+panels = [p for p in all_panels if "twin_of" not in p]
+twins = [p for p in all_panels if "twin_of" in p]
 panel_labels = [p["label"] for p in panels]
 figure_labels = {p["figure"] for p in panels}
 if len(set(panel_labels)) != len(panel_labels):
     errors.append("duplicate panel labels")
+for t in twins:
+    of = next((p for p in panels if p["label"] == t["twin_of"]), None)
+    if of is None:
+        errors.append(f"{t['label']}: twin_of {t['twin_of']!r} is not a panel of the manifest")
+        continue
+    if t["label"] != of["label"] + "-certified" or t["figure"] != of["figure"]:
+        errors.append(f"{t['label']}: a twin is labelled {of['label']}-certified, in figure {of['figure']}")
+    if t["caption"] != of["caption"]:
+        errors.append(f"{t['label']}: a twin shows its panel's caption")
+    for v in ("quick", "full"):
+        if "--certify" not in t.get(v, []):
+            errors.append(f"{t['label']}: a twin's '{v}' command must certify (--certify)")
 for l in labels:
     if l not in panel_labels and l not in figure_labels:
         errors.append(f"{l}: in the paper, not in the manifest")

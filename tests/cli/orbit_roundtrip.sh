@@ -2,7 +2,7 @@
 # End-to-end: printed numbers round-trip. The impact map is deterministic and each printed
 # theta/v reads back as exactly the same number at the same precision, so restarting from
 # the printed state of row n and taking one step must print, character for character, the
-# state of row n+1 of the original run. Checked for double and mpfr:200 on orbits that go
+# state of row n+1 of the original run. Checked for double, dd and mpfr:200 on orbits that go
 # through impacts on both wall segments, indirect flights and sticking (release at (1/2, 4)).
 # Usage: bash orbit_roundtrip.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -88,9 +88,13 @@ check mpfr200-096 40 mpfr:200 --model constant --a 28.82 --eps 0.96 -- 0.5 4
 # elastic, a = 19
 check double-elastic 40 double --model elastic --a 19 -- 0.2125 28
 check mpfr200-elastic 40 mpfr:200 --model elastic --a 19 -- 0.2125 28
+# dd: a printed pair must read back as the same hi and lo (its digits span both words).
+check dd-default 30 dd --model constant --a 24 --eps 0.5 -- 0.05 10.5
+check dd-096 40 dd --model constant --a 28.82 --eps 0.96 -- 0.5 4
+check dd-veldep 40 dd --model veldep --a 25 --c 1000 -- 0.1 5
 
 if [[ $failures -ne 0 ]]; then
   echo "orbit_roundtrip.sh: $failures orbit(s) do not round-trip" >&2
   exit 1
 fi
-echo "orbit_roundtrip.sh: printed states round-trip through the command line (double, mpfr:200)"
+echo "orbit_roundtrip.sh: printed states round-trip through the command line (double, dd, mpfr:200)"

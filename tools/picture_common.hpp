@@ -418,6 +418,129 @@ int run_scan(const Options& o, const RunFlags& f);
 const std::set<std::string>& lyapunov_curve_keys();
 int run_lyapunov_curve(const Options& o, const RunFlags& f);
 
+// A certified map (basin --certify, scan --certify): items "X,Y,class,period,certified_steps,
+// scalar,double_class,double_period,agreement" (verify/certified_point.hpp and the double twin),
+// drawn as two pictures, PREFIX.png (the certified classes, grey = undecided) and
+// PREFIX-artefacts.png (where double's class is refuted), with the CSV and the JSON summary
+// (m.summary first, then the counts).
+struct CertifiedMap {
+  std::string x_name, y_name;  // CSV column names of the two coordinates
+  long nx = 0, ny = 0;         // item i: column i mod nx, row i / nx (bottom row first)
+  mpq_class x0, x1, y0, y1;    // the window
+  std::string title, subtitle, xlabel, ylabel, twin_precision;
+  long long max_steps = 0;
+  long max_bits = 0;
+  nlohmann::ordered_json summary;
+};
+
+inline std::string certified_label(const std::string& cls, long period, long long max_steps, long max_bits) {
+  if (cls == "sticking") return "sticking, k = " + std::to_string(period);
+  if (cls == "fixed") return "never sticks: trapped at a fixed point";
+  if (cls == "periodic") return "never sticks: trapped, period " + std::to_string(period);
+  if (cls == "no_sticking") return "no (further) sticking in >= " + std::to_string(max_steps) + " steps";
+  if (cls == "undecided") return "undecided at " + std::to_string(max_bits) + " bits";
+  return "outside the phase space (v < wall velocity)";
+}
+
+inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::string>& items, const RunFlags& f,
+                                 const Provenance& prov) {
+  std::string csv = m.x_name + "," + m.y_name + ",class,period,certified_steps,scalar,double_class,double_period,agreement\n";
+  struct Cell {
+    std::string cls;
+    long period = 0;
+    std::string agreement;
+  };
+  std::vector<Cell> cells(items.size());
+  std::map<std::pair<std::string, long>, long> count;
+  std::map<std::string, long> agreement;
+  std::map<std::string, long> scalars;
+  for (size_t i = 0; i < items.size(); ++i) {
+    csv += items[i];
+    csv += '\n';
+    std::istringstream ls(items[i]);
+    std::string cell[9];
+    for (auto& c : cell) std::getline(ls, c, ',');
+    cells[i] = {cell[2], std::atol(cell[3].c_str()), cell[8]};
+    ++count[{cells[i].cls, cells[i].period}];
+    ++agreement[cell[8]];
+    if (!cell[5].empty()) ++scalars[cell[5]];
+  }
+  const long outside = agreement.count("outside") ? agreement["outside"] : 0;
+  const double inside = static_cast<double>(items.size()) - static_cast<double>(outside);
+  auto share = [&](long n) {
+    char pct[32];
+    std::snprintf(pct, sizeof pct, " (%.1f%%)", inside > 0 ? 100.0 * n / inside : 0.0);
+    return std::string(pct);
+  };
+  std::vector<std::pair<std::pair<std::string, long>, long>> order(count.begin(), count.end());
+  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) {
+    return x.second != y.second ? x.second > y.second : x.first < y.first;
+  });
+  const Palette palette = f.picture.palette;
+  std::map<std::pair<std::string, long>, Rgb> color;
+  int periodic_rank = 0, sticking_rank = 0;
+  for (const auto& [k, n] : order) {
+    if (k.first == "no_sticking") color[k] = Rgb{86, 180, 233};  // sky blue: a weaker statement
+    else color[k] = attractor_color(k.first, periodic_rank, sticking_rank, palette);
+    if (k.first == "periodic") ++periodic_rank;
+    if (k.first == "sticking") ++sticking_rank;
+  }
+  auto make_figure = [&](const std::string& title) {
+    ImageFigure fig;
+    fig.raster.nx = static_cast<int>(m.nx);
+    fig.raster.ny = static_cast<int>(m.ny);
+    set_exact_window(fig.raster, m.x0, m.x1, m.y0, m.y1);
+    fig.raster.pixels.resize(items.size());
+    fig.title = title;
+    fig.subtitle = m.subtitle;
+    fig.xlabel = m.xlabel;
+    fig.ylabel = m.ylabel;
+    fig.width = 1000;
+    fig.height = 700;
+    fig.metadata = png_metadata(prov, title);
+    return fig;
+  };
+  auto pixel = [&](size_t i) {
+    const long col = static_cast<long>(i) % m.nx, row = m.ny - 1 - static_cast<long>(i) / m.nx;
+    return static_cast<size_t>(row * m.nx + col);
+  };
+  ImageFigure cert = make_figure(m.title);
+  for (size_t i = 0; i < items.size(); ++i) cert.raster.pixels[pixel(i)] = color[{cells[i].cls, cells[i].period}];
+  for (const auto& [k, n] : order)
+    cert.raster.legend.emplace_back(certified_label(k.first, k.second, m.max_steps, m.max_bits) +
+                                        (k.first == "outside" ? "" : share(n)),
+                                    color[k]);
+  // The artefact map: where double's class differs from the certified one.
+  const Rgb agree_rgb{205, 205, 205}, differ_rgb = palette == Palette::paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0},
+            undecided_rgb{90, 90, 90}, outside_rgb{255, 255, 255};
+  ImageFigure art = make_figure("Where double is wrong: double's class against the certified one");
+  for (size_t i = 0; i < items.size(); ++i) {
+    const std::string& a = cells[i].agreement;
+    art.raster.pixels[pixel(i)] = a == "agrees" ? agree_rgb : a == "differs" ? differ_rgb : a == "undecided" ? undecided_rgb : outside_rgb;
+  }
+  auto n_of = [&](const char* k) { return agreement.count(k) ? agreement[k] : 0L; };
+  art.raster.legend.emplace_back("double agrees" + share(n_of("agrees")), agree_rgb);
+  art.raster.legend.emplace_back("double differs: an artefact" + share(n_of("differs")), differ_rgb);
+  art.raster.legend.emplace_back("no certified answer" + share(n_of("undecided")), undecided_rgb);
+
+  nlohmann::ordered_json s = m.summary;
+  s["points"] = items.size();
+  s["points_in_phase_space"] = items.size() - static_cast<size_t>(outside);
+  s["max_steps"] = m.max_steps;
+  s["schedule"] = "interval:double, then MPFI at 64, 128, ... up to " + std::to_string(m.max_bits) + " bits";
+  nlohmann::ordered_json types = nlohmann::ordered_json::array();
+  for (const auto& [k, n] : order)
+    types.push_back({{"class", k.first}, {"period", k.second}, {"points", n},
+                     {"share_of_phase_space", k.first == "outside" || inside <= 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(n / inside)}});
+  s["classes"] = types;
+  s["double_vs_certified"] = {{"agrees", n_of("agrees")}, {"differs", n_of("differs")}, {"undecided", n_of("undecided")}};
+  s["decided_by"] = scalars;
+  s["twin_precision"] = m.twin_precision;
+  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, cert, fmt, f.picture.render); }, s,
+                {{"artefacts", [&](const std::string& path, ImageFormat fmt) { write_figure(path, art, fmt, f.picture.render); }}});
+}
+
+
 // A grid job whose items are computed by Grid<T> (T the point type of req.precision), in
 // tiles of about items/64 (at most max_tile) items; `finish(req, items, flags, provenance)`
 // writes the outputs once every tile is done (not after a shard run).

@@ -9,6 +9,8 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/verify/certified_point.hpp"
+#include "bouncer/verify/sticking.hpp"  // exact_decimal
 #include "commands.hpp"
 #include "picture_common.hpp"
 
@@ -36,6 +38,12 @@ struct ScanRequest {
   Precision precision;
   std::string show = "regular";
   bool fixed_point_curves = false;  // --curves fixed-points: the paper's eq. 5 over the picture
+  // --certify (constant model, double twin): per parameter point, the certificate of the orbit
+  // of one exact start (--theta, --v; default the release state (1/2, 4), which every sticking
+  // orbit of the triangle wall passes through) at the exact double (a, eps).
+  bool certify = false;
+  InitialCondition start;
+  CertifyPointOptions cert;
 };
 
 ScanRequest scan_request(const Options& given) {
@@ -86,6 +94,26 @@ ScanRequest scan_request(const Options& given) {
   if (curves == "fixed-points" && r.y != "eps")
     throw InputError("curves", "fixed-points needs --model constant (the curves are in the (a, eps) plane)");
   r.fixed_point_curves = curves == "fixed-points";
+  const std::string certify = o.get_or("certify", "false");
+  if (certify != "true" && certify != "false") throw InputError("certify", "must be true or false (got '" + certify + "')");
+  r.certify = certify == "true";
+  for (const char* k : {"max-bits", "theta", "v"})
+    if (o.has(k) && !r.certify) throw InputError(k, "is only used with --certify (the certified start; the classified starts are --ics, --theta-range, --v-range)");
+  if (r.certify) {
+    if (law != Law::constant)
+      throw InputError("certify", "scan --certify needs --model constant (certified sticking periods and trapping sets); "
+                                  "certified scans of the velocity-dependent model are not implemented");
+    if (r.precision.kind != Precision::Kind::double_)
+      throw InputError("precision", "with --certify the twin run is double (the artefact map compares double with the "
+                                    "certified answer); got '" + r.precision.text() + "'");
+    Options m = o;
+    m.set("theta", o.get_or("theta", "0.5"));
+    m.set("v", o.get_or("v", "4"));
+    r.start = start_from(m, r.model);  // the wall does not depend on (a, eps): valid at every point
+    r.cert.max_steps = r.classify.transient + r.classify.steps;
+    r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
+    r.cert.max_attractor_period = r.classify.max_period;
+  }
   return r;
 }
 
@@ -140,6 +168,61 @@ struct ScanGrid {
     return out.str();
   }
 };
+
+// --certify: item i is "a,eps,class,period,certified_steps,scalar,double_class,double_period,
+// agreement" with a and eps the exact decimals of the double cell centres.
+template <class T>
+struct CertifiedScanGrid {
+  const ScanRequest& r;
+  ScanGrid<T> twin;
+  explicit CertifiedScanGrid(const ScanRequest& req) : r(req), twin(req) {}
+
+  std::string item(long i) const {
+    using Tr = ScalarTraits<T>;
+    const T a = cell_centre(twin.a0, twin.a1, i % r.p, r.p), y = cell_centre(twin.y0, twin.y1, i / r.p, r.q);
+    const std::string a_text = exact_decimal(mpq_class(Tr::to_double(a))), y_text = exact_decimal(mpq_class(Tr::to_double(y)));
+    ModelSpec spec = r.model;
+    spec.a = *Decimal::parse(a_text);
+    spec.eps = *Decimal::parse(y_text);
+    ReleaseCache releases;  // parameters differ from point to point: nothing to share
+    const CertifiedPoint c = certify_point(spec, r.start, r.cert, releases);
+    const ImpactMap<T> map(with_parameter(with_parameter(twin.base, Parameter::a, a), Parameter::eps, y));
+    const Classification d = classify<T>(map, make_state<T>(r.start, r.precision.bits), r.classify);
+    std::ostringstream out;
+    out << a_text << ',' << y_text << ',' << c.cls << ',' << c.period << ',' << c.certified_steps << ',' << c.scalar << ','
+        << name(d.cls) << ',' << d.period << ',' << compare_with_certified(c, name(d.cls), d.period);
+    return out.str();
+  }
+};
+
+void certified_scan_finish(const ScanRequest& r, const std::vector<std::string>& items, const RunFlags& f,
+                           const Provenance& prov) {
+  CertifiedMap m;
+  m.x_name = "a";
+  m.y_name = "eps";
+  m.nx = r.p;
+  m.ny = r.q;
+  m.x0 = r.a0.value();
+  m.x1 = r.a1.value();
+  m.y0 = r.y0.value();
+  m.y1 = r.y1.value();
+  m.title = "Certified parameter scan, " + model_title(r.model.law) + " model: each coloured pixel is proved";
+  m.subtitle = "the orbit of (θ₀, v₀) = (" + r.start.theta.text() + ", " + r.start.v.text() + "); " + std::to_string(r.p) +
+               " x " + std::to_string(r.q) + " exact parameter points, " + std::to_string(r.cert.max_steps) +
+               " steps, interval:double then MPFI up to " + std::to_string(r.cert.max_bits) + " bits";
+  m.xlabel = "a";
+  m.ylabel = "ε";
+  m.max_steps = r.cert.max_steps;
+  m.max_bits = r.cert.max_bits;
+  m.summary["command"] = "scan";
+  m.summary["certified"] = true;
+  m.summary["grid"] = {r.p, r.q};
+  m.summary["a_range"] = {r.a0.text(), r.a1.text()};
+  m.summary["eps_range"] = {r.y0.text(), r.y1.text()};
+  m.summary["start"] = {r.start.theta.text(), r.start.v.text()};
+  m.twin_precision = r.precision.text();
+  certified_map_finish(m, items, f, prov);
+}
 
 void finish(const ScanRequest& r, const std::vector<std::string>& items, const RunFlags& f, const Provenance& prov) {
   std::string csv = "a," + r.y;
@@ -247,7 +330,7 @@ const std::set<std::string>& scan_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"a-range", "eps-range", "c-range", "grid", "ics", "theta-range", "v-range", "transient", "steps",
-              "max-period", "recheck-factor", "precision", "show", "curves"});
+              "max-period", "recheck-factor", "precision", "show", "curves", "certify", "max-bits", "theta", "v"});
     k.insert(run_keys().begin(), run_keys().end());
     k.insert(picture_keys().begin(), picture_keys().end());
     return k;
@@ -257,6 +340,7 @@ const std::set<std::string>& scan_keys() {
 
 int run_scan(const Options& o, const RunFlags& f) {
   const ScanRequest req = scan_request(o);
+  if (req.certify) return run_point_grid<CertifiedScanGrid>("scan", o, f, req, req.p * req.q, 4, certified_scan_finish);
   return run_point_grid<ScanGrid>("scan", o, f, req, req.p * req.q, 16, finish);
 }
 
@@ -278,9 +362,18 @@ Command add_scan(CLI::App& app) {
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
   opts->add("curves", "Over the picture: fixed-points (default for --model constant: the paper's eq. 5, "
                       "a = 8(1+eps)/(p(1-eps)), p = 1..10) | none");
+  opts->add("theta", "With --certify: the start's phase, an exact decimal (default 0.5, the release state)");
+  opts->add("v", "With --certify: the start's velocity (default 4, the release state)");
+  opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
   auto flags = add_run_options(sub, *opts);
-  auto run = [opts, scene, flags](const std::string& argv_text) {
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), opts->collected());
+  auto certify = std::make_shared<bool>(false);
+  sub->add_flag("--certify", *certify,
+                "Certify each parameter point (constant model): the exact orbit of --theta, --v at the exact double (a, eps), "
+                "with double's answer beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
+  auto run = [opts, scene, flags, certify](const std::string& argv_text) {
+    Options cl = opts->collected();
+    if (*certify) cl.set("certify", "true");
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), cl);
     return run_scan(o, run_flags_from(o, *flags, argv_text));
   };
   return {sub, run};

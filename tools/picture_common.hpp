@@ -480,7 +480,9 @@ inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::s
   std::map<std::pair<std::string, long>, Rgb> color;
   int periodic_rank = 0, sticking_rank = 0;
   for (const auto& [k, n] : order) {
-    if (k.first == "no_sticking") color[k] = Rgb{86, 180, 233};  // sky blue: a weaker statement
+    // pale blue: a weaker statement, and no colour of the attractor palette (whose sky blue
+    // marks a periodic class)
+    if (k.first == "no_sticking") color[k] = Rgb{198, 219, 239};
     else color[k] = attractor_color(k.first, periodic_rank, sticking_rank, palette);
     if (k.first == "periodic") ++periodic_rank;
     if (k.first == "sticking") ++sticking_rank;
@@ -506,10 +508,24 @@ inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::s
   };
   ImageFigure cert = make_figure(m.title);
   for (size_t i = 0; i < items.size(); ++i) cert.raster.pixels[pixel(i)] = color[{cells[i].cls, cells[i].period}];
-  for (const auto& [k, n] : order)
+  // The legend names the 12 largest classes; a scan can have a hundred sticking periods,
+  // which the CSV and the JSON list in full.
+  constexpr size_t kLegendClasses = 12;
+  long rest = 0;
+  for (size_t j = 0; j < order.size(); ++j) {
+    const auto& [k, n] = order[j];
+    if (j >= kLegendClasses && order.size() > kLegendClasses + 1) {
+      rest += k.first == "outside" ? 0 : n;
+      continue;
+    }
     cert.raster.legend.emplace_back(certified_label(k.first, k.second, m.max_steps, m.max_bits) +
                                         (k.first == "outside" ? "" : share(n)),
                                     color[k]);
+  }
+  if (order.size() > kLegendClasses + 1)
+    cert.raster.legend.emplace_back(std::to_string(order.size() - kLegendClasses) + " more classes" + share(rest) +
+                                        ": in the CSV and JSON",
+                                    Rgb{255, 255, 255});
   // The artefact map: where double's class differs from the certified one.
   const Rgb agree_rgb{205, 205, 205}, differ_rgb = palette == Palette::paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0},
             undecided_rgb{90, 90, 90}, outside_rgb{255, 255, 255};

@@ -10,6 +10,8 @@
 #     its certified steps, so every point whose double orbit sticks is marked "differs";
 #   - double's class is recomputed by `bouncer basin` without --certify (same column);
 #   - PREFIX-artefacts.png is written; bad options exit 2 with one line and no file;
+#   - scan --certify: the certificate at sample points equals certify-sticking's at the exact
+#     double (a, eps); JSON counts = CSV;
 #   - threads and shards: --threads 1, --threads 2 and two shards merged give the same rows;
 #   - bifurcation --certify: each column's certificate equals certify-sticking's at the exact
 #     double value of a (printed exactly), and at eps = 0.5, a ~ 15.2 double's sticking at step
@@ -137,6 +139,38 @@ if not (cols[0]["class"] == "sticking" and cols[0]["period"] == 31):
 sys.exit(bad > 0)
 PY
 
+# scan --certify: per parameter point the exact orbit of the release state (1/2, 4) at the
+# exact double (a, eps); the certificate equals certify-sticking's there.
+"$BOUNCER" scan --model constant --a-range 14:16 --eps-range 0.45:0.55 --grid 4x3 --transient 300 --steps 100 \
+  --certify --quiet --out sc || fail sc "exit $?"
+[[ -s sc-artefacts.png && -s sc.png ]] || fail sc "missing pictures"
+python3 - "$BOUNCER" <<'PY' || fail scan-certify "see above"
+import json, subprocess, sys
+bouncer = sys.argv[1]
+rows = [l.rstrip("\n").split(",") for l in open("sc.csv") if not l.startswith("#")]
+bad = 0
+if rows[0] != "a,eps,class,period,certified_steps,scalar,double_class,double_period,agreement".split(","):
+    print("header %s" % rows[0]); bad += 1
+rows = rows[1:]
+if len(rows) != 12:
+    print("%d rows, want 12" % len(rows)); bad += 1
+s = json.load(open("sc.json"))["summary"]
+counts = {k: sum(r[8] == k for r in rows) for k in ("agrees", "differs", "undecided")}
+if s["double_vs_certified"] != counts:
+    print("JSON counts %s, CSV %s" % (s["double_vs_certified"], counts)); bad += 1
+for r in rows[::5]:  # three sample points
+    h = json.loads(subprocess.run([bouncer, "certify-sticking", "--a", r[0], "--eps", r[1], "--max-steps", "400",
+                                   "--max-bits", "256", "--json"], capture_output=True, text=True).stdout)
+    want = {"sticks": "sticking", "no_sticking_within_max_steps": "no_sticking"}.get(h["outcome"], h["outcome"])
+    if r[2] in ("fixed", "periodic"):
+        ok = h["outcome"] == "never_sticks"
+    else:
+        ok = want == r[2] and (want != "sticking" or h["period"] == int(r[3]))
+    if not ok:
+        print("a=%s eps=%s: scan %s, certify-sticking %s" % (r[0], r[1], r[2:5], h["statement"])); bad += 1
+sys.exit(bad > 0)
+PY
+
 # Bad input: exit 2, one line, no files.
 expect_bad() {
   local name=$1 command=$2; shift 2
@@ -153,6 +187,9 @@ expect_bad bits-alone basin --model constant --eps 0.5 --a 24 --grid 4x4 --max-b
 expect_bad bif-carry bifurcation --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
 expect_bad start-bits-typo certify-sticking --eps 0.5 --a 24 --start-bits doubel
 expect_bad bif-veldep bifurcation --model veldep --c 1000 --range 20:21 --samples 2 --certify
+expect_bad scan-veldep scan --model veldep --a-range 20:21 --c-range 100:200 --grid 2x2 --certify
+expect_bad scan-theta scan --model constant --a-range 20:21 --eps-range 0.4:0.5 --grid 2x2 --theta 0.3
+expect_bad scan-start scan --model constant --a-range 20:21 --eps-range 0.4:0.5 --grid 2x2 --certify --theta 0.25 --v 1
 
 # The grid runner's threads and shards: one thread, two threads, and two shards merged give the
 # same certified rows and the same JSON (apart from the invocation and the file names).

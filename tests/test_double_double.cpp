@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -110,6 +111,20 @@ TEST(DoubleDouble, ArithmeticWithinItsErrorBoundsAndCanonical) {
   }
   std::printf("worst relative errors in units of 2^-106: + %.2f, * %.2f, / %.2f, sqrt %.2f, / integer %.2f\n",
               worst[0], worst[1], worst[2], worst[3], worst[4]);
+}
+
+TEST(DoubleDouble, EveryLongIsExactAndLargeIntegerOperandsToo) {
+  for (long n : {0L, 1L, -1L, (1L << 53) + 1, -((1L << 53) + 3), (1L << 62) + 12345, std::numeric_limits<long>::max(),
+                 std::numeric_limits<long>::min() + 1}) {
+    SCOPED_TRACE(n);
+    EXPECT_EQ(exact(DD(n)), mpq_class(mpz_class(std::to_string(n))));
+    EXPECT_TRUE(canonical(DD(n)));
+    // x + n and x * n with n beyond 2^53 (not a double): as exact as with the pair.
+    const DD x = Tr::from_decimal("0.375", 106);
+    EXPECT_EQ(exact(DD(x + n)), exact(x) + mpq_class(mpz_class(std::to_string(n))));
+  }
+  const long big = (1L << 60) + 7;
+  EXPECT_EQ(exact(DD(DD(3L) * big)), mpq_class(mpz_class(std::to_string(3 * big))));
 }
 
 TEST(DoubleDouble, CancellationIsExactWhereTheResultIsRepresentable) {

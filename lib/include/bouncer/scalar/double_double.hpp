@@ -17,7 +17,7 @@
 //   dd / dd      DWDivDW2                         15u^2 (+ O(u^3))
 //   sqrt         one Newton correction of sqrt(hi) with the remainder x - s^2 from
 //                TwoProduct (as QD's sqrt); tested against MPFR
-// Integer operands (exact as doubles: |n| < 2^53) take the double-word-by-double
+// Integer operands (exact as doubles: |n| <= 2^53; larger ones become pairs) take the double-word-by-double
 // algorithms DWPlusFP, DWTimesFP1 and DWDivFP1 (bounds of 2u^2, 1.5u^2 and 3.5u^2 in JMP).
 // The tests measure the largest errors on random operands (tests/test_double_double.cpp):
 // 1.5, 3.0, 4.9 and 2.5 u^2 for +, *, / and sqrt. exp and log are QD's dd_real functions
@@ -49,9 +49,10 @@ class DoubleDouble {
   DoubleDouble() = default;  // 0
   // The exact integer n.
   explicit DoubleDouble(long n) {
-    const double h = static_cast<double>(n);
-    const double l = static_cast<double>(n - static_cast<long>(h));  // exact: |n - h| < 2^11
-    set_fast(h, l);
+    // n = (n >> 32) 2^32 + (n & (2^32 - 1)): both parts exact doubles, their sum exact in dd.
+    const double h = std::ldexp(static_cast<double>(n >> 32), 32);
+    const double l = static_cast<double>(n & 0xffffffffL);
+    set_sum(h, l);
   }
   // The double x exactly.
   explicit DoubleDouble(double x) : hi_(x), lo_(0) {}
@@ -115,15 +116,16 @@ class DoubleDouble {
     q.set_fast(th, tl);
     return q;
   }
-  // With an integer: exact as a double (|n| < 2^53, every integer the map uses), then the
-  // double-word-by-double algorithms, cheaper than converting n to a pair.
-  friend DoubleDouble operator+(const DoubleDouble& x, long n) { return x.plus(static_cast<double>(n)); }
-  friend DoubleDouble operator+(long n, const DoubleDouble& x) { return x.plus(static_cast<double>(n)); }
-  friend DoubleDouble operator-(const DoubleDouble& x, long n) { return x.plus(-static_cast<double>(n)); }
-  friend DoubleDouble operator-(long n, const DoubleDouble& x) { return (-x).plus(static_cast<double>(n)); }
-  friend DoubleDouble operator*(const DoubleDouble& x, long n) { return x.times(static_cast<double>(n)); }
-  friend DoubleDouble operator*(long n, const DoubleDouble& x) { return x.times(static_cast<double>(n)); }
-  friend DoubleDouble operator/(const DoubleDouble& x, long n) { return x.divided_by(static_cast<double>(n)); }
+  // With an integer: when it is exact as a double (|n| <= 2^53: every integer the map uses)
+  // the double-word-by-double algorithms, cheaper than converting n to a pair; else the pair.
+  static bool small(long n) { return n >= -(1L << 53) && n <= (1L << 53); }
+  friend DoubleDouble operator+(const DoubleDouble& x, long n) { return small(n) ? x.plus(static_cast<double>(n)) : x + DoubleDouble(n); }
+  friend DoubleDouble operator+(long n, const DoubleDouble& x) { return x + n; }
+  friend DoubleDouble operator-(const DoubleDouble& x, long n) { return small(n) ? x.plus(-static_cast<double>(n)) : x - DoubleDouble(n); }
+  friend DoubleDouble operator-(long n, const DoubleDouble& x) { return (-x) + n; }
+  friend DoubleDouble operator*(const DoubleDouble& x, long n) { return small(n) ? x.times(static_cast<double>(n)) : x * DoubleDouble(n); }
+  friend DoubleDouble operator*(long n, const DoubleDouble& x) { return x * n; }
+  friend DoubleDouble operator/(const DoubleDouble& x, long n) { return small(n) ? x.divided_by(static_cast<double>(n)) : x / DoubleDouble(n); }
   friend DoubleDouble operator/(long n, const DoubleDouble& x) { return DoubleDouble(n) / x; }
 
   // sqrt(x) = s + (x - s^2) / (2 s) with s = sqrt(xh) in double, the remainder in dd. 0 for

@@ -77,7 +77,7 @@ ScanRequest scan_request(const Options& given) {
     r.v_given = true;
     std::tie(r.v0, r.v1) = parse_range("v-range", o.get("v-range"));
     if (r.v1.approx() > 1e15 || r.v0.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
-  } else if (law == Law::constant && r.y1 == Decimal::from_int(1)) {
+  } else if (law == Law::constant && r.y1 == Decimal::from_int(1) && o.get_or("certify", "false") != "true") {
     throw InputError("v-range", "is needed when eps reaches 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
   }
   r.classify = classify_options_from(o);

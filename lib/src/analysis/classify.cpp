@@ -48,6 +48,7 @@
 
 #include "bouncer/analysis/jacobian.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
+#include "bouncer/io/cancel.hpp"
 
 namespace bouncer {
 
@@ -200,6 +201,7 @@ Classification classify_window(const ImpactMap<T>& map, State<T> s, const Classi
   long n = 0;
   try {
     for (; n < N; ++n) {
+      throw_if_cancelled(n);
       StepResult<T> r = map.step(s);
       s = std::move(r.next);
       growth.add(n + 1, Tr::to_double(s.v));

@@ -1,4 +1,5 @@
 #include "bouncer/analysis/grid.hpp"
+#include "bouncer/io/cancel.hpp"
 #include "bouncer/io/output.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/scalar/thread_caches.hpp"
@@ -338,8 +339,10 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
   // vector<bool> packs bits, so concurrent writes to neighbouring tiles would race:
   // record finished tiles in a byte vector and copy afterwards.
   std::vector<unsigned char> done(static_cast<size_t>(ntiles), 0);
+  const std::atomic<bool>* cancel = current_cancel_flag();  // the caller's, for every worker
   auto safe_worker = [&] {
     const MpfrThreadCaches caches;  // freed when this worker ends
+    const CancelScope scope(cancel);
     for (;;) {
       if (failed.load()) return;
       const size_t k = next.fetch_add(1);
@@ -350,6 +353,7 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
         tile.reserve(static_cast<size_t>(plan.end(t) - plan.begin(t)));
         for (long i = plan.begin(t); i < plan.end(t); ++i) {
           if (failed.load()) return;
+          throw_if_cancelled();
           tile.push_back(item(i));
           progress.advance(1);
         }

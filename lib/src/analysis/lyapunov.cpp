@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bouncer/analysis/jacobian.hpp"
+#include "bouncer/io/cancel.hpp"
 
 namespace bouncer {
 
@@ -81,6 +82,7 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions
   try {
     ImpactMap<T> map(model);
     for (; n < opt.transient; ++n) {
+      throw_if_cancelled(n);
       s = map.step(s).next;
       g.add(n + 1, Tr::to_double(s.v));
     }
@@ -94,6 +96,7 @@ LyapunovResult lyapunov(const Model<T>& model, State<T> s, const LyapunovOptions
     std::vector<double> block_sum(B, 0.0);
     double total = 0;
     for (long i = 0; i < B * per_block; ++i, ++n) {
+      throw_if_cancelled(n);
       LinearStep<T> st = tm.step(s);
       g.add(n + 1, Tr::to_double(st.next.v));
       r.v_max = std::max(r.v_max, Tr::to_double(st.next.v));

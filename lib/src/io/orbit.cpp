@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "bouncer/io/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {
@@ -267,6 +268,7 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
       return map.step(from);
     };
     for (long long n = 1; n <= req.steps; ++n) {
+      throw_if_cancelled(n);
       try {
         StepResult<T> r = step(s);
         s = r.next;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "bouncer/io/cancel.hpp"
 #include "bouncer/model/spec.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 // Instantiate the step for interval duals (Dual<S> over the enclosure scalars).
@@ -334,6 +335,7 @@ Horizon certified_horizon(const ModelSpec& spec, const InitialCondition& start, 
   OrbitEnclosureOf<S> orbit(interval_model_of<S>(spec, bits), make_state<S>(start, bits), method);
   try {
     while (h.steps < max_steps) {
+      throw_if_cancelled(h.steps);
       orbit.step();
       ++h.steps;
     }

@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "bouncer/io/cancel.hpp"
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 #include "bouncer/verify/sticking.hpp"
@@ -620,6 +621,7 @@ PeriodicCertificate certify_with_guess(const PeriodicQuestion& q, const std::opt
   std::vector<Attempt> attempts;
   bool found = false;
   for (long bits : q.schedule.bits()) {
+    throw_if_cancelled();
     Attempt a;
     a.bits = bits;
     const auto ta = std::chrono::steady_clock::now();

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "bouncer/io/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/scalar_set.hpp"
 
@@ -215,6 +216,7 @@ RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
   std::deque<std::pair<double, double>> recent;
   RunResult r;
   for (long long n = 1; n <= q.max_steps; ++n) {
+    throw_if_cancelled(n);
     const EnclosedStepOf<S> s = orbit.step();  // throws Undecided
     progress.steps = n;
     if (s.event.kind == EventKind::sticking) {
@@ -283,6 +285,7 @@ PlainSticking plain_sticking_period(const ModelSpec& model, const InitialConditi
   const ImpactMap<T> map(make_model<T>(model, bits));
   State<T> s = make_state<T>(start, bits);
   for (long long n = 1; n <= max_steps; ++n) {
+    throw_if_cancelled(n);
     try {
       StepResult<T> r = map.step(s);
       out.steps_run = n;

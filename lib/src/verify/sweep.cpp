@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
+#include "bouncer/io/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {
@@ -89,6 +90,7 @@ SweepRow run_plain(const SweepQuestion& q, const Precision& p, const Reference& 
   bool failed = false;
   long long failed_at = 0;
   for (long long n = 1; n <= q.steps; ++n) {
+    throw_if_cancelled(n);
     StepResult<T> r;
     try {
       r = map.step(s);
@@ -150,6 +152,7 @@ SweepReport precision_sweep(const SweepQuestion& q) {
     OrbitEnclosure orbit(interval_model(q.model, bits), make_state<Mpfi>(q.start, bits), q.method);
     try {
       for (long long n = 1; n <= q.steps; ++n) {
+        throw_if_cancelled(n);
         ref.steps.push_back(ref_step(orbit.step()));
         p.steps = n;
       }

@@ -38,11 +38,11 @@ inline void print_summary(const Provenance& p, const nlohmann::ordered_json& bod
     nlohmann::ordered_json out;
     out["provenance"] = nlohmann::ordered_json::parse(p.as_json());
     for (const auto& [k, v] : body.items()) out[k] = v;
-    std::cout << out.dump(1) << "\n";
+    command_out() << out.dump(1) << "\n";
     return;
   }
-  std::cout << p.as_comment_lines();
-  for (const auto& [k, v] : body.items()) std::cout << k << ": " << (v.is_string() ? v.get<std::string>() : v.dump()) << "\n";
+  command_out() << p.as_comment_lines();
+  for (const auto& [k, v] : body.items()) command_out() << k << ": " << (v.is_string() ? v.get<std::string>() : v.dump()) << "\n";
 }
 
 }  // namespace bouncer::cli

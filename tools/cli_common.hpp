@@ -55,13 +55,37 @@ class OptionSet {
   std::map<std::string, std::vector<std::string>> lists_;
 };
 
+// Where a command prints its results. The command-line tool prints on stdout; a host that
+// runs commands in its own process (the Python module: tools/run_command.hpp) gives the
+// command's thread a CommandCapture, which receives that text and, for the grid commands,
+// the CSV rows (with their provenance lines) even when they also go to --out files.
+struct CommandCapture {
+  std::ostringstream out;
+  std::string csv;
+};
+namespace detail {
+inline thread_local CommandCapture* capture = nullptr;
+}
+inline CommandCapture* command_capture() { return detail::capture; }
+inline std::ostream& command_out() { return detail::capture ? detail::capture->out : std::cout; }
+class CaptureScope {
+ public:
+  explicit CaptureScope(CommandCapture* c) : previous_(detail::capture) { detail::capture = c; }
+  ~CaptureScope() { detail::capture = previous_; }
+  CaptureScope(const CaptureScope&) = delete;
+  CaptureScope& operator=(const CaptureScope&) = delete;
+
+ private:
+  CommandCapture* previous_;
+};
+
 // Writes an --out file (io/output.hpp: PATH.partial renamed over PATH only when complete;
 // devices and pipes written through; directories refused) or, without a path, stdout
 // (checked: a failed write is an OutputError, exit status 1).
 inline void write_atomically(const std::optional<std::string>& path, const std::function<void(std::ostream&)>& body) {
   if (!path) {
-    body(std::cout);
-    check_stdout();
+    body(command_out());
+    if (!command_capture()) check_stdout();
     return;
   }
   write_output(output_target("out", *path), body);

@@ -396,13 +396,13 @@ int audit_reproduce(const std::filesystem::path& dir) {
   for (const auto& [label, p] : new_panels)
     if (!old_panels.count(label)) differences.push_back("panel " + label + ": only in the rerun");
   if (differences.empty()) {
-    std::cout << "bouncer audit: identical: " << old_claims.size() << " claims (verdicts and checks) and " << compared
+    command_out() << "bouncer audit: identical: " << old_claims.size() << " claims (verdicts and checks) and " << compared
               << " outputs of " << dir.string() << " match the rerun (times, invocations and output paths ignored; "
               "pictures compared through their CSV and JSON)\n";
     return 0;
   }
-  std::cout << "bouncer audit: DIFFERENT: " << differences.size() << " difference(s) in " << dir.string() << "\n";
-  for (const std::string& d : differences) std::cout << "  " << d << "\n";
+  command_out() << "bouncer audit: DIFFERENT: " << differences.size() << " difference(s) in " << dir.string() << "\n";
+  for (const std::string& d : differences) command_out() << "  " << d << "\n";
   return 1;
 }
 
@@ -497,24 +497,24 @@ int audit(const std::string& path) {
       compare_path = dir + "/result";
     }
   }
-  std::cout << "audit: rerunning `bouncer " << rec->command;
-  for (size_t i = 2; i < argv.size(); ++i) std::cout << " " << (argv[i].rfind(dir, 0) == 0 ? "<tmp>" + argv[i].substr(dir.size()) : argv[i]);
-  std::cout << "`\n";
+  command_out() << "audit: rerunning `bouncer " << rec->command;
+  for (size_t i = 2; i < argv.size(); ++i) command_out() << " " << (argv[i].rfind(dir, 0) == 0 ? "<tmp>" + argv[i].substr(dir.size()) : argv[i]);
+  command_out() << "`\n";
   const int status = run_to_file(argv, dir + "/stdout");
   if (status != 0) {
-    std::cout << "audit: DIFFERENT: the rerun failed (exit status " << status << ")\n";
+    command_out() << "audit: DIFFERENT: the rerun failed (exit status " << status << ")\n";
     return 1;
   }
   bool ok2 = false;
   const std::string again = read_file(compare_path, ok2);
   if (!ok2) {
-    std::cout << "audit: DIFFERENT: the rerun wrote no result\n";
+    command_out() << "audit: DIFFERENT: the rerun wrote no result\n";
     return 1;
   }
   if (rec->is_json) {
     json a = json::parse(numbers_as_text(text), nullptr, false), b = json::parse(numbers_as_text(again), nullptr, false);
     if (b.is_discarded()) {
-      std::cout << "audit: DIFFERENT: the rerun's output is not JSON\n";
+      command_out() << "audit: DIFFERENT: the rerun's output is not JSON\n";
       return 1;
     }
     strip_volatile(a, true);
@@ -522,7 +522,7 @@ int audit(const std::string& path) {
     std::string detail;
     const std::string where = first_difference(a, b, "", detail);
     if (!where.empty()) {
-      std::cout << "audit: DIFFERENT: first difference at " << where << ": " << detail << " (file vs rerun)\n";
+      command_out() << "audit: DIFFERENT: first difference at " << where << ": " << detail << " (file vs rerun)\n";
       return 1;
     }
   } else {
@@ -530,13 +530,13 @@ int audit(const std::string& path) {
     for (size_t i = 0; i < std::max(a.size(), b.size()); ++i) {
       const std::string la = i < a.size() ? a[i] : "<end of file>", lb = i < b.size() ? b[i] : "<end of output>";
       if (la != lb) {
-        std::cout << "audit: DIFFERENT: first difference at line " << i + 1 << " (volatile lines skipped):\n  file:  "
+        command_out() << "audit: DIFFERENT: first difference at line " << i + 1 << " (volatile lines skipped):\n  file:  "
                   << la << "\n  rerun: " << lb << "\n";
         return 1;
       }
     }
   }
-  std::cout << "audit: IDENTICAL: the rerun reproduces '" << path
+  command_out() << "audit: IDENTICAL: the rerun reproduces '" << path
             << "' bit for bit (volatile fields skipped: timings, invocation, output location)\n";
   return 0;
 }

@@ -417,8 +417,8 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     files.push_back({*r.out + ".json", text_file([&](std::ostream& f) { f << doc.dump(2) << "\n"; })});
     write_output_set(files);
   }
-  if (print_json) std::cout << doc.dump(2) << "\n";
-  else std::cout << text.str();
+  if (print_json) command_out() << doc.dump(2) << "\n";
+  else command_out() << text.str();
   return 0;
 }
 

@@ -408,7 +408,7 @@ int run_reproduce(const Options_& o) {
   }
   const Manifest m = parse_manifest(text, source);
   if (o.claims_table) {
-    std::cout << claims_table(m);
+    command_out() << claims_table(m);
     return 0;
   }
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());

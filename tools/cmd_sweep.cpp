@@ -232,8 +232,8 @@ Command add_sweep(CLI::App& app) {
         files.push_back(std::move(pic));
       write_output_set(files);
     }
-    if (r.json) std::cout << j.dump(1) << "\n";
-    else std::cout << p.as_comment_lines() << text_table(rep, r.q.steps);
+    if (r.json) command_out() << j.dump(1) << "\n";
+    else command_out() << p.as_comment_lines() << text_table(rep, r.q.steps);
     return 0;
   };
   return {sub, run};

@@ -126,17 +126,13 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
   return r;
 }
 
-// MPI ranks (tools/mpi_ranks.cpp when built with MPI; otherwise one process).
+// MPI ranks: tools/mpi_ranks.cpp when the command-line tool is built with MPI, otherwise
+// tools/mpi_none.cpp (one process; also the Python module, which never starts MPI).
 struct Ranks {
   int rank = 0, size = 1;
 };
-#ifdef BOUNCER_WITH_MPI
 Ranks mpi_ranks();
 void mpi_barrier();
-#else
-inline Ranks mpi_ranks() { return {}; }
-inline void mpi_barrier() {}
-#endif
 
 // A grid job: what to compute for each item.
 struct PictureJob {
@@ -263,7 +259,7 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
     s["tiles_computed"] = r.tiles_computed;
     s["tiles_missing"] = miss.size();
     s["merge"] = "bouncer merge " + *f.out;
-    std::cout << s.dump(2) << "\n";
+    command_out() << s.dump(2) << "\n";
   }
   return std::nullopt;
 }
@@ -303,9 +299,10 @@ inline void write_outputs(const RunFlags& f, const Provenance& p, const std::str
       std::filesystem::remove_all(tiles_dir(*f.out), ec);
     }
   } else if (!f.json) {
-    std::cout << p.as_comment_lines() << csv_body;
+    command_out() << p.as_comment_lines() << csv_body;
   }
-  if (f.json) std::cout << doc.dump(2) << "\n";
+  if (CommandCapture* c = command_capture()) c->csv = p.as_comment_lines() + csv_body;
+  if (f.json) command_out() << doc.dump(2) << "\n";
 }
 
 // PNG metadata from provenance: tEXt chunks a reader finds with any PNG tool.

@@ -1,0 +1,112 @@
+#include "run_command.hpp"
+
+#include <iostream>
+
+#include "bouncer/io/cancel.hpp"
+#include "bouncer/io/output.hpp"
+#include "bouncer/io/provenance.hpp"
+#include "bouncer/io/scene.hpp"
+#include "bouncer/model/spec.hpp"
+#include "cli_common.hpp"
+#include "command_line.hpp"
+#include "commands.hpp"
+
+namespace bouncer::cli {
+
+namespace {
+
+// `bouncer help [CMD]` is `bouncer [CMD] --help`; `bouncer --scene FILE ...` is
+// `bouncer CMD --scene FILE ...` with CMD the scene's `command` key.
+std::vector<std::string> front_end_words(std::vector<std::string> w) {
+  if (w.size() >= 2 && w[1] == "help") {
+    w.erase(w.begin() + 1);
+    w.push_back("--help");
+  } else if (w.size() >= 2 && (w[1] == "--scene" || w[1].rfind("--scene=", 0) == 0)) {
+    const std::string path = w[1] == "--scene" ? (w.size() >= 3 ? w[2] : "") : w[1].substr(8);
+    if (path.empty()) throw InputError("scene", "give a scene file: bouncer --scene FILE");
+    w.insert(w.begin() + 1, scene_command(path));
+  }
+  return w;
+}
+
+CommandOutcome failed(CommandOutcome::Kind kind, int status, const std::string& message) {
+  CommandOutcome o;
+  o.kind = kind;
+  o.status = status;
+  o.message = one_line(message);
+  return o;
+}
+
+// The option named by an "unknown option '--x'" message, or "".
+std::string unknown_option_in(const std::string& message) {
+  const std::string mark = "unknown option '";
+  const auto at = message.find(mark);
+  if (at == std::string::npos) return "";
+  const auto end = message.find('\'', at + mark.size());
+  return end == std::string::npos ? "" : message.substr(at + mark.size(), end - at - mark.size());
+}
+
+}  // namespace
+
+CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
+  using Kind = CommandOutcome::Kind;
+  std::vector<std::string> words;
+  try {
+    words = front_end_words(std::move(words_in));
+  } catch (const InputError& e) {
+    return failed(Kind::input, 2, e.what());
+  }
+  std::vector<char*> word_ptrs;
+  for (std::string& w : words) word_ptrs.push_back(w.data());
+  word_ptrs.push_back(nullptr);
+  const int argc = static_cast<int>(words.size());
+  char** argv = word_ptrs.data();
+  CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)"};
+  app.require_subcommand(1);
+  std::vector<Command> commands{add_orbit(app),    add_certify_sticking(app), add_certify_periodic(app), add_sweep(app),
+                                add_audit(app),    add_periodic(app),         add_lyapunov(app),         add_classify(app),
+                                add_bifurcation(app), add_portrait(app),      add_basin(app),            add_scan(app),
+                                add_merge(app),    add_continue(app),         add_trajectory(app),       add_tongues(app),
+                                add_reproduce(app)};
+
+  const std::string version = build_info().version + " (commit " + build_info().commit + ")";
+  app.set_version_flag("--version", version);
+  for (const Command& c : commands) c.app->set_version_flag("--version", version);
+  if (const std::string problem = check_command_line(app, argc, argv); !problem.empty()) {
+    CommandOutcome o = failed(Kind::input, 2, problem);
+    o.unknown_option = unknown_option_in(problem);
+    return o;
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) {
+      if (standalone) app.exit(e);
+      CommandOutcome o;
+      o.kind = Kind::help;
+      return o;
+    }
+    return failed(Kind::input, 2, std::string(e.what()) + " (see bouncer --help)");
+  }
+  if (standalone) install_interrupt_cleanup();  // SIGINT/SIGTERM/SIGHUP remove partial files (io/output.hpp)
+  try {
+    for (const Command& c : commands)
+      if (c.app->parsed()) {
+        CommandOutcome o;
+        o.status = c.run(invocation(argc, argv));
+        if (!command_capture()) check_stdout();  // whatever a command printed must have arrived
+        return o;
+      }
+  } catch (const InputError& e) {
+    return failed(Kind::input, 2, e.what());
+  } catch (const OutputError& e) {
+    return failed(Kind::output, 1, e.what());
+  } catch (const Cancelled& e) {
+    return failed(Kind::cancelled, 130, e.what());
+  } catch (const std::exception& e) {
+    return failed(Kind::internal, 1, std::string("internal error: ") + e.what());
+  }
+  return {};
+}
+
+}  // namespace bouncer::cli

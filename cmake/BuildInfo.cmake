@@ -23,7 +23,7 @@ endif()
 # paths and contents of everything that can change a result or the tests.
 if(commit STREQUAL "unknown")
   file(GLOB_RECURSE sources RELATIVE "${SRC}" LIST_DIRECTORIES false
-       "${SRC}/CMakeLists.txt" "${SRC}/cmake/*" "${SRC}/lib/*" "${SRC}/tools/*" "${SRC}/proofs/*"
+       "${SRC}/CMakeLists.txt" "${SRC}/cmake/*" "${SRC}/lib/*" "${SRC}/tools/*" "${SRC}/proofs/*" "${SRC}/python/*"
        "${SRC}/tests/*" "${SRC}/data/*")
   list(SORT sources)
   set(manifest "")

@@ -26,3 +26,19 @@ if [[ $targets == *-fsanitize=address,undefined* ]]; then
   echo "install_consumer: a consumer without sanitizer flags links and runs against the sanitized install"
 fi
 echo "install_consumer: find_package(bouncer) works"
+# The Python module (when this build has it) is installed into the prefix's Python directory
+# and imports from there alone, away from the source and build trees.
+if compgen -G "$build/python/bouncer/_core*.so" >/dev/null; then
+  python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
+  core=$(find "$tmp/prefix" -name '_core*.so' -path '*/bouncer/*' | head -n 1)
+  [[ -n $core ]] || { echo "FAIL: cmake --install did not install the Python module" >&2; exit 1; }
+  site=$(dirname "$(dirname "$core")")
+  [[ $site == "$tmp/prefix"/lib/python3*/*-packages ]] || { echo "FAIL: the module went to $site" >&2; exit 1; }
+  (cd "$tmp" && PYTHONPATH="$site" "$python" -c "
+import bouncer
+assert bouncer.__file__.startswith('$site'), bouncer.__file__
+s = bouncer.step(model='constant', a='24', eps='0.5', theta='0.25', v='12')
+assert s['event'] == 'impact', s
+print('install_consumer: import bouncer works from', '$site'.replace('$tmp', '<prefix>'))
+")
+fi

@@ -18,7 +18,7 @@ commit=$("$BOUNCER" --version | sed -n 's/.*(commit \(.*\))$/\1/p')
 [[ $commit =~ $form ]] || fail version "commit '$commit' is neither a git commit nor a tree hash"
 
 mkdir "$TMP/copy"
-for d in CMakeLists.txt cmake lib tools proofs tests data; do cp -r "$SRC/$d" "$TMP/copy/"; done
+for d in CMakeLists.txt cmake lib tools proofs python tests data; do cp -r "$SRC/$d" "$TMP/copy/"; done
 info() { cmake -DSRC="$TMP/copy" -DOUT="$TMP/$1.cpp" -DGIT= -DVERSION=0 -P "$SRC/cmake/BuildInfo.cmake" &&
          sed -n 's/.*info{"0", "\([^"]*\)".*/\1/p' "$TMP/$1.cpp"; }
 first=$(info a)

@@ -412,6 +412,18 @@ def test_ctrl_c_interrupts_and_leaves_no_partial_file(tmp_path):
     assert bouncer.step(**CONSTANT, theta="0.25", v="12")["event"] == "impact"
 
 
+def test_ctrl_c_interrupts_a_single_certified_orbit():
+    # 10^8 certified steps would take minutes; the interrupt lands within 256 steps.
+    timer = threading.Timer(0.3, os.kill, args=(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        bouncer.certify_sticking(eps="0.96", a="28.82", max_steps=100000000)
+    assert time.monotonic() - t0 < 15
+    timer.cancel()
+    assert bouncer.certify_sticking(eps="0.96", a="28.82", max_steps=1000)["certified"] is True
+
+
 def test_result_carries_provenance_and_a_command_line_that_reruns_it():
     r = bouncer.classify(model="constant", a="20", eps="0.3", theta="0.3", v="9")
     assert r["provenance"]["command"] == "classify"

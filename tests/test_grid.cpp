@@ -9,6 +9,7 @@
 #include <random>
 
 #include "bouncer/analysis/grid.hpp"
+#include "bouncer/io/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"
 
@@ -301,6 +302,33 @@ TEST(Grid, AnItemErrorStopsTheRunAndKeepsFinishedTiles) {
   EXPECT_TRUE(read_tile(o.tile_dir, 0, plan, "err", items));
   EXPECT_FALSE(read_tile(o.tile_dir, 3, plan, "err", items));
   EXPECT_FALSE(fs::exists(tile_path(o.tile_dir, 3) + ".partial"));
+}
+
+TEST(Grid, ACancelledRunStopsOnEveryWorkerAndWithoutTheFlagNothingChanges) {
+  // The caller's flag (io/cancel.hpp) reaches the workers: set while item 40 is computed,
+  // the run throws Cancelled long before the 4000 items are done, on 1 and on 2 threads.
+  for (unsigned threads : {1u, 2u}) {
+    std::atomic<bool> cancel{false};
+    std::atomic<long> computed{0};
+    const auto f = [&](long i) {
+      if (i == 40) cancel.store(true);
+      computed.fetch_add(1);
+      return std::to_string(i);
+    };
+    GridPlan plan{4000, 10};
+    GridOptions o;
+    o.threads = threads;
+    const CancelScope scope(&cancel);
+    EXPECT_THROW(run_grid(plan, f, o), Cancelled) << threads << " threads";
+    EXPECT_LT(computed.load(), 100) << threads << " threads";
+  }
+  // No scope, or a clear flag: the whole run.
+  std::atomic<bool> clear{false};
+  const CancelScope scope(&clear);
+  GridOptions o;
+  o.threads = 2;
+  const GridResult r = run_grid(GridPlan{400, 10}, [](long i) { return std::to_string(i); }, o);
+  EXPECT_TRUE(r.complete());
 }
 
 TEST(Grid, JobFingerprintIsStableAndSensitive) {

@@ -9,8 +9,9 @@
 // output file is left behind), 1 the computation or the output failed (a write to a file or
 // to stdout that fails is never silent).
 #include <iostream>
+#include <string>
+#include <vector>
 
-#include "command_line.hpp"
 #include "run_command.hpp"
 
 int main(int argc, char** argv) {

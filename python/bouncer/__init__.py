@@ -135,9 +135,19 @@ def _python_name(option):
     return option.lstrip("-").replace("-", "_")
 
 
+# These re-execute the bouncer executable (/proc/self/exe) for each item: in a Python process
+# that would be the interpreter. They are shell commands.
+_SUBPROCESS_COMMANDS = ("audit", "reproduce")
+
+
 def run(command, **options):
     """Runs ``bouncer COMMAND --option value ...`` in this process and returns what it printed
-    (text). The typed functions below are built on it; use it for what they do not cover."""
+    (text). The typed functions below are built on it; use it for what they do not cover
+    (portrait, trajectory, tongues, merge). ``audit`` and ``reproduce`` rerun the executable
+    and are refused: run them from a shell."""
+    if command in _SUBPROCESS_COMMANDS:
+        raise ValueError(f"{command}: runs the bouncer executable once per item; run it from a shell "
+                         f"(bouncer {command} --help), not from Python")
     out, _ = _run_words(_words(command, options))
     return out
 

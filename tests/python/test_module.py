@@ -453,3 +453,12 @@ def test_repr_names_the_command_and_the_fields():
     text = repr(r)
     assert text.splitlines()[0].startswith("bouncer.Result of `bouncer classify --model constant")
     assert "  class: 'sticking'" in text and "  period: 3" in text
+
+
+def test_run_covers_other_commands_and_refuses_the_subprocess_ones(tmp_path):
+    text = bouncer.run("tongues", p_max=3, out=str(tmp_path / "t"))
+    assert (tmp_path / "t.png").stat().st_size > 1000
+    assert json.loads((tmp_path / "t.json").read_text())["provenance"]["command"] == "tongues"
+    for command in ("audit", "reproduce"):
+        with pytest.raises(ValueError, match="run it from a shell"):
+            bouncer.run(command)

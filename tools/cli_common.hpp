@@ -235,6 +235,18 @@ inline std::string invocation(int argc, char** argv) {
   return s;
 }
 
+// Certified grids (basin, scan, bifurcation --certify; verify/certified_point.hpp) cover
+// constant restitution, and velocity-dependent restitution without collapse (certified orbits
+// and trapping sets, no sticking). Anything else is an InputError naming what is allowed.
+inline void require_certified_model(const ModelSpec& m, const std::string& command) {
+  if (m.law == Law::constant || (m.law == Law::veldep && !m.veldep_collapse)) return;
+  throw InputError("certify", command + " --certify needs --model constant or --model veldep (without "
+                   "--veldep-collapse): certified orbits, sticking periods and trapping sets; " +
+                   (m.law == Law::elastic ? std::string("the elastic map preserves area, so no set maps strictly into "
+                                                        "itself and no attractor can be certified this way")
+                                          : std::string("velocity-dependent collapse has no certified test")));
+}
+
 // The model options every command shares.
 inline void add_model_options(OptionSet& o) {
   o.add("model", "Collision model: elastic | constant | veldep");

@@ -80,9 +80,7 @@ BasinRequest basin_request(const Options& o) {
   r.certify = certify == "true";
   if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is only used with --certify");
   if (r.certify) {
-    if (r.model.law != Law::constant)
-      throw InputError("certify", "basin --certify needs --model constant (certified sticking periods and trapping sets); "
-                                  "certified basins of the velocity-dependent and elastic models are not implemented");
+    require_certified_model(r.model, "basin");
     if (r.precision.kind != Precision::Kind::double_)
       throw InputError("precision", "with --certify the twin run is double (the artefact map compares double with the "
                                     "certified answer); got '" + r.precision.text() + "'");
@@ -168,13 +166,15 @@ void certified_basin_finish(const BasinRequest& r, const std::vector<std::string
   m.y0 = r.v0.value();
   m.y1 = r.v1.value();
   m.title = "Certified basins, " + model_title(r.model.law) + " model: each coloured pixel is proved";
-  m.subtitle = "a = " + r.model.a.text() + ", ε = " + r.model.eps.text() + "; " + std::to_string(r.nx) + " x " +
+  m.subtitle = "a = " + r.model.a.text() + (r.model.law == Law::veldep ? ", c = " + r.model.c.text() : ", ε = " + r.model.eps.text()) +
+               "; " + std::to_string(r.nx) + " x " +
                std::to_string(r.ny) + " exact starts, " + std::to_string(r.cert.max_steps) +
                " steps, interval:double then MPFI up to " + std::to_string(r.cert.max_bits) + " bits";
   m.xlabel = "θ₀ (initial phase)";
   m.ylabel = "v₀ (initial velocity)";
   m.max_steps = r.cert.max_steps;
   m.max_bits = r.cert.max_bits;
+  m.collapses = r.model.law == Law::constant;
   m.summary["command"] = "basin";
   m.summary["certified"] = true;
   m.summary["grid"] = {r.nx, r.ny};
@@ -331,7 +331,7 @@ Command add_basin(CLI::App& app) {
   auto flags = add_run_options(sub, *opts);
   auto certify = std::make_shared<bool>(false);
   sub->add_flag("--certify", *certify,
-                "Certify every point (constant model): sticking period, trapping set or 'undecided', with double's answer "
+                "Certify every point (constant, or veldep without collapse): sticking period, trapping set, 'not_trapped' (veldep) or 'undecided', with double's answer "
                 "beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
   auto run = [opts, scene, flags, certify](const std::string& argv_text) {
     Options cl = opts->collected();

@@ -3,7 +3,7 @@
 // rows (param, n, theta, v, sticking), a density image of theta (or v) against the
 // parameter with the sticking releases marked in red at theta = 1/2 as in the paper, and a
 // JSON summary. Each parameter value is one grid item (independent unless --carry).
-// --certify (constant model, a or eps varied, double): each column also gets a certified answer
+// --certify (constant, or veldep without collapse; double): each column also gets a certified answer
 // for the exact orbit at the exact double value of the parameter (verify/certified_point.hpp) and double's
 // class of the same orbit; the picture shades the columns where double is refuted
 // (vermillion) or nothing is certified (grey).
@@ -69,9 +69,7 @@ BifurcationRequest bifurcation_request(const Options& given) {
   r.certify = certify == "true";
   if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is only used with --certify");
   if (r.certify) {
-    if (r.model.law != Law::constant || (r.vary != "a" && r.vary != "eps"))
-      throw InputError("certify", "bifurcation --certify needs --model constant and --vary a or eps (certified sticking "
-                                  "periods and trapping sets); other models and parameters are not implemented");
+    require_certified_model(r.model, "bifurcation");
     if (r.carry) throw InputError("carry", "cannot be used with --certify (each column is certified from its own start)");
     if (r.precision.kind != Precision::Kind::double_)
       throw InputError("precision", "with --certify the twin run is double; got '" + r.precision.text() + "'");
@@ -133,7 +131,7 @@ struct Sweep {
       const mpq_class exact(p);
       // The column's parameter is the double p exactly: a dyadic number, a finite decimal.
       ModelSpec spec = r.model;
-      (r.vary == "a" ? spec.a : spec.eps) = *Decimal::parse(exact_decimal(exact));
+      (r.vary == "a" ? spec.a : r.vary == "eps" ? spec.eps : spec.c) = *Decimal::parse(exact_decimal(exact));
       opt.max_attractor_period = std::min<long>(64, std::max<long>(1, r.record / 2));
       ReleaseCache releases;
       const CertifiedPoint c = certify_point(spec, r.ic, opt, releases);
@@ -377,7 +375,7 @@ Command add_bifurcation(CLI::App& app) {
   sub->add_flag("--carry", *carry, "Start each value from the last state of the previous one (one worker)");
   auto certify = std::make_shared<bool>(false);
   sub->add_flag("--certify", *certify,
-                "Certify each column (constant model, --vary a or eps): the exact orbit at the exact double value of the parameter; shade the "
+                "Certify each column (constant, or veldep without collapse): the exact orbit at the exact double value of the parameter; shade the "
                 "columns where double's class is refuted or nothing is certified");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, carry, certify, flags](const std::string& argv_text) {

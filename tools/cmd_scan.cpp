@@ -38,9 +38,10 @@ struct ScanRequest {
   Precision precision;
   std::string show = "regular";
   bool fixed_point_curves = false;  // --curves fixed-points: the paper's eq. 5 over the picture
-  // --certify (constant model, double twin): per parameter point, the certificate of the orbit
-  // of one exact start (--theta, --v; default the release state (1/2, 4), which every sticking
-  // orbit of the triangle wall passes through) at the exact double (a, eps).
+  // --certify (constant, or veldep without collapse; double twin): per parameter point, the
+  // certificate of the orbit of one exact start (--theta, --v; default the release state
+  // (1/2, 4), which every sticking orbit of the triangle wall passes through) at the exact
+  // double (a, eps) or (a, c).
   bool certify = false;
   InitialCondition start;
   CertifyPointOptions cert;
@@ -100,9 +101,7 @@ ScanRequest scan_request(const Options& given) {
   for (const char* k : {"max-bits", "theta", "v"})
     if (o.has(k) && !r.certify) throw InputError(k, "is only used with --certify (the certified start; the classified starts are --ics, --theta-range, --v-range)");
   if (r.certify) {
-    if (law != Law::constant)
-      throw InputError("certify", "scan --certify needs --model constant (certified sticking periods and trapping sets); "
-                                  "certified scans of the velocity-dependent model are not implemented");
+    require_certified_model(r.model, "scan");
     if (r.precision.kind != Precision::Kind::double_)
       throw InputError("precision", "with --certify the twin run is double (the artefact map compares double with the "
                                     "certified answer); got '" + r.precision.text() + "'");
@@ -169,7 +168,7 @@ struct ScanGrid {
   }
 };
 
-// --certify: item i is "a,eps,class,period,certified_steps,scalar,double_class,double_period,
+// --certify: item i is "a,eps|c,class,period,certified_steps,scalar,double_class,double_period,
 // agreement" with a and eps the exact decimals of the double cell centres.
 template <class T>
 struct CertifiedScanGrid {
@@ -183,10 +182,10 @@ struct CertifiedScanGrid {
     const std::string a_text = exact_decimal(mpq_class(Tr::to_double(a))), y_text = exact_decimal(mpq_class(Tr::to_double(y)));
     ModelSpec spec = r.model;
     spec.a = *Decimal::parse(a_text);
-    spec.eps = *Decimal::parse(y_text);
+    (r.y == "eps" ? spec.eps : spec.c) = *Decimal::parse(y_text);
     ReleaseCache releases;  // parameters differ from point to point: nothing to share
     const CertifiedPoint c = certify_point(spec, r.start, r.cert, releases);
-    const ImpactMap<T> map(with_parameter(with_parameter(twin.base, Parameter::a, a), Parameter::eps, y));
+    const ImpactMap<T> map(with_parameter(with_parameter(twin.base, Parameter::a, a), parse_parameter("y", r.y), y));
     const Classification d = classify<T>(map, make_state<T>(r.start, r.precision.bits), r.classify);
     std::ostringstream out;
     out << a_text << ',' << y_text << ',' << c.cls << ',' << c.period << ',' << c.certified_steps << ',' << c.scalar << ','
@@ -199,7 +198,7 @@ void certified_scan_finish(const ScanRequest& r, const std::vector<std::string>&
                            const Provenance& prov) {
   CertifiedMap m;
   m.x_name = "a";
-  m.y_name = "eps";
+  m.y_name = r.y;
   m.nx = r.p;
   m.ny = r.q;
   m.x0 = r.a0.value();
@@ -211,14 +210,15 @@ void certified_scan_finish(const ScanRequest& r, const std::vector<std::string>&
                " x " + std::to_string(r.q) + " exact parameter points, " + std::to_string(r.cert.max_steps) +
                " steps, interval:double then MPFI up to " + std::to_string(r.cert.max_bits) + " bits";
   m.xlabel = "a";
-  m.ylabel = "ε";
+  m.ylabel = r.y == "eps" ? "ε" : "c";
   m.max_steps = r.cert.max_steps;
   m.max_bits = r.cert.max_bits;
+  m.collapses = r.model.law == Law::constant;
   m.summary["command"] = "scan";
   m.summary["certified"] = true;
   m.summary["grid"] = {r.p, r.q};
   m.summary["a_range"] = {r.a0.text(), r.a1.text()};
-  m.summary["eps_range"] = {r.y0.text(), r.y1.text()};
+  m.summary[r.y + "_range"] = {r.y0.text(), r.y1.text()};
   m.summary["start"] = {r.start.theta.text(), r.start.v.text()};
   m.twin_precision = r.precision.text();
   certified_map_finish(m, items, f, prov);
@@ -368,7 +368,7 @@ Command add_scan(CLI::App& app) {
   auto flags = add_run_options(sub, *opts);
   auto certify = std::make_shared<bool>(false);
   sub->add_flag("--certify", *certify,
-                "Certify each parameter point (constant model): the exact orbit of --theta, --v at the exact double (a, eps), "
+                "Certify each parameter point (constant, or veldep without collapse): the exact orbit of --theta, --v at the exact double (a, eps) or (a, c), "
                 "with double's answer beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
   auto run = [opts, scene, flags, certify](const std::string& argv_text) {
     Options cl = opts->collected();

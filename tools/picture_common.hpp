@@ -427,14 +427,20 @@ struct CertifiedMap {
   std::string title, subtitle, xlabel, ylabel, twin_precision;
   long long max_steps = 0;
   long max_bits = 0;
+  bool collapses = true;  // constant restitution (sticking exists); false: velocity-dependent
   nlohmann::ordered_json summary;
 };
 
-inline std::string certified_label(const std::string& cls, long period, long long max_steps, long max_bits) {
+// `collapses`: the model has sticking (constant restitution), so "never sticks" is news;
+// without collapse (velocity-dependent) the statement is the trapping alone.
+inline std::string certified_label(const std::string& cls, long period, long long max_steps, long max_bits,
+                                   bool collapses) {
+  const std::string never = collapses ? "never sticks: " : "";
   if (cls == "sticking") return "sticking, k = " + std::to_string(period);
-  if (cls == "fixed") return "never sticks: trapped at a fixed point";
-  if (cls == "periodic") return "never sticks: trapped, period " + std::to_string(period);
+  if (cls == "fixed") return never + "trapped at a fixed point";
+  if (cls == "periodic") return never + "trapped, period " + std::to_string(period);
   if (cls == "no_sticking") return "no (further) sticking in >= " + std::to_string(max_steps) + " steps";
+  if (cls == "not_trapped") return "certified " + std::to_string(max_steps) + " steps, no trapping set";
   if (cls == "undecided") return "undecided at " + std::to_string(max_bits) + " bits";
   return "outside the phase space (v < wall velocity)";
 }
@@ -480,6 +486,7 @@ inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::s
     // pale blue: a weaker statement, and no colour of the attractor palette (whose sky blue
     // marks a periodic class)
     if (k.first == "no_sticking") color[k] = Rgb{198, 219, 239};
+    else if (k.first == "not_trapped") color[k] = Rgb{218, 210, 235};  // pale lavender: the same weak kind
     else color[k] = attractor_color(k.first, periodic_rank, sticking_rank, palette);
     if (k.first == "periodic") ++periodic_rank;
     if (k.first == "sticking") ++sticking_rank;
@@ -515,7 +522,7 @@ inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::s
       rest += k.first == "outside" ? 0 : n;
       continue;
     }
-    cert.raster.legend.emplace_back(certified_label(k.first, k.second, m.max_steps, m.max_bits) +
+    cert.raster.legend.emplace_back(certified_label(k.first, k.second, m.max_steps, m.max_bits, m.collapses) +
                                         (k.first == "outside" ? "" : share(n)),
                                     color[k]);
   }

@@ -44,7 +44,7 @@ __all__ = [
 # The class labels of the grid commands, in a fixed order: their int8 codes.
 CLASSES = (
     "fixed", "periodic", "sticking", "quasiperiodic", "chaotic", "unbounded", "effective_sticking",
-    "undecided", "transient_chaos", "outside", "no_sticking", "never_sticks", "not_certified",
+    "undecided", "transient_chaos", "outside", "no_sticking", "not_trapped", "never_sticks", "not_certified",
 )
 
 # Columns whose values are real numbers (of the run's precision: float64 in double).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # End-to-end: `bouncer basin --certify` and `bouncer bifurcation --certify` (certified
-# pictures, constant restitution).
+# pictures, constant restitution; velocity-dependent restitution without collapse).
 #   - every in-phase-space point has a certified class or is undecided; the CSV columns are
 #     as documented, and the JSON counts are those of the CSV;
 #   - the certified classes agree with `bouncer certify-sticking` run by hand at sample
@@ -13,6 +13,10 @@
 #   - scan --certify: the certificate at sample points equals certify-sticking's at the exact
 #     double (a, eps); JSON counts = CSV;
 #   - threads and shards: --threads 1, --threads 2 and two shards merged give the same rows;
+#   - velocity-dependent: at a = 25, c = 1000 every start is certified trapped (period 3, the
+#     orbit certify-periodic proves, or 31) and double agrees; a chaotic case is not_trapped;
+#     scan and bifurcation --certify take (a, c) and --vary c; elastic and veldep collapse
+#     are refused (exit 2) with the reason;
 #   - bifurcation --certify: each column's certificate equals certify-sticking's at the exact
 #     double value of a (printed exactly), and at eps = 0.5, a ~ 15.2 double's sticking at step
 #     283 is refuted (the exact orbit does not stick in 700 steps); with --vary eps each column
@@ -180,14 +184,58 @@ expect_bad() {
   [[ $(printf '%s\n' "$out" | wc -l) -eq 1 ]] || fail "$name" "not one line: $out"
   ls bad.* >/dev/null 2>&1 && fail "$name" "left files"
 }
-expect_bad veldep basin --model veldep --a 25 --c 1000 --grid 4x4 --certify
+expect_bad elastic basin --model elastic --a 18 --grid 4x4 --v-range 10:20 --certify
+expect_bad veldep-collapse basin --model veldep --a 25 --c 1000 --veldep-collapse on --grid 4x4 --certify
 expect_bad twin basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --precision mpfr:100
 expect_bad bits basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --max-bits 9999
 expect_bad bits-alone basin --model constant --eps 0.5 --a 24 --grid 4x4 --max-bits 128
 expect_bad bif-carry bifurcation --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
 expect_bad start-bits-typo certify-sticking --eps 0.5 --a 24 --start-bits doubel
-expect_bad bif-veldep bifurcation --model veldep --c 1000 --range 20:21 --samples 2 --certify
-expect_bad scan-veldep scan --model veldep --a-range 20:21 --c-range 100:200 --grid 2x2 --certify
+expect_bad bif-elastic bifurcation --model elastic --range 20:21 --samples 2 --certify
+expect_bad scan-collapse scan --model veldep --veldep-collapse on --a-range 20:21 --c-range 100:200 --grid 2x2 --certify
+out=$("$BOUNCER" basin --model elastic --a 18 --grid 4x4 --v-range 10:20 --certify 2>&1 >/dev/null)
+[[ $out == *"preserves area"* ]] || fail elastic-reason "the refusal does not say why: $out"
+
+# Velocity-dependent restitution (no collapse): a = 25, c = 1000, the paper's "chaotic attractor
+# with a riddled basin" (claim 18). Every start is certified trapped: in the period-3 attractor
+# that Krawczyk proves (certify-periodic below), or in the period-31 one; double agrees. A
+# chaotic case (c = 10, a = 20: lambda ~ 0.08) gives not_trapped, compared with nothing.
+"$BOUNCER" basin --model veldep --a 25 --c 1000 --grid 8x6 --transient 2000 --steps 300 --certify --quiet --out vb
+"$BOUNCER" certify-periodic --model veldep --c 1000 --a 25 --period 3 --guess 0.18703729141819947,30.210923880542616 \
+  --json >vp.json
+"$BOUNCER" basin --model veldep --a 20 --c 10 --grid 3x2 --transient 600 --steps 200 --certify --quiet --out vc
+"$BOUNCER" scan --model veldep --a-range 24.5:25.5 --c-range 900:1100 --grid 2x2 --transient 2000 --steps 300 --certify \
+  --quiet --out vs
+"$BOUNCER" bifurcation --model veldep --a 25 --vary c --range 900:1100 --samples 2 --transient 2000 --record 300 \
+  --theta 0.5 --v 4 --certify --quiet --out vf
+python3 - <<'PY' || fail veldep "certified velocity-dependent grids"
+import csv, json, sys
+def rows(p):
+    return list(csv.DictReader(l for l in open(p + ".csv") if not l.startswith("#")))
+bad = 0
+krawczyk = json.load(open("vp.json"))
+if not (krawczyk.get("certified") and krawczyk.get("minimal_period", 3) == 3):
+    print("certify-periodic does not prove the period-3 orbit:", krawczyk.get("statement")); bad += 1
+b = rows("vb")
+if len(b) != 48: print("vb.csv: expected 48 rows"); bad += 1
+for r in b:
+    if r["class"] != "periodic" or r["period"] not in ("3", "31") or r["agreement"] != "agrees":
+        print("a = 25, c = 1000:", r); bad += 1
+if sum(r["period"] == "3" for r in b) < 40: print("period 3 is not the main attractor"); bad += 1
+for r in rows("vc"):
+    if r["class"] not in ("not_trapped", "undecided") or r["agreement"] != "undecided":
+        print("c = 10, a = 20 (chaotic):", r); bad += 1
+    if r["class"] == "not_trapped" and r["certified_steps"] != "800":
+        print("not_trapped must be certified through every step:", r); bad += 1
+s = rows("vs")
+if len(s) != 4 or list(s[0])[:3] != ["a", "c", "class"]: print("vs.csv columns or rows:", list(s[0])); bad += 1
+if json.load(open("vs.json"))["summary"].get("c_range") != ["900", "1100"]: print("vs.json: no c_range"); bad += 1
+for r in s:
+    if r["class"] not in ("fixed", "periodic", "not_trapped", "undecided"): print("scan veldep:", r); bad += 1
+cols = json.load(open("vf.json"))["summary"].get("columns", [])
+if len(cols) != 2 or any("c" not in c for c in cols): print("vf.json certified columns:", cols); bad += 1
+sys.exit(bad > 0)
+PY
 expect_bad scan-theta scan --model constant --a-range 20:21 --eps-range 0.4:0.5 --grid 2x2 --theta 0.3
 expect_bad scan-start scan --model constant --a-range 20:21 --eps-range 0.4:0.5 --grid 2x2 --certify --theta 0.25 --v 1
 

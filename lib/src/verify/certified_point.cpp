@@ -22,14 +22,16 @@ StickingQuestion question(const ModelSpec& model, const InitialCondition& start,
 }
 
 // The class a non-sticking certificate states.
-void set_from_trap_or_none(CertifiedPoint& p, const StickingCertificate& c) {
+void set_from_trap_or_none(CertifiedPoint& p, const StickingCertificate& c, Law law) {
   switch (c.outcome) {
     case StickingOutcome::never_sticks:
       p.period = c.attractor->period;
       p.cls = p.period == 1 ? "fixed" : "periodic";
       break;
     case StickingOutcome::no_sticking_within_max_steps:
-      p.cls = "no_sticking";
+      // Velocity-dependent: no orbit collapses, so "no sticking" says nothing; what is
+      // certified is the orbit through every step, with no trapping set at its end.
+      p.cls = law == Law::veldep ? "not_trapped" : "no_sticking";
       break;
     default:
       p.cls = "undecided";
@@ -74,7 +76,7 @@ CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& sta
   p.certified_steps = c.steps_checked;
   p.scalar = c.scalar;
   if (c.outcome != StickingOutcome::sticks) {
-    set_from_trap_or_none(p, c);
+    set_from_trap_or_none(p, c, model.law);
     return p;
   }
   p.first_sticking = *c.period;
@@ -89,7 +91,7 @@ CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& sta
     p.period = *r.period;
     return p;
   }
-  set_from_trap_or_none(p, r);
+  set_from_trap_or_none(p, r, model.law);
   p.free_steps = r.steps_checked;
   if (p.cls == "undecided" && r.steps_checked >= opt.max_steps) p.cls = "no_sticking";
   if (p.cls == "undecided") p.reason = "sticks at step " + std::to_string(*c.period) + ", then the release orbit: " + r.reason;
@@ -103,6 +105,9 @@ std::string compare_with_certified(const CertifiedPoint& c, const std::string& d
     const bool periodic = double_class == "fixed" || double_class == "periodic";
     return periodic && double_period == c.period ? "agrees" : "differs";
   }
+  // not_trapped (velocity-dependent): the orbit is certified, its attractor is not: double's
+  // class can be neither confirmed nor refuted.
+  if (c.cls == "not_trapped") return "undecided";
   // no_sticking: the certified statement is only that it does not stick (again) for a while.
   if (double_class != "sticking") return "agrees";
   if (c.first_sticking == 0) return "differs";  // double stuck within max_steps, the exact orbit does not

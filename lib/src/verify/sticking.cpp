@@ -249,7 +249,14 @@ RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
 }  // namespace
 
 StickingCertificate certify_sticking(const StickingQuestion& q) {
-  if (q.model.law != Law::constant) throw InputError("model", "sticking periods need --model constant");
+  // Constant restitution: the certified collapse test. Velocity-dependent restitution
+  // without collapse (the paper's model: eps(v) -> 1 as the relative speed -> 0, so an orbit
+  // never collapses in finitely many steps): no sticking event exists, and the run certifies
+  // the orbit and looks for a trapping set. Velocity-dependent collapse has no certified
+  // test, and the elastic map preserves area (no set maps strictly into itself).
+  if (q.model.law == Law::elastic || (q.model.law == Law::veldep && q.model.veldep_collapse))
+    throw InputError("model", "certified long-run answers need --model constant, or --model veldep without "
+                              "--veldep-collapse (got " + std::string(q.model.law == Law::elastic ? "elastic" : "veldep with collapse") + ")");
   auto e = escalate<RunResult>(q.schedule, [&](const Tier& t, Progress& p) {
     return t.double_interval ? run_once<DoubleInterval>(q, t.bits, p) : run_once<Mpfi>(q, t.bits, p);
   });

@@ -1,5 +1,6 @@
-// A certified long-run answer for one exact start (constant restitution): what every pixel
-// of `basin --certify` states, with the double answer next to it (the artefact map).
+// A certified long-run answer for one exact start (constant restitution, or velocity-dependent
+// restitution without collapse): what every pixel of `basin --certify` states, with the
+// double answer next to it (the artefact map).
 //
 // The start's orbit is followed in interval arithmetic (certify_sticking: interval:double,
 // then MPFI at 64, 128, ... up to max_bits) for at most max_steps steps:
@@ -12,6 +13,10 @@
 //   no_sticking  certified: no sticking in steps 1..certified_steps (= max_steps), and no
 //                trapping set was found; or, after a first sticking, the release orbit is
 //                certified free of sticking for free_steps >= max_steps steps;
+//   not_trapped  velocity-dependent only (no orbit collapses there, so no sticking class):
+//                the orbit is certified through all max_steps steps, and no trapping set was
+//                found at its end (a chaotic orbit, or an attractor too slow or too neutral
+//                for the proof); fixed and periodic p are as above;
 //   undecided    steps 1..certified_steps are certified free of sticking, the next step was
 //                undecided at every precision of the schedule (`reason`).
 // The release orbit, shared by every start that sticks, gets the full schedule (MPFI up to
@@ -36,7 +41,7 @@
 namespace bouncer {
 
 struct CertifiedPoint {
-  std::string cls = "undecided";     // sticking | fixed | periodic | no_sticking | undecided
+  std::string cls = "undecided";     // sticking | fixed | periodic | no_sticking | not_trapped | undecided
   long period = 0;                   // sticking: k; fixed / periodic: the attractor's period
   long long first_sticking = 0;      // sticking (and classes reached through a release): step
   long long certified_steps = 0;     // steps of the start's own run certified

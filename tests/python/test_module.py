@@ -272,6 +272,15 @@ def test_certified_basin_agrees_with_the_cli_and_certify_sticking():
                 assert c["outcome"] != "sticks" or release["outcome"] != "sticks"
 
 
+def test_certified_veldep_basin_is_every_pixel_trapped():
+    # README claim 18b: at a = 25, c = 1000 every start is certified trapped (period 3 or 31).
+    r = bouncer.basin(model="veldep", a="25", c="1000", grid=(4, 3), transient=2000, steps=300, certify=True,
+                      threads=2)
+    labels = {r["classes"][k] for k in r["class"].ravel()}
+    assert labels == {"periodic"} and set(r["period"].ravel().tolist()) <= {3, 31}
+    assert r["summary"]["double_vs_certified"]["agrees"] == 12
+
+
 def test_scan_shapes_and_cli():
     opts = dict(model="constant", a_range=("10", "20"), eps_range=("0.4", "0.6"), grid=(3, 2), ics=2, steps=50,
                 transient=100)

@@ -25,7 +25,6 @@ Tables come as numpy arrays (README, "From Python"):
 from __future__ import annotations
 
 import csv
-import io
 import json
 import shlex
 from decimal import Decimal
@@ -369,13 +368,11 @@ def _as_grid(result, header, rows, x, y, doubles):
             continue
         result[name] = col.reshape(ny, nx)
     if labels:
-        codes_table = None
-        all_labels = [lab for name in labels for lab in table[name].tolist()]
-        _, codes_table = _codes(all_labels)
-        index = {lab: i for i, lab in enumerate(codes_table)}
-        for name in labels:
-            result[name] = np.array([index[lab] for lab in table[name].tolist()], dtype=np.int8).reshape(ny, nx)
-        result["classes"] = codes_table
+        # one code table for every class column (class and, certified, double_class)
+        codes, table_of_codes = _codes([lab for name in labels for lab in table[name].tolist()])
+        for k, name in enumerate(labels):
+            result[name] = codes[k * len(rows):(k + 1) * len(rows)].reshape(ny, nx)
+        result["classes"] = table_of_codes
     result["table"] = table
     return result
 

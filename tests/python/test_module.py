@@ -465,8 +465,11 @@ def test_repr_names_the_command_and_the_fields():
 
 
 def test_run_covers_other_commands_and_refuses_the_subprocess_ones(tmp_path):
-    text = bouncer.run("tongues", p_max=3, out=str(tmp_path / "t"))
+    assert bouncer.run("tongues", p_max=3, out=str(tmp_path / "t")) == ""  # the outputs are files
     assert (tmp_path / "t.png").stat().st_size > 1000
+    # without out=, the CSV: eq. 5's curve a = 8(1+eps)/(p(1-eps)) starts at a = 8/p, eps = 0
+    rows = csv_rows(bouncer.run("tongues", p_max=2, samples=16))
+    assert rows[0][:3] == ["p", "a", "eps"] and rows[1][:3] == ["1", "8", "0"]
     assert json.loads((tmp_path / "t.json").read_text())["provenance"]["command"] == "tongues"
     for command in ("audit", "reproduce"):
         with pytest.raises(ValueError, match="run it from a shell"):

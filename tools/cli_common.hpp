@@ -30,7 +30,8 @@
 
 namespace bouncer::cli {
 
-// Registers string options whose values land in an Options map under their long name.
+// Registers string options whose values land in an Options map under their long name, and
+// flags that land there as "true" (as a scene's `certify = "true"` does).
 class OptionSet {
  public:
   explicit OptionSet(CLI::App* app) : app_(app) {}
@@ -40,12 +41,17 @@ class OptionSet {
   void add_list(const std::string& name, const std::string& help) {
     app_->add_option("--" + name, lists_[name], help)->delimiter(',');
   }
+  void add_flag(const std::string& name, const std::string& help) {
+    app_->add_flag("--" + name, flags_[name], help);
+  }
   Options collected() const {
     Options o;
     for (const auto& [k, v] : single_)
       if (app_->count("--" + k)) o.set(k, v);
     for (const auto& [k, v] : lists_)
       if (app_->count("--" + k)) o.set(k, v);
+    for (const auto& [k, v] : flags_)
+      if (app_->count("--" + k)) o.set(k, "true");
     return o;
   }
 
@@ -53,6 +59,7 @@ class OptionSet {
   CLI::App* app_;
   std::map<std::string, std::string> single_;
   std::map<std::string, std::vector<std::string>> lists_;
+  std::map<std::string, bool> flags_;
 };
 
 // Where a command prints its results. The command-line tool prints on stdout; a host that
@@ -233,18 +240,6 @@ inline std::string invocation(int argc, char** argv) {
   std::string s;
   for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
   return s;
-}
-
-// Certified grids (basin, scan, bifurcation --certify; verify/certified_point.hpp) cover
-// constant restitution, and velocity-dependent restitution without collapse (certified orbits
-// and trapping sets, no sticking). Anything else is an InputError naming what is allowed.
-inline void require_certified_model(const ModelSpec& m, const std::string& command) {
-  if (m.law == Law::constant || (m.law == Law::veldep && !m.veldep_collapse)) return;
-  throw InputError("certify", command + " --certify needs --model constant or --model veldep (without "
-                   "--veldep-collapse): certified orbits, sticking periods and trapping sets; " +
-                   (m.law == Law::elastic ? std::string("the elastic map preserves area, so no set maps strictly into "
-                                                        "itself and no attractor can be certified this way")
-                                          : std::string("velocity-dependent collapse has no certified test")));
 }
 
 // The model options every command shares.

@@ -328,15 +328,12 @@ Command add_basin(CLI::App& app) {
   add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
   opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
-  auto flags = add_run_options(sub, *opts);
-  auto certify = std::make_shared<bool>(false);
-  sub->add_flag("--certify", *certify,
+  opts->add_flag("certify",
                 "Certify every point (constant, or veldep without collapse): sticking period, trapping set, 'not_trapped' (veldep) or 'undecided', with double's answer "
                 "beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
-  auto run = [opts, scene, flags, certify](const std::string& argv_text) {
-    Options cl = opts->collected();
-    if (*certify) cl.set("certify", "true");
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), cl);
+  auto flags = add_run_options(sub, *opts);
+  auto run = [opts, scene, flags](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
     return run_basin(o, run_flags_from(o, *flags, argv_text));
   };
   return {sub, run};

@@ -358,7 +358,6 @@ Command add_bifurcation(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("bifurcation", "Bifurcation diagram: sweep a, eps or c; CSV, density PNG, JSON");
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
-  auto carry = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
   opts->add("vary", "Parameter to sweep: a (default) | eps (constant model) | c (veldep model)");
@@ -372,17 +371,13 @@ Command add_bifurcation(CLI::App& app) {
   opts->add("show", "Picture: theta (default) or v against the parameter");
   opts->add("bins", "Rows of the density image, 10..4000 (default 400)");
   opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
-  sub->add_flag("--carry", *carry, "Start each value from the last state of the previous one (one worker)");
-  auto certify = std::make_shared<bool>(false);
-  sub->add_flag("--certify", *certify,
+  opts->add_flag("carry", "Start each value from the last state of the previous one (one worker)");
+  opts->add_flag("certify",
                 "Certify each column (constant, or veldep without collapse): the exact orbit at the exact double value of the parameter; shade the "
                 "columns where double's class is refuted or nothing is certified");
   auto flags = add_run_options(sub, *opts);
-  auto run = [opts, scene, carry, certify, flags](const std::string& argv_text) {
-    Options cl = opts->collected();
-    if (*carry) cl.set("carry", "true");
-    if (*certify) cl.set("certify", "true");
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "bifurcation", bifurcation_keys()), cl);
+  auto run = [opts, scene, flags](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "bifurcation", bifurcation_keys()), opts->collected());
     return run_bifurcation(o, run_flags_from(o, *flags, argv_text));
   };
   return {sub, run};

@@ -429,7 +429,6 @@ Command add_continue(CLI::App& app) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   auto json_flag = std::make_shared<bool>(false);
-  auto certify = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
   opts->add("period", "Period q, integer in [1, 100] (required)");
@@ -450,14 +449,12 @@ Command add_continue(CLI::App& app) {
   // draws no progress bar, so it changes nothing.
   auto quiet = std::make_shared<bool>(false);
   sub->add_flag("--quiet", *quiet, "Accepted like the picture commands (continue prints no progress)");
-  sub->add_flag("--certify", *certify,
+  opts->add_flag("certify",
                  "Krawczyk on the branch side of each border end: a certified one-sided bound on a*");
   // The lambda holds every flag's storage: CLI11 writes through the references after
   // add_continue has returned.
-  auto run = [opts, scene, json_flag, certify, quiet](const std::string& argv_text) {
-    Options cl = opts->collected();
-    if (*certify) cl.set("certify", "true");
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), cl);
+  auto run = [opts, scene, json_flag, quiet](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), opts->collected());
     const ContinueRequest req = continue_request(o);
     const Provenance prov = provenance_for("continue", o, req.precision, argv_text);
     return with_point_scalar(req.precision, [&](auto tag) {

@@ -217,7 +217,6 @@ Command add_portrait(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("portrait", "Phase portrait (theta, v) of several orbits; --polar for Fermi acceleration");
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
-  auto polar = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
   opts->add_list("theta", "Initial phases in [0, 1), a comma list (one orbit each)");
@@ -227,12 +226,10 @@ Command add_portrait(CLI::App& app) {
   opts->add("precision", kPointPrecisionHelp);
   opts->add("theta-range", "Window T0:T1 within [0, 1] of the picture (default 0:1); any width, e.g. 1e-20 at mpfr:256");
   opts->add("v-range", "Window V0:V1 of the picture (default: the data)");
-  sub->add_flag("--polar", *polar, "Polar picture: angle 2 pi theta, radius v");
+  opts->add_flag("polar", "Polar picture: angle 2 pi theta, radius v");
   auto flags = add_run_options(sub, *opts);
-  auto run = [opts, scene, polar, flags](const std::string& argv_text) {
-    Options cl = opts->collected();
-    if (*polar) cl.set("polar", "true");
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "portrait", portrait_keys()), cl);
+  auto run = [opts, scene, flags](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "portrait", portrait_keys()), opts->collected());
     return run_portrait(o, run_flags_from(o, *flags, argv_text));
   };
   return {sub, run};

@@ -365,15 +365,12 @@ Command add_scan(CLI::App& app) {
   opts->add("theta", "With --certify: the start's phase, an exact decimal (default 0.5, the release state)");
   opts->add("v", "With --certify: the start's velocity (default 4, the release state)");
   opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
-  auto flags = add_run_options(sub, *opts);
-  auto certify = std::make_shared<bool>(false);
-  sub->add_flag("--certify", *certify,
+  opts->add_flag("certify",
                 "Certify each parameter point (constant, or veldep without collapse): the exact orbit of --theta, --v at the exact double (a, eps) or (a, c), "
                 "with double's answer beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
-  auto run = [opts, scene, flags, certify](const std::string& argv_text) {
-    Options cl = opts->collected();
-    if (*certify) cl.set("certify", "true");
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), cl);
+  auto flags = add_run_options(sub, *opts);
+  auto run = [opts, scene, flags](const std::string& argv_text) {
+    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), opts->collected());
     return run_scan(o, run_flags_from(o, *flags, argv_text));
   };
   return {sub, run};

@@ -29,6 +29,7 @@
 #include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
+#include "bouncer/verify/sticking.hpp"
 #include "cli_common.hpp"
 
 namespace bouncer::cli {
@@ -430,6 +431,15 @@ struct CertifiedMap {
   bool collapses = true;  // constant restitution (sticking exists); false: velocity-dependent
   nlohmann::ordered_json summary;
 };
+
+// Certified grids (basin, scan, bifurcation --certify; verify/certified_point.hpp) exist for
+// the models of why_no_certified_answers (verify/sticking.hpp); anything else is refused
+// before any work, naming the command, what is allowed, and why.
+inline void require_certified_model(const ModelSpec& m, const std::string& command) {
+  if (const std::string why = why_no_certified_answers(m); !why.empty())
+    throw InputError("certify", command + " --certify needs --model constant or --model veldep (without "
+                                          "--veldep-collapse): " + why);
+}
 
 // `collapses`: the model has sticking (constant restitution), so "never sticks" is news;
 // without collapse (velocity-dependent) the statement is the trapping alone.

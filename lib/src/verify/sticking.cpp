@@ -248,15 +248,18 @@ RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
 
 }  // namespace
 
+std::string why_no_certified_answers(const ModelSpec& model) {
+  if (model.law == Law::elastic)
+    return "the elastic map preserves area, so no set maps strictly into itself and no attractor can be certified "
+           "by a trapping set";
+  if (model.law == Law::veldep && model.veldep_collapse) return "velocity-dependent collapse has no certified test";
+  return "";
+}
+
 StickingCertificate certify_sticking(const StickingQuestion& q) {
-  // Constant restitution: the certified collapse test. Velocity-dependent restitution
-  // without collapse (the paper's model: eps(v) -> 1 as the relative speed -> 0, so an orbit
-  // never collapses in finitely many steps): no sticking event exists, and the run certifies
-  // the orbit and looks for a trapping set. Velocity-dependent collapse has no certified
-  // test, and the elastic map preserves area (no set maps strictly into itself).
-  if (q.model.law == Law::elastic || (q.model.law == Law::veldep && q.model.veldep_collapse))
+  if (const std::string why = why_no_certified_answers(q.model); !why.empty())
     throw InputError("model", "certified long-run answers need --model constant, or --model veldep without "
-                              "--veldep-collapse (got " + std::string(q.model.law == Law::elastic ? "elastic" : "veldep with collapse") + ")");
+                              "--veldep-collapse: " + why);
   auto e = escalate<RunResult>(q.schedule, [&](const Tier& t, Progress& p) {
     return t.double_interval ? run_once<DoubleInterval>(q, t.bits, p) : run_once<Mpfi>(q, t.bits, p);
   });

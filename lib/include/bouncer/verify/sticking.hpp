@@ -77,6 +77,14 @@ struct StickingCertificate {
   std::string release_theta, release_v;
 };
 
+// Certified long-run answers (certify_sticking, and the certified grids through
+// certified_point.hpp) exist for constant restitution (the certified collapse test) and for
+// velocity-dependent restitution without collapse (no orbit collapses in finitely many steps
+// there: eps(v) -> 1 as the relative speed -> 0; the run certifies the orbit and looks for a
+// trapping set). Returns "" for those models, else why not, for an error message.
+std::string why_no_certified_answers(const ModelSpec& model);
+
+// Throws InputError("model", ...) for a model why_no_certified_answers refuses.
 StickingCertificate certify_sticking(const StickingQuestion& q);
 
 // What a plain (non-interval) run computes for the same question: the step of the first

@@ -153,9 +153,11 @@ inline void write_output_set(const std::vector<OutputFile>& files) {
 // ---- Pictures: formats, size, resolution and palette (presentation only) -------------------
 // These options change how a picture looks, never a computed value: they are not part of a
 // grid job's key (picture_common.hpp), so re-rendering a finished or resumed job with
-// another --format or --size reuses its saved tiles.
+// another --format or --size reuses its saved tiles. `show` (scan: which class's share;
+// bifurcation: theta or v) and `bins` (bifurcation's density rows) are read only when the
+// picture is drawn: the two panels of the paper's fig. paramscan are one grid drawn twice.
 inline const std::set<std::string>& presentation_keys() {
-  static const std::set<std::string> k{"format", "size", "dpi", "palette", "curves"};
+  static const std::set<std::string> k{"format", "size", "dpi", "palette", "curves", "show", "bins"};
   return k;
 }
 // The keys of add_picture_options (scene files accept them too).

@@ -20,18 +20,23 @@
 #include <toml++/toml.h>
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cmath>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <set>
 #include <memory>
 #include <sstream>
@@ -41,7 +46,9 @@
 #include "cli_common.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "bouncer/io/cancel.hpp"
 #include "paper_manifest.hpp"
+#include "run_command.hpp"
 
 extern char** environ;
 
@@ -56,6 +63,9 @@ struct Panel {
   // twin_of: not a panel of the paper but bouncer's certified twin of one (label
   // fig:NAME-certified): the same picture from `basin --certify`, with its artefact map.
   std::string label, figure, panel, caption, note, scene, status, reason, twin_of;
+  // tiles_from: the label of an earlier panel whose grid is this one's too (only the
+  // picture differs, e.g. --show): computed once, drawn twice.
+  std::string tiles_from;
   std::vector<std::pair<std::string, std::string>> params;
   std::vector<std::string> quick, full;
   std::string name() const { return label.rfind("fig:", 0) == 0 ? label.substr(4) : label; }
@@ -134,6 +144,10 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
       p.status = str(*t, "status", where);
       p.reason = str(*t, "reason", where, false);
       p.twin_of = str(*t, "twin_of", where, false);
+      p.tiles_from = str(*t, "tiles_from", where, false);
+      if (!p.tiles_from.empty() &&
+          std::none_of(m.panels.begin(), m.panels.end(), [&](const Panel& q) { return q.label == p.tiles_from; }))
+        throw InputError("manifest", where + ": tiles_from '" + p.tiles_from + "' is not the label of an earlier panel");
       if (const toml::table* params = (*t)["params"].as_table())
         for (const auto& [k, v] : *params) p.params.emplace_back(std::string(k.str()), v.value<std::string>().value_or(""));
       p.quick = argv_of(*t, "quick", where);
@@ -269,6 +283,10 @@ struct Item {
   std::vector<std::string> exec;  // resolved
   std::string stdout_path, stderr_path, key_path, key;
   std::vector<std::string> outputs;  // must exist after success (relative to DIR)
+  // A panel drawn from the grid of an earlier item (manifest tiles_from): that item's index,
+  // and the tile prefix it keeps for this one. It starts when that item has finished.
+  std::optional<size_t> after;
+  std::string tiles_prefix;  // set on the item that keeps its tiles (DIR/panels/NAME)
   // results
   std::string state = "pending";  // pending, done, cached, failed, deferred, skipped
   std::string problem;
@@ -312,6 +330,47 @@ std::optional<fs::path> find_proof(const fs::path& exe_dir, const std::string& n
   }
   return std::nullopt;
 }
+
+// SIGINT, SIGTERM and SIGHUP caught while reproduce waits for its children (installed
+// without SA_RESTART, so waitpid returns EINTR); restored on destruction. reraise() ends the
+// process by the caught signal, with the default action, as the shell expects.
+volatile std::sig_atomic_t g_stop_signal = 0;
+extern "C" void note_stop_signal(int sig) { g_stop_signal = sig; }
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = note_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = 0;
+    for (size_t i = 0; i < std::size(kSignals); ++i) {
+      ::sigaction(kSignals[i], &sa, &old_[i]);
+      // A signal ignored when reproduce started (nohup; SIGINT of a background job) stays so.
+      if (old_[i].sa_handler == SIG_IGN) ::sigaction(kSignals[i], &old_[i], nullptr);
+    }
+  }
+  ~StopSignals() {
+    for (size_t i = 0; i < std::size(kSignals); ++i) ::sigaction(kSignals[i], &old_[i], nullptr);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+  int caught() const { return g_stop_signal; }
+  [[noreturn]] void reraise() const {
+    const int sig = g_stop_signal;
+    struct sigaction dfl {};
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    ::sigaction(sig, &dfl, nullptr);
+    std::cerr.flush();
+    ::raise(sig);
+    std::_Exit(128 + sig);
+  }
+
+ private:
+  static constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+  struct sigaction old_[std::size(kSignals)] {};
+};
 
 pid_t spawn(const Item& it) {
   posix_spawn_file_actions_t fa;
@@ -384,7 +443,7 @@ std::string fixed(double x, int digits) {
 }
 
 struct Options_ {
-  bool quick = false, full = false, claims_table = false;
+  bool quick = false, full = false, claims_table = false, check = false;
   std::string out = "reproduction", only, jobs, manifest;
 };
 
@@ -394,6 +453,58 @@ std::string claims_table(const Manifest& m) {
     t += "| " + c.row + " | " + md_cell(c.text) + " | " + md_cell(c.verdict) + " | " + md_cell(c.evidence) + " | " +
          md_cell(c.rerun) + " |\n";
   return t;
+}
+
+// --check: every command of the manifest, quick and full, is parsed and validated without
+// being run: each bouncer command runs in this process with its cancellation flag already
+// set (io/cancel.hpp), so it validates its options and inputs as it always does and stops at
+// its first step; proof binaries must exist. Prints one line per command; exit 1 if any
+// command is refused.
+int check_manifest(const Manifest& m, const fs::path& exe_dir) {
+  std::string tmpl = (fs::temp_directory_path() / "bouncer-check-XXXXXX").string();
+  if (!::mkdtemp(tmpl.data())) throw OutputError("cannot create a temporary directory: " + std::string(std::strerror(errno)));
+  const fs::path tmp = tmpl;
+  struct Remove {
+    fs::path p;
+    ~Remove() {
+      std::error_code ec;
+      fs::remove_all(p, ec);
+    }
+  } remove{tmp};
+  long checked = 0, refused = 0;
+  auto check = [&](const std::string& id, const std::string& which, std::vector<std::string> argv, bool panel) {
+    if (argv.empty()) return;
+    ++checked;
+    std::string verdict;
+    if (argv[0].rfind("proof_", 0) == 0) {
+      verdict = find_proof(exe_dir, argv[0]) ? "ok (proof binary found)" : "refused: proof binary " + argv[0] + " not found";
+    } else if (argv[0] != "bouncer") {
+      verdict = "refused: must start with bouncer or proof_NAME";
+    } else {
+      if (panel) argv.insert(argv.end(), {"--out", (tmp / (std::to_string(checked) + "-x")).string(), "--quiet", "--format", "png,pdf,svg"});
+      const std::atomic<bool> stop{true};
+      const CancelScope cancel(&stop);
+      CommandCapture swallow;
+      const CaptureScope capture(&swallow);
+      const CommandOutcome r = run_command(argv, false);
+      using K = CommandOutcome::Kind;
+      verdict = r.kind == K::cancelled ? "ok (validated; stopped at its first step)"
+                : r.kind == K::ok      ? "ok (ran: nothing long to stop)"
+                                       : "refused (exit " + std::to_string(r.status) + "): " + r.message;
+    }
+    if (verdict.rfind("ok", 0) != 0) ++refused;
+    command_out() << id << " " << which << ": " << verdict << "\n";
+  };
+  for (const Panel& p : m.panels) {
+    check(p.label, "quick", p.quick, true);
+    check(p.label, "full", p.full, true);
+  }
+  for (const Claim& c : m.claims) {
+    check(c.id, "run", c.run, false);
+    if (c.full_run != c.run) check(c.id, "full_run", c.full_run, false);
+  }
+  command_out() << checked << " commands checked, " << refused << " refused\n";
+  return refused ? 1 : 0;
 }
 
 int run_reproduce(const Options_& o) {
@@ -410,6 +521,12 @@ int run_reproduce(const Options_& o) {
   if (o.claims_table) {
     command_out() << claims_table(m);
     return 0;
+  }
+  if (o.check) {
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    if (ec) throw OutputError("cannot locate this binary (/proc/self/exe): " + ec.message());
+    return check_manifest(m, exe.parent_path());
   }
   unsigned jobs = std::max(1u, std::thread::hardware_concurrency());
   if (!o.jobs.empty()) {
@@ -490,6 +607,12 @@ int run_reproduce(const Options_& o) {
     it.stdout_path = (dir / "logs" / (p.name() + ".stdout")).string();
     it.stderr_path = (dir / "logs" / (p.name() + ".stderr")).string();
     it.key_path = (dir / "keys" / (p.name() + ".key")).string();
+    if (!p.tiles_from.empty())
+      for (size_t k = 0; k < items.size(); ++k)
+        if (items[k].id == p.tiles_from && items[k].state == "pending") {
+          it.after = k;
+          items[k].tiles_prefix = (dir / "panels" / m.panels[items[k].index].name()).string();
+        }
     items.push_back(it);
   }
   for (size_t i = 0; i < m.claims.size(); ++i) {
@@ -551,16 +674,38 @@ int run_reproduce(const Options_& o) {
     std::cerr << "\n";
   };
   std::map<pid_t, std::pair<size_t, std::chrono::steady_clock::time_point>> running;
-  size_t next = 0;
+  std::vector<bool> started(items.size(), false);
   for (Item& it : items)
     if (it.state != "pending") report_line(it);
+  // The next item to start: in manifest order, the first pending one whose grid source (if
+  // any) has finished.
+  auto next_ready = [&]() -> std::optional<size_t> {
+    for (size_t i = 0; i < items.size(); ++i) {
+      if (started[i] || items[i].state != "pending") continue;
+      if (items[i].after && (items[*items[i].after].state == "pending")) continue;
+      return i;
+    }
+    return std::nullopt;
+  };
+  // A signal to reproduce alone (kill PID, a batch system's TERM) reaches its children too:
+  // they stop, no key is written for them, and a rerun resumes (a terminal's Ctrl-C reaches
+  // the whole process group anyway).
+  const StopSignals stop;
+  bool forwarded = false;
   while (true) {
-    while (running.size() < jobs && next < items.size()) {
-      Item& it = items[next];
-      const size_t idx = next++;
-      if (it.state != "pending") continue;
+    while (running.size() < jobs && !stop.caught()) {
+      const auto ready = next_ready();
+      if (!ready) break;
+      const size_t idx = *ready;
+      Item& it = items[idx];
+      started[idx] = true;
       std::error_code rm;
       fs::remove(it.key_path, rm);
+      if (!it.tiles_prefix.empty()) it.exec.push_back("--keep-tiles");
+      if (it.after) {
+        const std::string from = items[*it.after].tiles_prefix;
+        if (fs::is_regular_file(from + ".tiles/job.key", rm)) it.exec.insert(it.exec.end(), {"--tiles-from", from});
+      }
       const pid_t pid = spawn(it);
       if (pid < 0) {
         it.state = "failed";
@@ -573,6 +718,12 @@ int run_reproduce(const Options_& o) {
     if (running.empty()) break;
     int status = 0;
     const pid_t pid = ::waitpid(-1, &status, 0);
+    if (stop.caught() && !forwarded) {  // (a signal just before waitpid: the next child's end wakes it)
+      forwarded = true;
+      for (const auto& [child, what] : running)
+        if (child != pid) ::kill(child, stop.caught());
+    }
+    if (pid < 0 && errno == EINTR) continue;
     if (pid < 0) break;
     auto r = running.find(pid);
     if (r == running.end()) continue;
@@ -596,6 +747,22 @@ int run_reproduce(const Options_& o) {
     report_line(it);
   }
   const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (const int sig = stop.caught()) {
+    // No report: it would call the stopped items failed. Finished items keep their keys.
+    std::cerr << "reproduce: stopped by signal " << sig << " (" << ::strsignal(sig) << "); finished items are kept in "
+              << dir.string() << ": run the same command again to resume\n";
+    stop.reraise();
+  }
+  // Grids kept for a later panel (tiles_from) are removed once every panel drawn from them
+  // is done; otherwise they stay for a rerun.
+  for (const Item& src : items) {
+    if (src.tiles_prefix.empty()) continue;
+    bool needed = false;
+    for (const Item& it : items)
+      needed = needed || (it.after && items[*it.after].id == src.id && it.state != "done" && it.state != "cached");
+    std::error_code rm;
+    if (!needed) fs::remove_all(src.tiles_prefix + ".tiles", rm);
+  }
 
   // Evaluate the claims' checks.
   json jclaims = json::array();
@@ -830,6 +997,8 @@ Command add_reproduce(CLI::App& app) {
   sub->add_option("--only", o->only, "Comma list of panel labels (fig:basin1 or basin1) and claim ids");
   sub->add_option("--jobs", o->jobs, "Items run at once, integer in [1, 1024] (default: cores)");
   sub->add_flag("--claims-table", o->claims_table, "Print the README's Markdown claims table from the manifest and exit");
+  sub->add_flag("--check", o->check,
+                "Validate every command of the manifest (quick and full) without running it: one line each; exit 1 if any is refused");
   sub->add_option("--manifest", o->manifest, "")->group("");  // hidden: another manifest (tests)
   auto run = [o](const std::string&) { return run_reproduce(*o); };
   return {sub, run};

@@ -43,13 +43,14 @@ struct RunFlags {
   bool keep_tiles = false;
   std::optional<std::string> out;
   std::vector<std::string> merge_from;  // bouncer merge: tile directories to import
+  std::optional<std::string> tiles_from;  // --tiles-from: a tile directory of the same job to reuse
   bool merge_only = false;              // bouncer merge: compute nothing
   std::string invocation;
   Presentation picture;  // --format, --size, --dpi, --palette (how the picture looks)
 };
 
 inline const std::set<std::string>& run_keys() {
-  static const std::set<std::string> k{"threads", "shard", "out"};
+  static const std::set<std::string> k{"threads", "shard", "out", "tiles-from"};
   return k;
 }
 
@@ -71,6 +72,8 @@ inline std::shared_ptr<FlagSet> add_run_options(CLI::App* sub, OptionSet& opts) 
   opts.add("threads", "Worker threads, integer >= 1 (default: all cores); results do not depend on it");
   opts.add("shard", "Run only shard I/N of the tiles (0 <= I < N); needs --out; join with bouncer merge");
   opts.add("out", "Write PREFIX.csv, PREFIX.json and the pictures PREFIX.png/.pdf/.svg of --format (tiles in PREFIX.tiles/ while running)");
+  opts.add("tiles-from", "Reuse the finished tiles of the same job from PREFIX.tiles/ (kept by --keep-tiles), e.g. to draw it "
+                         "again with another --show or --out; needs --out");
   add_picture_options(opts);
   sub->add_flag("--quiet", f->quiet, "No progress bar on stderr");
   sub->add_flag("--json", f->json, "Print a JSON summary on stdout");
@@ -95,6 +98,8 @@ inline std::set<std::string> single_run_keys() {
   return k;
 }
 
+inline std::string tiles_dir(const std::string& prefix) { return prefix + ".tiles"; }
+
 inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::string& invocation) {
   RunFlags r;
   r.threads = static_cast<unsigned>(integer_from(o, "threads", 1, 4096, 0));
@@ -117,6 +122,14 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
       throw InputError("out", "directory '" + parent.string() + "' does not exist");
   }
   if (!r.shard.all() && !r.out) throw InputError("shard", "needs --out PREFIX (the shard's tiles go to PREFIX.tiles/)");
+  if (o.has("tiles-from")) {
+    // Whether the tiles belong to this job is known only once the job's key is: run_job.
+    if (!r.out) throw InputError("tiles-from", "needs --out PREFIX (the reused tiles are copied to PREFIX.tiles/)");
+    const std::string from = tiles_dir(o.get("tiles-from"));
+    if (!std::filesystem::is_regular_file(from + "/job.key"))
+      throw InputError("tiles-from", "'" + from + "/' holds no tiles (keep them with --keep-tiles when that job runs)");
+    r.tiles_from = from;
+  }
   r.picture = presentation_from(o);
   // The pictures need their font: a missing font is an output failure found before the work.
   if (r.out && r.shard.all()) check_figure_font();
@@ -143,7 +156,6 @@ struct PictureJob {
   std::function<std::string(long)> item;
 };
 
-inline std::string tiles_dir(const std::string& prefix) { return prefix + ".tiles"; }
 
 // The key of the tiles: the job's options without the presentation (format, size, dpi,
 // palette, curves), which change the picture, not a tile.
@@ -178,6 +190,14 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
   g.threads = f.threads;
   g.shard = world.size > 1 ? Shard{world.rank, world.size} : f.shard;
   g.job_key = job_key(j);
+  if (f.tiles_from) {
+    std::string key;
+    if (std::ifstream k(*f.tiles_from + "/job.key"); k) std::getline(k, key);
+    if (key != g.job_key)
+      throw InputError("tiles-from", "'" + *f.tiles_from + "/' holds the tiles of a different job: every option but "
+                                     "--out, --threads, --shard, --show, --bins, --curves, --format, --size, --dpi and "
+                                     "--palette must be the same");
+  }
   g.compute = !f.merge_only;
   g.progress = !f.quiet && stderr_is_terminal() && world.rank == 0;
   g.label = "bouncer " + j.command;
@@ -227,6 +247,7 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
     mpi_barrier();
     for (const std::string& from : f.merge_from)
       if (from != g.tile_dir) import_tiles(from, g.tile_dir, j.plan, g.job_key);
+    if (f.tiles_from && *f.tiles_from != g.tile_dir) import_tiles(*f.tiles_from, g.tile_dir, j.plan, g.job_key);
     set_interrupt_hint("finished tiles are kept in " + g.tile_dir + "/: run the same command again to resume" +
                        (f.shard.all() ? "" : " (shard " + f.shard.text() + ")"));
   }

@@ -8,6 +8,9 @@
 #   * two runs give byte-identical PNG, PDF and SVG (a second apart: no dates anywhere);
 #   * --format pdf writes no PNG (and the JSON lists the files written);
 #   * another --format/--size/--palette reuses the saved tiles (same job key, tiles untouched);
+#   * --tiles-from: a scan drawn with another --show from a finished job's kept tiles computes
+#     nothing (its tiles dir is filled by import: every tile there, none newer computed) and
+#     gives the same CSV rows; another job's tiles, a prefix without tiles, or no --out: exit 2;
 #   * bad --format/--size/--dpi/--palette/--curves: exit 2, one line naming the option, nothing
 #     written; scene files take the same keys; sweep and continue take them too;
 #   * without the font file (hidden by a bind mount, where allowed): exit 1, one line naming
@@ -142,6 +145,21 @@ bad curves curves "${SCAN[@]}" --curves parabola
 bad curves-veldep curves scan --model veldep --a-range 20:24 --c-range 0.4:0.6 --grid 2x2 --curves fixed-points
 bad sweep-format format sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 10 --format jpeg
 bad continue-size size continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 20:31 --size 9x9
+
+# --- --tiles-from: one grid, drawn again with another --show -----------------------------------
+"$BOUNCER" "${SCAN[@]}" --out "$TMP/tf1" --keep-tiles || fail tiles-from "first run exit $?"
+"$BOUNCER" "${SCAN[@]}" --show chaotic --out "$TMP/tf2" --tiles-from "$TMP/tf1" --keep-tiles 2>"$TMP/tf2.err" ||
+  fail tiles-from "reuse exit $?: $(cat "$TMP/tf2.err")"
+cmp -s <(grep -v '^#' "$TMP/tf1.csv") <(grep -v '^#' "$TMP/tf2.csv") || fail tiles-from "CSV rows differ"
+[[ $(cat "$TMP/tf1.tiles/job.key") == $(cat "$TMP/tf2.tiles/job.key") ]] || fail tiles-from "--show changed the job key"
+[[ $(cd "$TMP/tf1.tiles" && ls | grep -v -e lock -e job | sort | xargs md5sum) == $(cd "$TMP/tf2.tiles" && ls | grep -v -e lock -e job | sort | xargs md5sum) ]] ||
+  fail tiles-from "the reused tiles are not the first job's"
+grep -q '"show": "chaotic"' "$TMP/tf2.json" || fail tiles-from "the second picture does not show chaotic"
+bad tiles-from-other tiles-from "${SCAN[@]}" --max-period 16 --tiles-from "$TMP/tf1"
+bad tiles-from-none tiles-from "${SCAN[@]}" --tiles-from "$TMP/nothing-here"
+rc=0
+"$BOUNCER" "${SCAN[@]}" --tiles-from "$TMP/tf1" >"$TMP/tfn.out" 2>"$TMP/tfn.err" || rc=$?
+[[ $rc -eq 2 ]] && grep -q 'tiles-from: needs --out' "$TMP/tfn.err" || fail tiles-from-no-out "exit $rc: $(cat "$TMP/tfn.err")"
 
 # --- scene keys, scan curves, sweep and continue ------------------------------------------------
 cat >"$TMP/scene.toml" <<'TOML'

@@ -13,6 +13,12 @@
 #     --only with an unknown id (close matches listed), --out an existing file;
 #   * a proof binary missing beside the tool: its claim is "not reproduced: proof binary not
 #     found", exit 1;
+#   * the two panels of fig. paramspace2 are one grid: paramscan2 is drawn from paramscan's
+#     tiles (its command carries --tiles-from; the CSV rows are the same; the pictures differ;
+#     no tiles are left behind), and alone (--only paramscan2) it computes the same rows;
+#   * a SIGTERM sent to reproduce alone stops its running children too (none is left
+#     running), writes no report, ends reproduce by that signal, says how to resume, and
+#     writes no resume key for a stopped item (a rerun runs it again);
 #   * `bouncer audit DIR` reruns the reproduce: identical for an untouched directory (no false
 #     DIFFERENT), exit 1 naming a changed verdict and a changed picture row; a directory that
 #     is not a reproduce directory is refused with exit 2.
@@ -155,6 +161,46 @@ s=$?
 set -e
 [ "$s" = 1 ] || fail noproof "exit $s, expected 1"
 grep -q 'elastic-period2: not reproduced: proof binary not found' "$TMP/errl" || fail noproof "not named: $(cat "$TMP/errl")"
+
+# Fig. paramspace2: one grid, drawn twice.
+"$BOUNCER" reproduce --quick --only paramscan,paramscan2 --out "$TMP/ps" --jobs 2 2> "$TMP/errps" ||
+  fail shared-grid "exit $?: $(cat "$TMP/errps")"
+grep -q -- '--tiles-from' "$TMP/ps/panels/paramscan2.json" || fail shared-grid "paramscan2 did not reuse paramscan's tiles"
+grep -q -- '--tiles-from' "$TMP/ps/panels/paramscan.json" && fail shared-grid "paramscan took tiles from somewhere"
+cmp -s <(grep -v '^#' "$TMP/ps/panels/paramscan.csv") <(grep -v '^#' "$TMP/ps/panels/paramscan2.csv") ||
+  fail shared-grid "the CSV rows of the two panels differ"
+cmp -s "$TMP/ps/panels/paramscan.png" "$TMP/ps/panels/paramscan2.png" && fail shared-grid "the two pictures are the same"
+compgen -G "$TMP/ps/panels/*.tiles" > /dev/null && fail shared-grid "tiles left behind: $(ls "$TMP/ps/panels")"
+"$BOUNCER" reproduce --quick --only paramscan2 --out "$TMP/ps2" 2> "$TMP/errps2" || fail shared-grid "alone: exit $?"
+cmp -s <(grep -v '^#' "$TMP/ps/panels/paramscan2.csv") <(grep -v '^#' "$TMP/ps2/panels/paramscan2.csv") ||
+  fail shared-grid "paramscan2 alone computes other rows than from paramscan's tiles"
+
+# A signal to reproduce alone reaches its children.
+"$BOUNCER" reproduce --manifest "$SRC/tests/data/reproduce-slow-manifest.toml" --jobs 2 --out "$TMP/sig" 2> "$TMP/errsig" &
+rp=$!
+children=""
+for _ in $(seq 100); do
+  children=$(pgrep -P "$rp" | tr '\n' ' ' || true)
+  [ "$(wc -w <<< "$children")" = 2 ] && break
+  sleep 0.1
+done
+[ "$(wc -w <<< "$children")" = 2 ] || fail signal "reproduce did not start its two children"
+kill -TERM "$rp"
+set +e
+wait "$rp"
+s=$?
+set -e
+[ "$s" = 143 ] || fail signal "exit $s, expected 143 (SIGTERM)"
+sleep 0.5
+for c in $children; do
+  if kill -0 "$c" 2> /dev/null; then
+    fail signal "child $c still running after reproduce was stopped"
+    kill -KILL "$c" 2> /dev/null || true
+  fi
+done
+[ -e "$TMP/sig/report.md" ] && fail signal "a report was written for a stopped run"
+grep -q 'stopped by signal 15.*run the same command again to resume' "$TMP/errsig" || fail signal "no resume hint: $(cat "$TMP/errsig")"
+compgen -G "$TMP/sig/keys/*.key" > /dev/null && fail signal "a stopped item has a resume key"
 
 # audit DIR reruns the reproduce and compares item by item: identical for an untouched
 # directory; a changed verdict and a changed picture row are named; a plain directory is refused.

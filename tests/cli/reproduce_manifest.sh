@@ -12,10 +12,31 @@
 #     caption, and its commands certify;
 #   * every claim has an expected verdict from the five words, a run command and checks, and
 #     together the claims cover all 11 claim groups of DESIGN.md section 4 and README rows
-#     1-15.
+#     1-15;
+#   * `reproduce --check` accepts every command of the manifest, quick and full (each is
+#     parsed and validated by the command itself, stopped before its first step): a full
+#     command that only --full would run is checked here too; and it refuses the bad command
+#     of the failing test manifest, naming it and its option, with exit 1;
+#   * a panel's tiles_from names an earlier panel whose commands differ from its own only in
+#     presentation options (--show).
 # Usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>
 set -euo pipefail
+BOUNCER=${1:?usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>}
 SRC=${2:?usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+if ! "$BOUNCER" reproduce --check > "$TMP/check" 2> "$TMP/check.err"; then
+  echo "FAIL: reproduce --check refused commands of the manifest:"; grep -v ': ok' "$TMP/check"; cat "$TMP/check.err"; exit 1
+fi
+n=$(python3 -c 'import sys,tomllib; m=tomllib.load(open(sys.argv[1],"rb")); print(sum(2 for p in m["panel"] if p["status"]=="ready") + sum(1 + ("full_run" in c or c["run"][0].startswith("proof_")) for c in m["claim"]))' "$SRC/data/paper/manifest.toml")
+grep -q "^$n commands checked, 0 refused$" "$TMP/check" || { echo "FAIL: expected $n commands checked: $(tail -1 "$TMP/check")"; exit 1; }
+grep -q '^fig:paramspace1 full: ok (validated' "$TMP/check" || { echo "FAIL: the full scan was not validated"; exit 1; }
+set +e
+"$BOUNCER" reproduce --check --manifest "$SRC/tests/data/reproduce-failing-manifest.toml" > "$TMP/checkf" 2>&1
+s=$?
+set -e
+[ "$s" = 1 ] || { echo "FAIL: --check of a bad command: exit $s, expected 1"; exit 1; }
+grep -q "^bad-command run: refused (exit 2): a: " "$TMP/checkf" || { echo "FAIL: the bad command is not named: $(cat "$TMP/checkf")"; exit 1; }
 TEX=${BOUNCER_PAPER_TEX:-/work/shared/paper/langer-miller-2014.tex}
 python3 - "$SRC/data/paper/manifest.toml" "$SRC/data/paper/figure-labels.txt" "$TEX" <<'PY'
 import os, re, sys, tomllib
@@ -89,6 +110,25 @@ if os.path.exists(tex):
         for p in panels:
             if p["figure"] == cap.group(2) and p["caption"] != cap.group(1).strip():
                 errors.append(f"{p['label']}: caption differs from the .tex")
+# tiles_from: an earlier panel, the same command apart from --show (a presentation option).
+def without_show(argv):
+    out, skip = [], False
+    for w in argv:
+        if skip: skip = False; continue
+        if w == "--show": skip = True; continue
+        out.append(w)
+    return out
+seen = {}
+for p in all_panels:
+    src = p.get("tiles_from")
+    if src:
+        if src not in seen:
+            errors.append(f"{p['label']}: tiles_from {src} is not an earlier panel")
+        else:
+            for k in ("quick", "full"):
+                if without_show(seen[src][k]) != without_show(p[k]):
+                    errors.append(f"{p['label']}: its {k} command is not {src}'s apart from --show")
+    seen[p["label"]] = p
 if errors:
     print("FAIL:\n  " + "\n  ".join(errors)); sys.exit(1)
 print(f"ok: {len(panels)} panels ({sum(p['status'] == 'pending' for p in panels)} pending), {len(m['claim'])} claims, "

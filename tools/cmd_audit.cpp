@@ -374,27 +374,31 @@ int audit_reproduce(const std::filesystem::path& dir) {
   }
   for (const auto& [id, c] : new_claims)
     if (!old_claims.count(id)) differences.push_back("claim " + id + ": only in the rerun");
-  const auto old_panels = by_id(old["panels"], "label"), new_panels = by_id(now["panels"], "label");
-  for (const auto& [label, p] : old_panels) {
-    const auto it = new_panels.find(label);
-    if (it == new_panels.end()) {
-      differences.push_back("panel " + label + ": not in the rerun");
-      continue;
-    }
-    if (p.value("status", "") != it->second.value("status", ""))
-      differences.push_back("panel " + label + ": status " + p.value("status", "") + " vs " + it->second.value("status", ""));
-    if (p.contains("files"))
-      for (const json& f : p["files"]) {
-        const std::string rel = f.get<std::string>();
-        // Pictures embed the command line (with its --out path) in their metadata, so they are
-        // compared through the CSV and JSON they are drawn from, not byte for byte.
-        const std::string ext = rel.size() > 4 ? rel.substr(rel.size() - 4) : "";
-        if (ext == ".png" || ext == ".pdf" || ext == ".svg") continue;
-        compare_file(rel);
+  // The paper's panels, and with reproduce --pictures the README's pictures: the same shape.
+  for (const char* kind : {"panels", "pictures"}) {
+    const std::string what = kind == std::string("panels") ? "panel " : "picture ";
+    const auto old_panels = by_id(old.value(kind, json::array()), "label"), new_panels = by_id(now.value(kind, json::array()), "label");
+    for (const auto& [label, p] : old_panels) {
+      const auto it = new_panels.find(label);
+      if (it == new_panels.end()) {
+        differences.push_back(what + label + ": not in the rerun");
+        continue;
       }
+      if (p.value("status", "") != it->second.value("status", ""))
+        differences.push_back(what + label + ": status " + p.value("status", "") + " vs " + it->second.value("status", ""));
+      if (p.contains("files"))
+        for (const json& f : p["files"]) {
+          const std::string rel = f.get<std::string>();
+          // Pictures embed the command line (with its --out path) in their metadata, so they are
+          // compared through the CSV and JSON they are drawn from, not byte for byte.
+          const std::string ext = rel.size() > 4 ? rel.substr(rel.size() - 4) : "";
+          if (ext == ".png" || ext == ".pdf" || ext == ".svg") continue;
+          compare_file(rel);
+        }
+    }
+    for (const auto& [label, p] : new_panels)
+      if (!old_panels.count(label)) differences.push_back(what + label + ": only in the rerun");
   }
-  for (const auto& [label, p] : new_panels)
-    if (!old_panels.count(label)) differences.push_back("panel " + label + ": only in the rerun");
   if (differences.empty()) {
     command_out() << "bouncer audit: identical: " << old_claims.size() << " claims (verdicts and checks) and " << compared
               << " outputs of " << dir.string() << " match the rerun (times, invocations and output paths ignored; "

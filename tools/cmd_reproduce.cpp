@@ -85,9 +85,18 @@ struct Claim {
   std::vector<Check> checks;
 };
 
+// [[picture]]: a picture of bouncer's README (data/pictures/NAME.png), not of the paper.
+struct Picture {
+  std::string name, readme, about;
+  std::vector<std::string> command;
+  std::vector<std::string> files;  // the pictures it writes (default NAME.png)
+  std::string id() const { return "picture:" + name; }
+};
+
 struct Manifest {
   std::vector<Panel> panels;
   std::vector<Claim> claims;
+  std::vector<Picture> pictures;
 };
 
 std::string str(const toml::table& t, const std::string& key, const std::string& where, bool required = true) {
@@ -198,6 +207,23 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
       if (c.checks.empty()) throw InputError("manifest", where + ": needs at least one check");
       m.claims.push_back(std::move(c));
     }
+  if (const toml::array* ps = root["picture"].as_array())
+    for (const auto& node : *ps) {
+      const toml::table* t = node.as_table();
+      if (!t) throw InputError("manifest", source + ": [[picture]] must be tables");
+      Picture p;
+      p.name = str(*t, "name", source + " picture");
+      const std::string where = source + " picture " + p.name;
+      if (p.name.empty() || p.name.find_first_of("/ ") != std::string::npos)
+        throw InputError("manifest", where + ": name must be a file name without extension");
+      p.readme = str(*t, "readme", where);
+      p.about = str(*t, "about", where);
+      p.command = argv_of(*t, "command", where);
+      if (p.command.empty()) throw InputError("manifest", where + ": needs a command");
+      p.files = argv_of(*t, "files", where);
+      if (p.files.empty()) p.files = {p.name + ".png"};
+      m.pictures.push_back(std::move(p));
+    }
   return m;
 }
 
@@ -278,6 +304,8 @@ bool holds(const Check& c, const json& doc, std::string& got) {
 struct Item {
   std::string id;         // claim id or panel label
   bool is_claim = false;
+  bool is_picture = false;  // a README picture (index into pictures)
+  bool is_panel() const { return !is_claim && !is_picture; }
   size_t index = 0;       // into panels or claims
   std::vector<std::string> argv;  // as in the manifest (display)
   std::vector<std::string> exec;  // resolved
@@ -372,6 +400,23 @@ class StopSignals {
   struct sigaction old_[std::size(kSignals)] {};
 };
 
+// A `--scene data/scenes/NAME.toml` of a manifest command names a scene compiled into the
+// binary (tools/CMakeLists.txt), so reproduce runs from any directory: the scene is written
+// to SCENE_DIR/NAME.toml and the command reads it there. Returns a problem, or "".
+std::string resolve_scenes(std::vector<std::string>& exec, const fs::path& scene_dir) {
+  for (size_t i = 1; i < exec.size(); ++i) {
+    if (exec[i - 1] != "--scene") continue;
+    const auto it = paper_scenes().find(exec[i]);
+    if (it == paper_scenes().end()) return "scene '" + exec[i] + "' is not one of data/scenes/ (built in)";
+    const fs::path file = scene_dir / fs::path(exec[i]).filename();
+    std::error_code ec;
+    fs::create_directories(scene_dir, ec);
+    write_text(file, it->second);
+    exec[i] = file.string();
+  }
+  return "";
+}
+
 pid_t spawn(const Item& it) {
   posix_spawn_file_actions_t fa;
   posix_spawn_file_actions_init(&fa);
@@ -443,7 +488,7 @@ std::string fixed(double x, int digits) {
 }
 
 struct Options_ {
-  bool quick = false, full = false, claims_table = false, check = false;
+  bool quick = false, full = false, claims_table = false, check = false, pictures = false;
   std::string out = "reproduction", only, jobs, manifest;
 };
 
@@ -480,6 +525,8 @@ int check_manifest(const Manifest& m, const fs::path& exe_dir) {
       verdict = find_proof(exe_dir, argv[0]) ? "ok (proof binary found)" : "refused: proof binary " + argv[0] + " not found";
     } else if (argv[0] != "bouncer") {
       verdict = "refused: must start with bouncer or proof_NAME";
+    } else if (const std::string problem = resolve_scenes(argv, tmp / "scenes"); !problem.empty()) {
+      verdict = "refused: " + problem;
     } else {
       if (panel) argv.insert(argv.end(), {"--out", (tmp / (std::to_string(checked) + "-x")).string(), "--quiet", "--format", "png,pdf,svg"});
       const std::atomic<bool> stop{true};
@@ -503,13 +550,16 @@ int check_manifest(const Manifest& m, const fs::path& exe_dir) {
     check(c.id, "run", c.run, false);
     if (c.full_run != c.run) check(c.id, "full_run", c.full_run, false);
   }
+  for (const Picture& p : m.pictures) check(p.id(), "command", p.command, true);
   command_out() << checked << " commands checked, " << refused << " refused\n";
   return refused ? 1 : 0;
 }
 
 int run_reproduce(const Options_& o) {
   if (o.quick && o.full) throw InputError("quick", "give one of --quick or --full, not both");
-  const std::string mode = o.full ? "full" : "quick";
+  if (o.pictures && (o.quick || o.full))
+    throw InputError("pictures", "draws the README's pictures, the same in every mode: give it without --quick or --full");
+  const std::string mode = o.pictures ? "pictures" : o.full ? "full" : "quick";
   std::string text = kPaperManifest, source = "data/paper/manifest.toml (built in)";
   if (!o.manifest.empty()) {
     std::error_code ec;
@@ -535,18 +585,24 @@ int run_reproduce(const Options_& o) {
       throw InputError("jobs", "must be an integer in [1, 1024], got '" + o.jobs + "'");
     jobs = static_cast<unsigned>(std::stoi(o.jobs));
   }
-  // Every item's id: claims by id, panels by label (also accepted without "fig:").
+  // Every item's id: claims by id, panels by label (also accepted without "fig:"); with
+  // --pictures, the README pictures (picture:NAME, also accepted as NAME).
   std::vector<std::string> ids;
-  for (const Panel& p : m.panels) ids.push_back(p.label);
-  for (const Claim& c : m.claims) ids.push_back(c.id);
+  if (o.pictures) {
+    for (const Picture& p : m.pictures) ids.push_back(p.id());
+  } else {
+    for (const Panel& p : m.panels) ids.push_back(p.label);
+    for (const Claim& c : m.claims) ids.push_back(c.id);
+  }
   std::set<std::string> only;
   if (!o.only.empty()) {
     std::stringstream ss(o.only);
     for (std::string w; std::getline(ss, w, ',');) {
       if (w.empty()) continue;
       std::string id = w;
-      if (std::find(ids.begin(), ids.end(), id) == ids.end() && std::find(ids.begin(), ids.end(), "fig:" + id) != ids.end())
-        id = "fig:" + id;
+      for (const char* tag : {"fig:", "picture:"})
+        if (std::find(ids.begin(), ids.end(), id) == ids.end() && std::find(ids.begin(), ids.end(), tag + id) != ids.end())
+          id = tag + id;
       if (std::find(ids.begin(), ids.end(), id) == ids.end()) {
         std::vector<std::pair<size_t, std::string>> near;
         for (const std::string& c : ids) {
@@ -557,7 +613,8 @@ int run_reproduce(const Options_& o) {
         std::string list;
         for (size_t i = 0; i < near.size() && i < 4; ++i) list += (i ? ", " : "") + near[i].second;
         throw InputError("only", "unknown item '" + w + "'" + (list.empty() ? "" : " (close: " + list + ")") +
-                                     "; items are the panel labels (fig:...) and claim ids of data/paper/manifest.toml");
+                                     (o.pictures ? "; with --pictures, items are the README pictures (picture:NAME) of data/paper/manifest.toml"
+                                                 : "; items are the panel labels (fig:...) and claim ids of data/paper/manifest.toml"));
       }
       only.insert(id);
     }
@@ -569,7 +626,7 @@ int run_reproduce(const Options_& o) {
   {
     std::error_code ec;
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("out", "'" + o.out + "' exists and is not a directory");
-    for (const char* sub : {"panels", "claims", "logs", "keys"}) {
+    for (const char* sub : {"panels", "claims", "logs", "keys", "pictures", "scenes"}) {
       fs::create_directories(dir / sub, ec);
       if (ec) throw OutputError("cannot create '" + (dir / sub).string() + "': " + ec.message());
     }
@@ -581,7 +638,9 @@ int run_reproduce(const Options_& o) {
   const std::string build = build_info().version + " (commit " + build_info().commit + ")";
 
   std::vector<Item> items;
-  auto selected = [&](const std::string& id) { return only.empty() || only.count(id); };
+  auto selected = [&](const std::string& id) {
+    return std::find(ids.begin(), ids.end(), id) != ids.end() && (only.empty() || only.count(id));
+  };
   for (size_t i = 0; i < m.panels.size(); ++i) {
     const Panel& p = m.panels[i];
     if (!selected(p.label)) continue;
@@ -635,6 +694,30 @@ int run_reproduce(const Options_& o) {
     it.stdout_path = (dir / "claims" / (c.id + ".json")).string();
     it.stderr_path = (dir / "logs" / (c.id + ".stderr")).string();
     it.key_path = (dir / "keys" / (c.id + ".key")).string();
+    items.push_back(it);
+  }
+  for (size_t i = 0; i < m.pictures.size(); ++i) {
+    const Picture& p = m.pictures[i];
+    if (!selected(p.id())) continue;
+    Item it;
+    it.id = p.id();
+    it.is_picture = true;
+    it.index = i;
+    it.argv = p.command;  // the README's pictures are the same in --quick and --full
+    it.exec = it.argv;
+    if (const std::string problem = resolve_scenes(it.exec, dir / "scenes"); !problem.empty()) {
+      it.state = "failed";
+      it.problem = problem;
+      items.push_back(it);
+      continue;
+    }
+    it.exec.insert(it.exec.end(), {"--out", (dir / "pictures" / p.name).string(), "--quiet"});
+    for (const std::string& f : p.files) it.outputs.push_back("pictures/" + f);
+    it.outputs.push_back("pictures/" + p.name + ".json");
+    it.outputs.push_back("pictures/" + p.name + ".csv");
+    it.stdout_path = (dir / "logs" / (p.name + ".picture.stdout")).string();
+    it.stderr_path = (dir / "logs" / (p.name + ".picture.stderr")).string();
+    it.key_path = (dir / "keys" / (p.name + ".picture.key")).string();
     items.push_back(it);
   }
   // Resolve the binaries and the resume keys.
@@ -774,9 +857,19 @@ int run_reproduce(const Options_& o) {
     std::vector<std::string> failed_checks;
   };
   std::map<std::string, Outcome> outcome;
+  json jpictures = json::array();
   for (Item& it : items) {
     if (it.state == "failed") ++failed_items;
     times[it.id] = {{"state", it.state}, {"seconds", it.seconds}};
+    if (it.is_picture) {
+      const Picture& p = m.pictures[it.index];
+      json j{{"label", p.id()}, {"readme", p.readme}, {"status", it.state == "cached" ? "done" : it.state},
+             {"command", command_text(it.argv)}};
+      if (it.state == "done" || it.state == "cached") j["files"] = it.outputs;
+      if (it.state == "failed") j["problem"] = it.problem;
+      jpictures.push_back(j);
+      continue;
+    }
     if (!it.is_claim) {
       const Panel& p = m.panels[it.index];
       json j{{"label", p.label}, {"figure", p.figure}, {"status", it.state == "skipped" ? "pending" : it.state == "cached" ? "done" : it.state}};
@@ -833,10 +926,13 @@ int run_reproduce(const Options_& o) {
     jclaims.push_back(j);
   }
   const bool ok = failed_items == 0 && not_reproduced == 0;
-  const std::string summary = std::to_string(reproduced) + " of " + std::to_string(outcome.size()) +
-                              " claims reproduced their expected verdict" +
-                              (deferred ? " (" + std::to_string(deferred) + " deferred to --full)" : "") + "; " +
-                              std::to_string(failed_items) + " items failed";
+  const std::string summary = o.pictures ? std::to_string(jpictures.size() - failed_items) + " of " +
+                                               std::to_string(jpictures.size()) + " README pictures drawn; " +
+                                               std::to_string(failed_items) + " items failed"
+                                         : std::to_string(reproduced) + " of " + std::to_string(outcome.size()) +
+                                               " claims reproduced their expected verdict" +
+                                               (deferred ? " (" + std::to_string(deferred) + " deferred to --full)" : "") +
+                                               "; " + std::to_string(failed_items) + " items failed";
 
   json doc;
   doc["reproduce"] = {{"paper", "Langer & Miller 2014"}, {"mode", mode}, {"build", build}, {"manifest", source},
@@ -844,15 +940,21 @@ int run_reproduce(const Options_& o) {
                       {"summary", summary}};
   doc["claims"] = jclaims;
   doc["panels"] = jpanels;
+  if (!jpictures.empty()) doc["pictures"] = jpictures;
   doc["times"] = {{"seconds", total_seconds}, {"items", times}};
 
   // report.md
   std::ostringstream md;
-  md << "# Reproduction of Langer & Miller 2014\n\n";
+  const std::string title = o.pictures ? "bouncer's README pictures" : "Reproduction of Langer & Miller 2014";
+  md << "# " << title << "\n\n";
   md << "Mode: `" << mode << "`. Built by bouncer " << build << ". Manifest: " << source << ".\n\n";
-  md << "**Result: " << (ok ? "every item ran and every claim reproduced its expected verdict" : "NOT fully reproduced")
+  const std::string result_text = !ok         ? (o.pictures ? "NOT every picture was drawn" : "NOT fully reproduced")
+                                  : o.pictures ? "every picture was drawn"
+                                               : "every item ran and every claim reproduced its expected verdict";
+  md << "**Result: " << result_text
      << "** (" << summary << ").\n\n";
-  md << "## Claims\n\n| # | Claim | Paper | Expected | This run | Evidence | Rerun |\n|---|---|---|---|---|---|---|\n";
+  const bool paper = !o.pictures;  // the paper's sections (claims, figures); --pictures has none
+  if (paper) md << "## Claims\n\n| # | Claim | Paper | Expected | This run | Evidence | Rerun |\n|---|---|---|---|---|---|---|\n";
   for (const Item& it : items) {
     if (!it.is_claim) continue;
     const Claim& c = m.claims[it.index];
@@ -861,10 +963,10 @@ int run_reproduce(const Options_& o) {
        << (oc.status == "reproduced" ? "**" + oc.verdict + "**" : md_cell(oc.verdict)) << " | " << md_cell(c.evidence)
        << " | " << md_cell(c.rerun) << " |\n";
   }
-  md << "\n## Figures\n";
+  if (paper) md << "\n## Figures\n";
   std::string figure;
   for (const Item& it : items) {
-    if (it.is_claim) continue;
+    if (!it.is_panel()) continue;
     const Panel& p = m.panels[it.index];
     if (p.figure != figure) {
       figure = p.figure;
@@ -892,7 +994,22 @@ int run_reproduce(const Options_& o) {
       md << "Provenance: `" << command_text(it.argv) << " --out panels/" << p.name() << "` (bouncer " << build
          << "); outputs panels/" << p.name() << ".{png,csv,json}\n";
   }
-  md << "\n## Claims: provenance\n\n";
+  const bool any_picture = std::any_of(items.begin(), items.end(), [](const Item& it) { return it.is_picture; });
+  if (any_picture) {
+    md << "\n## The pictures (data/pictures)\n\nNot figures of the paper: the pictures the README shows, "
+          "drawn by the same build (`cp pictures/*.png` into data/pictures/ regenerates them).\n";
+    for (const Item& it : items) {
+      if (!it.is_picture) continue;
+      const Picture& p = m.pictures[it.index];
+      md << "\n#### " << p.name << " (README: " << p.readme << ")\n\n" << p.about << "\n\n";
+      if (it.state == "done" || it.state == "cached")
+        for (const std::string& f : p.files) md << "![" << p.name << "](pictures/" << f << ")\n\n";
+      else
+        md << "**Failed:** " << md_cell(it.problem) << "\n\n";
+      md << "Provenance: `" << command_text(it.argv) << " --out pictures/" << p.name << "`\n";
+    }
+  }
+  if (paper) md << "\n## Claims: provenance\n\n";
   for (const Item& it : items) {
     if (!it.is_claim) continue;
     md << "- " << it.id << ": `" << command_text(it.argv) << "`" << (it.outputs.empty() ? "" : " → " + it.outputs[0]);
@@ -907,17 +1024,17 @@ int run_reproduce(const Options_& o) {
 
   // report.html
   std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>Reproduction of Langer &amp; Miller 2014</title>\n"
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(title) << "</title>\n"
     << "<style>body{font-family:sans-serif;max-width:1100px;margin:auto}table{border-collapse:collapse}"
        "td,th{border:1px solid #999;padding:4px;vertical-align:top}img{max-width:100%}"
        ".ok{color:#060}.bad{color:#a00}figure{margin:1em 0}figcaption{font-style:italic}</style>\n</head>\n<body>\n";
-  h << "<h1>Reproduction of Langer &amp; Miller 2014</h1>\n";
+  h << "<h1>" << html_escape(title) << "</h1>\n";
   h << "<p>Mode: <code>" << mode << "</code>. Built by bouncer " << html_escape(build) << ". Manifest: "
     << html_escape(source) << ".</p>\n";
   h << "<p class=\"" << (ok ? "ok" : "bad") << "\"><strong>Result: "
-    << (ok ? "every item ran and every claim reproduced its expected verdict" : "NOT fully reproduced") << "</strong> ("
+    << result_text << "</strong> ("
     << html_escape(summary) << ").</p>\n";
-  h << "<h2>Claims</h2>\n<table>\n<tr><th>#</th><th>Claim</th><th>Paper</th><th>Expected</th><th>This run</th><th>Evidence</th><th>Rerun</th></tr>\n";
+  if (paper) h << "<h2>Claims</h2>\n<table>\n<tr><th>#</th><th>Claim</th><th>Paper</th><th>Expected</th><th>This run</th><th>Evidence</th><th>Rerun</th></tr>\n";
   for (const Item& it : items) {
     if (!it.is_claim) continue;
     const Claim& c = m.claims[it.index];
@@ -927,10 +1044,10 @@ int run_reproduce(const Options_& o) {
       << html_escape(oc.verdict) << "</td><td>" << md_inline_html(c.evidence) << "</td><td>" << md_inline_html(c.rerun)
       << "</td></tr>\n";
   }
-  h << "</table>\n<h2>Figures</h2>\n";
+  if (paper) h << "</table>\n<h2>Figures</h2>\n";
   figure.clear();
   for (const Item& it : items) {
-    if (it.is_claim) continue;
+    if (!it.is_panel()) continue;
     const Panel& p = m.panels[it.index];
     if (p.figure != figure) {
       figure = p.figure;
@@ -961,14 +1078,32 @@ int run_reproduce(const Options_& o) {
         << "</code> (bouncer " << html_escape(build) << ")</p>\n";
     h << "</figure>\n";
   }
-  h << "<h2>Claims: provenance</h2>\n<ul>\n";
+  if (any_picture) {
+    h << "<h2>The pictures (data/pictures)</h2>\n<p>Not figures of the paper: the pictures the README shows, "
+         "drawn by the same build (<code>cp pictures/*.png</code> into data/pictures/ regenerates them).</p>\n";
+    for (const Item& it : items) {
+      if (!it.is_picture) continue;
+      const Picture& p = m.pictures[it.index];
+      h << "<figure id=\"" << html_escape(p.id()) << "\">\n";
+      if (it.state == "done" || it.state == "cached")
+        for (const std::string& f : p.files)
+          h << "<img src=\"pictures/" << html_escape(f) << "\" alt=\"" << html_escape(p.name) << "\">\n";
+      else
+        h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
+      h << "<figcaption>" << html_escape(p.name) << " (README: " << html_escape(p.readme) << "). " << md_inline_html(p.about)
+        << "</figcaption>\n<p>Provenance: <code>" << html_escape(command_text(it.argv)) << " --out pictures/"
+        << html_escape(p.name) << "</code></p>\n</figure>\n";
+    }
+  }
+  if (paper) h << "<h2>Claims: provenance</h2>\n<ul>\n";
   for (const Item& it : items) {
     if (!it.is_claim) continue;
     h << "<li>" << html_escape(it.id) << ": <code>" << html_escape(command_text(it.argv)) << "</code>";
     for (const std::string& f : outcome[it.id].failed_checks) h << "; failed check: " << html_escape(f);
     h << "</li>\n";
   }
-  h << "</ul>\n<section id=\"times\">\n<h2>Times</h2>\n<p>Volatile: the only part of this report that changes between identical runs.</p>\n"
+  if (paper) h << "</ul>\n";
+  h << "<section id=\"times\">\n<h2>Times</h2>\n<p>Volatile: the only part of this report that changes between identical runs.</p>\n"
     << "<table>\n<tr><th>item</th><th>state</th><th>seconds</th></tr>\n";
   for (const Item& it : items)
     h << "<tr><td>" << html_escape(it.id) << "</td><td>" << it.state << "</td><td>" << fixed(it.seconds, 2) << "</td></tr>\n";
@@ -997,6 +1132,9 @@ Command add_reproduce(CLI::App& app) {
   sub->add_option("--only", o->only, "Comma list of panel labels (fig:basin1 or basin1) and claim ids");
   sub->add_option("--jobs", o->jobs, "Items run at once, integer in [1, 1024] (default: cores)");
   sub->add_flag("--claims-table", o->claims_table, "Print the README's Markdown claims table from the manifest and exit");
+  sub->add_flag("--pictures", o->pictures,
+                "Draw the README's pictures (data/pictures/) instead of the paper, into DIR/pictures/; "
+                "cp DIR/pictures/*.png data/pictures/ regenerates them");
   sub->add_flag("--check", o->check,
                 "Validate every command of the manifest (quick and full) without running it: one line each; exit 1 if any is refused");
   sub->add_option("--manifest", o->manifest, "")->group("");  // hidden: another manifest (tests)

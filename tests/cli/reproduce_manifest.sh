@@ -13,7 +13,8 @@
 #   * every claim has an expected verdict from the five words, a run command and checks, and
 #     together the claims cover all 11 claim groups of DESIGN.md section 4 and README rows
 #     1-15;
-#   * `reproduce --check` accepts every command of the manifest, quick and full (each is
+#   * `reproduce --check` accepts every command of the manifest, quick and full, and the README
+#     pictures' commands with their built-in scenes (each is
 #     parsed and validated by the command itself, stopped before its first step): a full
 #     command that only --full would run is checked here too; and it refuses the bad command
 #     of the failing test manifest, naming it and its option, with exit 1;
@@ -28,7 +29,7 @@ trap 'rm -rf "$TMP"' EXIT
 if ! "$BOUNCER" reproduce --check > "$TMP/check" 2> "$TMP/check.err"; then
   echo "FAIL: reproduce --check refused commands of the manifest:"; grep -v ': ok' "$TMP/check"; cat "$TMP/check.err"; exit 1
 fi
-n=$(python3 -c 'import sys,tomllib; m=tomllib.load(open(sys.argv[1],"rb")); print(sum(2 for p in m["panel"] if p["status"]=="ready") + sum(1 + ("full_run" in c or c["run"][0].startswith("proof_")) for c in m["claim"]))' "$SRC/data/paper/manifest.toml")
+n=$(python3 -c 'import sys,tomllib; m=tomllib.load(open(sys.argv[1],"rb")); print(sum(2 for p in m["panel"] if p["status"]=="ready") + sum(1 + ("full_run" in c or c["run"][0].startswith("proof_")) for c in m["claim"]) + len(m.get("picture", [])))' "$SRC/data/paper/manifest.toml")
 grep -q "^$n commands checked, 0 refused$" "$TMP/check" || { echo "FAIL: expected $n commands checked: $(tail -1 "$TMP/check")"; exit 1; }
 grep -q '^fig:paramspace1 full: ok (validated' "$TMP/check" || { echo "FAIL: the full scan was not validated"; exit 1; }
 set +e

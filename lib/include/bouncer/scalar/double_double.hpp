@@ -32,9 +32,9 @@
 // (33 when lo fills the bits below hi, more when lo is much smaller: 0.25 - 4.7e-33 needs
 // 49), at worst the exact value.
 //
-// Overflow: values beyond about 2^996 overflow the Veltkamp splitting of the product; the
-// map's values are many orders of magnitude below, and a NaN or infinity is caught as
-// "non-finite" like in double.
+// Overflow: products beyond about 2^1023 overflow (and the error term of products below about
+// 2^-969 underflows, losing the low word's accuracy); the map's values are many orders of
+// magnitude inside, and a NaN or infinity is caught as "non-finite" like in double.
 #pragma once
 
 #include <cmath>
@@ -92,7 +92,7 @@ class DoubleDouble {
     return r;
   }
   friend DoubleDouble operator-(const DoubleDouble& x, const DoubleDouble& y) { return x + (-y); }
-  // DWTimesDW1 (JMP 2017) with Dekker's TwoProduct.
+  // DWTimesDW1 (JMP 2017) with TwoProduct (one FMA: scalar/error_free.hpp).
   friend DoubleDouble operator*(const DoubleDouble& x, const DoubleDouble& y) {
     double ch, cl1;
     error_free::two_product(x.hi_, y.hi_, ch, cl1);

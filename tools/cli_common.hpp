@@ -155,7 +155,7 @@ inline void write_output_set(const std::vector<OutputFile>& files) {
 // grid job's key (picture_common.hpp), so re-rendering a finished or resumed job with
 // another --format or --size reuses its saved tiles. `show` (scan: which class's share;
 // bifurcation: theta or v) and `bins` (bifurcation's density rows) are read only when the
-// picture is drawn: the two panels of the paper's fig. paramscan are one grid drawn twice.
+// picture is drawn: the two panels of the paper's fig. paramspace2 are one grid drawn twice.
 inline const std::set<std::string>& presentation_keys() {
   static const std::set<std::string> k{"format", "size", "dpi", "palette", "curves", "show", "bins"};
   return k;

@@ -9,7 +9,9 @@
 // DoubleInterval case of tests/test_interval_containment.cpp.)
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <functional>
 #include <random>
@@ -90,6 +92,26 @@ TEST(IntervalDouble, NextUpAndDownStepOneDouble) {
   EXPECT_TRUE(std::isnan(next_up(std::nan(""))));
   for (double x : {0.1, -3.5, 1e300, -1e-310, 7.0})
     EXPECT_EQ(next_up(x), std::nextafter(x, std::numeric_limits<double>::infinity())) << x;
+}
+
+// The branch-free rounding step (bit arithmetic, no branch on the error's sign) is checked
+// against std::nextafter, the C library's own definition of the next double, at the ends of
+// the range, both zeros, the subnormals and across the sign change.
+TEST(IntervalDouble, BranchFreeRoundingStepsLikeNextafter) {
+  using interval_double_detail::round_to;
+  const double inf = std::numeric_limits<double>::infinity(), tiny = std::numeric_limits<double>::denorm_min();
+  const double big = std::numeric_limits<double>::max(), low = std::numeric_limits<double>::min();
+  auto same = [](double x, double y) { return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y) || (x == 0 && y == 0); };
+  for (double c : {0.0, -0.0, tiny, -tiny, 2 * tiny, -2 * tiny, low, -low, 1.0, -1.0, 0.1, -0.1, 1e300, -1e300, big, -big}) {
+    for (double e : {-1e-300, -0.0, 0.0, 1e-300, -1.0, 1.0}) {
+      const double up = e > 0 ? std::nextafter(c, inf) : c;
+      const double down = e < 0 ? std::nextafter(c, -inf) : c;
+      EXPECT_TRUE(same(round_to<true>(c, e), up)) << c << " error sign " << e << ": " << round_to<true>(c, e);
+      EXPECT_TRUE(same(round_to<false>(c, e), down)) << c << " error sign " << e << ": " << round_to<false>(c, e);
+      EXPECT_GE(round_to<true>(c, e), c);
+      EXPECT_LE(round_to<false>(c, e), c);
+    }
+  }
 }
 
 TEST(IntervalDouble, ArithmeticOnPointsRoundsOutwardByAtMostOneDouble) {

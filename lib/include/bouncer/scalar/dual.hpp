@@ -65,13 +65,34 @@ class Dual {
   Dual& operator*=(long n) { v *= n; d[0] *= n; d[1] *= n; return *this; }
   Dual& operator/=(long n) { v /= n; d[0] /= n; d[1] /= n; return *this; }
 
-  friend Dual operator+(const Dual& x, const Dual& y) { return {x.v + y.v, x.d[0] + y.d[0], x.d[1] + y.d[1]}; }
-  friend Dual operator-(const Dual& x, const Dual& y) { return {x.v - y.v, x.d[0] - y.d[0], x.d[1] - y.d[1]}; }
+  // A constant operand (both derivatives exactly zero: the model's parameters, lifted) drops
+  // its derivative terms: d(x c) = c dx exactly, so this is the same derivative with fewer
+  // operations (over intervals it is also never wider, and never NaN where the full formula
+  // would form an unbounded value times a zero derivative). With the branch-free
+  // rounding of DoubleInterval it takes the interval:double Lohner step from 64x to 39x a
+  // double step (bench_certify --quick).
+  bool constant() const {
+    using Tr = ScalarTraits<S>;
+    return Tr::is_zero(d[0]) == Truth::yes && Tr::is_zero(d[1]) == Truth::yes;
+  }
+  friend Dual operator+(const Dual& x, const Dual& y) {
+    if (y.constant()) return {x.v + y.v, x.d[0], x.d[1]};
+    if (x.constant()) return {x.v + y.v, y.d[0], y.d[1]};
+    return {x.v + y.v, x.d[0] + y.d[0], x.d[1] + y.d[1]};
+  }
+  friend Dual operator-(const Dual& x, const Dual& y) {
+    if (y.constant()) return {x.v - y.v, x.d[0], x.d[1]};
+    if (x.constant()) return {x.v - y.v, -y.d[0], -y.d[1]};
+    return {x.v - y.v, x.d[0] - y.d[0], x.d[1] - y.d[1]};
+  }
   friend Dual operator*(const Dual& x, const Dual& y) {
+    if (y.constant()) return {x.v * y.v, x.d[0] * y.v, x.d[1] * y.v};
+    if (x.constant()) return {x.v * y.v, x.v * y.d[0], x.v * y.d[1]};
     return {x.v * y.v, x.d[0] * y.v + x.v * y.d[0], x.d[1] * y.v + x.v * y.d[1]};
   }
   friend Dual operator/(const Dual& x, const Dual& y) {
     S q = x.v / y.v;
+    if (y.constant()) return {q, x.d[0] / y.v, x.d[1] / y.v};
     return {q, (x.d[0] - q * y.d[0]) / y.v, (x.d[1] - q * y.d[1]) / y.v};
   }
   friend Dual operator-(const Dual& x) { return {-x.v, -x.d[0], -x.d[1]}; }

@@ -166,7 +166,10 @@ void certified_basin_finish(const BasinRequest& r, const std::vector<std::string
   m.y0 = r.v0.value();
   m.y1 = r.v1.value();
   m.title = "Certified basins, " + model_title(r.model.law) + " model: each coloured pixel is proved";
-  m.subtitle = "a = " + r.model.a.text() + (r.model.law == Law::veldep ? ", c = " + r.model.c.text() : ", ε = " + r.model.eps.text()) +
+  m.subtitle = "a = " + r.model.a.text() +
+               (r.model.law == Law::veldep ? ", c = " + r.model.c.text()
+                : r.model.law == Law::constant ? ", ε = " + r.model.eps.text()
+                                               : "") +
                "; " + std::to_string(r.nx) + " x " +
                std::to_string(r.ny) + " exact starts, " + std::to_string(r.cert.max_steps) +
                " steps, interval:double then MPFI up to " + std::to_string(r.cert.max_bits) + " bits";
@@ -175,6 +178,7 @@ void certified_basin_finish(const BasinRequest& r, const std::vector<std::string
   m.max_steps = r.cert.max_steps;
   m.max_bits = r.cert.max_bits;
   m.collapses = r.model.law == Law::constant;
+  m.area_preserving = r.model.law == Law::elastic;
   m.summary["command"] = "basin";
   m.summary["certified"] = true;
   m.summary["grid"] = {r.nx, r.ny};
@@ -329,7 +333,8 @@ Command add_basin(CLI::App& app) {
   opts->add("precision", kPointPrecisionHelp);
   opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
   opts->add_flag("certify",
-                "Certify every point (constant, or veldep without collapse): sticking period, trapping set, 'not_trapped' (veldep) or 'undecided', with double's answer "
+                "Certify every point (constant, elastic, or veldep without collapse): sticking period, trapping set, 'not_trapped' (veldep, elastic: "
+                "the orbit certified through every step) or 'undecided', with double's answer "
                 "beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {

@@ -3,10 +3,11 @@
 // rows (param, n, theta, v, sticking), a density image of theta (or v) against the
 // parameter with the sticking releases marked in red at theta = 1/2 as in the paper, and a
 // JSON summary. Each parameter value is one grid item (independent unless --carry).
-// --certify (constant, or veldep without collapse; double): each column also gets a certified answer
-// for the exact orbit at the exact double value of the parameter (verify/certified_point.hpp) and double's
-// class of the same orbit; the picture shades the columns where double is refuted
-// (vermillion) or nothing is certified (grey).
+// --certify (constant, elastic, or veldep without collapse; double): each column also gets a
+// certified answer for the exact orbit at the exact double value of the parameter
+// (verify/certified_point.hpp) and double's class of the same orbit; the picture shades the
+// columns where double is refuted (vermillion) or nothing is certified (grey; elastic columns
+// are always grey there: an orbit certified through every step says nothing of double's class).
 #include <cmath>
 #include <map>
 #include <memory>
@@ -373,7 +374,7 @@ Command add_bifurcation(CLI::App& app) {
   opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
   opts->add_flag("carry", "Start each value from the last state of the previous one (one worker)");
   opts->add_flag("certify",
-                "Certify each column (constant, or veldep without collapse): the exact orbit at the exact double value of the parameter; shade the "
+                "Certify each column (constant, elastic, or veldep without collapse): the exact orbit at the exact double value of the parameter; shade the "
                 "columns where double's class is refuted or nothing is certified");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {

@@ -449,28 +449,32 @@ struct CertifiedMap {
   std::string title, subtitle, xlabel, ylabel, twin_precision;
   long long max_steps = 0;
   long max_bits = 0;
-  bool collapses = true;  // constant restitution (sticking exists); false: velocity-dependent
+  bool collapses = true;  // constant restitution (sticking exists); false: velocity-dependent or elastic
+  bool area_preserving = false;  // elastic: no trapping set exists (not_trapped is all a point can be)
   nlohmann::ordered_json summary;
 };
 
 // Certified grids (basin, scan, bifurcation --certify; verify/certified_point.hpp) exist for
-// the models of why_no_certified_answers (verify/sticking.hpp); anything else is refused
-// before any work, naming the command, what is allowed, and why.
+// the models of why_no_certified_answers (verify/sticking.hpp) and for the elastic model
+// (certified orbits, no attractor: not_trapped or undecided); velocity-dependent collapse is
+// refused before any work, naming the command, what is allowed, and why.
 inline void require_certified_model(const ModelSpec& m, const std::string& command) {
+  if (m.law == Law::elastic) return;
   if (const std::string why = why_no_certified_answers(m); !why.empty())
-    throw InputError("certify", command + " --certify needs --model constant or --model veldep (without "
+    throw InputError("certify", command + " --certify needs --model constant, elastic or veldep (without "
                                           "--veldep-collapse): " + why);
 }
 
 // `collapses`: the model has sticking (constant restitution), so "never sticks" is news;
 // without collapse (velocity-dependent) the statement is the trapping alone.
 inline std::string certified_label(const std::string& cls, long period, long long max_steps, long max_bits,
-                                   bool collapses) {
+                                   bool collapses, bool area_preserving = false) {
   const std::string never = collapses ? "never sticks: " : "";
   if (cls == "sticking") return "sticking, k = " + std::to_string(period);
   if (cls == "fixed") return never + "trapped at a fixed point";
   if (cls == "periodic") return never + "trapped, period " + std::to_string(period);
   if (cls == "no_sticking") return "no (further) sticking in >= " + std::to_string(max_steps) + " steps";
+  if (cls == "not_trapped" && area_preserving) return "exact orbit certified through " + std::to_string(max_steps) + " steps";
   if (cls == "not_trapped") return "certified " + std::to_string(max_steps) + " steps, no trapping set";
   if (cls == "undecided") return "undecided at " + std::to_string(max_bits) + " bits";
   return "outside the phase space (v < wall velocity)";
@@ -553,7 +557,7 @@ inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::s
       rest += k.first == "outside" ? 0 : n;
       continue;
     }
-    cert.raster.legend.emplace_back(certified_label(k.first, k.second, m.max_steps, m.max_bits, m.collapses) +
+    cert.raster.legend.emplace_back(certified_label(k.first, k.second, m.max_steps, m.max_bits, m.collapses, m.area_preserving) +
                                         (k.first == "outside" ? "" : share(n)),
                                     color[k]);
   }

@@ -15,10 +15,16 @@ StickingQuestion question(const ModelSpec& model, const InitialCondition& start,
   q.schedule.double_first = true;
   q.schedule.start_bits = 64;
   q.schedule.max_bits = opt.max_bits;
-  q.prove_attractor = true;
+  q.prove_attractor = model.law != Law::elastic;
   q.max_attractor_period = opt.max_attractor_period;
   q.a_range = opt.a_range;
   return q;
+}
+
+// The elastic model has no attractor to look for: its orbit is certified and nothing more
+// (certify_orbit_steps); the dissipative models ask the sticking question.
+StickingCertificate certify(const StickingQuestion& q) {
+  return q.model.law == Law::elastic ? certify_orbit_steps(q) : certify_sticking(q);
 }
 
 // The class a non-sticking certificate states.
@@ -30,8 +36,9 @@ void set_from_trap_or_none(CertifiedPoint& p, const StickingCertificate& c, Law 
       break;
     case StickingOutcome::no_sticking_within_max_steps:
       // Velocity-dependent: no orbit collapses, so "no sticking" says nothing; what is
-      // certified is the orbit through every step, with no trapping set at its end.
-      p.cls = law == Law::veldep ? "not_trapped" : "no_sticking";
+      // certified is the orbit through every step, with no trapping set at its end (elastic:
+      // none can exist).
+      p.cls = law == Law::constant ? "no_sticking" : "not_trapped";
       break;
     default:
       p.cls = "undecided";
@@ -64,7 +71,7 @@ StickingCertificate ReleaseCache::get(const ModelSpec& model, const std::string&
   StickingQuestion q = question(model, start, opt);
   q.schedule.max_bits = std::max(opt.max_bits, 4096L);
   q.max_steps = std::max(opt.max_steps, 20000LL);
-  StickingCertificate c = certify_sticking(q);
+  StickingCertificate c = certify(q);
   std::lock_guard<std::mutex> lock(mutex_);
   return done_.emplace(key, std::move(c)).first->second;
 }
@@ -72,7 +79,7 @@ StickingCertificate ReleaseCache::get(const ModelSpec& model, const std::string&
 CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& start, const CertifyPointOptions& opt,
                              ReleaseCache& releases) {
   CertifiedPoint p;
-  const StickingCertificate c = certify_sticking(question(model, start, opt));
+  const StickingCertificate c = certify(question(model, start, opt));
   p.certified_steps = c.steps_checked;
   p.scalar = c.scalar;
   if (c.outcome != StickingOutcome::sticks) {

@@ -256,10 +256,9 @@ std::string why_no_certified_answers(const ModelSpec& model) {
   return "";
 }
 
-StickingCertificate certify_sticking(const StickingQuestion& q) {
-  if (const std::string why = why_no_certified_answers(q.model); !why.empty())
-    throw InputError("model", "certified long-run answers need --model constant, or --model veldep without "
-                              "--veldep-collapse: " + why);
+namespace {
+
+StickingCertificate certify_run(const StickingQuestion& q) {
   auto e = escalate<RunResult>(q.schedule, [&](const Tier& t, Progress& p) {
     return t.double_interval ? run_once<DoubleInterval>(q, t.bits, p) : run_once<Mpfi>(q, t.bits, p);
   });
@@ -286,6 +285,23 @@ StickingCertificate certify_sticking(const StickingQuestion& q) {
     c.reason = e.gave_up;
   }
   return c;
+}
+
+}  // namespace
+
+StickingCertificate certify_sticking(const StickingQuestion& q) {
+  if (const std::string why = why_no_certified_answers(q.model); !why.empty())
+    throw InputError("model", "certified long-run answers need --model constant, or --model veldep without "
+                              "--veldep-collapse: " + why);
+  return certify_run(q);
+}
+
+StickingCertificate certify_orbit_steps(const StickingQuestion& q) {
+  if (q.model.law == Law::veldep && q.model.veldep_collapse)
+    throw InputError("model", "a certified orbit needs --veldep-collapse off: velocity-dependent collapse has no certified test");
+  StickingQuestion plain = q;
+  plain.prove_attractor = false;
+  return certify_run(plain);
 }
 
 template <class T>

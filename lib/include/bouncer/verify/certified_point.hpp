@@ -1,6 +1,6 @@
-// A certified long-run answer for one exact start (constant restitution, or velocity-dependent
-// restitution without collapse): what every pixel of `basin --certify` states, with the
-// double answer next to it (the artefact map).
+// A certified long-run answer for one exact start (constant restitution, velocity-dependent
+// restitution without collapse, or the elastic model): what every pixel of `basin --certify`
+// states, with the double answer next to it (the artefact map).
 //
 // The start's orbit is followed in interval arithmetic (certify_sticking: interval:double,
 // then MPFI at 64, 128, ... up to max_bits) for at most max_steps steps:
@@ -13,10 +13,15 @@
 //   no_sticking  certified: no sticking in steps 1..certified_steps (= max_steps), and no
 //                trapping set was found; or, after a first sticking, the release orbit is
 //                certified free of sticking for free_steps >= max_steps steps;
-//   not_trapped  velocity-dependent only (no orbit collapses there, so no sticking class):
-//                the orbit is certified through all max_steps steps, and no trapping set was
-//                found at its end (a chaotic orbit, or an attractor too slow or too neutral
-//                for the proof); fixed and periodic p are as above;
+//   not_trapped  velocity-dependent and elastic only (no orbit collapses there, so no
+//                sticking class): the orbit is certified through all max_steps steps, and no
+//                trapping set was found at its end (a chaotic orbit, or an attractor too slow
+//                or too neutral for the proof); fixed and periodic p are as above. Elastic:
+//                the map preserves area, so no trapping set exists and none is looked for;
+//                not_trapped and undecided (with its certified_steps) are its only classes,
+//                and they separate orbits certified for the whole run (in practice the
+//                regular islands) from those whose enclosure outgrew the schedule (the
+//                chaotic sea);
 //   undecided    steps 1..certified_steps are certified free of sticking, the next step was
 //                undecided at every precision of the schedule (`reason`).
 // The release orbit, shared by every start that sticks, gets the full schedule (MPFI up to

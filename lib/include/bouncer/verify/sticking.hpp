@@ -87,8 +87,9 @@ std::string why_no_certified_answers(const ModelSpec& model);
 // Throws InputError("model", ...) for a model why_no_certified_answers refuses.
 StickingCertificate certify_sticking(const StickingQuestion& q);
 
-// The certified orbit alone, in any model but velocity-dependent collapse (the elastic one too): certify_sticking's run
-// without the model check and without the attractor search (prove_attractor is ignored).
+// The certified orbit alone, in any model but velocity-dependent collapse (the elastic one
+// too): certify_sticking's run without the model check and without the attractor search
+// (prove_attractor is ignored).
 // Outcomes: no_sticking_within_max_steps (steps 1..max_steps certified), sticks (a certified
 // collapse, as in certify_sticking) or undecided (certified through steps_checked). The
 // certified grids use it for the elastic model, whose points can state no more: an

@@ -6,8 +6,8 @@
 // --certify (constant, elastic, or veldep without collapse; double): each column also gets a
 // certified answer for the exact orbit at the exact double value of the parameter
 // (verify/certified_point.hpp) and double's class of the same orbit; the picture shades the
-// columns where double is refuted (vermillion) or nothing is certified (grey; elastic columns
-// are always grey there: an orbit certified through every step says nothing of double's class).
+// columns where double is refuted (vermillion), where only the orbit is certified (not_trapped:
+// lavender; every certified elastic column) or where nothing is certified (grey).
 #include <cmath>
 #include <map>
 #include <memory>
@@ -248,7 +248,11 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   const Rgb red = paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0};
   auto density = [&](double t) { return paper ? ramp_color(0.45 + 0.55 * t) : viridis_color(0.75 * (1 - t)); };
   // --certify: the background of each column says what the certificate says of double there.
-  const Rgb refuted_bg{250, 205, 185}, undecided_bg{222, 222, 222};
+  // not_trapped (veldep, elastic): the exact orbit is certified through every step but its
+  // class is not decided; pale lavender as in the certified basins, not the grey of "nothing
+  // certified".
+  const Rgb refuted_bg{250, 205, 185}, undecided_bg{222, 222, 222}, orbit_only_bg{218, 210, 235};
+  long orbit_only = 0;
   std::vector<Rgb> column_bg(static_cast<size_t>(nx), Rgb{255, 255, 255});
   std::map<std::string, long> agreement;
   nlohmann::ordered_json columns = nlohmann::ordered_json::array();
@@ -260,7 +264,9 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
       ++agreement[cell[7]];
       const int col = r.samples == 1 ? 0 : static_cast<int>(static_cast<double>(k) * nx / r.samples);
       if (cell[7] == "differs") column_bg[static_cast<size_t>(col)] = refuted_bg;
-      else if (cell[7] == "undecided" && column_bg[static_cast<size_t>(col)].r == 255) column_bg[static_cast<size_t>(col)] = undecided_bg;
+      else if (cell[7] == "undecided" && column_bg[static_cast<size_t>(col)].r == 255)
+        column_bg[static_cast<size_t>(col)] = cell[1] == "not_trapped" ? orbit_only_bg : undecided_bg;
+      orbit_only += cell[1] == "not_trapped";
       columns.push_back({{r.vary, cell[0]}, {"class", cell[1]}, {"period", std::atol(cell[2].c_str())},
                          {"certified_steps", std::atoll(cell[3].c_str())}, {"scalar", cell[4]}, {"double_class", cell[5]},
                          {"double_period", std::atol(cell[6].c_str())}, {"agreement", cell[7]}});
@@ -276,7 +282,9 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
   if (r.certify) {
     auto n_of = [&](const char* k) { return agreement.count(k) ? agreement[k] : 0L; };
     ras.legend.emplace_back("double refuted by the certificate (" + std::to_string(n_of("differs")) + " values)", refuted_bg);
-    ras.legend.emplace_back("no certified answer (" + std::to_string(n_of("undecided")) + " values)", undecided_bg);
+    if (orbit_only > 0)
+      ras.legend.emplace_back("orbit certified, class open (" + std::to_string(orbit_only) + " values)", orbit_only_bg);
+    ras.legend.emplace_back("no certified answer (" + std::to_string(n_of("undecided") - orbit_only) + " values)", undecided_bg);
   }
   ras.colorbar.clear();  // grey level ~ log(points per cell); the legend names the marks
   ras.legend_below = true;

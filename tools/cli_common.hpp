@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "bouncer/analysis/classify.hpp"
+#include "bouncer/io/input.hpp"
 #include "bouncer/io/output.hpp"
 #include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
@@ -86,68 +87,77 @@ class CaptureScope {
   CommandCapture* previous_;
 };
 
-// Writes an --out file (io/output.hpp: PATH.partial renamed over PATH only when complete;
-// devices and pipes written through; directories refused) or, without a path, stdout
-// (checked: a failed write is an OutputError, exit status 1).
-inline void write_atomically(const std::optional<std::string>& path, const std::function<void(std::ostream&)>& body) {
+// Writes an --out file (io/output.hpp: staged in a locked PATH.partial and renamed over
+// PATH only when complete; devices and pipes written through; directories and links to
+// regular files refused) or, without a path, stdout (checked: a failed write is an
+// OutputError, exit status 1). `reserved`, when given, holds the path reserved before the
+// computation (reserve_output), so that a path that cannot be written is found at once.
+inline void write_atomically(const std::optional<std::string>& path, const std::function<void(std::ostream&)>& body,
+                             OutputSet* reserved = nullptr) {
   if (!path) {
     body(command_out());
     if (!command_capture()) check_stdout();
     return;
   }
-  write_output(output_target("out", *path), body);
+  OutputSet own;
+  OutputSet& set = reserved ? *reserved : own;
+  set.reserve("out", *path);
+  set.write(*path, body);
+  set.commit();
 }
 
-// One file of an output set: its path, and how to write it in full to a target.
+// One file of an output set: its path, and its whole content written to a stream.
 struct OutputFile {
   std::string path;
-  std::function<void(const OutputTarget& to)> write;
+  std::function<void(std::ostream&)> write;
 };
-inline std::function<void(const OutputTarget&)> text_file(std::function<void(std::ostream&)> body) {
-  return [body = std::move(body)](const OutputTarget& to) { write_output(to, body); };
-}
 
 // Writes a set of outputs (PREFIX.csv, PREFIX.png, PREFIX.json) all or none: every path is
-// checked before anything is written (a directory or a missing folder: exit 2), each file is
-// written in full to PATH.partial, and only when all are complete are they renamed into
-// place. A failure (disk full after the CSV, say) removes every partial file and leaves the
-// previous outputs as they were: never a CSV without its JSON. Devices and pipes are
-// written through, as by write_output.
-inline void write_output_set(const std::vector<OutputFile>& files) {
-  std::vector<OutputTarget> targets;
-  for (const OutputFile& f : files) targets.push_back(output_target("out", f.path));
-  std::vector<std::pair<std::string, std::string>> staged;  // PATH.partial -> PATH
-  std::vector<std::unique_ptr<PartialFile>> registered;
-  auto remove_staged = [&] {
-    std::error_code ec;
-    for (const auto& [from, to] : staged) std::filesystem::remove(from, ec);
-  };
-  try {
-    for (size_t i = 0; i < files.size(); ++i) {
-      if (targets[i].kind == OutputTarget::Kind::stream) {
-        files[i].write(targets[i]);
-        continue;
-      }
-      const std::string part = targets[i].path + ".partial";
-      registered.push_back(std::make_unique<PartialFile>(part));
-      staged.emplace_back(part, targets[i].path);
-      files[i].write(OutputTarget{OutputTarget::Kind::file, part});
-    }
-    for (const auto& [from, to] : staged) {
-      std::error_code ec;
-      std::filesystem::rename(from, to, ec);
-      if (ec) throw OutputError("cannot rename '" + from + "' to '" + to + "': " + ec.message());
-    }
-  } catch (const OutputError& e) {
-    remove_staged();
-    std::string message = e.what();  // name the output, not its staging file
-    for (const auto& [from, to] : staged)
-      for (size_t at; (at = message.find(from)) != std::string::npos;) message.replace(at, from.size(), to);
-    throw OutputError(message);
-  } catch (...) {
-    remove_staged();
-    throw;
-  }
+// checked and staged before anything is written (a directory or a missing folder: exit 2;
+// another run writing the same path: exit 2), each file is written in full to its staging
+// file, and only when all are complete are they renamed into place. A failure (disk full
+// after the CSV, say) removes every staging file and leaves the previous outputs as they
+// were: never a CSV without its JSON. Devices and pipes are written through. `reserved`,
+// when given, is the set whose paths were reserved before the computation.
+inline void write_output_set(const std::vector<OutputFile>& files, OutputSet* reserved = nullptr) {
+  OutputSet own;
+  OutputSet& set = reserved ? *reserved : own;
+  for (const OutputFile& f : files) set.reserve("out", f.path);
+  for (const OutputFile& f : files) set.write(f.path, f.write);
+  set.commit();
+}
+
+// An output file name prefix (PREFIX.csv, PREFIX.json, PREFIX.png, ...), checked before any
+// work: not empty, not a directory or a path ending in '/' (which would write the hidden
+// files DIR/.csv), its folder existing, and every name made from it (the longest with
+// `longest_suffix`) short enough for the file system. InputError naming `field`.
+inline void check_prefix(const std::string& field, const std::string& prefix, const std::string& longest_suffix) {
+  if (prefix.empty()) throw InputError(field, "must be a file name prefix");
+  std::error_code ec;
+  if (prefix.back() == '/' || std::filesystem::is_directory(prefix, ec))
+    throw InputError(field, "'" + prefix + "' is a directory: give a file name prefix (PREFIX.csv, PREFIX.json, ...)");
+  check_path_name(field, prefix + longest_suffix, std::string(".partial").size());
+  const auto parent = std::filesystem::path(prefix).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
+    throw InputError(field, "directory '" + parent.string() + "' does not exist");
+}
+
+// A name from a file bouncer did not write (a manifest's ids and labels, a claims.json's
+// file names) that becomes a file name: letters, digits and . _ : + - only, not starting
+// with '.' or '-', no "..", at most 100 characters. No '/', so it names nothing outside the
+// directory it is put in.
+inline bool safe_name(const std::string& s) {
+  if (s.empty() || s.size() > 100 || s.find("..") != std::string::npos || s[0] == '.' || s[0] == '-') return false;
+  return s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._:+-") == std::string::npos;
+}
+
+// The commands that compute a result: the only ones a manifest may run and audit may rerun
+// (never reproduce, audit or merge, which start processes or read prefixes of their own).
+inline const std::set<std::string>& computing_commands() {
+  static const std::set<std::string> c{"orbit",     "certify-sticking", "certify-periodic", "sweep",     "periodic",
+                                       "lyapunov",  "classify",         "bifurcation",      "portrait",  "basin",
+                                       "scan",      "continue",         "trajectory",       "tongues"};
+  return c;
 }
 
 // ---- Pictures: formats, size, resolution and palette (presentation only) -------------------
@@ -221,12 +231,24 @@ inline Presentation presentation_from(const Options& o) {
 }
 // The picture files of PREFIX, one per format, for write_output_set.
 inline std::vector<OutputFile> picture_files(const std::string& prefix, const Presentation& p,
-                                             const std::function<void(const std::string&, ImageFormat)>& draw) {
+                                             const std::function<void(std::ostream&, ImageFormat)>& draw) {
   std::vector<OutputFile> files;
   for (ImageFormat f : p.formats)
-    files.push_back({prefix + "." + format_name(f), [draw, f](const OutputTarget& to) { draw(to.path, f); }});
+    files.push_back({prefix + "." + format_name(f), [draw, f](std::ostream& out) { draw(out, f); }});
   return files;
 }
+// The output files of PREFIX for these picture formats (CSV, pictures, JSON), and the
+// extra figures' (PREFIX-SUFFIX.png ...).
+inline std::vector<std::string> output_paths(const std::string& prefix, const Presentation& p,
+                                             const std::vector<std::string>& extra_suffixes = {}) {
+  std::vector<std::string> paths{prefix + ".csv"};
+  for (ImageFormat fmt : p.formats) paths.push_back(prefix + "." + format_name(fmt));
+  for (const std::string& e : extra_suffixes)
+    for (ImageFormat fmt : p.formats) paths.push_back(prefix + "-" + e + "." + format_name(fmt));
+  paths.push_back(prefix + ".json");
+  return paths;
+}
+
 // The models as the paper names them, for titles.
 inline std::string model_title(Law law) {
   switch (law) {
@@ -340,7 +362,7 @@ inline void validate_range_ends(const ModelSpec& m, Parameter p, const std::stri
 // A certified command's result (certify-sticking, certify-periodic): JSON with the
 // provenance first, or the key: value text; to --out (atomically) or stdout.
 inline void write_result(const std::optional<std::string>& out, bool json, const Provenance& p,
-                         const nlohmann::ordered_json& body) {
+                         const nlohmann::ordered_json& body, OutputSet* reserved = nullptr) {
   write_atomically(out, [&](std::ostream& s) {
     if (json) {
       nlohmann::ordered_json doc;
@@ -350,7 +372,7 @@ inline void write_result(const std::optional<std::string>& out, bool json, const
     } else {
       print_key_values(s, p, body);
     }
-  });
+  }, reserved);
 }
 
 inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,

@@ -40,8 +40,14 @@
 #include <memory>
 #include <sstream>
 
+#include "audit.hpp"
+#include "bouncer/io/cancel.hpp"
+#include "bouncer/io/input.hpp"
+#include "child_process.hpp"
 #include "cli_common.hpp"
+#include "command_line.hpp"
 #include "commands.hpp"
+#include "run_command.hpp"
 
 namespace bouncer::cli {
 
@@ -55,12 +61,17 @@ struct Recorded {
   std::vector<std::pair<std::string, std::string>> inputs;
 };
 
+// A file of the audited result or of the rerun (bounded, never a FIFO or device: a
+// result file may come from a stranger). `ok` is false when it cannot be read.
 std::string read_file(const std::string& path, bool& ok) {
-  std::ifstream f(path, std::ios::binary);
-  ok = static_cast<bool>(f);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
+  try {
+    std::string text = read_input_file("file", path, kMaxResultBytes);
+    ok = true;
+    return text;
+  } catch (const InputError&) {
+    ok = false;
+    return "";
+  }
 }
 
 std::optional<Recorded> recorded_json(const std::string& text) {
@@ -133,26 +144,37 @@ std::optional<Recorded> recorded_text(const std::string& text) {
   return r;
 }
 
-// Runs argv with stdout into `out_path`; returns the exit status (or -1).
-int run_to_file(const std::vector<std::string>& argv, const std::string& out_path) {
-  const pid_t pid = fork();
+// Runs argv in the directory `cwd` (audit's private temporary directory: a relative path in
+// the command resolves there) with stdout into `out_path` (created there) and stderr
+// discarded; returns the exit status (or -1). The child ends if audit is killed.
+int run_to_file(const std::vector<std::string>& argv, const std::string& out_path, const std::string& cwd) {
+  const int fd = ::open(out_path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) return -1;
+  const pid_t pid = start_child(argv, fd, -1, cwd);
+  ::close(fd);
   if (pid < 0) return -1;
-  if (pid == 0) {
-    const int fd = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    const int null = open("/dev/null", O_WRONLY);
-    if (fd < 0 || null < 0) _exit(127);
-    dup2(fd, 1);
-    dup2(null, 2);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    execv(args[0], args.data());
-    _exit(127);
-  }
   int status = 0;
-  if (waitpid(pid, &status, 0) < 0) return -1;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) return -1;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
+
+// audit's private temporary directory (mkdtemp: mode 0700, a new name), removed with all it
+// holds when audit ends. Reruns write only here.
+struct PrivateDir {
+  std::string path;
+  PrivateDir() {
+    std::string tmpl = (std::filesystem::temp_directory_path() / "bouncer-audit-XXXXXX").string();
+    if (!::mkdtemp(tmpl.data())) throw OutputError("cannot create a temporary directory: " + std::string(std::strerror(errno)));
+    path = tmpl;
+  }
+  ~PrivateDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  PrivateDir(const PrivateDir&) = delete;
+  PrivateDir& operator=(const PrivateDir&) = delete;
+};
 
 // The JSON text with every number token turned into a string holding its exact text (marked
 // by a leading U+0001), so that results are compared as the digits they hold: parsed as
@@ -278,39 +300,45 @@ std::string self_path() {
 // (times, invocation, output paths); of a proof certificate, its verdicts and statements
 // (its evidence strings hold timings). Pictures are compared through their CSV and JSON, not
 // as PNG bytes. Exit 0 identical, 1 different or the rerun failed, 2 not a reproduce directory.
-int audit_reproduce(const std::filesystem::path& dir) {
+int audit_reproduce(const std::filesystem::path& dir, bool trust_manifest) {
   namespace fs = std::filesystem;
   bool ok = false;
-  const json old = json::parse(read_file((dir / "claims.json").string(), ok), nullptr, false);
+  const std::string claims_path = (dir / "claims.json").string();
+  const json old = json::parse(read_file(claims_path, ok), nullptr, false);
+  auto not_reproduce = [&](const std::string& why) {
+    throw InputError("file", "'" + claims_path + "' is not the claims.json of bouncer reproduce (" + why + ")");
+  };
   if (!ok || old.is_discarded() || !old.contains("reproduce") || !old["reproduce"].is_object() ||
-      !old["reproduce"].contains("mode") || !old["reproduce"]["mode"].is_string()) {
-    std::cerr << "bouncer audit: '" << (dir / "claims.json").string() << "' is not the claims.json of bouncer reproduce\n";
-    return 2;
-  }
+      !old["reproduce"].contains("mode") || !old["reproduce"]["mode"].is_string())
+    not_reproduce("no reproduce.mode");
   const json& r = old["reproduce"];
-  std::vector<std::string> argv{self_path(), "reproduce", "--" + r["mode"].get<std::string>()};
+  // The rerun is built from what reproduce records, each part checked: a mode, ids that are
+  // names (not paths or options), and the built-in manifest unless --trust-manifest.
+  const std::string mode = r["mode"].get<std::string>();
+  if (mode != "quick" && mode != "full" && mode != "pictures") not_reproduce("mode '" + mode + "'");
+  std::vector<std::string> argv{self_path(), "reproduce", "--" + mode};
   if (r.contains("only") && r["only"].is_array() && !r["only"].empty()) {
     std::string only;
-    for (const json& id : r["only"]) only += (only.empty() ? "" : ",") + id.get<std::string>();
-    argv.insert(argv.end(), {"--only", only});
-  }
-  if (r.contains("manifest") && r["manifest"].is_string() && r["manifest"].get<std::string>().find("(built in)") == std::string::npos)
-    argv.insert(argv.end(), {"--manifest", r["manifest"].get<std::string>()});
-  std::string tmpl = (fs::temp_directory_path() / "bouncer-audit-XXXXXX").string();
-  if (!mkdtemp(tmpl.data())) {
-    std::cerr << "bouncer audit: cannot create a temporary directory\n";
-    return 1;
-  }
-  const fs::path tmp = tmpl;
-  struct Cleanup {
-    fs::path p;
-    ~Cleanup() {
-      std::error_code ec;
-      fs::remove_all(p, ec);
+    for (const json& id : r["only"]) {
+      if (!id.is_string() || !safe_name(id.get<std::string>())) not_reproduce("an --only id that is not a name");
+      only += (only.empty() ? "" : ",") + id.get<std::string>();
     }
-  } cleanup{tmp};
-  argv.insert(argv.end(), {"--out", (tmp / "r").string()});
-  const int status = run_to_file(argv, (tmp / "stdout").string());
+    argv.push_back("--only=" + only);
+  }
+  if (r.contains("manifest") && !r["manifest"].is_string()) not_reproduce("a manifest that is not a string");
+  const std::string manifest = r.value("manifest", "");
+  if (!manifest.empty() && manifest.find("(built in)") == std::string::npos) {
+    if (!trust_manifest)
+      throw InputError("file", "'" + claims_path + "' was made from the manifest '" + manifest +
+                                   "', not bouncer's built-in one; audit runs another manifest's commands only when "
+                                   "told to (--trust-manifest; they are then still limited to bouncer's computing "
+                                   "commands, writing into audit's temporary directory)");
+    argv.push_back("--manifest=" + fs::absolute(manifest).string());
+  }
+  const PrivateDir private_dir;
+  const fs::path tmp = private_dir.path;
+  argv.push_back("--out=" + (tmp / "r").string());
+  const int status = run_to_file(argv, (tmp / "stdout").string(), tmp.string());
   const json now = json::parse(read_file((tmp / "r" / "claims.json").string(), ok), nullptr, false);
   if ((status != 0 && status != 1) || !ok || now.is_discarded()) {
     std::cerr << "bouncer audit: the rerun of reproduce failed (exit status " << status << ")\n";
@@ -327,6 +355,12 @@ int audit_reproduce(const std::filesystem::path& dir) {
     return m;
   };
   auto compare_file = [&](const std::string& rel) {
+    // A name from the audited claims.json: one of reproduce's own subdirectories and a file
+    // name in it, nothing else (never a path out of the directory).
+    const auto slash = rel.find('/');
+    const std::string sub = slash == std::string::npos ? "" : rel.substr(0, slash);
+    if ((sub != "claims" && sub != "panels" && sub != "pictures") || !safe_name(rel.substr(slash + 1)))
+      return differences.push_back("'" + one_line(rel, 120) + "': not a file of a reproduce directory");
     const std::string a = read_file((dir / rel).string(), ok);
     if (!ok) return differences.push_back(rel + ": missing in " + dir.string());
     const std::string b = read_file((tmp / "r" / rel).string(), ok);
@@ -370,7 +404,7 @@ int audit_reproduce(const std::filesystem::path& dir) {
     for (const char* k : {"status", "verdict", "checks"})
       if (c.value(k, json()) != it->second.value(k, json()))
         differences.push_back("claim " + id + ": " + k + ": " + short_dump(c.value(k, json())) + " vs " + short_dump(it->second.value(k, json())));
-    if (c.contains("output") && c["status"] != "failed") compare_file(c["output"].get<std::string>());
+    if (c.contains("output") && c["output"].is_string() && c["status"] != "failed") compare_file(c["output"].get<std::string>());
   }
   for (const auto& [id, c] : new_claims)
     if (!old_claims.count(id)) differences.push_back("claim " + id + ": only in the rerun");
@@ -386,8 +420,9 @@ int audit_reproduce(const std::filesystem::path& dir) {
       }
       if (p.value("status", "") != it->second.value("status", ""))
         differences.push_back(what + label + ": status " + p.value("status", "") + " vs " + it->second.value("status", ""));
-      if (p.contains("files"))
+      if (p.contains("files") && p["files"].is_array())
         for (const json& f : p["files"]) {
+          if (!f.is_string()) continue;
           const std::string rel = f.get<std::string>();
           // Pictures embed the command line (with its --out path) in their metadata, so they are
           // compared through the CSV and JSON they are drawn from, not byte for byte.
@@ -410,60 +445,46 @@ int audit_reproduce(const std::filesystem::path& dir) {
   return 1;
 }
 
-int audit(const std::string& path) {
-  // A `bouncer reproduce` directory: compared item by item (audit_reproduce).
-  if (std::error_code ec; std::filesystem::is_directory(path, ec)) {
-    if (std::filesystem::exists(std::filesystem::path(path) / "claims.json", ec)) return audit_reproduce(path);
-    std::cerr << "bouncer audit: '" << path << "' is a directory without claims.json; give a result file (JSON or CSV "
-                 "written by bouncer) or a bouncer reproduce directory\n";
-    return 2;
-  }
-  bool ok = false;
-  const std::string text = read_file(path, ok);
-  if (!ok) {
-    std::cerr << "bouncer audit: cannot read '" << path << "'\n";
-    return 2;
-  }
+}  // namespace
+
+AuditPlan plan_rerun(const std::string& path, const std::string& text, const std::string& dir, const std::string& self) {
   // Kinds that carry no rerunnable provenance are refused up front, with what to do instead.
   if (text.rfind("\x89PNG", 0) == 0 || text.rfind("%PDF-", 0) == 0 ||
-      (text.rfind("<?xml", 0) == 0 && text.find("<svg", 0) != std::string::npos)) {
-    std::cerr << "bouncer audit: '" << path << "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
-                 "(same provenance, exact numbers)\n";
-    return 2;
-  }
-  if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("reproduce") && j.contains("claims")) {
-    return audit_reproduce(std::filesystem::path(path).parent_path().empty() ? std::filesystem::path(".")
-                                                                              : std::filesystem::path(path).parent_path());
-  }
-  if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("proof") && j.contains("claim")) {
-    std::cerr << "bouncer audit: '" << path << "' is a proof certificate; rerun its proof (build/proofs/proof_"
-              << (j["proof"].is_string() ? j["proof"].get<std::string>() : std::string("NAME"))
-              << " --json) and compare, as the README's proofs section shows\n";
-    return 2;
-  }
+      (text.rfind("<?xml", 0) == 0 && text.find("<svg", 0) != std::string::npos))
+    throw InputError("file", "'" + path + "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
+                             "(same provenance, exact numbers)");
+  if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("proof") && j.contains("claim"))
+    throw InputError("file", "'" + path + "' is a proof certificate; rerun its proof (build/proofs/proof_" +
+                                 (j["proof"].is_string() && safe_name(j["proof"].get<std::string>()) ? j["proof"].get<std::string>()
+                                                                                                   : std::string("NAME")) +
+                                 " --json) and compare, as the README's proofs section shows");
   std::optional<Recorded> rec = recorded_json(text);
   if (!rec) rec = recorded_text(text);
-  if (!rec) {
-    std::cerr << "bouncer audit: '" << path << "' is not a bouncer result (no provenance with command and inputs)\n";
-    return 2;
+  if (!rec) throw InputError("file", "'" + path + "' is not a bouncer result (no provenance with command and inputs)");
+  // The trust boundary (README, "Security"): audit reruns only what bouncer itself writes,
+  // a computing command with its recorded inputs as options. Never reproduce, audit or
+  // merge, never an input that names where to read tiles, a scene or a manifest: no bouncer
+  // result records one, so a file that does was made by hand.
+  if (!computing_commands().count(rec->command))
+    throw InputError("file", "'" + path + "' records the command '" + one_line(rec->command, 60) +
+                                 "', which audit does not rerun (it reruns the results of bouncer's computing commands; "
+                                 "a reproduce directory is audited as a directory)");
+  static const std::set<std::string> never_recorded{"tiles-from", "keep-tiles", "shard", "scene", "manifest", "threads",
+                                                    "trust-manifest", "force", "help", "version"};
+  for (const auto& [k, v] : rec->inputs) {
+    if (k.empty() || k.size() > 40 || k.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789-") != std::string::npos ||
+        k[0] == '-' || never_recorded.count(k))
+      throw InputError("file", "'" + path + "' records the input '" + one_line(k, 60) +
+                                   "', which no bouncer result records: audit does not rerun it");
+    if (v.find('\0') != std::string::npos) throw InputError("file", "'" + path + "' records an input with a NUL byte");
   }
-  if (rec->command == "audit") {
-    std::cerr << "bouncer audit: '" << path << "' records an audit, not a result\n";
-    return 2;
-  }
-  char tmpl[] = "/tmp/bouncer-audit-XXXXXX";
-  if (!mkdtemp(tmpl)) {
-    std::cerr << "bouncer audit: cannot create a temporary directory\n";
-    return 1;
-  }
-  const std::string dir = tmpl;
-  struct Cleanup {
-    std::string d;
-    ~Cleanup() { std::error_code ec; std::filesystem::remove_all(d, ec); }
-  } cleanup{dir};
-
-  std::vector<std::string> argv{self_path(), rec->command};
-  std::string compare_path = dir + "/stdout";
+  AuditPlan plan;
+  plan.is_json = rec->is_json;
+  plan.command = rec->command;
+  std::vector<std::string>& argv = plan.argv;
+  argv = {self, rec->command};
+  std::string& compare_path = plan.compare_path;
+  compare_path = dir + "/stdout";
   bool has_out = false;
   for (const auto& [k, v] : rec->inputs) {
     if (k == "out") { has_out = true; continue; }
@@ -501,10 +522,47 @@ int audit(const std::string& path) {
       compare_path = dir + "/result";
     }
   }
+  return plan;
+}
+
+namespace {
+
+int audit(const std::string& path, bool trust_manifest) {
+  // A `bouncer reproduce` directory: compared item by item (audit_reproduce).
+  if (std::error_code ec; std::filesystem::is_directory(path, ec)) {
+    if (std::filesystem::exists(std::filesystem::path(path) / "claims.json", ec)) return audit_reproduce(path, trust_manifest);
+    throw InputError("file", "'" + path + "' is a directory without claims.json; give a result file (JSON or CSV "
+                             "written by bouncer) or a bouncer reproduce directory");
+  }
+  const std::string text = read_input_file("file", path, kMaxResultBytes);
+  if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("reproduce") && j.contains("claims")) {
+    return audit_reproduce(std::filesystem::path(path).parent_path().empty() ? std::filesystem::path(".")
+                                                                              : std::filesystem::path(path).parent_path(),
+                           trust_manifest);
+  }
+  const PrivateDir private_dir;
+  const std::string dir = private_dir.path;
+  const AuditPlan plan = plan_rerun(path, text, dir, self_path());
+  const std::vector<std::string>& argv = plan.argv;
+  const std::string& compare_path = plan.compare_path;
+  // The rebuilt command is validated as the command line validates it, in this process and
+  // before anything is started: its options parsed and checked, stopped at its first step.
+  {
+    std::vector<std::string> words{"bouncer"};
+    words.insert(words.end(), argv.begin() + 1, argv.end());
+    const std::atomic<bool> stop{true};
+    const CancelScope cancel(&stop);
+    CommandCapture swallow;
+    const CaptureScope capture(&swallow);
+    const CommandOutcome r = run_command(words, false);
+    if (r.kind == CommandOutcome::Kind::input)
+      throw InputError("file", "'" + path + "' records inputs that bouncer refuses: " + r.message);
+  }
+  const auto* rec = &plan;
   command_out() << "audit: rerunning `bouncer " << rec->command;
   for (size_t i = 2; i < argv.size(); ++i) command_out() << " " << (argv[i].rfind(dir, 0) == 0 ? "<tmp>" + argv[i].substr(dir.size()) : argv[i]);
   command_out() << "`\n";
-  const int status = run_to_file(argv, dir + "/stdout");
+  const int status = run_to_file(argv, dir + "/stdout", dir);
   if (status != 0) {
     command_out() << "audit: DIFFERENT: the rerun failed (exit status " << status << ")\n";
     return 1;
@@ -550,8 +608,18 @@ int audit(const std::string& path) {
 Command add_audit(CLI::App& app) {
   CLI::App* sub = app.add_subcommand("audit", "Rerun a recorded result from its provenance; exit 0 if bit-identical");
   auto file = std::make_shared<std::string>();
+  auto trust = std::make_shared<bool>(false);
   sub->add_option("file", *file, "A JSON or CSV/text result written by bouncer, or a bouncer reproduce directory")->required();
-  auto run = [file](const std::string&) { return audit(*file); };
+  sub->add_flag("--trust-manifest", *trust,
+                "Rerun a reproduce directory made from another manifest than bouncer's built-in one (its commands are "
+                "still limited to bouncer's computing commands, writing into audit's temporary directory)");
+  auto run = [file, trust](const std::string&) {
+    try {
+      return audit(*file, *trust);
+    } catch (const nlohmann::json::exception& e) {  // a crafted file whose parts have other types
+      throw InputError("file", "'" + *file + "' is malformed: " + e.what());
+    }
+  };
   return {sub, run};
 }
 

@@ -297,7 +297,7 @@ void basin_finish(const BasinRequest& r, const std::vector<std::string>& items, 
   }
   s["attractors"] = types;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace

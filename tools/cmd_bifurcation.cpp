@@ -323,7 +323,7 @@ void finish(const BifurcationRequest& r, const std::vector<std::string>& items, 
     s["double_vs_certified"] = {{"agrees", n_of("agrees")}, {"differs", n_of("differs")}, {"undecided", n_of("undecided")}};
     s["columns"] = columns;
   }
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -348,6 +348,7 @@ int run_bifurcation(const Options& o, const RunFlags& f) {
   job.plan.items = req.samples;
   // --carry chains the values: one tile, computed in order by one worker.
   job.plan.tile_items = req.carry ? req.samples : std::max<long>(1, std::min<long>(16, req.samples / 64 + 1));
+  job.item_bytes = 40.0 * static_cast<double>(req.record) + 64;  // a column: `record` values
   const Provenance prov = provenance_for("bifurcation", job.job, req.precision, f.invocation);
   return with_scalar(req.precision, [&](auto tag) -> int {
     using T = typename decltype(tag)::type;

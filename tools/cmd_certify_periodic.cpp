@@ -228,6 +228,8 @@ Command add_certify_periodic(CLI::App& app) {
                       opts->collected());
     if (*as_json) o.set("json", "true");
     const Request r = request_from(o);
+    OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
+    if (r.out) outputs.reserve("out", *r.out);
     Provenance p = provenance_for("certify-periodic", o, Precision{Precision::Kind::interval, r.q.schedule.max_bits}, argv_text);
     p.precision = "interval, escalated " + r.q.schedule.text();
     json body;
@@ -279,7 +281,7 @@ Command add_certify_periodic(CLI::App& app) {
       body["pieces"] = pieces;
       body["seconds"] = rep.seconds;
     }
-    write_result(r.out, r.json, p, body);
+    write_result(r.out, r.json, p, body, &outputs);
     return 0;
   };
   return {sub, run};

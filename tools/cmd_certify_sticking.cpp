@@ -185,6 +185,8 @@ Command add_certify_sticking(CLI::App& app) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "certify-sticking", certify_keys()), opts->collected());
     if (*as_json) o.set("json", "true");
     const Request r = request_from(o);
+    OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
+    if (r.out) outputs.reserve("out", *r.out);
     Precision prec{Precision::Kind::interval, r.q.schedule.max_bits};
     Provenance p = provenance_for("certify-sticking", o, prec, argv_text);
     p.precision = "interval, escalated " + r.q.schedule.text();  // p.bits: the bits that certified
@@ -229,7 +231,7 @@ Command add_certify_sticking(CLI::App& app) {
       body["pieces"] = pieces;
       body["seconds"] = rep.seconds;
     }
-    write_result(r.out, r.json, p, body);
+    write_result(r.out, r.json, p, body, &outputs);
     return 0;
   };
   return {sub, run};

@@ -100,11 +100,7 @@ ContinueRequest continue_request(const Options& given) {
   r.certify = certify == "true";
   if (o.has("out")) {
     r.out = o.get("out");
-    if (r.out->empty()) throw InputError("out", "must be a file name prefix");
-    const auto parent = std::filesystem::path(*r.out).parent_path();
-    std::error_code ec;  // a parent the file system cannot name (too long) is not a directory
-    if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
-      throw InputError("out", "directory '" + parent.string() + "' does not exist");
+    check_prefix("out", *r.out, ".json");
   }
   r.picture = presentation_from(o);
   if (r.out) check_figure_font();  // an output failure, found before the work
@@ -204,7 +200,7 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, const std::string& par,
 }
 
 template <class T>
-int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json) {
+int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json, OutputSet& outputs) {
   using Tr = ScalarTraits<T>;
   const long bits = r.precision.bits;
   const Model<T> m = make_model<T>(r.model, bits);
@@ -409,13 +405,13 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json)
     fig.xlabel = r.vary == Parameter::eps ? "ε" : par;
     fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
     fig.metadata = png_metadata(prov, fig.title);
-    std::vector<OutputFile> files{{*r.out + ".csv", text_file([&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); })}};
-    for (OutputFile& pic : picture_files(*r.out, r.picture, [&](const std::string& path, ImageFormat fmt) {
-           write_figure(path, fig, fmt, r.picture.render);
+    std::vector<OutputFile> files{{*r.out + ".csv", [&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); }}};
+    for (OutputFile& pic : picture_files(*r.out, r.picture, [&](std::ostream& out, ImageFormat fmt) {
+           write_figure(out, fig, fmt, r.picture.render);
          }))
       files.push_back(std::move(pic));
-    files.push_back({*r.out + ".json", text_file([&](std::ostream& f) { f << doc.dump(2) << "\n"; })});
-    write_output_set(files);
+    files.push_back({*r.out + ".json", [&](std::ostream& f) { f << doc.dump(2) << "\n"; }});
+    write_output_set(files, &outputs);
   }
   if (print_json) command_out() << doc.dump(2) << "\n";
   else command_out() << text.str();
@@ -457,8 +453,11 @@ Command add_continue(CLI::App& app) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), opts->collected());
     const ContinueRequest req = continue_request(o);
     const Provenance prov = provenance_for("continue", o, req.precision, argv_text);
+    OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
+    if (req.out)
+      for (const std::string& path : output_paths(*req.out, req.picture)) outputs.reserve("out", path);
     return with_point_scalar(req.precision, [&](auto tag) {
-      return run_typed<typename decltype(tag)::type>(req, prov, *json_flag);
+      return run_typed<typename decltype(tag)::type>(req, prov, *json_flag, outputs);
     });
   };
   return {sub, run};

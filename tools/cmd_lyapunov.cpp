@@ -298,7 +298,7 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   s["classes"] = classes;
   s["values"] = per_value;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
 template <class T>

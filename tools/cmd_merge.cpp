@@ -3,7 +3,6 @@
 // the job from PREFIX.tiles/job.toml, gathers the tiles of every prefix given, checks that
 // none is missing, and writes PREFIX.csv, PREFIX.png and PREFIX.json as the unsharded run
 // would have (byte for byte, apart from the invocation recorded in the provenance).
-#include <fstream>
 #include <memory>
 
 #include "commands.hpp"
@@ -24,12 +23,7 @@ const std::map<std::string, PictureCommand>& picture_commands() {
 
 namespace {
 
-std::string first_line(const std::string& path) {
-  std::ifstream f(path);
-  std::string line;
-  if (f) std::getline(f, line);
-  return line;
-}
+std::string first_line(const std::string& path) { return first_line_of("prefix", path); }
 
 int run_merge(const std::vector<std::string>& prefixes, Options o, const FlagSet& flags, const std::string& argv_text) {
   if (prefixes.empty()) throw InputError("prefix", "give the output prefix(es) of the shard runs");
@@ -47,6 +41,12 @@ int run_merge(const std::vector<std::string>& prefixes, Options o, const FlagSet
     if (first_line(tiles_dir(p) + "/job.key") != key)
       throw InputError("prefix", "'" + tiles_dir(p) + "' is missing or holds a different job than '" + dir0 + "'");
   Options job = load_scene(dir0 + "/job.toml", command, it->second.keys());
+  // A job file holds what the job computes, never how or where it runs (job_options): a run
+  // key in it was put there by hand, and must not choose merge's outputs or threads.
+  for (const std::string& k : run_keys())
+    if (job.has(k))
+      throw InputError("prefix", "'" + dir0 + "/job.toml' names '" + k + "', which is not part of a job (was it edited?); "
+                                 "give --" + k + " to merge instead");
   // Run options of the merge itself (threads, out) and its picture options (format, size,
   // dpi, palette: how the merged job is drawn) on top of the job's.
   for (const auto& [k, v] : o.values) job.values[k] = v;

@@ -175,7 +175,7 @@ void finish(const PortraitRequest& r, const std::vector<std::string>& items, con
   if (r.theta_window) s["theta_range"] = {r.theta_window->first.text(), r.theta_window->second.text()};
   if (r.v_window) s["v_range"] = {r.v_window->first.text(), r.v_window->second.text()};
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace
@@ -198,6 +198,7 @@ int run_portrait(const Options& o, const RunFlags& f) {
   job.job = job_options(o);
   job.plan.items = static_cast<long>(req.initial.size());
   job.plan.tile_items = 1;
+  job.item_bytes = 60.0 * static_cast<double>(req.steps) + 64;  // an orbit: `steps` rows
   const Provenance prov = provenance_for("portrait", job.job, req.precision, f.invocation);
   return with_scalar(req.precision, [&](auto tag) -> int {
     using T = typename decltype(tag)::type;

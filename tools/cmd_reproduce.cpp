@@ -21,7 +21,6 @@
 
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -42,15 +41,15 @@
 #include <sstream>
 #include <thread>
 
+#include "bouncer/io/input.hpp"
 #include "bouncer/io/provenance.hpp"
+#include "child_process.hpp"
 #include "cli_common.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "bouncer/io/cancel.hpp"
 #include "paper_manifest.hpp"
 #include "run_command.hpp"
-
-extern char** environ;
 
 namespace bouncer::cli {
 
@@ -130,7 +129,59 @@ const std::vector<std::string>& verdict_words() {
   return w;
 }
 
+// A manifest is data, and may come from someone else (`reproduce --manifest FILE`, or the
+// manifest a reproduce directory names, which `audit DIR` reruns). What it may ask for is
+// bounded here, for the built-in manifest too:
+//   * its ids, labels and file names become file names in the reproduce directory: letters,
+//     digits and . _ : + - only, no "..", at most 100 characters (no '/', so nothing is
+//     written outside the directory);
+//   * every command is one of bouncer's computing commands, or a proof program beside it
+//     with --full, --json, --bits only: never reproduce, audit or merge (a manifest that ran
+//     itself spawned hundreds of processes), and never an option that chooses where a
+//     command reads tiles or writes (--out, --tiles-from, --keep-tiles, --shard): reproduce
+//     gives each command its place in the directory. --scene names a scene built into
+//     bouncer (data/scenes/), not a file.
+std::string command_problem(const std::vector<std::string>& argv) {
+  if (argv.empty()) return "";
+  for (const std::string& w : argv)
+    if (w.find('\0') != std::string::npos || w.size() > 4096) return "a word is longer than 4096 characters or holds a NUL byte";
+  if (argv[0].rfind("proof_", 0) == 0) {
+    const std::string name = argv[0].substr(6);
+    if (name.empty() || name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos)
+      return "'" + argv[0] + "' is not a proof program's name (proof_ and lower-case letters, digits, _)";
+    for (size_t i = 1; i < argv.size(); ++i) {
+      if (argv[i] == "--full" || argv[i] == "--json") continue;
+      if (argv[i] == "--bits" && i + 1 < argv.size()) {
+        ++i;
+        continue;
+      }
+      return "a proof program takes only --full, --json and --bits N (got '" + argv[i] + "')";
+    }
+    return "";
+  }
+  if (argv[0] != "bouncer") return "must start with bouncer or proof_NAME, not '" + argv[0] + "'";
+  const std::set<std::string>& commands = computing_commands();
+  if (argv.size() < 2 || !commands.count(argv[1])) {
+    std::string list;
+    for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
+    return "runs '" + (argv.size() < 2 ? std::string() : argv[1]) + "': a manifest runs only " + list;
+  }
+  static const std::set<std::string> placed{"--out", "--tiles-from", "--keep-tiles", "--shard", "--manifest"};
+  for (size_t i = 2; i < argv.size(); ++i) {
+    const std::string name = argv[i].substr(0, argv[i].find('='));
+    if (placed.count(name)) return "gives " + name + ": reproduce chooses where each command writes";
+    if (name == "--scene") {
+      const std::string value = argv[i].size() > name.size() ? argv[i].substr(name.size() + 1)
+                                : i + 1 < argv.size()         ? argv[i + 1]
+                                                              : std::string();
+      if (!paper_scenes().count(value)) return "--scene '" + value + "' is not a scene of data/scenes/ (built in)";
+    }
+  }
+  return "";
+}
+
 Manifest parse_manifest(const std::string& text, const std::string& source) {
+  check_toml_text("manifest", text, source, kMaxManifestBytes);
   toml::table root;
   try {
     root = toml::parse(text, source);
@@ -159,8 +210,13 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
         throw InputError("manifest", where + ": tiles_from '" + p.tiles_from + "' is not the label of an earlier panel");
       if (const toml::table* params = (*t)["params"].as_table())
         for (const auto& [k, v] : *params) p.params.emplace_back(std::string(k.str()), v.value<std::string>().value_or(""));
+      if (!safe_name(p.label) || (!p.twin_of.empty() && !safe_name(p.twin_of)))
+        throw InputError("manifest", where + ": a label must be a safe file name (letters, digits, . _ : + -; no '..')");
       p.quick = argv_of(*t, "quick", where);
       p.full = argv_of(*t, "full", where);
+      for (const auto* argv : {&p.quick, &p.full})
+        if (const std::string problem = command_problem(*argv); !problem.empty())
+          throw InputError("manifest", where + ": command " + problem);
       if (p.status != "ready" && p.status != "pending") throw InputError("manifest", where + ": status must be ready or pending");
       if (p.status == "pending" && p.reason.empty()) throw InputError("manifest", where + ": a pending panel needs a reason");
       if (p.status == "ready" && (p.quick.empty() || p.full.empty()))
@@ -174,6 +230,8 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
       Claim c;
       c.id = str(*t, "id", source + " claim");
       const std::string where = source + " claim " + c.id;
+      if (!safe_name(c.id))
+        throw InputError("manifest", where + ": an id must be a safe file name (letters, digits, . _ : + -; no '..')");
       c.row = str(*t, "row", where);
       c.text = str(*t, "text", where);
       c.paper = str(*t, "paper", where);
@@ -192,6 +250,9 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
         c.full_run = c.run;
         if (c.run[0].rfind("proof_", 0) == 0) c.full_run.push_back("--full");
       }
+      for (const auto* argv : {&c.run, &c.full_run})
+        if (const std::string problem = command_problem(*argv); !problem.empty())
+          throw InputError("manifest", where + ": command " + problem);
       c.quick = (*t)["quick"].value<bool>().value_or(true);
       if (const toml::array* ch = (*t)["checks"].as_array())
         for (const auto& e : *ch) {
@@ -214,14 +275,18 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
       Picture p;
       p.name = str(*t, "name", source + " picture");
       const std::string where = source + " picture " + p.name;
-      if (p.name.empty() || p.name.find_first_of("/ ") != std::string::npos)
-        throw InputError("manifest", where + ": name must be a file name without extension");
+      if (!safe_name(p.name))
+        throw InputError("manifest", where + ": name must be a safe file name without extension (letters, digits, . _ : + -)");
       p.readme = str(*t, "readme", where);
       p.about = str(*t, "about", where);
       p.command = argv_of(*t, "command", where);
       if (p.command.empty()) throw InputError("manifest", where + ": needs a command");
       p.files = argv_of(*t, "files", where);
       if (p.files.empty()) p.files = {p.name + ".png"};
+      for (const std::string& f : p.files)
+        if (!safe_name(f)) throw InputError("manifest", where + ": file '" + f + "' must be a safe file name");
+      if (const std::string problem = command_problem(p.command); !problem.empty())
+        throw InputError("manifest", where + ": command " + problem);
       m.pictures.push_back(std::move(p));
     }
   return m;
@@ -311,6 +376,7 @@ struct Item {
   std::vector<std::string> exec;  // resolved
   std::string stdout_path, stderr_path, key_path, key;
   std::vector<std::string> outputs;  // must exist after success (relative to DIR)
+  std::shared_ptr<OutputSet> files;  // stdout and stderr, staged while it runs
   // A panel drawn from the grid of an earlier item (manifest tiles_from): that item's index,
   // and the tile prefix it keeps for this one. It starts when that item has finished.
   std::optional<size_t> after;
@@ -321,6 +387,9 @@ struct Item {
   int exit_status = 0;
   double seconds = 0;
 };
+
+// Set in the environment of reproduce's children: a reproduce started inside one refuses.
+constexpr const char* kInReproduce = "BOUNCER_IN_REPRODUCE";
 
 std::string shell_word(const std::string& w) {
   if (!w.empty() && w.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.,:/=+") == std::string::npos)
@@ -348,7 +417,7 @@ std::string read_text(const fs::path& p) {
 }
 
 void write_text(const fs::path& p, const std::string& text) {
-  write_output_set({{p.string(), text_file([&](std::ostream& s) { s << text; })}});
+  write_output_set({{p.string(), [&](std::ostream& s) { s << text; }}});
 }
 
 std::optional<fs::path> find_proof(const fs::path& exe_dir, const std::string& name) {
@@ -409,27 +478,21 @@ std::string resolve_scenes(std::vector<std::string>& exec, const fs::path& scene
     const auto it = paper_scenes().find(exec[i]);
     if (it == paper_scenes().end()) return "scene '" + exec[i] + "' is not one of data/scenes/ (built in)";
     const fs::path file = scene_dir / fs::path(exec[i]).filename();
-    std::error_code ec;
-    fs::create_directories(scene_dir, ec);
+    make_own_directory("out", scene_dir.string());
     write_text(file, it->second);
     exec[i] = file.string();
   }
   return "";
 }
 
-pid_t spawn(const Item& it) {
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&fa, 1, it.stdout_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&fa, 2, it.stderr_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  std::vector<char*> args;
-  for (const std::string& a : it.exec) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, it.exec[0].c_str(), &fa, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
+// Starts an item: its stdout and stderr go to staging files of the reproduce directory
+// (created afresh, never through a planted link), renamed into place when it ends.
+pid_t spawn(Item& it) {
+  it.files = std::make_shared<OutputSet>();
+  it.files->reserve("out", it.stdout_path);
+  it.files->reserve("out", it.stderr_path);
+  return start_child(it.exec, it.files->descriptor(it.stdout_path), it.files->descriptor(it.stderr_path), "",
+                     {std::string(kInReproduce) + "=1"});
 }
 
 std::string html_escape(const std::string& s) {
@@ -556,15 +619,15 @@ int check_manifest(const Manifest& m, const fs::path& exe_dir) {
 }
 
 int run_reproduce(const Options_& o) {
+  if (const char* inside = std::getenv(kInReproduce); inside && *inside)
+    throw InputError("reproduce", "runs no reproduce inside another (a manifest runs bouncer's computing commands only)");
   if (o.quick && o.full) throw InputError("quick", "give one of --quick or --full, not both");
   if (o.pictures && (o.quick || o.full))
     throw InputError("pictures", "draws the README's pictures, the same in every mode: give it without --quick or --full");
   const std::string mode = o.pictures ? "pictures" : o.full ? "full" : "quick";
   std::string text = kPaperManifest, source = "data/paper/manifest.toml (built in)";
   if (!o.manifest.empty()) {
-    std::error_code ec;
-    if (!fs::is_regular_file(o.manifest, ec)) throw InputError("manifest", "'" + o.manifest + "' is not a readable file");
-    text = read_text(o.manifest);
+    text = read_input_file("manifest", o.manifest, kMaxManifestBytes);
     source = o.manifest;
   }
   const Manifest m = parse_manifest(text, source);
@@ -624,15 +687,17 @@ int run_reproduce(const Options_& o) {
   const fs::path dir = o.out;
   if (o.out.empty()) throw InputError("out", "must name a directory");
   {
+    // DIR is the user's (it may be a link to a directory they chose); its subdirectories are
+    // bouncer's own, and a link planted there is refused, never followed.
     std::error_code ec;
     if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) throw InputError("out", "'" + o.out + "' exists and is not a directory");
+    check_path_name("out", o.out);
+    fs::create_directories(dir, ec);
+    if (ec) throw OutputError("cannot create '" + dir.string() + "': " + ec.message());
     // (scenes/ is made when a command's scene is written there)
     const std::vector<std::string> subs =
         o.pictures ? std::vector<std::string>{"pictures", "logs", "keys"} : std::vector<std::string>{"panels", "claims", "logs", "keys"};
-    for (const std::string& sub : subs) {
-      fs::create_directories(dir / sub, ec);
-      if (ec) throw OutputError("cannot create '" + (dir / sub).string() + "': " + ec.message());
-    }
+    for (const std::string& sub : subs) make_own_directory("out", (dir / sub).string());
   }
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
@@ -665,6 +730,12 @@ int run_reproduce(const Options_& o) {
     if (!p.twin_of.empty())  // a certified twin also draws where double is wrong
       for (const char* ext : {".png", ".pdf", ".svg"}) it.outputs.push_back("panels/" + p.name() + "-artefacts" + ext);
     it.exec = it.argv;
+    if (const std::string problem = resolve_scenes(it.exec, dir / "scenes"); !problem.empty()) {
+      it.state = "failed";
+      it.problem = problem;
+      items.push_back(it);
+      continue;
+    }
     it.exec.insert(it.exec.end(), {"--out", prefix, "--quiet", "--format", "png,pdf,svg"});
     it.stdout_path = (dir / "logs" / (p.name() + ".stdout")).string();
     it.stderr_path = (dir / "logs" / (p.name() + ".stderr")).string();
@@ -693,6 +764,12 @@ int run_reproduce(const Options_& o) {
     }
     it.argv = o.full ? c.full_run : c.run;
     it.exec = it.argv;
+    if (const std::string problem = resolve_scenes(it.exec, dir / "scenes"); !problem.empty()) {
+      it.state = "failed";
+      it.problem = problem;
+      items.push_back(it);
+      continue;
+    }
     it.outputs = {"claims/" + c.id + ".json"};
     it.stdout_path = (dir / "claims" / (c.id + ".json")).string();
     it.stderr_path = (dir / "logs" / (c.id + ".stderr")).string();
@@ -817,6 +894,9 @@ int run_reproduce(const Options_& o) {
     it.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - r->second.second).count();
     running.erase(r);
     it.exit_status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    if (stop.caught()) continue;  // stopped: its staging files are removed below, no key written
+    it.files->commit();  // its stdout and stderr, into place
+    it.files.reset();
     bool outputs_ok = true;
     for (const std::string& f : it.outputs) outputs_ok = outputs_ok && fs::exists(dir / f);
     if (it.exit_status == 0 && outputs_ok) {
@@ -835,6 +915,8 @@ int run_reproduce(const Options_& o) {
   const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (const int sig = stop.caught()) {
     // No report: it would call the stopped items failed. Finished items keep their keys.
+    for (Item& it : items)
+      if (it.files) it.files->discard();
     std::cerr << "reproduce: stopped by signal " << sig << " (" << ::strsignal(sig) << "); finished items are kept in "
               << dir.string() << ": run the same command again to resume\n";
     stop.reraise();
@@ -1112,9 +1194,9 @@ int run_reproduce(const Options_& o) {
     h << "<tr><td>" << html_escape(it.id) << "</td><td>" << it.state << "</td><td>" << fixed(it.seconds, 2) << "</td></tr>\n";
   h << "</table>\n<p>Total: " << fixed(total_seconds, 1) << " s with " << jobs << " jobs.</p>\n</section>\n</body>\n</html>\n";
 
-  write_output_set({{(dir / "report.md").string(), text_file([&](std::ostream& s) { s << md.str(); })},
-                    {(dir / "report.html").string(), text_file([&](std::ostream& s) { s << h.str(); })},
-                    {(dir / "claims.json").string(), text_file([&](std::ostream& s) { s << doc.dump(2) << "\n"; })}});
+  write_output_set({{(dir / "report.md").string(), [&](std::ostream& s) { s << md.str(); }},
+                    {(dir / "report.html").string(), [&](std::ostream& s) { s << h.str(); }},
+                    {(dir / "claims.json").string(), [&](std::ostream& s) { s << doc.dump(2) << "\n"; }}});
   std::cerr << "reproduce: " << summary << "; " << fixed(total_seconds, 1) << " s; report in " << (dir / "report.md").string()
             << "\n";
   if (!ok)

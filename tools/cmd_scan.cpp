@@ -321,7 +321,7 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
   for (size_t k = 0; k < nc; ++k) t[count_names()[k]] = totals[k];
   s["totals"] = t;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
 }  // namespace

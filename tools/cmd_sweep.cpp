@@ -58,7 +58,7 @@ Request request_from(const Options& o) {
   r.json = o.get_or("json", "false") == "true";
   if (o.has("out")) {
     r.prefix = o.get("out");
-    if (r.prefix->empty()) throw InputError("out", "needs a file name prefix");
+    check_prefix("out", *r.prefix, ".json");
   }
   r.picture = presentation_from(o);
   if (r.prefix) check_figure_font();  // an output failure, found before the work
@@ -217,6 +217,9 @@ Command add_sweep(CLI::App& app) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "sweep", sweep_keys()), opts->collected());
     if (*as_json) o.set("json", "true");
     const Request r = request_from(o);
+    OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
+    if (r.prefix)
+      for (const std::string& path : output_paths(*r.prefix, r.picture)) outputs.reserve("out", path);
     Provenance p = provenance_for("sweep", o, Precision{Precision::Kind::interval, r.q.reference.max_bits}, argv_text);
     p.precision = "double, long, dd, quad, mpfr:64..4096 against interval (escalated " + r.q.reference.text() + ")";
     const SweepReport rep = precision_sweep(r.q);
@@ -224,13 +227,13 @@ Command add_sweep(CLI::App& app) {
     const json j = report_json(r, rep, p);
     if (r.prefix) {
       const Figure fig = divergence_figure(rep, p, r.q.steps);
-      std::vector<OutputFile> files{{*r.prefix + ".json", text_file([&](std::ostream& s) { s << j.dump(1) << "\n"; })},
-                                    {*r.prefix + ".csv", text_file([&](std::ostream& s) { s << csv_text(rep, p); })}};
-      for (OutputFile& pic : picture_files(*r.prefix, r.picture, [&](const std::string& path, ImageFormat fmt) {
-             write_figure(path, fig, fmt, r.picture.render);
+      std::vector<OutputFile> files{{*r.prefix + ".json", [&](std::ostream& s) { s << j.dump(1) << "\n"; }},
+                                    {*r.prefix + ".csv", [&](std::ostream& s) { s << csv_text(rep, p); }}};
+      for (OutputFile& pic : picture_files(*r.prefix, r.picture, [&](std::ostream& out, ImageFormat fmt) {
+             write_figure(out, fig, fmt, r.picture.render);
            }))
         files.push_back(std::move(pic));
-      write_output_set(files);
+      write_output_set(files, &outputs);
     }
     if (r.json) command_out() << j.dump(1) << "\n";
     else command_out() << p.as_comment_lines() << text_table(rep, r.q.steps);

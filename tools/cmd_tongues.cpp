@@ -196,7 +196,7 @@ void finish(const TonguesRequest& r, const RunFlags& f, const Provenance& prov) 
   s["eps_range"] = {r.eps_range.first.text(), r.eps_range.second.text()};
   s["points"] = points;
   s["curves"] = curves;
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
 const std::set<std::string>& tongues_keys() {

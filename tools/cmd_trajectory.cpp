@@ -358,7 +358,7 @@ void finish(const TrajectoryRequest& r, const std::vector<Row>& rows, long impac
   s["max_height"] = ymax;
   if (!note.empty()) s["stopped"] = note;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, fig, fmt, f.picture.render); }, s);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
 const std::set<std::string>& trajectory_keys() {

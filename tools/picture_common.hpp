@@ -15,9 +15,13 @@
 #include <unistd.h>
 #pragma GCC diagnostic pop
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iomanip>
 #include <map>
 #include <memory>
 #include <optional>
@@ -26,6 +30,7 @@
 #include <vector>
 
 #include "bouncer/analysis/grid.hpp"
+#include "bouncer/io/input.hpp"
 #include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
@@ -45,8 +50,19 @@ struct RunFlags {
   std::vector<std::string> merge_from;  // bouncer merge: tile directories to import
   std::optional<std::string> tiles_from;  // --tiles-from: a tile directory of the same job to reuse
   bool merge_only = false;              // bouncer merge: compute nothing
+  bool force = false;                   // --force: run a grid larger than the memory available
   std::string invocation;
   Presentation picture;  // --format, --size, --dpi, --palette (how the picture looks)
+  // What the run holds until its command returns (RunFlags is copied by value; the copies
+  // share it): the lock on PREFIX.tiles/ and the output files reserved before the work, so
+  // that another run on the same prefix is refused at its start and a path that cannot be
+  // written is found before the computation. Released when the command ends, also in a host
+  // process that runs many commands (the Python module).
+  struct Hold {
+    std::unique_ptr<PrefixLock> lock;
+    OutputSet outputs;
+  };
+  std::shared_ptr<Hold> hold = std::make_shared<Hold>();
 };
 
 inline const std::set<std::string>& run_keys() {
@@ -65,7 +81,7 @@ inline Options job_options(const Options& o) {
 // Flags and run options every grid command registers. The returned function reads them
 // (after parsing) into RunFlags, validating --threads, --shard and --out.
 struct FlagSet {
-  bool quiet = false, json = false, keep_tiles = false;
+  bool quiet = false, json = false, keep_tiles = false, force = false;
 };
 inline std::shared_ptr<FlagSet> add_run_options(CLI::App* sub, OptionSet& opts) {
   auto f = std::make_shared<FlagSet>();
@@ -78,6 +94,7 @@ inline std::shared_ptr<FlagSet> add_run_options(CLI::App* sub, OptionSet& opts) 
   sub->add_flag("--quiet", f->quiet, "No progress bar on stderr");
   sub->add_flag("--json", f->json, "Print a JSON summary on stdout");
   sub->add_flag("--keep-tiles", f->keep_tiles, "Keep PREFIX.tiles/ after the outputs are written");
+  sub->add_flag("--force", f->force, "Run a grid whose estimated memory exceeds what the machine has available");
   return f;
 }
 
@@ -100,33 +117,29 @@ inline std::set<std::string> single_run_keys() {
 
 inline std::string tiles_dir(const std::string& prefix) { return prefix + ".tiles"; }
 
+// MPI ranks: tools/mpi_ranks.cpp when the command-line tool is built with MPI, otherwise
+// tools/mpi_none.cpp (one process; also the Python module, which never starts MPI).
+struct Ranks {
+  int rank = 0, size = 1;
+};
+Ranks mpi_ranks();
+void mpi_barrier();
+
 inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::string& invocation) {
   RunFlags r;
   r.threads = static_cast<unsigned>(integer_from(o, "threads", 1, 4096, 0));
   if (o.has("shard")) r.shard = parse_shard("shard", o.get("shard"));
   if (o.has("out")) {
     r.out = o.get("out");
-    if (r.out->empty()) throw InputError("out", "must be a file name prefix");
-    // A prefix the file system cannot name (too long, ...) is bad input, found before any
-    // work: checked with the longest name made from it, PREFIX.tiles.
-    for (const char* ext : {"", ".tiles"}) {
-      std::error_code ec;
-      const auto st = std::filesystem::status(*r.out + ext, ec);
-      if (ec && st.type() != std::filesystem::file_type::not_found)
-        throw InputError("out", "cannot use '" + *r.out + ext + "': " + ec.message());
-    }
-    if (r.out->back() == '/' || std::filesystem::is_directory(*r.out))
-      throw InputError("out", "'" + *r.out + "' is a directory: give a file name prefix (PREFIX.csv, PREFIX.png, PREFIX.json)");
-    const auto parent = std::filesystem::path(*r.out).parent_path();
-    if (!parent.empty() && !std::filesystem::is_directory(parent))
-      throw InputError("out", "directory '" + parent.string() + "' does not exist");
+    check_prefix("out", *r.out, ".tiles");
   }
   if (!r.shard.all() && !r.out) throw InputError("shard", "needs --out PREFIX (the shard's tiles go to PREFIX.tiles/)");
   if (o.has("tiles-from")) {
     // Whether the tiles belong to this job is known only once the job's key is: run_job.
     if (!r.out) throw InputError("tiles-from", "needs --out PREFIX (the reused tiles are copied to PREFIX.tiles/)");
     const std::string from = tiles_dir(o.get("tiles-from"));
-    if (!std::filesystem::is_regular_file(from + "/job.key"))
+    check_path_name("tiles-from", from + "/job.key");
+    if (!read_input_file_if_present("tiles-from", from + "/job.key", kMaxSceneBytes))
       throw InputError("tiles-from", "'" + from + "/' holds no tiles (keep them with --keep-tiles when that job runs)");
     r.tiles_from = from;
   }
@@ -136,17 +149,14 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
   r.quiet = f.quiet;
   r.json = f.json;
   r.keep_tiles = f.keep_tiles;
+  r.force = f.force;
   r.invocation = invocation;
+  // The outputs are reserved now, before the work (a shard writes none: merge does; under
+  // mpirun rank 0 does): each path checked, its staging file created and locked.
+  if (r.out && r.shard.all() && mpi_ranks().rank == 0)
+    for (const std::string& path : output_paths(*r.out, r.picture)) r.hold->outputs.reserve("out", path);
   return r;
 }
-
-// MPI ranks: tools/mpi_ranks.cpp when the command-line tool is built with MPI, otherwise
-// tools/mpi_none.cpp (one process; also the Python module, which never starts MPI).
-struct Ranks {
-  int rank = 0, size = 1;
-};
-Ranks mpi_ranks();
-void mpi_barrier();
 
 // A grid job: what to compute for each item.
 struct PictureJob {
@@ -154,7 +164,29 @@ struct PictureJob {
   Options job;     // job_options(...) of the merged scene + command line
   GridPlan plan;
   std::function<std::string(long)> item;
+  // About how many bytes one item's text takes (a CSV row of a point grid, a column of a
+  // bifurcation diagram, an orbit of a portrait): the memory estimate of run_job.
+  double item_bytes = 200;
 };
+
+// Refuses (InputError naming `field`) a grid whose items, held in memory while it runs and
+// again as the CSV written from them, would need more than the memory the machine has
+// available (MemAvailable), unless --force. A guard against a legal 8192 x 8192 basin that
+// would need about 13 GB, found before any work instead of by the kernel's OOM killer.
+inline void check_grid_memory(const PictureJob& j, const RunFlags& f, const std::string& field) {
+  if (f.force || !f.shard.all()) return;
+  const double need = static_cast<double>(j.plan.items) * (2 * j.item_bytes + 48);
+  const double have = available_memory_bytes();
+  if (have <= 0 || need <= 0.9 * have) return;
+  auto gb = [](double b) {
+    std::ostringstream s;
+    s << std::fixed << std::setprecision(1) << b / 1e9;
+    return s.str();
+  };
+  throw InputError(field, "this grid of " + std::to_string(j.plan.items) + " items needs about " + gb(need) +
+                              " GB of memory, more than the " + gb(have) +
+                              " GB available: make it smaller (or split it with --shard), or give --force");
+}
 
 
 // The key of the tiles: the job's options without the presentation (format, size, dpi,
@@ -175,6 +207,21 @@ inline std::string missing_tiles_text(const std::vector<long>& miss, long tiles)
          "): run the remaining shards first";
 }
 
+// The first line of a small file bouncer keeps in PREFIX.tiles/ (job.key), or "" when absent.
+inline std::string first_line_of(const std::string& field, const std::string& path) {
+  const std::optional<std::string> text = read_input_file_if_present(field, path, kMaxSceneBytes);
+  if (!text) return "";
+  return text->substr(0, text->find('\n'));
+}
+
+// True when a tile directory holds no saved tile (only its lock and job files).
+inline bool holds_no_tiles(const std::string& dir) {
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(dir, ec))
+    if (e.path().filename().string().rfind("tile-", 0) == 0) return false;
+  return !ec;
+}
+
 // Runs the job's grid. Returns the item texts when every tile is available; nothing for a
 // shard run that leaves tiles for other shards (a message says so on stderr).
 inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, const RunFlags& f) {
@@ -186,21 +233,19 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
     if (!f.shard.all()) throw InputError("shard", "cannot be combined with mpirun (the ranks are the shards)");
     if (f.merge_only) throw InputError("merge", "runs in one process, not under mpirun");
   }
+  check_grid_memory(j, f, f.merge_only ? "prefix" : "out");
   GridOptions g;
   g.threads = f.threads;
   g.shard = world.size > 1 ? Shard{world.rank, world.size} : f.shard;
   g.job_key = job_key(j);
-  if (f.tiles_from) {
-    std::string key;
-    if (std::ifstream k(*f.tiles_from + "/job.key"); k) std::getline(k, key);
-    if (key != g.job_key)
-      throw InputError("tiles-from", "'" + *f.tiles_from + "/' holds the tiles of a different job: every option but "
-                                     "--out, --threads, --shard, --show, --bins, --curves, --format, --size, --dpi and "
-                                     "--palette must be the same");
-  }
+  if (f.tiles_from && first_line_of("tiles-from", *f.tiles_from + "/job.key") != g.job_key)
+    throw InputError("tiles-from", "'" + *f.tiles_from + "/' holds the tiles of a different job: every option but "
+                                   "--out, --threads, --shard, --show, --bins, --curves, --format, --size, --dpi and "
+                                   "--palette must be the same");
   g.compute = !f.merge_only;
   g.progress = !f.quiet && stderr_is_terminal() && world.rank == 0;
   g.label = "bouncer " + j.command;
+  bool made_tile_dir = false;  // by this run: removed again if the run fails before saving a tile
   if (f.out) {
     namespace fs = std::filesystem;
     g.tile_dir = tiles_dir(*f.out);
@@ -218,27 +263,28 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
       if (!miss.empty()) throw InputError("merge", missing_tiles_text(miss, j.plan.tiles()));
     }
     if (world.rank == 0) {
-      // Held until the process ends: the outputs are written after run_job returns.
-      static std::unique_ptr<PrefixLock> held;
-      held = std::make_unique<PrefixLock>(field, g.tile_dir, world.size > 1 ? Shard{} : f.shard);
+      std::error_code ec;
+      made_tile_dir = !fs::exists(fs::symlink_status(g.tile_dir, ec));
+      // Held until the command returns: the outputs are written after run_job returns.
+      f.hold->lock = std::make_unique<PrefixLock>(field, g.tile_dir, world.size > 1 ? Shard{} : f.shard);
       // Tiles of another job under the same prefix are stale: start afresh (the lock stays).
-      std::string old_key;
-      if (std::ifstream k(g.tile_dir + "/job.key"); k) std::getline(k, old_key);
+      // The directory is a real one (PrefixLock refuses a link), and remove_all never
+      // follows a link inside it.
+      const std::string old_key = first_line_of(field, g.tile_dir + "/job.key");
       if (!old_key.empty() && old_key != g.job_key && !f.merge_only) {
-        if (!held->make_whole())
+        if (!f.hold->lock->make_whole())
           throw InputError(field, "'" + g.tile_dir + "' holds the tiles of another job whose shards are still running; choose another --out");
         for (const auto& e : fs::directory_iterator(g.tile_dir))
           if (e.path().filename() != "lock") fs::remove_all(e.path());
       }
       if (old_key != g.job_key) {
         // Shards of one job may start together: each writes its own copy and renames it
-        // (the same bytes), so neither finds the other's PATH.partial gone under it.
+        // (the same bytes), so neither is refused by the other's staging file.
         const std::string own = "." + std::to_string(::getpid());
         auto put = [&](const std::string& path, const std::string& text) {
-          write_output(OutputTarget{OutputTarget::Kind::file, path + own}, [&](std::ostream& s) { s << text; });
-          std::error_code ec;
-          fs::rename(path + own, path, ec);
-          if (ec) throw OutputError("cannot rename '" + path + own + "': " + ec.message());
+          write_output(field, path + own, [&](std::ostream& s) { s << text; });
+          if (::rename((path + own).c_str(), path.c_str()) != 0)
+            throw OutputError("cannot rename '" + path + own + "': " + std::strerror(errno));
         };
         put(g.tile_dir + "/job.toml", j.job.as_toml(j.command));
         put(g.tile_dir + "/job.key", g.job_key + "\n");
@@ -251,7 +297,18 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
     set_interrupt_hint("finished tiles are kept in " + g.tile_dir + "/: run the same command again to resume" +
                        (f.shard.all() ? "" : " (shard " + f.shard.text() + ")"));
   }
-  GridResult r = run_grid(j.plan, j.item, g);
+  GridResult r;
+  try {
+    r = run_grid(j.plan, j.item, g);
+  } catch (...) {
+    // A run that fails before it saved a tile (no thread could start, bad input found in
+    // the first item) leaves no tile directory it made: nothing in it could be resumed.
+    if (made_tile_dir && f.shard.all() && world.size == 1 && holds_no_tiles(g.tile_dir)) {
+      std::error_code ec;
+      std::filesystem::remove_all(g.tile_dir, ec);
+    }
+    throw;
+  }
   if (r.tiles_other_build + r.tiles_bad_checksum > 0)
     std::cerr << "bouncer " << j.command << ": " << r.tiles_other_build + r.tiles_bad_checksum
               << " saved tile(s) in " << g.tile_dir << "/ recomputed: " << r.tiles_other_build << " from another build, "
@@ -294,11 +351,11 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
 // artefact map of a certified basin, "artefacts").
 struct ExtraFigure {
   std::string suffix;
-  std::function<void(const std::string&, ImageFormat)> draw;
+  std::function<void(std::ostream&, ImageFormat)> draw;
 };
 
 inline void write_outputs(const RunFlags& f, const Provenance& p, const std::string& csv_body,
-                          const std::function<void(const std::string&, ImageFormat)>& draw,
+                          const std::function<void(std::ostream&, ImageFormat)>& draw,
                           const nlohmann::ordered_json& summary, const std::vector<ExtraFigure>& extra = {}) {
   nlohmann::ordered_json doc;
   doc["provenance"] = nlohmann::ordered_json::parse(p.as_json());
@@ -307,15 +364,15 @@ inline void write_outputs(const RunFlags& f, const Provenance& p, const std::str
     doc["files"] = {{"csv", *f.out + ".csv"}};
     for (ImageFormat fmt : f.picture.formats) doc["files"][format_name(fmt)] = *f.out + "." + format_name(fmt);
     doc["files"]["json"] = *f.out + ".json";
-    std::vector<OutputFile> files{{*f.out + ".csv", text_file([&](std::ostream& s) { s << p.as_comment_lines() << csv_body; })}};
+    std::vector<OutputFile> files{{*f.out + ".csv", [&](std::ostream& s) { s << p.as_comment_lines() << csv_body; }}};
     for (OutputFile& pic : picture_files(*f.out, f.picture, draw)) files.push_back(std::move(pic));
     for (const ExtraFigure& e : extra) {
       for (ImageFormat fmt : f.picture.formats)
         doc["files"][e.suffix + "_" + format_name(fmt)] = *f.out + "-" + e.suffix + "." + format_name(fmt);
       for (OutputFile& pic : picture_files(*f.out + "-" + e.suffix, f.picture, e.draw)) files.push_back(std::move(pic));
     }
-    files.push_back({*f.out + ".json", text_file([&](std::ostream& s) { s << doc.dump(2) << "\n"; })});
-    write_output_set(files);
+    files.push_back({*f.out + ".json", [&](std::ostream& s) { s << doc.dump(2) << "\n"; }});
+    write_output_set(files, &f.hold->outputs);
     if (!f.keep_tiles) {
       std::error_code ec;
       std::filesystem::remove_all(tiles_dir(*f.out), ec);
@@ -591,8 +648,8 @@ inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::s
   s["double_vs_certified"] = {{"agrees", n_of("agrees")}, {"differs", n_of("differs")}, {"undecided", n_of("undecided")}};
   s["decided_by"] = scalars;
   s["twin_precision"] = m.twin_precision;
-  write_outputs(f, prov, csv, [&](const std::string& path, ImageFormat fmt) { write_figure(path, cert, fmt, f.picture.render); }, s,
-                {{"artefacts", [&](const std::string& path, ImageFormat fmt) { write_figure(path, art, fmt, f.picture.render); }}});
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, cert, fmt, f.picture.render); }, s,
+                {{"artefacts", [&](std::ostream& out, ImageFormat fmt) { write_figure(out, art, fmt, f.picture.render); }}});
 }
 
 

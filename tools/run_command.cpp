@@ -50,6 +50,15 @@ std::string unknown_option_in(const std::string& message) {
 
 CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
   using Kind = CommandOutcome::Kind;
+  // A host can pass what a command line cannot: no words at all, or a NUL byte inside one
+  // (Python's "24\x00junk", which a C string would cut to "24").
+  if (words_in.empty()) return failed(Kind::input, 2, "no command line: give the program name and a command");
+  for (size_t i = 0; i < words_in.size(); ++i)
+    if (words_in[i].find('\0') != std::string::npos) {
+      const bool value = i > 0 && words_in[i - 1].rfind("--", 0) == 0;
+      return failed(Kind::input, 2, (value ? words_in[i - 1].substr(2) + ": the value '" : "the argument '") +
+                                        words_in[i] + "' contains a NUL byte");
+    }
   std::vector<std::string> words;
   try {
     words = front_end_words(std::move(words_in));
@@ -100,6 +109,8 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
   } catch (const InputError& e) {
     return failed(Kind::input, 2, e.what());
   } catch (const OutputError& e) {
+    return failed(Kind::output, 1, e.what());
+  } catch (const ResourceError& e) {
     return failed(Kind::output, 1, e.what());
   } catch (const Cancelled& e) {
     return failed(Kind::cancelled, 130, e.what());

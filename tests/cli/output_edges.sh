@@ -4,7 +4,8 @@
 #   * stdout on a full device (/dev/full): exit 1, one line, for every kind of command;
 #   * --out /dev/full: exit 1, no PATH.partial left; --out /dev/null: written through, the
 #     device stays a device; --out a named pipe: written through (its reader gets the data);
-#   * --out a symlink to a regular file: the target is written, the link survives;
+#   * --out a symlink to a regular file: refused (exit 2), link and target unchanged; a
+#     symlink to a device is written through;
 #   * --out a directory or DIR/: exit 2, naming --out, nothing written;
 #   * more than 1e8 rows without --force: exit 2 before anything is written;
 #   * a path with a space is quoted on the "# inputs:" line and audit reruns it.
@@ -48,11 +49,16 @@ reader=$!
 wait $reader
 [[ -p "$TMP/pipe" ]] || fail out_fifo "the pipe was replaced"
 grep -q '^10,' "$TMP/from-pipe" || fail out_fifo "the reader did not get the orbit"
+# A link to a regular file is refused (it may have been planted to point anywhere): exit 2,
+# naming --out, the link and its target as they were. A link to a device is written through.
 echo old >"$TMP/target"
 ln -s "$TMP/target" "$TMP/link"
-"$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/link" || fail out_link "exit $?"
-[[ -L "$TMP/link" ]] || fail out_link "the symlink was replaced by a file"
-grep -q '^10,' "$TMP/target" || fail out_link "the link's target was not written"
+rc=0; "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/link" 2>"$TMP/link.err" || rc=$?
+[[ $rc -eq 2 ]] && grep -q '^bouncer: out: .* is a symbolic link' "$TMP/link.err" || fail out_link "exit $rc: $(cat "$TMP/link.err")"
+[[ -L "$TMP/link" && $(cat "$TMP/target") == old && ! -e "$TMP/link.partial" ]] || fail out_link "the link or its target changed"
+ln -s /dev/null "$TMP/null-link"
+"$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/null-link" || fail out_link "link to /dev/null: exit $?"
+[[ -L "$TMP/null-link" && -c /dev/null ]] || fail out_link "the link to /dev/null was replaced"
 
 # Unbounded output is refused before anything is written (--force overrides; not run here).
 rc=0; "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10000000000 --out "$TMP/huge.csv" 2>"$TMP/huge.err" || rc=$?

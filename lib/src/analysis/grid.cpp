@@ -1,24 +1,28 @@
 #include "bouncer/analysis/grid.hpp"
 #include "bouncer/io/cancel.hpp"
+#include "bouncer/io/input.hpp"
 #include "bouncer/io/output.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/scalar/thread_caches.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <chrono>
-#include <cstring>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <mutex>
 #include <sstream>
+#include <system_error>
 #include <thread>
 
 #include "bouncer/model/spec.hpp"
@@ -63,6 +67,16 @@ std::string job_fingerprint(const std::string& text) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
+}
+
+double available_memory_bytes() {
+  std::ifstream f("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  std::string unit;
+  while (f >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024;
+  return 0;
 }
 
 unsigned worker_threads(unsigned requested) {
@@ -111,15 +125,17 @@ void write_tile(const std::string& dir, long tile, const GridPlan& plan, const s
     body += "\n";
   }
   body += "end " + job_fingerprint(body) + "\n";
-  const std::string path = tile_path(dir, tile);
-  write_output(OutputTarget{OutputTarget::Kind::file, path}, [&](std::ostream& f) { f << body; });
+  write_output("out", tile_path(dir, tile), [&](std::ostream& f) { f << body; });
 }
 
 TileStatus load_tile(const std::string& dir, long tile, const GridPlan& plan, const std::string& key,
                      std::vector<std::string>& items_out, const std::string& build) {
-  std::ifstream f(tile_path(dir, tile), std::ios::binary);
-  if (!f) return TileStatus::absent;
-  const std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  // A tile is a regular file bouncer wrote: anything else at its name (a directory, a FIFO
+  // whose reader would wait forever, a device) is refused, never read or recomputed over.
+  const std::string path = tile_path(dir, tile);
+  const std::optional<std::string> file = read_input_file_if_present("out", path, kMaxTileBytes);
+  if (!file) return TileStatus::absent;
+  const std::string& text = *file;
   // The checksum first: a damaged or edited tile is reported as such, whatever it claims.
   const size_t end_at = text.rfind("end ");
   if (end_at == std::string::npos || (end_at > 0 && text[end_at - 1] != '\n') ||
@@ -169,72 +185,81 @@ long import_tiles(const std::string& from, const std::string& to, const GridPlan
 
 namespace {
 
-// Sets (F_SETLK) or tests (F_GETLK) a lock of `type` on [start, start + len) (len 0: to
-// the end of the file). Returns 0, or the pid holding a conflicting lock (-1 if unknown).
-long record_lock(int fd, short type, off_t start, off_t len) {
+// Sets a lock of `type` on [start, start + len) (len 0: to the end of the file): an open
+// file description lock (F_OFD_SETLK), so that it excludes another thread of this process
+// (two commands run by one Python interpreter) as it excludes another process, and closing
+// some other descriptor of the file never drops it. False when another holds a conflicting lock.
+bool ofd_lock(int fd, short type, off_t start, off_t len) {
   struct flock fl {};
   fl.l_type = type;
   fl.l_whence = SEEK_SET;
   fl.l_start = start;
   fl.l_len = len;
-  if (fcntl(fd, F_SETLK, &fl) == 0) return 0;
-  struct flock probe {};
-  probe.l_type = type;
-  probe.l_whence = SEEK_SET;
-  probe.l_start = start;
-  probe.l_len = len;
-  if (fcntl(fd, F_GETLK, &probe) == 0 && probe.l_type != F_UNLCK) return probe.l_pid;
-  return -1;
+  return fcntl(fd, F_OFD_SETLK, &fl) == 0;
 }
 
-std::string holder_text(long pid) {
-  if (pid <= 0) return "another process";
-  std::string text = "process " + std::to_string(pid);
-  std::ifstream f("/proc/" + std::to_string(pid) + "/cmdline", std::ios::binary);
-  std::string cmd((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  for (char& c : cmd)
-    if (c == '\0') c = ' ';
-  while (!cmd.empty() && cmd.back() == ' ') cmd.pop_back();
-  if (cmd.size() > 200) cmd = cmd.substr(0, 200) + "...";
-  if (!cmd.empty()) text += " (" + cmd + ")";
-  return text;
+// Who holds the lock: the holder of a whole lock writes its pid into the lock file (an OFD
+// lock does not say whose it is). A pid of a process that is gone, or none: "another process".
+std::string holder_text(int fd) {
+  char buf[32] = {};
+  const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+  long pid = 0;
+  if (n > 0) pid = std::strtol(buf, nullptr, 10);
+  if (pid > 0 && pid != ::getpid() && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) pid = 0;  // gone
+  return pid > 0 ? process_text(pid) : "another process";
+}
+
+void record_holder(int fd) {
+  const std::string pid = std::to_string(::getpid()) + "\n";
+  if (::ftruncate(fd, 0) == 0) {
+    const ssize_t ignored = ::pwrite(fd, pid.data(), pid.size(), 0);  // only for messages
+    (void)ignored;
+  }
 }
 
 }  // namespace
 
 PrefixLock::PrefixLock(const std::string& field, const std::string& dir, const Shard& shard) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw OutputError("cannot create '" + dir + "': " + ec.message());
+  // The tile directory is bouncer's own: a symbolic link there (to any directory whose files
+  // a later clean-up would delete) is refused, never followed.
+  make_own_directory(field, dir);
   const std::string path = (fs::path(dir) / "lock").string();
   // The lock file may be removed by the holder as it finishes (with the tile directory):
   // a lock taken on a file that is no longer at `path` is retried on the new file.
   for (int attempt = 0; attempt < 20; ++attempt) {
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK | O_NOCTTY, 0644);
     if (fd_ < 0) {
       if (errno == ENOENT) {
-        fs::create_directories(dir, ec);
+        make_own_directory(field, dir);
         continue;
       }
+      if (errno == ELOOP) throw InputError(field, "'" + path + "' is a symbolic link: remove it");
       throw OutputError("cannot open lock file '" + path + "': " + std::strerror(errno));
     }
-    long holder = 0;
-    if (shard.all()) {
-      holder = record_lock(fd_, F_WRLCK, 0, 0);
-    } else {
-      holder = record_lock(fd_, F_RDLCK, 0, 1);
-      if (holder == 0) holder = record_lock(fd_, F_WRLCK, 1 + shard.index, 1);
-    }
-    if (holder != 0) {
+    struct stat held {};
+    if (fstat(fd_, &held) != 0 || !S_ISREG(held.st_mode)) {
       ::close(fd_);
       fd_ = -1;
-      throw InputError(field, "'" + dir + "' is in use by " + holder_text(holder) +
-                                  (shard.all() ? "" : " for shard " + shard.text()) +
+      throw InputError(field, "'" + path + "' is not a regular file: remove it");
+    }
+    bool ok = false;
+    if (shard.all()) {
+      ok = ofd_lock(fd_, F_WRLCK, 0, 0);
+    } else {
+      ok = ofd_lock(fd_, F_RDLCK, 0, 1) && ofd_lock(fd_, F_WRLCK, 1 + shard.index, 1);
+    }
+    if (!ok) {
+      const std::string holder = holder_text(fd_);
+      ::close(fd_);
+      fd_ = -1;
+      throw InputError(field, "'" + dir + "' is in use by " + holder + (shard.all() ? "" : " for shard " + shard.text()) +
                                   "; wait for it to finish, or choose another --out");
     }
-    struct stat held {}, now {};
-    if (fstat(fd_, &held) == 0 && ::stat(path.c_str(), &now) == 0 && held.st_dev == now.st_dev && held.st_ino == now.st_ino)
+    struct stat now {};
+    if (::lstat(path.c_str(), &now) == 0 && held.st_dev == now.st_dev && held.st_ino == now.st_ino) {
+      if (shard.all()) record_holder(fd_);
       return;
+    }
     ::close(fd_);
     fd_ = -1;
   }
@@ -245,7 +270,11 @@ PrefixLock::~PrefixLock() {
   if (fd_ >= 0) ::close(fd_);
 }
 
-bool PrefixLock::make_whole() { return fd_ >= 0 && record_lock(fd_, F_WRLCK, 0, 0) == 0; }
+bool PrefixLock::make_whole() {
+  if (fd_ < 0 || !ofd_lock(fd_, F_WRLCK, 0, 0)) return false;
+  record_holder(fd_);
+  return true;
+}
 
 bool stderr_is_terminal() { return isatty(2) != 0; }
 
@@ -308,7 +337,7 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
   r.items.assign(static_cast<size_t>(plan.items), std::string());
   r.have_tile.assign(static_cast<size_t>(ntiles), false);
   const bool saving = !opt.tile_dir.empty();
-  if (saving) fs::create_directories(opt.tile_dir);
+  if (saving) make_own_directory("out", opt.tile_dir);
 
   // Saved tiles first (any shard's: a merge loads them all).
   std::vector<long> todo;
@@ -374,9 +403,26 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
   if (nthreads <= 1) {
     safe_worker();
   } else {
+    // A thread that cannot be created (a process or memory limit) stops the run with a
+    // message: the threads already running finish their tile and are joined (a std::thread
+    // destroyed while running would abort the process).
     std::vector<std::thread> pool;
-    for (unsigned i = 0; i < nthreads; ++i) pool.emplace_back(safe_worker);
+    std::string no_thread;
+    for (unsigned i = 0; i < nthreads; ++i) {
+      try {
+        pool.emplace_back(safe_worker);
+      } catch (const std::system_error& e) {
+        no_thread = "cannot start worker thread " + std::to_string(i + 1) + " of " + std::to_string(nthreads) + " (" +
+                    e.code().message() + "): give fewer --threads";
+        failed.store(true);
+        break;
+      }
+    }
     for (auto& th : pool) th.join();
+    if (!no_thread.empty()) {
+      progress.finish();
+      throw ResourceError(no_thread);
+    }
   }
   progress.finish();
   for (long t : todo)

@@ -123,23 +123,24 @@ std::string unit_text(int exponent) {
   return "1e" + std::to_string(exponent);
 }
 
-// Bits of a PNG writer that must not hold C++ objects across setjmp.
-bool encode_png(const char* path, int w, int h, const std::uint8_t* rgb, png_text* text, int ntext) {
-  FILE* fp = std::fopen(path, "wb");
-  if (!fp) return false;
+// Bits of a PNG writer that must not hold C++ objects across setjmp. Encodes into `out`
+// (the bytes go to the output through the one writer, io/output.hpp).
+void png_append(png_structp png, png_bytep data, png_size_t length) {
+  static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), length);
+}
+void png_no_flush(png_structp) {}
+bool encode_png(std::string* out, int w, int h, const std::uint8_t* rgb, png_text* text, int ntext) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_silent_error, png_silent_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
     png_destroy_write_struct(&png, &info);
-    std::fclose(fp);
     return false;
   }
   if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
-    std::fclose(fp);
     return false;
   }
-  png_init_io(png, fp);
+  png_set_write_fn(png, out, png_append, png_no_flush);
   png_set_compression_level(png, 9);
   png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8, PNG_COLOR_TYPE_RGB,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
@@ -148,7 +149,7 @@ bool encode_png(const char* path, int w, int h, const std::uint8_t* rgb, png_tex
   for (int y = 0; y < h; ++y) png_write_row(png, const_cast<png_bytep>(rgb + static_cast<size_t>(y) * w * 3));
   png_write_end(png, info);
   png_destroy_write_struct(&png, &info);
-  return std::fclose(fp) == 0;
+  return true;
 }
 
 // tEXt is Latin-1 with keys of 1..79 printable characters: keep ASCII, replace the rest.
@@ -807,29 +808,9 @@ std::string xml_escaped(const std::string& s) {
   return out;
 }
 
-// Writes `bytes` to PATH.partial and renames it into place.
-void save_bytes(const std::string& path, const std::string& bytes, const char* what) {
-  const std::string tmp = path + ".partial";
-  const PartialFile registered(tmp);
-  bool ok = false;
-  if (FILE* fp = std::fopen(tmp.c_str(), "wb")) {
-    ok = std::fwrite(bytes.data(), 1, bytes.size(), fp) == bytes.size();
-    ok = std::fclose(fp) == 0 && ok;
-  }
-  std::error_code ec;
-  if (!ok) {
-    std::filesystem::remove(tmp, ec);
-    throw OutputError(std::string("cannot write ") + what + " '" + path + "'");
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw OutputError("cannot rename '" + tmp + "' to '" + path + "'");
-  }
-}
-
-void save_png(const std::string& path, int w, int h, const std::vector<std::uint8_t>& rgb,
-              const std::vector<std::pair<std::string, std::string>>& metadata) {
+// The PNG file of an RGB raster, with its metadata as tEXt/zTXt chunks.
+std::string png_bytes(int w, int h, const std::vector<std::uint8_t>& rgb,
+                      const std::vector<std::pair<std::string, std::string>>& metadata) {
   const auto meta = with_software(metadata);
   std::vector<std::string> keys, values;
   for (const auto& [k, v] : meta) {
@@ -845,23 +826,14 @@ void save_png(const std::string& path, int w, int h, const std::vector<std::uint
     text[i].text = values[i].data();
     text[i].text_length = values[i].size();
   }
-  const std::string tmp = path + ".partial";
-  const PartialFile registered(tmp);
-  if (!encode_png(tmp.c_str(), w, h, rgb.data(), text.data(), static_cast<int>(text.size()))) {
-    std::error_code ec;
-    std::filesystem::remove(tmp, ec);
-    throw OutputError("cannot write PNG '" + path + "'");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw OutputError("cannot rename '" + tmp + "' to '" + path + "'");
-  }
+  std::string bytes;
+  if (!encode_png(&bytes, w, h, rgb.data(), text.data(), static_cast<int>(text.size())))
+    throw OutputError("cannot encode the PNG picture");
+  return bytes;
 }
 
-// Renders with `draw(painter)` in figure units (W x H) to the format and writes the file.
-void render(const std::string& path, ImageFormat format, int w, int h, double dpi,
+// Renders with `draw(painter)` in figure units (W x H) to the format and writes its bytes to `out`.
+void render(std::ostream& out, ImageFormat format, int w, int h, double dpi,
             const std::vector<std::pair<std::string, std::string>>& metadata, const std::function<void(const Painter&)>& draw) {
   font_face();  // a missing font is reported before anything is drawn
   const double points = 72.0 / dpi;
@@ -874,7 +846,7 @@ void render(const std::string& path, ImageFormat format, int w, int h, double dp
   }
   if (cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS) {
     cairo_surface_destroy(surface);
-    throw OutputError(std::string("cannot create a ") + format_name(format) + " surface for '" + path + "'");
+    throw OutputError(std::string("cannot create a ") + format_name(format) + " surface");
   }
   const auto meta = with_software(metadata);
   if (format == ImageFormat::pdf) {
@@ -927,9 +899,13 @@ void render(const std::string& path, ImageFormat format, int w, int h, double dp
   const cairo_status_t finished = cairo_surface_status(surface);
   cairo_surface_destroy(surface);
   if (drawn != CAIRO_STATUS_SUCCESS || finished != CAIRO_STATUS_SUCCESS)
-    throw OutputError(std::string("cannot render ") + format_name(format) + " '" + path + "': " +
+    throw OutputError(std::string("cannot render the ") + format_name(format) + " picture: " +
                       cairo_status_to_string(drawn != CAIRO_STATUS_SUCCESS ? drawn : finished));
-  if (format == ImageFormat::png) return save_png(path, w, h, rgb, metadata);
+  if (format == ImageFormat::png) {
+    const std::string png = png_bytes(w, h, rgb, metadata);
+    out.write(png.data(), static_cast<std::streamsize>(png.size()));
+    return;
+  }
   if (format == ImageFormat::svg) {
     // Provenance in the SVG: a <title> and a <metadata> element after the opening <svg> tag.
     const size_t open = bytes.find("<svg");
@@ -941,7 +917,7 @@ void render(const std::string& path, ImageFormat format, int w, int h, double dp
       bytes.insert(end + 1, block);
     }
   }
-  save_bytes(path, bytes, format == ImageFormat::pdf ? "PDF" : "SVG");
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
 }
 
 void check_size(int w, int h) {
@@ -1150,7 +1126,7 @@ Rgb category_color(int index) {
   return Rgb{static_cast<std::uint8_t>(base.r * f), static_cast<std::uint8_t>(base.g * f), static_cast<std::uint8_t>(base.b * f)};
 }
 
-void write_figure(const std::string& path, const Figure& fig, ImageFormat format, const RenderOptions& ro) {
+void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, const RenderOptions& ro) {
   const int W = ro.width > 0 ? ro.width : fig.width, H = ro.height > 0 ? ro.height : fig.height;
   check_size(W, H);
   if (!(ro.dpi >= kMinDpi && ro.dpi <= kMaxDpi)) throw std::runtime_error("figure dpi out of range");
@@ -1195,7 +1171,7 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
   for (const auto& s : *series)
     if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, true, s.dashed});
 
-  render(path, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
+  render(out, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
     const TitleBlock tb = title_block(p, fig.title, fig.subtitle, W, st);
     Frame f{};
     f.top = tb.height(st) + 0.3 * st.body;
@@ -1270,7 +1246,7 @@ void write_figure(const std::string& path, const Figure& fig, ImageFormat format
   });
 }
 
-void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat format, const RenderOptions& ro) {
+void write_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format, const RenderOptions& ro) {
   const Raster& r = fig.raster;
   const int W = ro.width > 0 ? ro.width : fig.width, H = ro.height > 0 ? ro.height : fig.height;
   check_size(W, H);
@@ -1305,7 +1281,7 @@ void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat f
 
   // The raster as an image (at most 2048 cells a side: larger grids are sampled, nearest).
   const int sx = std::min(r.nx, 2048), sy = std::min(r.ny, 2048);
-  render(path, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
+  render(out, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
     const TitleBlock tb = title_block(p, fig.title, fig.subtitle, W, st);
     Frame f{};
     f.top = tb.height(st) + 0.3 * st.body;
@@ -1405,6 +1381,13 @@ void write_figure(const std::string& path, const ImageFigure& fig, ImageFormat f
       }
     }
   });
+}
+
+void write_figure(const std::string& path, const Figure& f, ImageFormat format, const RenderOptions& r) {
+  write_output("out", path, [&](std::ostream& s) { write_figure(s, f, format, r); });
+}
+void write_figure(const std::string& path, const ImageFigure& f, ImageFormat format, const RenderOptions& r) {
+  write_output("out", path, [&](std::ostream& s) { write_figure(s, f, format, r); });
 }
 
 }  // namespace bouncer

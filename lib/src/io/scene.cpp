@@ -1,4 +1,5 @@
 #include "bouncer/io/scene.hpp"
+#include "bouncer/io/input.hpp"
 
 #include <toml++/toml.h>
 
@@ -62,14 +63,14 @@ std::string scalar_text(const std::string& key, const toml::node& n) {
 
 }  // namespace
 
-// The scene file as a TOML table; a directory, a missing file or bad TOML is InputError("scene").
+// The scene file as a TOML table; a directory, a missing file, a FIFO, a file over 1 MiB,
+// nesting deeper than any scene (io/input.hpp) or bad TOML is InputError("scene").
 static toml::table read_scene_file(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError("scene", "'" + path + "' is a directory, not a scene file (.toml)");
-  if (!std::filesystem::exists(path, ec)) throw InputError("scene", "'" + path + "' not found (give a scene file, .toml)");
+  const std::string text = read_input_file("scene", path, kMaxSceneBytes);
+  check_toml_text("scene", text, "'" + path + "'", kMaxSceneBytes);
   toml::table table;
   try {
-    table = toml::parse_file(path);
+    table = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     std::ostringstream msg;
     msg << "cannot read scene '" << path << "': " << e.description() << " (line " << e.source().begin.line << ")";

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -67,10 +68,14 @@ struct GridResult {
 // Runs the plan: loads saved tiles, computes the shard's missing ones in parallel with
 // `item(index)` (which must depend on the index only), saves each finished tile.
 // An exception thrown by `item` stops the workers and is rethrown (finished tiles stay
-// saved). Threads = 1 runs in the calling thread.
+// saved); a worker thread that cannot be created stops them too (ResourceError, io/output.hpp).
+// Threads = 1 runs in the calling thread. The tile directory must be a real directory
+// (created if missing; a symbolic link is refused: InputError).
 GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>& item, const GridOptions& opt);
 
-// Tile files: PREFIX.tiles/tile-NNNNNN. Exposed for merge and for tests.
+// Tile files: PREFIX.tiles/tile-NNNNNN. Exposed for merge and for tests. A tile larger than
+// kMaxTileBytes, or anything but a regular file at a tile's name, is refused (InputError).
+inline constexpr std::size_t kMaxTileBytes = std::size_t{256} << 20;
 std::string tile_path(const std::string& dir, long tile);
 // This build's identity in tiles: a fingerprint of version, commit, compiler and flags.
 const std::string& tile_build();
@@ -111,6 +116,10 @@ class PrefixLock {
 
 // A stable 64-bit fingerprint of a job description (FNV-1a), as 16 hex digits.
 std::string job_fingerprint(const std::string& text);
+
+// The memory the machine has available for a new computation (MemAvailable of
+// /proc/meminfo, in bytes; 0 when unknown).
+double available_memory_bytes();
 
 // The number of worker threads `requested` means (0: all cores; at least 1).
 unsigned worker_threads(unsigned requested);

@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -158,8 +159,11 @@ constexpr double kMinDpi = 36, kMaxDpi = 2400;
 const char* figure_font_path();
 void check_figure_font();
 
-// Throw std::runtime_error (OutputError for I/O and a missing font) on failure. Write
-// atomically (PATH.partial, then rename).
+// Throw std::runtime_error (OutputError for I/O and a missing font) on failure. The stream
+// forms write the picture's bytes to `out` (an OutputSet's file: io/output.hpp); the path
+// forms write one file through write_output (staged, then renamed into place).
+void write_figure(std::ostream& out, const Figure& f, ImageFormat format, const RenderOptions& r = {});
+void write_figure(std::ostream& out, const ImageFigure& f, ImageFormat format, const RenderOptions& r = {});
 void write_figure(const std::string& path, const Figure& f, ImageFormat format, const RenderOptions& r = {});
 void write_figure(const std::string& path, const ImageFigure& f, ImageFormat format, const RenderOptions& r = {});
 inline void write_png(const std::string& path, const Figure& f) { write_figure(path, f, ImageFormat::png); }

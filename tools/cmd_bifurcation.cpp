@@ -349,6 +349,7 @@ int run_bifurcation(const Options& o, const RunFlags& f) {
   // --carry chains the values: one tile, computed in order by one worker.
   job.plan.tile_items = req.carry ? req.samples : std::max<long>(1, std::min<long>(16, req.samples / 64 + 1));
   job.item_bytes = 40.0 * static_cast<double>(req.record) + 64;  // a column: `record` values
+  job.size_field = "samples";
   const Provenance prov = provenance_for("bifurcation", job.job, req.precision, f.invocation);
   return with_scalar(req.precision, [&](auto tag) -> int {
     using T = typename decltype(tag)::type;

@@ -199,6 +199,7 @@ int run_portrait(const Options& o, const RunFlags& f) {
   job.plan.items = static_cast<long>(req.initial.size());
   job.plan.tile_items = 1;
   job.item_bytes = 60.0 * static_cast<double>(req.steps) + 64;  // an orbit: `steps` rows
+  job.size_field = "steps";
   const Provenance prov = provenance_for("portrait", job.job, req.precision, f.invocation);
   return with_scalar(req.precision, [&](auto tag) -> int {
     using T = typename decltype(tag)::type;

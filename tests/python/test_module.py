@@ -474,3 +474,57 @@ def test_run_covers_other_commands_and_refuses_the_subprocess_ones(tmp_path):
     for command in ("audit", "reproduce"):
         with pytest.raises(ValueError, match="run it from a shell"):
             bouncer.run(command)
+
+
+# ---- hostile input and shared outputs (issue 21) -----------------------------------------------
+
+def test_core_run_refuses_an_empty_command_line():
+    r = bouncer._core.run([])
+    assert r["status"] == 2 and "no command line" in r["message"]
+
+
+def test_a_nul_byte_in_a_value_is_refused_not_cut():
+    """C strings would end "24\\x00junk" at the NUL: the value must be refused, not taken as 24."""
+    with pytest.raises(ValueError, match=r"^a: .*NUL byte"):
+        bouncer.orbit(model="constant", a="24\x00junk", eps="0.5", theta="0.25", v="12", steps=2)
+
+
+def test_two_threads_on_one_output_prefix_exclude_each_other(tmp_path):
+    """One process, two commands writing one prefix: the second is refused at its start
+    (open file description locks exclude threads of one process, as they exclude processes)."""
+    prefix = str(tmp_path / "shared")
+    started = threading.Event()
+    errors, done = [], []
+
+    def first():
+        try:
+            started.set()
+            bouncer.basin(**dict(SLOW, grid=(80, 80)), out=prefix)
+            done.append(1)
+        except Exception as e:  # noqa: BLE001 - reported below
+            errors.append(e)
+
+    t = threading.Thread(target=first)
+    t.start()
+    started.wait()
+    for _ in range(200):  # until the first one holds the prefix
+        if pathlib.Path(prefix + ".csv.partial").exists():
+            break
+        time.sleep(0.01)
+    with pytest.raises(ValueError, match=r"^out: .*in use by another command of this process"):
+        bouncer.basin(**dict(SLOW, grid=(40, 40)), out=prefix)
+    t.join()
+    assert not errors and done == [1]
+    assert pathlib.Path(prefix + ".csv").exists()
+
+
+def test_keep_tiles_does_not_keep_the_lock(tmp_path):
+    """After a command with keep_tiles=True returns, its prefix is free again: the same call
+    runs (from the kept tiles), and so does a shell command on that prefix."""
+    prefix = str(tmp_path / "kept")
+    small = dict(CONSTANT, grid=(4, 3), transient=10, steps=16, threads=1)
+    bouncer.basin(**small, out=prefix, keep_tiles=True)
+    assert pathlib.Path(prefix + ".tiles").is_dir()
+    bouncer.basin(**small, out=prefix, keep_tiles=True)
+    status, _, err = cli(*words("basin", **small), "--out", prefix, "--quiet", check=False)
+    assert status == 0, err

@@ -6,6 +6,7 @@
 #include "bouncer/scalar/thread_caches.hpp"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -70,13 +71,35 @@ std::string job_fingerprint(const std::string& text) {
 }
 
 double available_memory_bytes() {
-  std::ifstream f("/proc/meminfo");
-  std::string key;
-  double kb = 0;
-  std::string unit;
-  while (f >> key >> kb >> unit)
-    if (key == "MemAvailable:") return kb * 1024;
-  return 0;
+  double have = 0;
+  {
+    std::ifstream f("/proc/meminfo");
+    std::string key, unit;
+    double kb = 0;
+    while (f >> key >> kb >> unit)
+      if (key == "MemAvailable:") {
+        have = kb * 1024;
+        break;
+      }
+  }
+  auto lower = [&](double limit) {
+    if (limit > 0 && (have <= 0 || limit < have)) have = limit;
+  };
+  // This process's address-space limit (ulimit -v): allocations beyond it fail.
+  struct rlimit rl {};
+  if (::getrlimit(RLIMIT_AS, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY) lower(static_cast<double>(rl.rlim_cur));
+  // A container's memory limit (cgroup v2): memory.max less what the cgroup already uses.
+  std::ifstream cg("/proc/self/cgroup");
+  std::string line;
+  while (std::getline(cg, line)) {
+    if (line.rfind("0::", 0) != 0) continue;
+    const std::string dir = "/sys/fs/cgroup" + line.substr(3);
+    std::ifstream mx(dir + "/memory.max"), cur(dir + "/memory.current");
+    std::string max_text;
+    double used = 0;
+    if (mx >> max_text && max_text != "max" && cur >> used) lower(std::strtod(max_text.c_str(), nullptr) - used);
+  }
+  return have;
 }
 
 unsigned worker_threads(unsigned requested) {

@@ -13,6 +13,8 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <mutex>
+#include <set>
 #include <streambuf>
 #include <vector>
 
@@ -128,6 +130,20 @@ bool same_file(int fd, const std::string& path) {
   return ::fstat(fd, &a) == 0 && ::lstat(path.c_str(), &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
 }
 
+// The staging files this process holds (OutputSets of every thread): a classic lock never
+// conflicts with its own process, so the beacon cannot name this process as the holder.
+std::mutex held_mutex;
+std::set<std::string> held_staging;
+void hold(const std::string& staging, bool on) {
+  const std::lock_guard<std::mutex> lock(held_mutex);
+  if (on) held_staging.insert(staging);
+  else held_staging.erase(staging);
+}
+bool held_here(const std::string& staging) {
+  const std::lock_guard<std::mutex> lock(held_mutex);
+  return held_staging.count(staging) != 0;
+}
+
 const char* special_kind(mode_t m) {
   if (S_ISDIR(m)) return "a directory";
   if (S_ISSOCK(m)) return "a socket";
@@ -193,6 +209,7 @@ struct OutputSet::Impl {
       if (!e.committed && same_file(e.fd, e.staging)) ::unlink(e.staging.c_str());
       ::close(e.fd);
       e.fd = -1;
+      hold(e.staging, false);
     }
     e.registered.reset();
   }
@@ -252,7 +269,7 @@ void OutputSet::reserve(const std::string& field, const std::string& path) {
       throw OutputError("cannot open '" + e.staging + "': " + std::strerror(errno));
     }
     if (!lock_file(fd)) {
-      const long pid = lock_holder(fd);
+      const long pid = held_here(e.staging) ? static_cast<long>(::getpid()) : lock_holder(fd);
       ::close(fd);
       throw InputError(field, "'" + path + "' is in use by " + process_text(pid) +
                                   ", which is writing it (its staging file '" + e.staging +
@@ -263,6 +280,7 @@ void OutputSet::reserve(const std::string& field, const std::string& path) {
     ::close(fd);
   }
   e.registered = std::make_unique<PartialFile>(e.staging);
+  hold(e.staging, true);
   impl_->entries.push_back(std::move(e));
 }
 
@@ -325,6 +343,7 @@ void OutputSet::commit() {
       e.committed = true;
       ::close(e.fd);
       e.fd = -1;
+      hold(e.staging, false);
       e.registered.reset();
     }
   } catch (...) {

@@ -117,8 +117,9 @@ class PrefixLock {
 // A stable 64-bit fingerprint of a job description (FNV-1a), as 16 hex digits.
 std::string job_fingerprint(const std::string& text);
 
-// The memory the machine has available for a new computation (MemAvailable of
-// /proc/meminfo, in bytes; 0 when unknown).
+// The memory available to a new computation of this process, in bytes: the least of the
+// machine's MemAvailable (/proc/meminfo), the address-space limit (ulimit -v) and the
+// cgroup's memory.max less its current use (a container's limit); 0 when unknown.
 double available_memory_bytes();
 
 // The number of worker threads `requested` means (0: all cores; at least 1).

@@ -57,6 +57,15 @@
 // second directed rounding gives the directed rounding of the exact value to double), which is
 // rigorous, tightest, and still far cheaper than an MPFI step.
 //
+// Invalid intervals. An interval with a NaN end is invalid (has_nan; every caller treats it as
+// undecided: ScalarTraits gives Truth::invalid and is_finite = false). Every operation with an
+// invalid operand gives an invalid result, and these give one from valid operands: a divisor
+// holding 0, a corner product 0 * inf (an unbounded operand times one with an end at 0), the
+// square root of an interval entirely below 0, log of an interval reaching below 0, and an
+// empty intersection (intersect of disjoint intervals: there is no empty interval value).
+// sqrt of an interval reaching below 0 roots its non-negative part, [0, RU(sqrt(hi))] (the
+// IEEE 1788 sqrt); the MPFI wrapper (scalar/mpfi.hpp) gives NaN there instead (mpfi_sqrt).
+//
 // Decimal inputs are enclosed by MPFR's directed conversion (mpfr_strtofr at 53 bits, RNDD
 // and RNDU): the tightest double interval containing the exact decimal.
 //
@@ -322,26 +331,35 @@ class DoubleInterval {
   friend DoubleInterval operator/(const DoubleInterval& x, long n) { return x / DoubleInterval(n); }
   friend DoubleInterval operator/(long n, const DoubleInterval& x) { return DoubleInterval(n) / x; }
 
-  // sqrt of the part of x in [0, inf) (as mpfi_sqrt: negative parts have no real root; an
-  // interval entirely below 0 gives NaN).
+  // sqrt of the part of x in [0, inf): [0, RU(sqrt(hi))] when x reaches below 0 (IEEE 1788's
+  // sqrt; not mpfi_sqrt, which gives NaN there), NaN when x lies entirely below 0.
   friend DoubleInterval sqrt(const DoubleInterval& x) {
     if (x.hi_ < 0 || x.has_nan()) return nan_interval();
     const double lo = x.lo_ <= 0 ? 0.0 : interval_double_detail::root_to<false>(x.lo_);
     return {std::max(lo, 0.0), interval_double_detail::root_to<true>(x.hi_)};
   }
   friend DoubleInterval exp(const DoubleInterval& x);  // MPFR, directed rounding
-  friend DoubleInterval log(const DoubleInterval& x);  // MPFR, directed rounding; NaN for x <= 0
+  // MPFR, directed rounding; NaN for an x reaching below 0, and a lower end 0 gives -inf.
+  friend DoubleInterval log(const DoubleInterval& x);
   friend DoubleInterval abs(const DoubleInterval& x) {
     if (x.lo_ >= 0) return x;
     if (x.hi_ <= 0) return -x;
     return {0.0, std::max(-x.lo_, x.hi_)};
   }
+  // The hull of two intervals; invalid (NaN) when either is (std::min / std::max would drop
+  // a NaN end silently).
   friend DoubleInterval hull(const DoubleInterval& x, const DoubleInterval& y) {
+    if (x.has_nan() || y.has_nan()) return nan_interval();
     return {std::min(x.lo_, y.lo_), std::max(x.hi_, y.hi_)};
   }
-  // Intersection (never formed empty here: callers intersect enclosures of one value).
+  // The intersection. Disjoint intervals (possible only when an enclosure is wrong or two
+  // enclosures of different values meet) give the NaN interval: there is no empty interval
+  // value, and NaN is the one every caller already treats as invalid (an inverted pair would
+  // pass has_nan() and bounded() and then be computed with). A NaN operand gives NaN too.
   friend DoubleInterval intersect(const DoubleInterval& x, const DoubleInterval& y) {
-    return {std::max(x.lo_, y.lo_), std::min(x.hi_, y.hi_)};
+    const double lo = std::max(x.lo_, y.lo_), hi = std::min(x.hi_, y.hi_);
+    if (!(lo <= hi) || x.has_nan() || y.has_nan()) return nan_interval();
+    return {lo, hi};
   }
 
   static DoubleInterval entire() {

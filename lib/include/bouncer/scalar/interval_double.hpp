@@ -73,7 +73,8 @@
 // on random and adversarial operands (the exact result inside, the ends bit for bit MPFR's
 // directed roundings), and the whole step against ImpactMap<Mpfr> at 512 bits in every
 // model; tests/test_interval_extremes.cpp checks enclosure and tightness near +-DBL_MAX,
-// 2^+-1022 and among the subnormals against MPFR at 2200 bits.
+// 2^+-1022 and among the subnormals against MPFR at 2200 bits; tests/test_itf1788.cpp runs
+// the IEEE 1788 test suite ITF1788 (tightest expected results) on both interval types.
 #pragma once
 
 #include <algorithm>

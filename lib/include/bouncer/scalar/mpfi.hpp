@@ -5,6 +5,15 @@
 // program. Mpfi has no bool comparisons at all: the only way to branch on it is through
 // the three-valued predicates in scalar/traits.hpp (certainly true / certainly false /
 // unknown). Endpoints of up to kInlineBits bits live inside the object, as in Mpfr.
+//
+// Each end of +, -, *, /, sqrt, exp and log is the correctly rounded RNDD / RNDU result at the
+// precision (MPFI's contract; tested at 53 bits against MPFR at 2200 bits near the ends of
+// the double range, tests/test_interval_extremes.cpp, and with ITF1788, the IEEE 1788 test
+// suite, tests/test_itf1788.cpp). Where IEEE 1788 has an empty or bounded result these give none
+// that is finite: a divisor holding 0 gives an unbounded interval (mpfi_div: [-inf, inf] for
+// [0, 0]; 0 / [0, 3] is [0, inf]) where DoubleInterval gives NaN; sqrt and log of an interval
+// reaching below 0 give NaN; an empty intersection gives NaN (below). A NaN interval is
+// invalid: the predicates of scalar/traits.hpp answer Truth::invalid, is_finite is false.
 #pragma once
 
 #include <mpfi.h>

@@ -146,9 +146,10 @@ inline double outward(double c) {
 template <bool Up>
 [[gnu::noinline, gnu::cold]] double add_slow(double a, double b, double c) {
   if (!std::isfinite(c)) return outward<Up>(c);
-  // c finite, but an intermediate of TwoSum overflowed (s - a, for |a + b| finite and
-  // |b| within an ulp of DBL_MAX: issue 21). FastTwoSum with the larger magnitude first has
-  // no intermediate larger than |b| + ulp(c) / 2: exact.
+  // c finite, but an intermediate of TwoSum overflowed (s - a near the top of the range:
+  // issue 21). FastTwoSum with the larger magnitude first computes s - a = b - e exactly,
+  // and |b - e| <= |b| + ulp(c)/2 stays below the overflow threshold (|b| = DBL_MAX would
+  // need |a| = DBL_MAX, whose sum with b overflows or cancels exactly): exact.
   double s, e;
   if (std::fabs(a) >= std::fabs(b)) error_free::fast_two_sum(a, b, s, e);
   else error_free::fast_two_sum(b, a, s, e);
@@ -159,9 +160,10 @@ template <bool Up>
   if (!std::isfinite(c)) return outward<Up>(c);
   // 0 < |c| < kSmall or c = 0 from nonzero a, b (the error term may underflow). With
   // a = ma 2^ea, b = mb 2^eb (frexp: 1/2 <= |ma|, |mb| < 1, exact, subnormals included),
-  // a b - c = 2^(ea + eb) (ma mb - cs), cs = c 2^-(ea + eb) exact (|cs| < 2 and, c being a
-  // multiple of 2^-1074 and ea + eb > -1075, cs is 0 or at least 2^-116), and ma mb - cs, a
-  // multiple of 2^-116, is 0 or far from underflow: its RN has its sign.
+  // a b - c = 2^(ea + eb) (ma mb - cs), cs = c 2^-(ea + eb) exact (|cs| <= 1 and, c being a
+  // multiple of 2^-1074 with -1075 < ea + eb <= -958 when c != 0, cs is 0 or a multiple of
+  // 2^-116), and ma mb - cs, a multiple of 2^-116, is 0 or far from underflow: its RN has
+  // its sign.
   int ea = 0, eb = 0;
   const double ma = std::frexp(a, &ea), mb = std::frexp(b, &eb);
   return round_to<Up>(c, std::fma(ma, mb, -std::ldexp(c, -(ea + eb))));

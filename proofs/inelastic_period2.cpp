@@ -305,6 +305,8 @@ void check_eps_star(SubClaim& sub, long bits) {
     if (mpfi_has_zero(gX.d[0].get())) break;
     if (lt(point(X.lower()), N) && lt(N, point(X.upper()))) unique = true;  // N(X) in int(X)
     const Mpfi Y = intersect(N, X);
+    // N(X) n X empty (NaN): no root in X; never after a proof of one, so stop unproved.
+    if (Y.has_nan()) { unique = false; break; }
     if (!(Y.width() < X.width())) { X = Y; break; }
     X = Y;
   }

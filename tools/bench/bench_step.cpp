@@ -679,6 +679,14 @@ inline Truth is_zero(mpfi_srcptr x) {
   if (mpfr_sgn(&x->left) > 0 || mpfr_sgn(&x->right) < 0) return Truth::no;  // !mpfi_has_zero
   return Truth::unknown;
 }
+// intersect of scalar/mpfi.hpp: mpfi_intersect, an empty result made NaN.
+inline void intersect(mpfi_ptr r, mpfi_srcptr x, mpfi_srcptr y) {
+  mpfi_intersect(r, x, y);
+  if (mpfi_is_empty(r)) {
+    mpfr_set_nan(&r->left);
+    mpfr_set_nan(&r->right);
+  }
+}
 // Where ImpactMap's decide() would throw.
 inline bool open(Truth t) { return t != Truth::yes && t != Truth::no; }
 inline Truth both(Truth x, Truth y) {  // detail::both of impact_map_impl.hpp
@@ -790,7 +798,7 @@ class RawMpfiMap {
         if (inside == Truth::yes) {
           mpfi_add(r.tau, r.tau, sigma_);
           mpfi_add(th_, pos, sigma_);
-          mpfi_intersect(th_, th_, span_[j]);
+          intersect(th_, th_, span_[j]);
           r.indirect = jumped ? Truth::yes : left_zone(theta0, v0, j0, vel_[j], q);
           r.corner = pos == fall_ && is_zero(sigma_) == Truth::yes &&
                      (mpfi_sub(t1_, fall_, start_[j]), is_zero(t1_) == Truth::yes);
@@ -864,7 +872,7 @@ class RawMpfiMap {
         if (mpfr_equal_p(floor_lo_, floor_hi_)) {
           mpfi_interv_fr(whole_, floor_lo_, floor_lo_);
           mpfi_sub(fall_, x_, whole_);
-          mpfi_intersect(fall_, fall_, phase_span_);
+          intersect(fall_, fall_, phase_span_);
           const int jf = segment_if_certain(fall_);
           if (jf >= 0) {
             // whole_periods: to_double of [w, w] is the double nearest w.

@@ -263,6 +263,9 @@ KrawczykResult prove(const Problem& P) {
       for (int t = 0; t < 6; ++t) {
         KrawczykStep kt = krawczyk(P, f, T);
         const Mpfi N[2] = {intersect(kt.K[0], T[0]), intersect(kt.K[1], T[1])};
+        // K(T) n T holds the zero proved in Y0; an empty (NaN) intersection would mean an
+        // enclosure is wrong: refuse rather than report a NaN box.
+        if (N[0].has_nan() || N[1].has_nan()) throw NotCertified("K(Y) n Y is empty while tightening the proved box (an enclosure is inconsistent)");
         const bool shrank = mpfr_less_p(N[0].width().get(), T[0].width().get()) ||
                             mpfr_less_p(N[1].width().get(), T[1].width().get());
         T[0] = N[0];

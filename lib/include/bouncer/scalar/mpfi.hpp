@@ -5,6 +5,15 @@
 // program. Mpfi has no bool comparisons at all: the only way to branch on it is through
 // the three-valued predicates in scalar/traits.hpp (certainly true / certainly false /
 // unknown). Endpoints of up to kInlineBits bits live inside the object, as in Mpfr.
+//
+// Each end of +, -, *, /, sqrt, exp and log is the correctly rounded RNDD / RNDU result at the
+// precision (MPFI's contract; tested at 53 bits against MPFR at 2200 bits near the ends of
+// the double range, tests/test_interval_extremes.cpp, and with ITF1788, the IEEE 1788 test
+// suite, tests/test_itf1788.cpp). Where IEEE 1788 has an empty or bounded result these give none
+// that is finite: a divisor holding 0 gives an unbounded interval (mpfi_div: [-inf, inf] for
+// [0, 0]; 0 / [0, 3] is [0, inf]) where DoubleInterval gives NaN; sqrt and log of an interval
+// reaching below 0 give NaN; an empty intersection gives NaN (below). A NaN interval is
+// invalid: the predicates of scalar/traits.hpp answer Truth::invalid, is_finite is false.
 #pragma once
 
 #include <mpfi.h>
@@ -105,13 +114,28 @@ class Mpfi {
   friend Mpfi operator/(const Mpfi& x, long n) { Mpfi r(x.bits()); mpfi_div_si(r.v_, x.v_, n); return r; }
   friend Mpfi operator/(long n, const Mpfi& x) { Mpfi r(x.bits()); mpfi_si_div(r.v_, n, x.v_); return r; }
 
+  // mpfi_sqrt: NaN (invalid) for an x reaching below 0, unlike DoubleInterval's sqrt, which
+  // roots the non-negative part ([0, sqrt(hi)], IEEE 1788); NaN for x entirely below 0 in both.
   friend Mpfi sqrt(const Mpfi& x) { Mpfi r(x.bits()); mpfi_sqrt(r.v_, x.v_); return r; }
   friend Mpfi exp(const Mpfi& x) { Mpfi r(x.bits()); mpfi_exp(r.v_, x.v_); return r; }
+  // mpfi_log: NaN for an x reaching below 0; a lower end 0 gives -inf (as DoubleInterval).
   friend Mpfi log(const Mpfi& x) { Mpfi r(x.bits()); mpfi_log(r.v_, x.v_); return r; }
   friend Mpfi abs(const Mpfi& x) { Mpfi r(x.bits()); mpfi_abs(r.v_, x.v_); return r; }
-  // Hull of two intervals, and intersection (empty intersections are never formed here).
+  // Hull of two intervals (NaN if either is NaN, as mpfi_union).
   friend Mpfi hull(const Mpfi& x, const Mpfi& y) { Mpfi r(wider(x, y)); mpfi_union(r.v_, x.v_, y.v_); return r; }
-  friend Mpfi intersect(const Mpfi& x, const Mpfi& y) { Mpfi r(wider(x, y)); mpfi_intersect(r.v_, x.v_, y.v_); return r; }
+  // Intersection. mpfi_intersect leaves disjoint intervals as an inverted pair (left > right:
+  // MPFI's "empty"), which has_nan() and bounded() do not flag and which later operations
+  // compute with ([3, 2] + [1, 2] = [4, 4]); here it becomes the NaN interval, which every
+  // caller treats as invalid (as DoubleInterval's intersect). A NaN operand gives NaN.
+  friend Mpfi intersect(const Mpfi& x, const Mpfi& y) {
+    Mpfi r(wider(x, y));
+    mpfi_intersect(r.v_, x.v_, y.v_);
+    if (mpfi_is_empty(r.v_)) {
+      mpfr_set_nan(&r.v_->left);
+      mpfr_set_nan(&r.v_->right);
+    }
+    return r;
+  }
 
  private:
   mpfi_t v_;

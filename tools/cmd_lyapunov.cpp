@@ -364,7 +364,8 @@ Command add_lyapunov(CLI::App& app) {
     if (o.has("vary")) return run_lyapunov_curve(o, run_flags_from(o, *flags, argv_text));
     for (const char* k : {"range", "samples", "ics", "max-period", "recheck-factor", "shard", "out", "threads"})
       if (o.has(k)) throw InputError(k, "belongs to an exponent curve: give --vary a|eps|c with --range LO:HI");
-    if (flags->quiet || flags->keep_tiles) throw InputError("vary", "--quiet/--keep-tiles belong to an exponent curve (--vary)");
+    if (flags->quiet || flags->keep_tiles || flags->force)
+      throw InputError("vary", "--quiet/--keep-tiles/--force belong to an exponent curve (--vary)");
     const ModelSpec spec = model_from(o);
     const InitialCondition ic = start_from(o, spec);
     LyapunovOptions lo;

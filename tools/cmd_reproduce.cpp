@@ -409,11 +409,10 @@ std::string command_text(const std::vector<std::string>& argv) {
   return s;
 }
 
+// A file of the reproduce directory ("" when absent): a regular file of at most 1 GiB, never
+// a FIFO or device planted there (InputError naming --out).
 std::string read_text(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
+  return read_input_file_if_present("out", p.string(), kMaxResultBytes).value_or("");
 }
 
 void write_text(const fs::path& p, const std::string& text) {
@@ -820,7 +819,7 @@ int run_reproduce(const Options_& o) {
       continue;
     }
     it.key = "mode " + mode + "\nbuild " + build + "\ncommand " + command_text(it.argv) + "\n";
-    bool have = fs::exists(it.key_path) && read_text(it.key_path) == it.key;
+    bool have = read_text(it.key_path) == it.key;
     for (const std::string& f : it.outputs) have = have && fs::exists(dir / f);
     if (have) it.state = "cached";
   }

@@ -131,7 +131,7 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
   if (o.has("shard")) r.shard = parse_shard("shard", o.get("shard"));
   if (o.has("out")) {
     r.out = o.get("out");
-    check_prefix("out", *r.out, ".tiles");
+    check_prefix("out", *r.out, "-artefacts.json");  // the longest name made from it
   }
   if (!r.shard.all() && !r.out) throw InputError("shard", "needs --out PREFIX (the shard's tiles go to PREFIX.tiles/)");
   if (o.has("tiles-from")) {

@@ -87,23 +87,27 @@ done
 
 # A folder without write permission: exit 1 (the output failed, not the input), one line
 # naming the path, never "internal error", for a plain output and for a grid job alike.
-# As root permissions do not apply, so the check runs as nobody when the binary allows it.
+# As root permissions do not apply, so the check runs as nobody (setpriv, util-linux, part of
+# every Debian system), with a copy of the binary nobody can execute wherever the build is.
 as_user=()
-[[ $(id -u) -eq 0 ]] && as_user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
-mkdir -p "$TMP/ro" && chmod 755 "$TMP" && chmod 555 "$TMP/ro"
-if "${as_user[@]}" "$BOUNCER" --version >/dev/null 2>&1 && ! "${as_user[@]}" test -w "$TMP/ro"; then
-  for args in "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/ro/o.csv" \
-              "basin ${MODEL[*]} --grid 4x4 --transient 10 --steps 16 --quiet --out $TMP/ro/b"; do
-    rc=0
-    # shellcheck disable=SC2086
-    "${as_user[@]}" "$BOUNCER" $args >/dev/null 2>"$TMP/ro.err" || rc=$?
-    [[ $rc -eq 1 && $(wc -l <"$TMP/ro.err") -eq 1 ]] && grep -q 'Permission denied' "$TMP/ro.err" &&
-      ! grep -q 'internal error' "$TMP/ro.err" || fail read_only "exit $rc for '${args%% *}': $(head -c 300 "$TMP/ro.err")"
-  done
-  [[ -z "$(ls -A "$TMP/ro")" ]] || fail read_only "something was written: $(ls -A "$TMP/ro")"
-else
-  echo "read-only folder check skipped: cannot run the binary as an unprivileged user here"
+RUN_AS=$BOUNCER
+if [[ $(id -u) -eq 0 ]]; then
+  as_user=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+  cp "$BOUNCER" "$TMP/bouncer-copy" && chmod 755 "$TMP/bouncer-copy"
+  RUN_AS=$TMP/bouncer-copy
 fi
+mkdir -p "$TMP/ro" && chmod 755 "$TMP" && chmod 555 "$TMP/ro"
+"${as_user[@]}" "$RUN_AS" --version >/dev/null 2>&1 || fail read_only "cannot run the binary as an unprivileged user"
+"${as_user[@]}" test -w "$TMP/ro" && fail read_only "the folder is writable: the check would prove nothing"
+for args in "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/ro/o.csv" \
+            "basin ${MODEL[*]} --grid 4x4 --transient 10 --steps 16 --quiet --out $TMP/ro/b"; do
+  rc=0
+  # shellcheck disable=SC2086
+  "${as_user[@]}" "$RUN_AS" $args >/dev/null 2>"$TMP/ro.err" || rc=$?
+  [[ $rc -eq 1 && $(wc -l <"$TMP/ro.err") -eq 1 ]] && grep -q 'Permission denied' "$TMP/ro.err" &&
+    ! grep -q 'internal error' "$TMP/ro.err" || fail read_only "exit $rc for '${args%% *}': $(head -c 300 "$TMP/ro.err")"
+done
+[[ -z "$(ls -A "$TMP/ro")" ]] || fail read_only "something was written: $(ls -A "$TMP/ro")"
 
 # A full disk in the middle of an output set (RLIMIT_FSIZE of 4 KB, SIGXFSZ ignored: the
 # 0.9 KB CSV fits, the 8 KB PNG does not): exit 1 and no file of the set, never a CSV

@@ -138,27 +138,7 @@ run rs0 $BA --grid 8x6 --shard 0/2 --out "$TMP/rs"
 run rs $BA --grid 8x6 --out "$TMP/rs" && outputs resume "$TMP/rs"
 cmp -s <(grep -v '^#' "$TMP/rs.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail resume "resumed run differs"
 
-# MPI (only when the binary was built with it): 2 ranks split the tiles, rank 0 writes.
-if command -v mpirun >/dev/null && ldd "$BOUNCER" 2>/dev/null | grep -q libmpi; then
-  # Under AddressSanitizer (build-sanitize/, `tools/setup sanitize`), LeakSanitizer reports
-  # Open MPI's own allocations (MPI_Init/MPI_Finalize and its dlopen'ed components) as leaks,
-  # with no bouncer frame; the components are unloaded before the report, so their frames
-  # cannot even be named in a suppression file. The leak check is off for this one run only.
-  mpi_env=()
-  if [[ $(ldd "$BOUNCER" 2>/dev/null) == *libasan* ]]; then
-    echo "picture_commands: AddressSanitizer build: leak check off for the mpirun run (Open MPI's own allocations)"
-    mpi_env=(env "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0")
-  fi
-  if "${mpi_env[@]}" mpirun --allow-run-as-root --oversubscribe -n 2 "$BOUNCER" $BA --grid 8x6 --threads 1 --quiet --out "$TMP/mpi" \
-      >"$TMP/mpi.stdout" 2>"$TMP/mpi.stderr"; then
-    outputs mpi "$TMP/mpi"
-    cmp -s <(grep -v '^#' "$TMP/mpi.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail mpi "2 MPI ranks differ from the whole run"
-  else
-    fail mpi "mpirun -n 2 failed: $(head -c 400 "$TMP/mpi.stderr")"
-  fi
-else
-  echo "picture_commands: MPI not built in; the mpirun check is skipped"
-fi
+# MPI ranks as shards: tests/cli/mpi_ranks.sh (skipped, visibly, where MPI is not built in).
 
 # --- scan ---------------------------------------------------------------------------------
 run scan scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 3x2 --ics 2 --transient 100 --steps 64 \

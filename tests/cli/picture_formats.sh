@@ -187,25 +187,7 @@ grep -q 'width="600pt" height="400pt"' "$TMP/sc.svg" || fail scene "size/dpi fro
   fail continue "exit $?"
 [[ -s $TMP/co.pdf && ! -e $TMP/co.png ]] || fail continue "pdf expected, no png"
 
-# --- the font file missing (hidden in a private mount namespace, where that is allowed) --------
-# Exit 1 (an output failure), one line naming the package, before any work and with no file;
-# a run without --out draws nothing and does not need the font.
-FONT=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
-if [[ -e $FONT ]] && unshare -m true 2>/dev/null; then
-  hidden() { unshare -m bash -c 'mount --bind /dev/null "$0" && exec "$@"' "$FONT" "$@"; }
-  rc=0
-  hidden "$BOUNCER" "${BASIN[@]}" --out "$TMP/nofont" 2>"$TMP/nofont.err" || rc=$?
-  [[ $rc -eq 1 ]] || fail nofont "exit $rc, expected 1"
-  [[ $(wc -l <"$TMP/nofont.err") -eq 1 ]] && grep -q "fonts-dejavu-core" "$TMP/nofont.err" ||
-    fail nofont "expected one line naming fonts-dejavu-core: $(head -c 300 "$TMP/nofont.err")"
-  compgen -G "$TMP/nofont*" | grep -v 'nofont.err$' | grep -q . && fail nofont "something was written"
-  rc=0
-  hidden "$BOUNCER" sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 10 --out "$TMP/nofont_sw" >/dev/null 2>&1 || rc=$?
-  [[ $rc -eq 1 ]] || fail nofont-sweep "exit $rc, expected 1"
-  hidden "$BOUNCER" "${BASIN[@]}" >/dev/null 2>"$TMP/nofont2.err" || fail nofont-stdout "a run without --out failed: $(head -c 300 "$TMP/nofont2.err")"
-else
-  echo "picture_formats: cannot hide the font here (no mount namespace): missing-font check skipped"
-fi
+# The font file missing: tests/cli/missing_font.sh (it needs a mount namespace).
 
 if [[ $failures -gt 0 ]]; then
   echo "$failures failure(s)" >&2

@@ -3,11 +3,9 @@
 #   * every label of data/paper/figure-labels.txt is a panel's label or a figure's label, and
 #     every figure label with panels is covered by at least one panel; no panel label is
 #     missing from the list;
-#   * when the paper source is present (/work/shared/paper or $BOUNCER_PAPER_TEX; it is not
-#     in the repository, so CI skips this part), the stored list equals the .tex's
-#     \label{fig:...} in order;
+#   * (the stored list and captions against the paper's .tex: reproduce_manifest_tex.sh)
 #   * every panel is ready (quick and full commands, starting with bouncer) or pending with a
-#     reason; a ready panel's caption is the .tex caption of its figure (when the .tex is there);
+#     reason;
 #   * a certified twin (twin_of) is labelled PANEL-certified, in PANEL's figure, with its
 #     caption, and its commands certify;
 #   * every claim has an expected verdict from the five words, a run command and checks, and
@@ -38,10 +36,9 @@ s=$?
 set -e
 [ "$s" = 1 ] || { echo "FAIL: --check of a bad command: exit $s, expected 1"; exit 1; }
 grep -q "^bad-command run: refused (exit 2): a: " "$TMP/checkf" || { echo "FAIL: the bad command is not named: $(cat "$TMP/checkf")"; exit 1; }
-TEX=${BOUNCER_PAPER_TEX:-/work/shared/paper/langer-miller-2014.tex}
-python3 - "$SRC/data/paper/manifest.toml" "$SRC/data/paper/figure-labels.txt" "$TEX" <<'PY'
+python3 - "$SRC/data/paper/manifest.toml" "$SRC/data/paper/figure-labels.txt" <<'PY'
 import os, re, sys, tomllib
-manifest, labels_file, tex = sys.argv[1:4]
+manifest, labels_file = sys.argv[1:3]
 m = tomllib.load(open(manifest, "rb"))
 errors = []
 labels = [l.strip() for l in open(labels_file) if l.strip() and not l.startswith("#")]
@@ -96,21 +93,6 @@ if groups != set(range(1, 12)):
     errors.append(f"claim groups covered {sorted(groups)}, DESIGN.md section 4 has 1..11")
 if not {str(i) for i in range(1, 16)} <= rows:
     errors.append(f"README rows covered {sorted(rows, key=int)}, need at least 1..15 (the paper claims of the old README tables)")
-checked_tex = False
-if os.path.exists(tex):
-    checked_tex = True
-    src = open(tex, encoding="utf-8").read()
-    tex_labels = re.findall(r"\\label\{(fig:[^}]*)\}", src)
-    if tex_labels != labels:
-        errors.append(f"figure-labels.txt differs from the .tex labels: {tex_labels}")
-    # each figure environment: its caption and labels
-    for fig in re.findall(r"\\begin\{figure\}(.*?)\\end\{figure\}", src, re.S):
-        cap = re.search(r"\\caption\{(.*)\}\s*\\label\{(fig:[^}]*)\}", fig, re.S)
-        if not cap:
-            continue
-        for p in panels:
-            if p["figure"] == cap.group(2) and p["caption"] != cap.group(1).strip():
-                errors.append(f"{p['label']}: caption differs from the .tex")
 # tiles_from: an earlier panel, the same command apart from --show (a presentation option).
 def without_show(argv):
     out, skip = [], False
@@ -133,5 +115,5 @@ for p in all_panels:
 if errors:
     print("FAIL:\n  " + "\n  ".join(errors)); sys.exit(1)
 print(f"ok: {len(panels)} panels ({sum(p['status'] == 'pending' for p in panels)} pending), {len(m['claim'])} claims, "
-      f"{len(labels)} labels" + (", checked against the .tex" if checked_tex else " (no .tex here: stored list only)"))
+      f"{len(labels)} labels (against the paper's .tex: reproduce_manifest_tex.sh)")
 PY

@@ -134,10 +134,16 @@ wait_children() {  # wait_children PID N: until PID has N children (at most 10 s
   done
   return 1
 }
-gone() {  # gone NAME PIDS...: every pid ends within 5 s
-  local name=$1 p
-  shift
-  for p in "$@"; do
+killed() {  # killed NAME N COMMAND...: start it, wait for N children, SIGKILL it: every child ends within 5 s
+  local name=$1 n=$2 pid kids p
+  shift 2
+  "$BOUNCER" "$@" >/dev/null 2>&1 &
+  pid=$!
+  wait_children "$pid" "$n" || fail "$name" "it did not start its $n children"
+  kids=$(children_of "$pid")
+  kill -KILL "$pid"
+  wait "$pid" 2>/dev/null || true
+  for p in $kids; do
     for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
     if kill -0 "$p" 2>/dev/null; then
       fail "$name" "child $p still running after its parent was killed"
@@ -145,23 +151,9 @@ gone() {  # gone NAME PIDS...: every pid ends within 5 s
     fi
   done
 }
-"$BOUNCER" reproduce --manifest "$SRC/tests/data/reproduce-slow-manifest.toml" --jobs 2 --out killed 2>/dev/null &
-rp=$!
-wait_children "$rp" 2 || fail kill_reproduce "reproduce did not start its two children"
-kids=$(children_of "$rp")
-kill -KILL "$rp"
-wait "$rp" 2>/dev/null || true
-# shellcheck disable=SC2086
-gone kill_reproduce $kids
+killed kill_reproduce 2 reproduce --manifest "$SRC/tests/data/reproduce-slow-manifest.toml" --jobs 2 --out killed
 result long.csv orbit "model=constant a=20 eps=0.5 theta=0.1 v=5 steps=2000000000 every=1000000000"
-"$BOUNCER" audit long.csv >/dev/null 2>&1 &
-ap=$!
-wait_children "$ap" 1 || fail kill_audit "audit did not start its rerun"
-kids=$(children_of "$ap")
-kill -KILL "$ap"
-wait "$ap" 2>/dev/null || true
-# shellcheck disable=SC2086
-gone kill_audit $kids
+killed kill_audit 1 audit long.csv
 
 if [[ $failures -gt 0 ]]; then
   echo "$failures check(s) failed" >&2

@@ -311,6 +311,20 @@ int audit_reproduce(const std::filesystem::path& dir, bool trust_manifest) {
   if (!ok || old.is_discarded() || !old.contains("reproduce") || !old["reproduce"].is_object() ||
       !old["reproduce"].contains("mode") || !old["reproduce"]["mode"].is_string())
     not_reproduce("no reproduce.mode");
+  // Its parts have the shape reproduce writes, checked before anything runs (a crafted file
+  // must not start a long rerun only to be found malformed afterwards).
+  auto entries = [&](const char* list, const char* key) {
+    if (!old.contains(list)) return;
+    if (!old[list].is_array()) not_reproduce(std::string("'") + list + "' is not a list");
+    for (const json& e : old[list])
+      if (!e.is_object() || !e.contains(key) || !e[key].is_string() ||
+          (e.contains("status") && !e["status"].is_string()) || (e.contains("output") && !e["output"].is_string()) ||
+          (e.contains("files") && !e["files"].is_array()))
+        not_reproduce(std::string("an entry of '") + list + "' without a string '" + key + "'");
+  };
+  entries("claims", "id");
+  entries("panels", "label");
+  entries("pictures", "label");
   const json& r = old["reproduce"];
   // The rerun is built from what reproduce records, each part checked: a mode, ids that are
   // names (not paths or options), and the built-in manifest unless --trust-manifest.

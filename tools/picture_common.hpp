@@ -138,7 +138,6 @@ inline RunFlags run_flags_from(const Options& o, const FlagSet& f, const std::st
     // Whether the tiles belong to this job is known only once the job's key is: run_job.
     if (!r.out) throw InputError("tiles-from", "needs --out PREFIX (the reused tiles are copied to PREFIX.tiles/)");
     const std::string from = tiles_dir(o.get("tiles-from"));
-    check_path_name("tiles-from", from + "/job.key");
     if (!read_input_file_if_present("tiles-from", from + "/job.key", kMaxSceneBytes))
       throw InputError("tiles-from", "'" + from + "/' holds no tiles (keep them with --keep-tiles when that job runs)");
     r.tiles_from = from;

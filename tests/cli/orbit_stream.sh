@@ -15,7 +15,9 @@ ARGS=(orbit --model constant --a 24 --eps 0.5 --theta 0.25 --v 12 --steps 100000
 limit_kb=$((50 * 1024))
 rss_kb=""
 rc=0
-if [[ $(ldd "$BOUNCER" 2>/dev/null) == *libasan* ]]; then
+# (ASan is linked statically by clang, the sanitized build's compiler, dynamically by g++:
+# its entry point in the binary tells either.)
+if grep -qa __asan_init "$BOUNCER"; then
   # build-sanitize/ (`tools/setup sanitize`): ASan's shadow memory and its quarantine of freed
   # blocks are part of the resident set, so the 50 MB bound says nothing about streaming there.
   echo "orbit_stream.sh: AddressSanitizer build: peak memory NOT checked (shadow memory and quarantine)"

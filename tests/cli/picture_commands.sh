@@ -145,7 +145,9 @@ if command -v mpirun >/dev/null && ldd "$BOUNCER" 2>/dev/null | grep -q libmpi; 
   # with no bouncer frame; the components are unloaded before the report, so their frames
   # cannot even be named in a suppression file. The leak check is off for this one run only.
   mpi_env=()
-  if [[ $(ldd "$BOUNCER" 2>/dev/null) == *libasan* ]]; then
+  # (ASan is linked statically by clang, the sanitized build's compiler, dynamically by g++:
+  # its entry point in the binary tells either.)
+  if grep -qa __asan_init "$BOUNCER"; then
     echo "picture_commands: AddressSanitizer build: leak check off for the mpirun run (Open MPI's own allocations)"
     mpi_env=(env "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0")
   fi

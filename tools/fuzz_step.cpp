@@ -312,7 +312,7 @@ int main(int argc, char** argv) {
   std::cout << "undecided steps:";
   if (c.undecided.empty()) std::cout << " none";
   for (const auto& [k, n] : c.undecided) std::cout << " [" << k << "] " << n;
-  std::cout << "\nlong low flights not checked knot by knot: " << c.unchecked << "\n";
+  std::cout << "\nlong flights not checked knot by knot or period by period: " << c.unchecked << "\n";
   for (int i = 0; i < kInvariants; ++i)
     std::cout << "  " << kInvariantNames[i] << ": " << c.violations[i] << " violations\n";
   if (verbose) {

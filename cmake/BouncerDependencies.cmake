@@ -21,12 +21,27 @@ if(NOT Boost_FOUND)
   message(FATAL_ERROR "bouncer: Boost (Multiprecision) not found: install the Debian package 'libboost-dev'")
 endif()
 include(bouncerNumerics)  # bouncer::gmp, gmpxx, mpfr, mpfi (installed with the package config)
-# libquadmath lives in GCC's own directory: check that the compiler links it.
+# libquadmath lives in GCC's own directory: check that the compiler links it. clang (the
+# fuzzing build, tests/fuzz/) links it from the GCC installation it uses, but does not search
+# that directory's include/ for quadmath.h: it is added after every other include directory
+# (-idirafter, so that clang's own stddef.h, float.h, ... still come first).
 include(CheckCXXSourceCompiles)
+set(BOUNCER_QUADMATH_INCLUDE_FLAGS)
+if(CMAKE_CXX_COMPILER_ID STREQUAL "Clang")
+  execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libquadmath.so
+                  OUTPUT_VARIABLE bouncer_quadmath_so OUTPUT_STRIP_TRAILING_WHITESPACE)
+  get_filename_component(bouncer_gcc_dir "${bouncer_quadmath_so}" DIRECTORY)
+  if(EXISTS "${bouncer_gcc_dir}/include/quadmath.h")
+    get_filename_component(bouncer_gcc_dir "${bouncer_gcc_dir}" REALPATH)
+    set(BOUNCER_QUADMATH_INCLUDE_FLAGS "SHELL:-idirafter ${bouncer_gcc_dir}/include")
+    set(CMAKE_REQUIRED_FLAGS "-idirafter ${bouncer_gcc_dir}/include")
+  endif()
+endif()
 set(CMAKE_REQUIRED_LIBRARIES quadmath)
 check_cxx_source_compiles("#include <quadmath.h>
 int main() { __float128 x = 2; return (int)sqrtq(x); }" BOUNCER_HAVE_QUADMATH)
 unset(CMAKE_REQUIRED_LIBRARIES)
+unset(CMAKE_REQUIRED_FLAGS)
 if(NOT BOUNCER_HAVE_QUADMATH)
   message(FATAL_ERROR "bouncer: libquadmath (__float128) not usable: install the Debian package 'libgcc-12-dev' with g++-12")
 endif()

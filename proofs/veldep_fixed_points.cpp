@@ -86,7 +86,12 @@ OnCurve on_curve(const Case& k, long bits) {
 // the algebra of the header makes the map the identity. The paper's formula gives ap/2 there.
 // Below theta_p (if > 0) the map certainly moves every box: no fixed point there.
 bool check_fixed_on_curve(SubClaim& sub, const Case& k, const CoverPlan& plan, long bits) {
-  const auto [vq, theta_p, A, V, C] = on_curve(k, bits);
+  const OnCurve curve = on_curve(k, bits);
+  // Variables, not a structured binding: the lambdas below capture V, which clang 14 (the
+  // fuzzing build, tests/fuzz/) does not allow for a binding.
+  const mpq_class& vq = curve.vq;
+  const mpq_class& theta_p = curve.theta_p;
+  const Mpfi &A = curve.A, &V = curve.V, &C = curve.C;
   const bouncer::Model<Mpfi> model = triangle_model(Law::veldep, A, Mpfi(1, bits), C, bits);
   ImpactMap<Mpfi> map(model);
   auto step = [&](const Mpfi& th, const Mpfi& vv, StepResult<Mpfi>& r) {

@@ -235,7 +235,7 @@ TEST(CertifyPeriodic, ParameterRangePiecesContainTheDoubleOrbitAtEveryValueInsid
       const PeriodicOrbit<double> o = find_periodic(make_model<double>(s, 53), 2, State<double>{0.944, -0.345});
       ASSERT_TRUE(o.converged);
       bool near = false;
-      for (const CertifiedPoint& cp : p.cert.points) {
+      for (const EnclosedOrbitPoint& cp : p.cert.points) {
         const double t = o.points[0].theta, v = o.points[0].v;
         const double tl = std::stod(cp.theta.lo), th = std::stod(cp.theta.hi), vl = std::stod(cp.v.lo), vh = std::stod(cp.v.hi);
         near = near || (t > tl - 1e-12 && t < th + 1e-12 && v > vl - 1e-12 && v < vh + 1e-12);

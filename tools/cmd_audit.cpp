@@ -504,8 +504,9 @@ AuditPlan plan_rerun(const std::string& path, const std::string& text, const std
     if (k == "out") { has_out = true; continue; }
     if (k == "json") { if (v == "true") argv.push_back("--json"); continue; }
     if (k == "certify") { if (v == "true") argv.push_back("--certify"); continue; }  // a flag of continue
-    argv.push_back("--" + k);
-    argv.push_back(v);
+    // One word, --KEY=VALUE: the rerun's parser never reads a recorded value as an option of
+    // its own (a value "--keep-tiles" or "--tiles-from=DIR" given as a separate word would be).
+    argv.push_back("--" + k + "=" + v);
   }
   // A JSON written with --out PREFIX lists its files; a picture command's JSON exists only
   // that way (its --out is not an input: the job is the same wherever it is written).

@@ -120,7 +120,7 @@ json certificate_json(const PeriodicCertificate& c) {
   } else {
     j["stability"] = c.stability;
     json pts = json::array();
-    for (const CertifiedPoint& p : c.points) pts.push_back({{"theta", enclosure_json(p.theta)}, {"v", enclosure_json(p.v)}});
+    for (const EnclosedOrbitPoint& p : c.points) pts.push_back({{"theta", enclosure_json(p.theta)}, {"v", enclosure_json(p.v)}});
     j["points"] = pts;
     j["events"] = c.events;
     j["wall_periods"] = c.wall_periods;

@@ -29,6 +29,50 @@ std::vector<std::string> front_end_words(std::vector<std::string> w) {
   return w;
 }
 
+// RFC 3629 UTF-8: no overlong forms, no surrogates, nothing above U+10FFFF.
+bool valid_utf8(const std::string& s) {
+  for (size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    int more = 0;
+    unsigned char lo = 0x80, hi = 0xbf;  // the allowed range of the second byte
+    if (c >= 0xc2 && c <= 0xdf) more = 1;
+    else if (c == 0xe0) more = 2, lo = 0xa0;
+    else if (c == 0xed) more = 2, hi = 0x9f;
+    else if (c >= 0xe1 && c <= 0xef) more = 2;
+    else if (c == 0xf0) more = 3, lo = 0x90;
+    else if (c == 0xf4) more = 3, hi = 0x8f;
+    else if (c >= 0xf1 && c <= 0xf3) more = 3;
+    else return false;
+    for (int k = 1; k <= more; ++k) {
+      if (i + k >= s.size()) return false;
+      const unsigned char d = static_cast<unsigned char>(s[i + k]);
+      if (d < (k == 1 ? lo : 0x80) || d > (k == 1 ? hi : 0xbf)) return false;
+    }
+    i += static_cast<size_t>(more) + 1;
+  }
+  return true;
+}
+
+// A word for a message: bytes above 0x7f as \xNN (one_line escapes the control characters).
+std::string shown_bytes(const std::string& s) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c < 0x80) {
+      out += static_cast<char>(c);
+    } else {
+      const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
 CommandOutcome failed(CommandOutcome::Kind kind, int status, const std::string& message) {
   CommandOutcome o;
   o.kind = kind;
@@ -58,6 +102,15 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
       const bool value = i > 0 && words_in[i - 1].rfind("--", 0) == 0;
       return failed(Kind::input, 2, (value ? words_in[i - 1].substr(2) + ": the value '" : "the argument '") +
                                         words_in[i] + "' contains a NUL byte");
+    }
+  // Every input is recorded in the outputs' provenance, in JSON among them, which holds UTF-8
+  // text only: a word that is not UTF-8 (bytes from a host, a file name in another encoding)
+  // is bad input here, not an exception when the JSON is written after the work.
+  for (size_t i = 0; i < words_in.size(); ++i)
+    if (!valid_utf8(words_in[i])) {
+      const bool value = i > 0 && words_in[i - 1].rfind("--", 0) == 0;
+      return failed(Kind::input, 2, (value ? words_in[i - 1].substr(2) + ": the value '" : "the argument '") +
+                                        shown_bytes(words_in[i]) + "' is not valid UTF-8 (outputs record their inputs as UTF-8 text)");
     }
   std::vector<std::string> words;
   try {

@@ -5,6 +5,7 @@
 #   * an unknown option names the command's help, with a did-you-mean (--epsilon -> --eps);
 #   * `--opt=` with no value is refused (it used to take the next option as its value);
 #   * a 100,000-character value is cut and a newline in a value is escaped: one short line;
+#   * a word that is not valid UTF-8 is refused, its bytes shown as \xNN;
 #   * a directory given as a scene is refused; a bad --range is blamed on --range;
 #   * a theta that rounds to 1 in the chosen precision is refused (not wrapped);
 #   * --version works on every command; a proof program refuses --bits abc;
@@ -34,6 +35,10 @@ refused empty_value "^bouncer: steps: '--steps=' gives no value" orbit "${M[@]}"
 long=$(printf 'x%.0s' $(seq 1 100000))
 refused long_value "characters cut" orbit "${M[@]}" --theta "$long" --v 12
 refused newline "\\\\n" orbit "${M[@]}" --theta $'0.3\nsecond line' --v 12
+# A word that is not UTF-8 cannot be recorded in a JSON provenance: refused up front (it
+# was an internal error when the JSON was written; found by tests/fuzz/fuzz_command_line).
+refused not_utf8 "^bouncer: out: the value 'o\\\\xffn.json' is not valid UTF-8" orbit "${M[@]}" --theta 0.3 --v 12 --steps 2 --format json --out $'o\xffn.json'
+refused not_utf8_overlong "the argument '--theta=\\\\xc0\\\\xb0' is not valid UTF-8" orbit "${M[@]}" $'--theta=\xc0\xb0' --v 12
 refused theta_rounds_to_1 "theta: .* rounds to 1" orbit "${M[@]}" --theta 0.99999999999999999999 --v 12
 "$BOUNCER" orbit "${M[@]}" --theta 0.99999999999999999999 --v 12 --precision mpfr:256 >/dev/null ||
   fail theta_mpfr "the same theta at 256 bits (it does not round to 1 there) was refused"

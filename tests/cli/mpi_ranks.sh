@@ -19,7 +19,7 @@ BA=(basin --model constant --a 24 --eps 0.5 --theta-range 0:1 --v-range 2:20 --t
 # with no bouncer frame; the components are unloaded before the report, so their frames
 # cannot even be named in a suppression file. The leak check is off for this one run only.
 mpi_env=()
-if [[ $(ldd "$BOUNCER" 2>/dev/null) == *libasan* ]]; then
+if grep -qa __asan_init "$BOUNCER"; then
   echo "mpi_ranks: AddressSanitizer build: leak check off for the mpirun run (Open MPI's own allocations)"
   mpi_env=(env "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0")
 fi

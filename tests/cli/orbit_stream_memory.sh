@@ -7,7 +7,7 @@
 # Usage: bash orbit_stream_memory.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 BOUNCER=${1:?usage: bash orbit_stream_memory.sh <bouncer-binary> <source-dir>}
-if [[ $(ldd "$BOUNCER" 2>/dev/null) == *libasan* ]]; then
+if grep -qa __asan_init "$BOUNCER"; then
   echo "orbit_stream_memory: SKIPPED: AddressSanitizer build (shadow memory and quarantine are resident)"
   exit 77
 fi

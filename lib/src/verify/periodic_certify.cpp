@@ -554,7 +554,7 @@ class Attempt1 {
   }
 };
 
-std::string point_text(const CertifiedPoint& p) {
+std::string point_text(const EnclosedOrbitPoint& p) {
   return "(theta, v) in [" + p.theta.lo + ", " + p.theta.hi + "] x [" + p.v.lo + ", " + p.v.hi + "]";
 }
 
@@ -682,7 +682,7 @@ void compare_with_double(const PeriodicQuestion& q, PeriodicCertificate& c) {
   // the cycle), max(|d theta|, |d v| / max(1, |v|)); 0 inside. In double: a report, not a proof.
   double best = std::numeric_limits<double>::infinity();
   const double t = o.points[0].theta, w = o.points[0].v;
-  for (const CertifiedPoint& p : c.points) {
+  for (const EnclosedOrbitPoint& p : c.points) {
     auto gap = [](double x, const Enclosure& e) {
       const double lo = std::strtod(e.lo.c_str(), nullptr), hi = std::strtod(e.hi.c_str(), nullptr);
       return x < lo ? lo - x : x > hi ? x - hi : 0.0;

@@ -82,7 +82,9 @@ struct Enclosure {
   double width = 0;
 };
 
-struct CertifiedPoint {
+// (Not named CertifiedPoint: verify/certified_point.hpp has that class in this namespace, and
+// two classes of one name break the one-definition rule: their inline destructors were mixed.)
+struct EnclosedOrbitPoint {
   Enclosure theta, v;
 };
 
@@ -100,7 +102,7 @@ struct PeriodicCertificate {
   long minimal_period = 0;             // certified divisor structure, 0 if undecided
   bool minimal_period_certified = false;
   long bits = 0;                       // the precision that certified (0: none)
-  std::vector<CertifiedPoint> points;  // enclosures of the Q orbit points, in orbit order
+  std::vector<EnclosedOrbitPoint> points;  // enclosures of the Q orbit points, in orbit order
   std::vector<std::string> events;     // per step: "impact(seg 0)", "sticking", ...
   std::vector<long long> wall_periods; // per step
   MultiplierEnclosure multipliers;

@@ -12,8 +12,9 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/model/trapping.hpp"
 #include "bouncer/verify/certified_point.hpp"
-#include "bouncer/verify/sticking.hpp"  // exact_decimal
+#include "bouncer/verify/sticking.hpp"
 #include "commands.hpp"
 #include "picture_common.hpp"
 
@@ -32,34 +33,6 @@ struct BasinRequest {
   CertifyPointOptions cert;
 };
 
-// The default v range, as `scan` uses: from the wall's fastest upward velocity to the top of
-// the proved trapping region (README Claims row 5), rounded up to 4 decimals so that it is
-// an exact decimal that still covers the region. The elastic model has none.
-std::pair<Decimal, Decimal> trapping_v_range(const ModelSpec& m) {
-  mpq_class u = 0;
-  for (const Decimal& k : m.wall.knots) u = std::max(u, wall_velocity_exact(m.wall, k.value()));
-  std::ostringstream lo, hi;
-  lo << u.get_d();
-  double top = 0;
-  if (m.law == Law::constant) {
-    if (m.eps.value() == 1) throw InputError("v-range", "is needed when eps = 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
-    const mpq_class t = u * (1 + 3 * m.eps.value()) / (1 - m.eps.value()) * 10000;  // exact: ceiling below
-    mpz_class up;
-    mpz_cdiv_q(up.get_mpz_t(), t.get_num_mpz_t(), t.get_den_mpz_t());
-    hi << exact_decimal(mpq_class(up, 10000));
-    return {parse_decimal("v-range", lo.str()), parse_decimal("v-range", hi.str())};
-  } else if (m.law == Law::veldep) {
-    // max(V_c, 4 + c (5/3)^(5/3) e^(-5/3)), V_c = 4 [2 coth(2^(4/5) / c^(3/5)) - 1] (Claims row 5).
-    const double c = m.c.approx(), x = std::pow(2.0, 0.8) / std::pow(c, 0.6);
-    top = std::max(u.get_d() * (2 / std::tanh(x) - 1), u.get_d() + c * std::pow(5.0 / 3, 5.0 / 3) * std::exp(-5.0 / 3));
-  } else {
-    throw InputError("v-range", "is needed for --model elastic (no trapping region: velocities grow without bound)");
-  }
-  const double up = std::ceil(top * 1e4 * (1 + 1e-12)) / 1e4;  // rounded up, with a margin for double
-  hi << std::fixed << std::setprecision(4) << up;
-  return {parse_decimal("v-range", lo.str()), parse_decimal("v-range", hi.str())};
-}
-
 BasinRequest basin_request(const Options& o) {
   BasinRequest r;
   r.model = model_from(o);
@@ -71,7 +44,11 @@ BasinRequest basin_request(const Options& o) {
     std::tie(r.v0, r.v1) = parse_range("v-range", o.get("v-range"));
     if (r.v1.approx() > 1e15 || r.v0.approx() < -1e15) throw InputError("v-range", "must lie within +-1e15");
   } else {
-    std::tie(r.v0, r.v1) = trapping_v_range(r.model);
+    const auto range = trapping_v_range(r.model);
+    if (!range && r.model.law == Law::constant)
+      throw InputError("v-range", "is needed when eps = 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
+    if (!range) throw InputError("v-range", "is needed for --model elastic (no trapping region: velocities grow without bound)");
+    std::tie(r.v0, r.v1) = *range;
   }
   r.classify = classify_options_from(o);
   r.precision = point_precision(o);

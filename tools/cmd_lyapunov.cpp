@@ -17,6 +17,7 @@
 #include "analysis_common.hpp"
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
+#include "bouncer/model/trapping.hpp"
 #include "commands.hpp"
 #include "picture_common.hpp"
 
@@ -61,16 +62,15 @@ std::string fixed_text(double x, int decimals) {
 // number) mapped to theta in (0, 1) and v in (v_wall, v_top]. v_wall is the wall's fastest
 // upward velocity (4 on the triangle), so every start lies above the wall. v_top is the top
 // of the trapping region at the range's end where it is smallest, so the starts lie in the
-// trapping region of every value: 4(1 + 3 eps)/(1 - eps) for constant eps, and
-// max(V_c, 4 + c (5/3)^(5/3) e^(-5/3)) with V_c = 4[2 coth(2^(4/5)/c^(3/5)) - 1] for the
-// velocity-dependent law (README Claims, row 5). The elastic map has no trapping region:
-// v_top = v_wall + a/2 (a the smallest of the range; ap/2 is the speed of period-p
-// motions). Decimals with 6 (theta) and 4 (v) places, so that each start is an exact
+// trapping region of every value (model/trapping.hpp: 4(1 + 3 eps)/(1 - eps) for constant
+// eps on the triangle; the paper's V_c for the velocity-dependent law where it is
+// invariant, else 4 + c (5/3)^(5/3) e^(-5/3), README Claims row 5). The elastic map has no
+// trapping region: v_top = v_wall + a/2 (a the smallest of the range; ap/2 is the speed of
+// period-p motions). Decimals with 6 (theta) and 4 (v) places, so that each start is an exact
 // decimal that `bouncer lyapunov --theta --v` reproduces.
 std::vector<InitialCondition> curve_starts(const CurveRequest& r, const Options& o) {
   const Model<double> m = make_model<double>(r.model, 53);
-  double v_wall = 0;
-  for (double u : m.wall.velocity) v_wall = std::max(v_wall, u);
+  const double v_wall = wall_up_speed(m.wall);
   std::vector<InitialCondition> out;
   if (o.has("theta") || o.has("v")) {
     out.push_back(start_from(o, r.model));
@@ -81,20 +81,12 @@ std::vector<InitialCondition> curve_starts(const CurveRequest& r, const Options&
     validate(r.model, ic, "theta", "v");
     out.push_back(ic);
   }
+  // The model at the range's end where the trapping region is lowest (a: the top does not
+  // depend on a; eps and c: the lower end), its top from model/trapping.hpp.
   const double lo = r.lo.approx();
   const double a = r.vary == "a" ? lo : r.model.a.approx();
-  double v_top;
-  if (r.model.law == Law::constant && (r.vary == "eps" ? lo : r.model.eps.approx()) < 1) {
-    const double eps = r.vary == "eps" ? lo : r.model.eps.approx();
-    v_top = 4 * (1 + 3 * eps) / (1 - eps);
-  } else if (r.model.law == Law::veldep) {
-    const double c = r.vary == "c" ? lo : r.model.c.approx();
-    const double x = std::pow(2.0, 0.8) / std::pow(c, 0.6);
-    const double vc = 4 * (2 / std::tanh(x) - 1);
-    v_top = std::max(vc, 4 + c * std::pow(5.0 / 3.0, 5.0 / 3.0) * std::exp(-5.0 / 3.0));
-  } else {
-    v_top = v_wall + a / 2;
-  }
+  const Model<double> at_lo = r.vary == "a" ? m : with_parameter(m, parse_parameter("vary", r.vary), lo);
+  double v_top = trapping_top(at_lo).value_or(v_wall + a / 2);
   v_top = std::max(v_top, v_wall + 1);
   const double g = 1.32471795724474602596;  // plastic number: x^3 = x + 1
   for (long j = 1; j < r.ics; ++j) {

@@ -9,6 +9,7 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/model/trapping.hpp"
 #include "bouncer/verify/certified_point.hpp"
 #include "bouncer/verify/sticking.hpp"  // exact_decimal
 #include "commands.hpp"
@@ -128,25 +129,15 @@ struct ScanGrid {
         y1(num(req.y1)), t0(num(req.t0)), t1(num(req.t1)), v0(num(req.v_given ? req.v0 : req.a0)),
         v1(num(req.v_given ? req.v1 : req.a1)) {}
 
-  // Upper end of the trapping region (paper sec. II.C), the default top of the v range.
-  T v_upper(const Model<T>& m) const {
-    using std::exp;
-    using std::log;
-    const T one = Tr::from_int(1, r.precision.bits);
-    if (m.law == Law::constant) return (m.eps * 3 + 1) * 4 / (1 - m.eps);
-    // veldep: 4 [2 coth(2^(4/5) / c^(3/5)) - 1], coth x = (e^(2x) + 1)/(e^(2x) - 1).
-    const T x = exp(log(one * 2) * 4 / 5) / Tr::pow_3_5(m.c);
-    const T e = exp(2 * x);
-    return 4 * (2 * (e + 1) / (e - 1) - 1);
-  }
-
   // Item i: a index i mod P, y index i / P (cell centres).
   std::string item(long i) const {
     const T a = cell_centre(a0, a1, i % r.p, r.p), y = cell_centre(y0, y1, i / r.p, r.q);
     const Model<T> m = with_parameter(with_parameter(base, Parameter::a, a), parse_parameter("y", r.y), y);
     const ImpactMap<T> map(m);
-    const T vlo = r.v_given ? v0 : Tr::from_int(4, r.precision.bits);
-    const T vhi = r.v_given ? v1 : v_upper(m);
+    // Default: the trapping region of this point (model/trapping.hpp), from the wall's fastest
+    // upward velocity; eps = 1 needs --v-range (refused when the request is read).
+    const T vlo = r.v_given ? v0 : wall_up_speed(m.wall);
+    const T vhi = r.v_given ? v1 : trapping_top(m).value();
     std::vector<long> count(count_names().size(), 0);
     for (long j = 0; j < r.k * r.k; ++j) {
       const T theta = cell_centre(t0, t1, j % r.k, r.k), v = cell_centre(vlo, vhi, j / r.k, r.k);
@@ -356,7 +347,7 @@ Command add_scan(CLI::App& app) {
   opts->add("grid", "PxQ parameter points (a by eps or c), 1..4096 each (default 20x20)");
   opts->add("ics", "K: K x K initial conditions per parameter point (default 10, as in the paper)");
   opts->add("theta-range", "Initial phases T0:T1 within [0, 1] (default 0:1)");
-  opts->add("v-range", "Initial velocities V0:V1 (default: the trapping region [4, v_upper] of each point)");
+  opts->add("v-range", "Initial velocities V0:V1 (default: the trapping region of each point, from the wall velocity 4 to its top; README, Claims row 5)");
   add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");

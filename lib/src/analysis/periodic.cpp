@@ -1,4 +1,5 @@
 #include "bouncer/analysis/periodic.hpp"
+#include "bouncer/model/trapping.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -244,10 +245,10 @@ PeriodicOrbit<T> search_periodic(const Model<T>& m, long q, const NewtonOptions&
   const long bits = m.bits;
   const double a = Tr<T>::to_double(m.a);
   double vmax = a * q / 2 + 16;
-  if (m.law == Law::constant) {
-    const double eps = Tr<T>::to_double(m.eps);
-    if (eps < 1) vmax = std::min(vmax, 4 * (1 + 3 * eps) / (1 - eps) + 1);
-  }
+  // Constant eps < 1: no further than 1 above the trapping region (model/trapping.hpp). (The
+  // velocity-dependent law keeps a q/2 + 16, the guesses its certified orbits were found from.)
+  if (m.law == Law::constant)
+    if (const auto top = trapping_top(m)) vmax = std::min(vmax, Tr<T>::to_double(*top) + 1);
   const int G = std::max(2, opt.grid);
   std::optional<PeriodicOrbit<T>> first, best, sticking;
   for (int i = 0; i < G; ++i) {

@@ -47,4 +47,25 @@ std::optional<Decimal> Decimal::parse(std::string_view text) {
 
 Decimal Decimal::from_int(long n) { return *parse(std::to_string(n)); }
 
+std::string exact_decimal(const mpq_class& x) {
+  mpz_class den = x.get_den();
+  long twos = 0, fives = 0;
+  while (mpz_divisible_ui_p(den.get_mpz_t(), 2)) { den /= 2; ++twos; }
+  while (mpz_divisible_ui_p(den.get_mpz_t(), 5)) { den /= 5; ++fives; }
+  if (den != 1) return x.get_str();
+  const long k = std::max(twos, fives);
+  mpz_class scale;
+  mpz_ui_pow_ui(scale.get_mpz_t(), 10, static_cast<unsigned long>(k));
+  mpz_class n = x.get_num() * scale / x.get_den();  // exact
+  std::string sign;
+  if (n < 0) { sign = "-"; n = -n; }
+  std::string digits = n.get_str();
+  if (k == 0) return sign + digits;
+  if (static_cast<long>(digits.size()) <= k) digits = std::string(k - digits.size() + 1, '0') + digits;
+  std::string out = digits.substr(0, digits.size() - k) + "." + digits.substr(digits.size() - k);
+  while (out.back() == '0') out.pop_back();
+  if (out.back() == '.') out.pop_back();
+  return sign + out;
+}
+
 }  // namespace bouncer

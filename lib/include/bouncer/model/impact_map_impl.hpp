@@ -45,6 +45,7 @@ Model<T> make_model(const ModelSpec& spec, long bits) {
     if (ws.heights[top] < ws.heights[j]) top = j;
   }
   w.top = num(ws.heights[top]);
+  mpq_class u_max, u_min;
   for (size_t j = 0; j < n; ++j) {
     const size_t k = (j + 1) % n;
     w.end.push_back(k == 0 ? one : w.start[k]);
@@ -54,6 +55,8 @@ Model<T> make_model(const ModelSpec& spec, long bits) {
     const mpq_class uk = wall_velocity_exact(ws, ws.knots[k].value());
     w.turn.push_back(uk < uj ? Turn::down : uk > uj ? Turn::up : Turn::none);
     w.direction.push_back(sgn(uj));
+    if (j == 0 || uj > u_max) u_max = uj, w.fastest_up = static_cast<int>(j);
+    if (j == 0 || uj < u_min) u_min = uj, w.fastest_down = static_cast<int>(j);
   }
   return m;
 }

@@ -26,6 +26,8 @@ struct Wall {
   std::vector<Turn> turn;   // sign of u_{j+1} - u_j at the end of segment j
   std::vector<int> direction;  // sign of u_j (exact): +1 up, -1 down, 0 flat
   T top;                    // max f: above it the particle cannot meet the wall
+  int fastest_up = 0;       // the segment of largest u_j (exact): U = u_j, the fastest rise
+  int fastest_down = 0;     // the segment of smallest u_j (exact): D = -u_j, the fastest fall
   std::vector<mpq_class> knot_exact;  // s_j as exact rationals (from the decimal spec)
 
   int segments() const { return static_cast<int>(start.size()); }
@@ -90,6 +92,8 @@ Model<U> convert_model(const Model<T>& m, F&& to) {
   r.wall.turn = m.wall.turn;
   r.wall.direction = m.wall.direction;
   r.wall.top = to(m.wall.top);
+  r.wall.fastest_up = m.wall.fastest_up;
+  r.wall.fastest_down = m.wall.fastest_down;
   r.wall.knot_exact = m.wall.knot_exact;
   return r;
 }

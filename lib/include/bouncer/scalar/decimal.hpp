@@ -36,4 +36,8 @@ class Decimal {
   mpq_class value_;
 };
 
+// Exact decimal text of a rational whose denominator has only the prime factors 2 and 5
+// (every bisection point of a decimal interval), else "num/den".
+std::string exact_decimal(const mpq_class& x);
+
 }  // namespace bouncer

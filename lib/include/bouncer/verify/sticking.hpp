@@ -130,10 +130,6 @@ struct RangeReport {
 
 RangeReport certify_sticking_range(const StickingQuestion& q, const RangeOptions& opt);
 
-// Exact decimal text of a rational whose denominator has only the prime factors 2 and 5
-// (every bisection point of a decimal interval), else "num/den".
-std::string exact_decimal(const mpq_class& x);
-
 // One-line statement of a certificate ("sticks with period 7", ...).
 std::string describe(const StickingCertificate& c, long long max_steps);
 

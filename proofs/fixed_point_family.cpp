@@ -38,6 +38,7 @@
 #include <string>
 #include <vector>
 
+#include "bouncer/analysis/periodic.hpp"
 #include "certificate.hpp"
 #include "interval_jacobian.hpp"
 
@@ -80,10 +81,10 @@ struct Exact {
 };
 Exact exact(const Family& f, long bits) {
   const mpq_class eps(f.num, f.den);
-  const mpq_class a = 8 * (1 + eps) / (f.p * (1 - eps));
-  const mpq_class vstar = 4 * (1 + eps) / (1 - eps);
-  mpq_class theta_p = mpq_class(1, 2) - 2 * f.p * eps / (1 + eps);
-  if (theta_p < 0) theta_p = 0;
+  // The library's eq. 5 and family start, the functions every command uses, checked here.
+  const mpq_class a = bouncer::paper::fixed_point_a(eps, f.p);
+  const mpq_class vstar = bouncer::paper::fixed_point_v(eps);
+  const mpq_class theta_p = bouncer::fixed_point_theta_min(eps, f.p);
   return {eps, a, vstar, theta_p, qi(a, bits), qi(eps, bits), qi(vstar, bits)};
 }
 

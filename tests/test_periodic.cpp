@@ -97,6 +97,24 @@ TEST(Periodic, Eq5FixedPointFamilyAndItsTrueRange) {
 
 // Newton finds the eq. 5 family from the default grid of guesses, in double and in MPFR,
 // despite J - I being singular along the family.
+// The exact helpers every command uses (tongues, scan's curves, the proof): eq. 5 and its
+// inverse in rationals, and the family's start against the derivation above by hand:
+// eps = 1/10, p = 1: 1/2 - (2/10)/(11/10) = 7/22; eps = 1/(4p - 1): exactly 0.
+TEST(Periodic, Eq5ExactHelpers) {
+  for (long p : {1L, 2L, 5L}) {
+    for (const mpq_class& eps : {mpq_class(1, 10), mpq_class(1, 2), mpq_class(9, 10), mpq_class(1, 4 * p - 1)}) {
+      const mpq_class a = paper::fixed_point_a(eps, p);
+      EXPECT_EQ(a, mpq_class(8 * (1 + eps) / (p * (1 - eps))));
+      EXPECT_EQ(paper::fixed_point_eps(a, p), eps);
+      const mpq_class t = mpq_class(1, 2) - 2 * p * eps / (1 + eps);
+      EXPECT_EQ(fixed_point_theta_min(eps, p), t > 0 ? t : mpq_class(0));
+    }
+    EXPECT_EQ(fixed_point_theta_min(mpq_class(1, 4 * p - 1), p), 0);
+  }
+  EXPECT_EQ(fixed_point_theta_min(mpq_class(1, 10), 1), mpq_class(7, 22));
+  EXPECT_EQ(fixed_point_theta_min(mpq_class(9, 10), 1), 0);
+}
+
 TEST(Periodic, NewtonFindsTheEq5Family) {
   const ModelSpec m = spec(Law::constant, "24", "0.5");
   const PeriodicOrbit<double> od = search_periodic(make_model<double>(m, 53), 1);

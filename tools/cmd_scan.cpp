@@ -8,10 +8,11 @@
 #include <sstream>
 
 #include "bouncer/analysis/classify.hpp"
+#include "bouncer/analysis/periodic.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/trapping.hpp"
 #include "bouncer/verify/certified_point.hpp"
-#include "bouncer/verify/sticking.hpp"  // exact_decimal
+#include "bouncer/verify/sticking.hpp"
 #include "commands.hpp"
 #include "picture_common.hpp"
 
@@ -20,10 +21,18 @@ namespace bouncer::cli {
 namespace {
 
 // Count columns, in CSV order.
+// The count columns, in CSV order: the classifier's classes (their names from
+// analysis/classify.hpp), then outside (a start below the wall).
 const std::vector<std::string>& count_names() {
-  static const std::vector<std::string> n{"fixed",     "periodic",           "sticking",        "quasiperiodic",
-                                          "chaotic",   "unbounded",          "effective_sticking", "transient_chaos",
-                                          "undecided", "outside"};
+  static const std::vector<std::string> n = [] {
+    std::vector<std::string> v;
+    for (OrbitClass c : {OrbitClass::fixed, OrbitClass::periodic, OrbitClass::sticking, OrbitClass::quasiperiodic,
+                         OrbitClass::chaotic, OrbitClass::unbounded, OrbitClass::effective_sticking,
+                         OrbitClass::transient_chaos, OrbitClass::undecided})
+      v.emplace_back(name(c));
+    v.emplace_back("outside");
+    return v;
+  }();
   return n;
 }
 
@@ -87,7 +96,11 @@ ScanRequest scan_request(const Options& given) {
   r.show = o.get_or("show", "regular");
   bool known = r.show == "regular";
   for (const auto& n : count_names()) known = known || n == r.show;
-  if (!known) throw InputError("show", "must be regular or one of fixed, periodic, sticking, quasiperiodic, chaotic, unbounded, effective_sticking, transient_chaos, undecided");
+  if (!known) {
+    std::string allowed = "regular";
+    for (const std::string& n : count_names()) allowed += ", " + n;
+    throw InputError("show", "must be one of " + allowed);
+  }
   // The analytic fixed-point curves (paper eq. 5) belong to the (a, eps) plane of the
   // constant model: drawn there by default, never elsewhere.
   const std::string curves = o.get_or("curves", r.y == "eps" ? "fixed-points" : "none");
@@ -288,7 +301,7 @@ void finish(const ScanRequest& r, const std::vector<std::string>& items, const R
       s.markers = false;
       for (int k = 0; k <= 400; ++k) {
         const double e = e0 + (e1 - e0) * k / 400.0;
-        s.x.push_back(zx(8 * (1 + e) / (pp * (1 - e))));
+        s.x.push_back(zx(bouncer::paper::fixed_point_a(e, pp)));
         s.y.push_back(zy(e));
       }
       fig.overlay.push_back(s);

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "bouncer/analysis/periodic.hpp"
 #include "commands.hpp"
 #include "picture_common.hpp"
 
@@ -49,12 +50,10 @@ TonguesRequest tongues_request(const Options& o) {
   return r;
 }
 
-mpq_class a_of(const mpq_class& eps, long p) { return mpq_class(8 * (1 + eps) / (p * (1 - eps))); }
-mpq_class eps_of(const mpq_class& a, long p) { return mpq_class((a * p - 8) / (a * p + 8)); }
-mpq_class theta_min_of(const mpq_class& eps, long p) {
-  const mpq_class t = mpq_class(1, 2) - mpq_class(2 * p * eps / (1 + eps));
-  return t > 0 ? t : mpq_class(0);
-}
+// Eq. 5 and its proved family (analysis/periodic.hpp), exactly.
+mpq_class a_of(const mpq_class& eps, long p) { return paper::fixed_point_a(eps, p); }
+mpq_class eps_of(const mpq_class& a, long p) { return paper::fixed_point_eps(a, p); }
+mpq_class theta_min_of(const mpq_class& eps, long p) { return fixed_point_theta_min(eps, p); }
 std::string text(const mpq_class& q) { return q.get_str(); }
 // The nearest double (mpq_class::get_d truncates).
 double nearest(const mpq_class& q) {

@@ -27,6 +27,11 @@ template <class S>
 S fixed_point_a(const S& eps, long p) {
   return 8 * (eps + 1) / (p * (1 - eps));
 }
+// The same curve solved for eps: eps = (ap - 8)/(ap + 8).
+template <class S>
+S fixed_point_eps(const S& a, long p) {
+  return (a * p - 8) / (a * p + 8);
+}
 
 // Elastic period-2 up/up families (eq. 33 and the formula before it):
 //   a = (22p - 64k +- 2 sqrt(169p^2 - 608kp + 256k^2)) / (3p^2),  v = ap/4 + 4 - 8k/p,
@@ -96,6 +101,16 @@ S veldep_fixed_v(const S& a, const S& c, long p) {
 }
 
 }  // namespace paper
+
+// Not as printed: the family of eq. 5 is theta* in (fixed_point_theta_min, 1/2), where
+// fixed_point_theta_min = max(0, 1/2 - 2p eps/(1 + eps)) (proofs/fixed_point_family: for
+// smaller theta* the flight leaves the wall's collision zone; all of (0, 1/2) iff
+// eps >= 1/(4p - 1)). Exact in mpq_class.
+template <class S>
+S fixed_point_theta_min(const S& eps, long p) {
+  const S t = (1 - eps * (4 * p - 1)) / (2 * (eps + 1));
+  return t > 0 ? t : S(0);
+}
 
 // ---------------------------------------------------------------------------------------
 // Derived here (see tests/test_periodic.cpp): a velocity-dependent fixed point needs BOTH

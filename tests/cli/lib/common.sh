@@ -130,7 +130,7 @@ absent() {
 # empty_dir NAME DIR: DIR holds nothing (no file, no hidden file).
 empty_dir() {
   local left
-  left=$(ls -A "$2")
+  left=$(ls -A "$2" 2>&1) || true
   [[ -z $left ]] || fail "$1" "left behind in $2: $left"
   return 0
 }

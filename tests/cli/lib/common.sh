@@ -20,9 +20,9 @@
 # as the last command of a function under `set -e`.
 
 CLI_NAME=$(basename "$0" .sh)
-BOUNCER=${1:?usage: bash SCRIPT.sh <bouncer-binary> <source-dir>}
+BOUNCER=${1:?usage: bash $CLI_NAME.sh <bouncer-binary> <source-dir>}
 # shellcheck disable=SC2034  # SRC is for the scripts that source this file
-SRC=${2:?usage: bash SCRIPT.sh <bouncer-binary> <source-dir>}
+SRC=${2:?usage: bash $CLI_NAME.sh <bouncer-binary> <source-dir>}
 [[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
 TMP=$(mktemp -d)
 CLI_ON_EXIT=()

@@ -8,21 +8,12 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/periodic.hpp"
+#include "test_support.hpp"
 
 using namespace bouncer;
+using bouncer::test_support::spec;
 
 namespace {
-
-ModelSpec spec(Law law, const std::string& a, const std::string& eps = "1", const std::string& c = "1000") {
-  ModelSpec m;
-  m.law = law;
-  m.a = parse_decimal("a", a);
-  if (law == Law::constant) m.eps = parse_decimal("eps", eps);
-  m.c = parse_decimal("c", c);
-  m.wall = parse_wall("wall", "triangle");
-  validate(m);
-  return m;
-}
 
 Classification run(const ModelSpec& m, double theta, double v, ClassifyOptions o = {}) {
   const ImpactMap<double> map(make_model<double>(m, 53));

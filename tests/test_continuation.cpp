@@ -25,21 +25,12 @@
 #include <cmath>
 
 #include "bouncer/analysis/continuation.hpp"
+#include "test_support.hpp"
 
 using namespace bouncer;
+using bouncer::test_support::spec;
 
 namespace {
-
-ModelSpec spec(Law law, const std::string& a, const std::string& eps = "1", const std::string& c = "1000") {
-  ModelSpec m;
-  m.law = law;
-  m.a = parse_decimal("a", a);
-  if (law == Law::constant) m.eps = parse_decimal("eps", eps);
-  m.c = parse_decimal("c", c);
-  m.wall = parse_wall("wall", "triangle");
-  validate(m);
-  return m;
-}
 
 double wrapped(double d) { return std::fabs(d - std::floor(d + 0.5)); }
 

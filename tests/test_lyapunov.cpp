@@ -13,23 +13,14 @@
 
 #include "bouncer/analysis/lyapunov.hpp"
 #include "bouncer/analysis/periodic.hpp"
+#include "test_support.hpp"
 
 using namespace bouncer;
+using bouncer::test_support::spec;
 
 namespace {
 
 constexpr long kBits = 256;
-
-ModelSpec spec(Law law, const std::string& a, const std::string& eps = "1", const std::string& c = "1000") {
-  ModelSpec m;
-  m.law = law;
-  m.a = parse_decimal("a", a);
-  if (law == Law::constant) m.eps = parse_decimal("eps", eps);
-  m.c = parse_decimal("c", c);
-  m.wall = parse_wall("wall", "triangle");
-  validate(m);
-  return m;
-}
 
 Mpfr mp(const std::string& s) { return ScalarTraits<Mpfr>::from_decimal(s, kBits); }
 

@@ -19,8 +19,10 @@
 #include <cmath>
 
 #include "bouncer/analysis/periodic.hpp"
+#include "test_support.hpp"
 
 using namespace bouncer;
+using bouncer::test_support::spec;
 
 namespace {
 
@@ -29,17 +31,6 @@ using Tr = ScalarTraits<Mpfr>;
 
 Mpfr mp(const std::string& s) { return Tr::from_decimal(s, kBits); }
 Mpfr mp(long n) { return Tr::from_int(n, kBits); }
-
-ModelSpec spec(Law law, const std::string& a, const std::string& eps = "1", const std::string& c = "1000") {
-  ModelSpec m;
-  m.law = law;
-  m.a = parse_decimal("a", a);
-  if (law == Law::constant) m.eps = parse_decimal("eps", eps);
-  m.c = parse_decimal("c", c);
-  m.wall = parse_wall("wall", "triangle");
-  validate(m);
-  return m;
-}
 
 // The model whose a is exactly the Mpfr value `a` (its round-trip decimal).
 ModelSpec spec_mp(Law law, const Mpfr& a, const std::string& eps = "1", const std::string& c = "1000") {

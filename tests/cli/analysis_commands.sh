@@ -8,44 +8,32 @@
 #   - bad input exits 2 with one line on stderr naming the option, nothing on stdout.
 # Usage: bash analysis_commands.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash analysis_commands.sh <bouncer-binary> <source-dir>}
-[[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-
-# json NAME FILTER EXPECTED FILE: jq -r FILTER FILE must print EXPECTED.
-check() {
-  local got
-  got=$(jq -r "$2" "$4" 2>&1) || { fail "$1" "jq failed on $4: $got"; return; }
-  [[ $got == "$3" ]] || fail "$1" "$2 = '$got', expected '$3'"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 
 # --- periodic -------------------------------------------------------------------------
 "$BOUNCER" periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,11.5 --json >"$TMP/p.json"
-check periodic.parse '.converged' true "$TMP/p.json"
-check periodic.fields '[has("points"), has("multipliers"), has("provenance")] | all' true "$TMP/p.json"
-check periodic.command '.provenance.command' periodic "$TMP/p.json"
-check periodic.v '(.points[0][1] | tonumber) - 12 | fabs < 1e-12' true "$TMP/p.json"
-check periodic.mu1 '(.multipliers[0][0] | tonumber) - 1 | fabs < 1e-12' true "$TMP/p.json"
-check periodic.mu2 '(.multipliers[1][0] | tonumber) - 0.25 | fabs < 1e-12' true "$TMP/p.json"
+jq_is periodic.parse '.converged' true "$TMP/p.json"
+jq_is periodic.fields '[has("points"), has("multipliers"), has("provenance")] | all' true "$TMP/p.json"
+jq_is periodic.command '.provenance.command' periodic "$TMP/p.json"
+jq_is periodic.v '(.points[0][1] | tonumber) - 12 | fabs < 1e-12' true "$TMP/p.json"
+jq_is periodic.mu1 '(.multipliers[0][0] | tonumber) - 1 | fabs < 1e-12' true "$TMP/p.json"
+jq_is periodic.mu2 '(.multipliers[1][0] | tonumber) - 0.25 | fabs < 1e-12' true "$TMP/p.json"
 # Points round-trip: the MPFR run prints more digits than a double holds.
 "$BOUNCER" periodic --model constant --a 19 --eps 0.9 --period 2 --precision mpfr:200 --json >"$TMP/p2.json"
-check periodic.mpfr '.converged and (.points | length) == 2 and .complex_pair' true "$TMP/p2.json"
-check periodic.digits '(.points[0][0] | length) > 40' true "$TMP/p2.json"
+jq_is periodic.mpfr '.converged and (.points | length) == 2 and .complex_pair' true "$TMP/p2.json"
+jq_is periodic.digits '(.points[0][0] | length) > 40' true "$TMP/p2.json"
 # long double and quad: the eq. 5 fixed point (v* = 12, multipliers 1 and eps^2 = 1/4) and
 # the classification of a sticking orbit (period 3, see test_classify) in every point type.
 for prec in long quad; do
   "$BOUNCER" periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,11.5 --precision $prec --json >"$TMP/p_$prec.json"
-  check periodic.$prec.v '(.points[0][1] | tonumber) - 12 | fabs < 1e-15' true "$TMP/p_$prec.json"
-  check periodic.$prec.mu2 '(.multipliers[1][0] | tonumber) - 0.25 | fabs < 1e-15' true "$TMP/p_$prec.json"
-  check periodic.$prec.precision '.provenance.precision' $prec "$TMP/p_$prec.json"
+  jq_is periodic.$prec.v '(.points[0][1] | tonumber) - 12 | fabs < 1e-15' true "$TMP/p_$prec.json"
+  jq_is periodic.$prec.mu2 '(.multipliers[1][0] | tonumber) - 0.25 | fabs < 1e-15' true "$TMP/p_$prec.json"
+  jq_is periodic.$prec.precision '.provenance.precision' $prec "$TMP/p_$prec.json"
   "$BOUNCER" classify --model constant --a 20 --eps 0.3 --theta 0.3 --v 9 --precision $prec --json >"$TMP/c_$prec.json"
-  check classify.$prec '[.class, .period] | @text' '["sticking",3]' "$TMP/c_$prec.json"
+  jq_is classify.$prec '[.class, .period] | @text' '["sticking",3]' "$TMP/c_$prec.json"
 done
-check periodic.modulus '(.multiplier_moduli[0] - 0.81) | fabs < 1e-12' true "$TMP/p2.json"
-check periodic.bits '.provenance.bits' 200 "$TMP/p2.json"
+jq_is periodic.modulus '(.multiplier_moduli[0] - 0.81) | fabs < 1e-12' true "$TMP/p2.json"
+jq_is periodic.bits '.provenance.bits' 200 "$TMP/p2.json"
 # Text output names the same fields.
 "$BOUNCER" periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,11.5 >"$TMP/p.txt"
 grep -q '^converged: true$' "$TMP/p.txt" || fail periodic.text "no 'converged: true' line"
@@ -54,30 +42,30 @@ grep -q '^# bouncer ' "$TMP/p.txt" || fail periodic.text "no provenance comment 
 # --- lyapunov -------------------------------------------------------------------------
 "$BOUNCER" lyapunov --model constant --a 30 --eps 0.3 --theta 0.3 --v 9 --transient 10 --steps 100 --json \
   >"$TMP/l1.json" 2>/dev/null
-check lyapunov.sticking '.lambda' -inf "$TMP/l1.json"
-check lyapunov.contracted '.contracted' true "$TMP/l1.json"
+jq_is lyapunov.sticking '.lambda' -inf "$TMP/l1.json"
+jq_is lyapunov.contracted '.contracted' true "$TMP/l1.json"
 "$BOUNCER" lyapunov --model constant --a 19 --eps 0.9 --theta 0.17 --v 14.1 --transient 500 --steps 4000 --json \
   >"$TMP/l2.json"
-check lyapunov.fields '[has("lambda"), has("stderr"), has("steps")] | all' true "$TMP/l2.json"
-check lyapunov.logeps '(.lambda - (0.9 | log)) | fabs < 2e-3' true "$TMP/l2.json"
-check lyapunov.steps '.steps' 4000 "$TMP/l2.json"
+jq_is lyapunov.fields '[has("lambda"), has("stderr"), has("steps")] | all' true "$TMP/l2.json"
+jq_is lyapunov.logeps '(.lambda - (0.9 | log)) | fabs < 2e-3' true "$TMP/l2.json"
+jq_is lyapunov.steps '.steps' 4000 "$TMP/l2.json"
 
 # --- classify -------------------------------------------------------------------------
 "$BOUNCER" classify --model constant --a 24 --eps 0.5 --theta 0.3 --v 11.5 --json >"$TMP/c1.json"
-check classify.fixed '.class + " " + (.period | tostring)' "fixed 1" "$TMP/c1.json"
+jq_is classify.fixed '.class + " " + (.period | tostring)' "fixed 1" "$TMP/c1.json"
 "$BOUNCER" classify --model constant --a 24 --eps 0.1 --theta 0.5 --v 4 --json >"$TMP/c2.json"
-check classify.sticking '.class + " " + (.period | tostring)' "sticking 1" "$TMP/c2.json"
+jq_is classify.sticking '.class + " " + (.period | tostring)' "sticking 1" "$TMP/c2.json"
 "$BOUNCER" classify --model elastic --a 16 --theta 0.25 --v 8 --transient 1000 --steps 200 --json >"$TMP/c3.json"
-check classify.unbounded '.class' unbounded "$TMP/c3.json"
+jq_is classify.unbounded '.class' unbounded "$TMP/c3.json"
 "$BOUNCER" classify --model constant --a 19 --eps 0.9 --theta 0.17 --v 14.1 --precision mpfr:128 --json >"$TMP/c4.json"
-check classify.periodic '.class + " " + (.period | tostring)' "periodic 2" "$TMP/c4.json"
+jq_is classify.periodic '.class + " " + (.period | tostring)' "periodic 2" "$TMP/c4.json"
 # A chaotic window re-checked much later (eps = 0.96, a = 28: period 2 from step 10155, see
 # test_classify TransientChaosIsRecheckedAndSettles); --recheck-factor 0 keeps the window's label.
 "$BOUNCER" classify --model constant --a 28 --eps 0.96 --theta 0.5 --v 4 --json >"$TMP/c6.json"
-check classify.transient_chaos '.class + " " + .settled_class + " " + (.period | tostring)' "transient_chaos periodic 2" "$TMP/c6.json"
-check classify.settled_at '.settled_at > 5500' true "$TMP/c6.json"
+jq_is classify.transient_chaos '.class + " " + .settled_class + " " + (.period | tostring)' "transient_chaos periodic 2" "$TMP/c6.json"
+jq_is classify.settled_at '.settled_at > 5500' true "$TMP/c6.json"
 "$BOUNCER" classify --model constant --a 28 --eps 0.96 --theta 0.5 --v 4 --recheck-factor 0 --json >"$TMP/c7.json"
-check classify.recheck_off '.class' chaotic "$TMP/c7.json"
+jq_is classify.recheck_off '.class' chaotic "$TMP/c7.json"
 # basin uses the same rule, point by point (each basin label is classify's at that point),
 # and --recheck-factor 0 brings back the window-only labels there too.
 "$BOUNCER" basin --model constant --a 28 --eps 0.96 --v-range 4:40 --grid 4x3 --quiet >"$TMP/b.csv"
@@ -89,7 +77,7 @@ while IFS=, read -r theta v cls period; do
   [[ $got == "$cls,$period" ]] || fail basin.same_rule "($theta, $v): basin $cls,$period, classify $got"
 done < <(grep -v '^#' "$TMP/b.csv" | tail -n +2 | grep -E 'transient_chaos|chaotic' | head -4)
 # Accelerator mode: the exact orbit v_n = 8(n + 1), theta = 1/4 of a = 16.
-check classify.accelerator '[.growth_kind, .accelerator_period, .phase_branches] | @text' '["accelerator",1,1]' "$TMP/c3.json"
+jq_is classify.accelerator '[.growth_kind, .accelerator_period, .phase_branches] | @text' '["accelerator",1,1]' "$TMP/c3.json"
 # Scene file = command line.
 cat >"$TMP/scene.toml" <<'TOML'
 command = "classify"
@@ -100,45 +88,31 @@ theta = "0.3"
 v = "11.5"
 TOML
 "$BOUNCER" classify --scene "$TMP/scene.toml" --json >"$TMP/c5.json"
-check classify.scene '.class + " " + .evidence' "$(jq -r '.class + " " + .evidence' "$TMP/c1.json")" "$TMP/c5.json"
+jq_is classify.scene '.class + " " + .evidence' "$(jq -r '.class + " " + .evidence' "$TMP/c1.json")" "$TMP/c5.json"
 
 # --- bad input: exit 2, one line naming the option, nothing on stdout ------------------
-bad() {
-  local name=$1 regex=$2
-  shift 2
-  local rc=0
-  "$BOUNCER" "$@" >"$TMP/out" 2>"$TMP/err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "$name" "exit status $rc, expected 2 (bouncer $*)"
-  [[ $(wc -l <"$TMP/err") -eq 1 ]] || fail "$name" "expected one line on stderr: $(cat "$TMP/err")"
-  grep -qE -- "$regex" "$TMP/err" || fail "$name" "stderr does not match /$regex/: $(cat "$TMP/err")"
-  [[ ! -s $TMP/out ]] || fail "$name" "stdout not empty"
-}
-bad periodic.noperiod 'period' periodic --model constant --a 24 --eps 0.5
-bad periodic.period0 'period.*\[1, 100\]' periodic --model constant --a 24 --eps 0.5 --period 0
-bad periodic.guess 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3
-bad periodic.guessbelow 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,1
-bad periodic.precision 'precision.*allowed: double, long, dd, quad, mpfr:BITS' periodic --model constant --a 24 --eps 0.5 --period 1 --precision interval:64
-bad lyapunov.theta 'theta' lyapunov --model elastic --a 20 --theta 1.5 --v 9
-bad lyapunov.steps 'steps' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --steps 0
-bad lyapunov.precision 'precision.*allowed' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --precision interval:128
-bad lyapunov.a ' a: |^bouncer: a' lyapunov --model elastic --a -1 --theta 0.3 --v 9
-bad classify.v 'v' classify --model elastic --a 20 --theta 0.3
-bad classify.maxperiod 'max-period' classify --model elastic --a 20 --theta 0.3 --v 9 --steps 100 --max-period 64
-bad classify.transient 'transient.*\[0, 10000000000\]' classify --model elastic --a 20 --theta 0.3 --v 9 --transient -1
+refused -E periodic.noperiod 'period' periodic --model constant --a 24 --eps 0.5
+refused -E periodic.period0 'period.*\[1, 100\]' periodic --model constant --a 24 --eps 0.5 --period 0
+refused -E periodic.guess 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3
+refused -E periodic.guessbelow 'guess' periodic --model constant --a 24 --eps 0.5 --period 1 --guess 0.3,1
+refused -E periodic.precision 'precision.*allowed: double, long, dd, quad, mpfr:BITS' periodic --model constant --a 24 --eps 0.5 --period 1 --precision interval:64
+refused -E lyapunov.theta 'theta' lyapunov --model elastic --a 20 --theta 1.5 --v 9
+refused -E lyapunov.steps 'steps' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --steps 0
+refused -E lyapunov.precision 'precision.*allowed' lyapunov --model elastic --a 20 --theta 0.3 --v 9 --precision interval:128
+refused -E lyapunov.a ' a: |^bouncer: a' lyapunov --model elastic --a -1 --theta 0.3 --v 9
+refused -E classify.v 'v' classify --model elastic --a 20 --theta 0.3
+refused -E classify.maxperiod 'max-period' classify --model elastic --a 20 --theta 0.3 --v 9 --steps 100 --max-period 64
+refused -E classify.transient 'transient.*\[0, 10000000000\]' classify --model elastic --a 20 --theta 0.3 --v 9 --transient -1
 # classify, basin and scan share one validation of the classifier window: the same errors,
 # and a short window without --max-period takes max-period = steps/2 instead of failing.
-bad basin.maxperiod 'max-period.*steps/2 \(50\)' basin --model constant --a 24 --eps 0.5 --v-range 4:12 --grid 4x4 --steps 100 --max-period 60
-bad scan.transient 'transient' scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 2x2 --transient -1
+refused -E basin.maxperiod 'max-period.*steps/2 \(50\)' basin --model constant --a 24 --eps 0.5 --v-range 4:12 --grid 4x4 --steps 100 --max-period 60
+refused -E scan.transient 'transient' scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 2x2 --transient -1
 "$BOUNCER" classify --model constant --a 24 --eps 0.5 --theta 0.3 --v 11.5 --steps 100 --json >"$TMP/cshort.json" 2>&1 &&
   python3 -c 'import json,sys; j=json.load(open(sys.argv[1])); assert j["max_period"] == 50 and j["class"] == "fixed", j' "$TMP/cshort.json" ||
   fail classify.short "--steps 100 without --max-period: $(head -c 300 "$TMP/cshort.json")"
-bad classify.precision 'precision.*allowed' classify --model elastic --a 20 --theta 0.3 --v 9 --precision interval:64
-bad classify.eps 'eps' classify --model elastic --a 20 --eps 0.5 --theta 0.3 --v 9
-bad classify.recheck 'recheck-factor.*\[0, 1000\]' classify --model elastic --a 20 --theta 0.3 --v 9 --recheck-factor -1
-bad basin.recheck 'recheck-factor' basin --model constant --a 24 --eps 0.5 --v-range 4:12 --grid 4x4 --recheck-factor x
+refused -E classify.precision 'precision.*allowed' classify --model elastic --a 20 --theta 0.3 --v 9 --precision interval:64
+refused -E classify.eps 'eps' classify --model elastic --a 20 --eps 0.5 --theta 0.3 --v 9
+refused -E classify.recheck 'recheck-factor.*\[0, 1000\]' classify --model elastic --a 20 --theta 0.3 --v 9 --recheck-factor -1
+refused -E basin.recheck 'recheck-factor' basin --model constant --a 24 --eps 0.5 --v-range 4:12 --grid 4x4 --recheck-factor x
 
-if [[ $failures -ne 0 ]]; then
-  echo "analysis_commands: $failures failure(s)" >&2
-  exit 1
-fi
-echo "analysis_commands: all checks passed"
+finish

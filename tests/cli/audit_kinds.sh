@@ -8,21 +8,16 @@
 #   * a PNG and a proof certificate are refused with exit 2, naming what to audit instead.
 # Usage: bash audit_kinds.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash audit_kinds.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 cd "$TMP"
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 
-# audited FILE: exit 0 and IDENTICAL; then the same file with one digit of its last
-# number-bearing data line changed must be DIFFERENT (exit 1).
-audited() {
+# audited_and_tampered FILE: exit 0 and IDENTICAL; then the same file with one digit of its
+# last number-bearing data line changed must be DIFFERENT (exit 1).
+audited_and_tampered() {
   local f=$1 rc=0
-  "$BOUNCER" audit "$f" >"$f.audit" 2>&1 || rc=$?
-  [[ $rc -eq 0 ]] && grep -q "IDENTICAL" "$f.audit" || fail "$f" "exit $rc: $(tail -c 300 "$f.audit")"
+  audited "$f" "$f"
   # Tamper: change the last digit 1-8 on the last line (outside the provenance) that has one.
-  local ext=${f##*.} tampered="tampered-$f"
+  local tampered="tampered-$f"
   awk '{ lines[NR] = $0 }
        END {
          for (i = NR; i >= 1 && !done; --i)
@@ -38,7 +33,6 @@ audited() {
          for (i = 1; i <= NR; ++i) print lines[i]
        }' "$f" >"$tampered"
   if cmp -s "$f" "$tampered"; then fail "$f" "found no digit to change"; return; fi
-  rc=0
   "$BOUNCER" audit "$tampered" >"$tampered.audit" 2>&1 || rc=$?
   [[ $rc -eq 1 ]] && grep -q "DIFFERENT" "$tampered.audit" ||
     fail "$f" "a changed digit was not found (exit $rc): $(tail -c 300 "$tampered.audit")"
@@ -63,22 +57,12 @@ S=(--model constant --eps 0.8 --a 24 --theta 0.1 --v 10)
 "$BOUNCER" tongues --p-max 3 --samples 20 --out tongues
 for f in traj.json traj.csv tongues.json tongues.csv orbit.csv orbit.json sticking.txt sticking.json cperiodic.json periodic.txt periodic.json lyapunov.json \
   classify.json sweep.json basin.json basin.csv bif.json scan.json curve.csv; do
-  audited "$f"
+  audited_and_tampered "$f"
 done
 
 # Refused up front: exit 2, one line naming what to audit or rerun instead.
-refused() {
-  local f=$1 pattern=$2 rc=0
-  "$BOUNCER" audit "$f" >out 2>err || rc=$?
-  [[ $rc -eq 2 && $(wc -l <err) -eq 1 && ! -s out ]] || fail "$f" "exit $rc, expected 2 and one line: $(head -c 300 err)"
-  grep -q -- "$pattern" err || fail "$f" "message lacks '$pattern': $(head -c 300 err)"
-}
-for pic in basin.png basin.pdf basin.svg; do refused "$pic" "audit the PREFIX.json or PREFIX.csv"; done
+for pic in basin.png basin.pdf basin.svg; do refused "$pic" "audit the PREFIX.json or PREFIX.csv" audit "$pic"; done
 printf '{"proof": "elastic_period2", "claim": "eq. (33)", "verdict": "proved"}\n' >certificate.json
-refused certificate.json "proof_elastic_period2 --json"
+refused certificate.json "proof_elastic_period2 --json" audit certificate.json
 
-if ((failures > 0)); then
-  echo "$failures audit-kind check(s) failed" >&2
-  exit 1
-fi
-echo "audit_kinds: every result kind reproduces and a changed digit is found; pictures and certificates refused"
+finish "audit_kinds: every result kind reproduces and a changed digit is found; pictures and certificates refused"

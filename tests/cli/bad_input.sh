@@ -6,15 +6,9 @@
 #   - print nothing on stdout and leave no output file (nor a *.partial) behind.
 # Usage: bash bad_input.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash bad_input.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash bad_input.sh <bouncer-binary> <source-dir>}
-[[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 
-failures=0
 cases=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 
 # bad NAME LINE_REGEX ARGS... : run `bouncer ARGS... --out TMP/o/out.csv`, expect rejection.
 # LINE_REGEX (grep -E) must match the single stderr line; it names the option and the range.
@@ -24,26 +18,8 @@ bad() {
   cases=$((cases + 1))
   rm -rf "$TMP/o"
   mkdir "$TMP/o"
-  local rc=0
-  "$BOUNCER" "$@" --out "$TMP/o/out.csv" >"$TMP/stdout" 2>"$TMP/stderr" || rc=$?
-  if [[ $rc -ne 2 ]]; then
-    fail "$name" "exit status $rc, expected 2 (command: bouncer $*; stderr: $(head -c 300 "$TMP/stderr"))"
-  fi
-  local nlines
-  nlines=$(wc -l <"$TMP/stderr")
-  if [[ $nlines -ne 1 || $(wc -c <"$TMP/stderr") -ne $(head -n 1 "$TMP/stderr" | wc -c) ]]; then
-    fail "$name" "expected exactly one newline-terminated line on stderr, got $nlines: $(head -c 500 "$TMP/stderr")"
-  elif ! grep -qE -- "$regex" "$TMP/stderr"; then
-    fail "$name" "stderr line does not name the option and allowed range (want /$regex/): $(cat "$TMP/stderr")"
-  fi
-  if [[ -s $TMP/stdout ]]; then
-    fail "$name" "something was printed on stdout: $(head -c 300 "$TMP/stdout")"
-  fi
-  local left
-  left=$(ls -A "$TMP/o")
-  if [[ -n $left ]]; then
-    fail "$name" "output left behind in the --out directory: $left"
-  fi
+  refused -E "$name" "$regex" "$@" --out "$TMP/o/out.csv"
+  empty_dir "$name" "$TMP/o"
 }
 
 M=(orbit --model constant --a 24 --eps 0.5)  # a valid model
@@ -53,8 +29,7 @@ IC=(--theta 0.25 --v 12)                      # a valid initial condition
 rc=0
 "$BOUNCER" "${M[@]}" "${IC[@]}" --steps 1 --out "$TMP/ok.csv" >"$TMP/stdout" 2>"$TMP/stderr" || rc=$?
 if [[ $rc -ne 0 || ! -s $TMP/ok.csv ]]; then
-  echo "FAIL [baseline]: the valid command failed (status $rc): $(cat "$TMP/stderr")" >&2
-  exit 1
+  die "baseline: the valid command failed (status $rc): $(cat "$TMP/stderr")"
 fi
 
 # --- gravity a > 0 (and <= 1e9)
@@ -169,8 +144,4 @@ good_scene | sed '/^model = /d' >"$S/nomodel.toml"
 bad "scene: missing model" '^bouncer: model: .*required' orbit --scene "$S/nomodel.toml"
 bad "scene: file does not exist" '^bouncer: scene: .*not found' orbit --scene "$S/does-not-exist.toml"
 
-if [[ $failures -ne 0 ]]; then
-  echo "bad_input.sh: $failures of $cases bad-input cases misbehaved" >&2
-  exit 1
-fi
-echo "bad_input.sh: all $cases bad-input cases rejected with status 2, one line, no output file"
+finish "bad_input.sh: all $cases bad-input cases rejected with status 2, one line, no output file"

@@ -27,25 +27,19 @@
 #     is certified at the exact double eps, as certify-sticking there.
 # Usage: bash certified_basin.sh <bouncer-binary> <source-dir>
 set -uo pipefail
-BOUNCER=${1:?usage: bash certified_basin.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 cd "$TMP"
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 
 common=(--model constant --transient 300 --steps 100 --quiet)
 "$BOUNCER" basin "${common[@]}" --eps 0.5 --a 24 --grid 12x8 --certify --out c24 || fail c24 "exit $?"
 "$BOUNCER" basin "${common[@]}" --eps 0.5 --a 24 --grid 12x8 --out d24 || fail d24 "exit $?"
 "$BOUNCER" basin "${common[@]}" --eps 0.5 --a 15 --grid 10x6 --certify --max-bits 128 --out c15 || fail c15 "exit $?"
-for p in c24 c15; do
-  for f in $p.csv $p.png $p.json $p-artefacts.png; do [[ -s $f ]] || fail "$p" "missing $f"; done
-done
+for p in c24 c15; do outputs "$p" "$p" csv png json; outputs "$p" "$p-artefacts" png; done
 
 # bifurcation --certify: two columns, a = 15.2 and 15.3 as doubles, from the release state.
 "$BOUNCER" bifurcation --model constant --eps 0.5 --range 15.2:15.3 --samples 2 --transient 600 --record 100 \
   --theta 0.5 --v 4 --certify --max-bits 256 --quiet --out bc || fail bc "exit $?"
-[[ -s bc.png && -s bc.json && -s bc.csv ]] || fail bc "missing outputs"
+outputs bc bc
 # Elastic, a = 18 (the nine-branch accelerator's parameter), 6 x 4 starts, 2000 steps.
 "$BOUNCER" basin --model elastic --a 18 --grid 6x4 --v-range 8:20 --transient 1500 --steps 500 --max-bits 64 \
   --certify --quiet --out el || fail el "exit $?"
@@ -215,12 +209,11 @@ PY
 
 # Bad input: exit 2, one line, no files.
 expect_bad() {
-  local name=$1 command=$2; shift 2
+  local name=$1
+  shift
   rm -f bad.*
-  out=$("$BOUNCER" "$command" "$@" --out bad 2>&1 >/dev/null); rc=$?
-  [[ $rc -eq 2 ]] || fail "$name" "exit $rc, want 2: $out"
-  [[ $(printf '%s\n' "$out" | wc -l) -eq 1 ]] || fail "$name" "not one line: $out"
-  ls bad.* >/dev/null 2>&1 && fail "$name" "left files"
+  refused "$name" "" "$@" --out bad
+  absent "$name" "bad.*"
 }
 expect_bad veldep-collapse basin --model veldep --a 25 --c 1000 --veldep-collapse on --grid 4x4 --certify
 expect_bad twin basin --model constant --eps 0.5 --a 24 --grid 4x4 --certify --precision mpfr:100
@@ -229,8 +222,7 @@ expect_bad bits-alone basin --model constant --eps 0.5 --a 24 --grid 4x4 --max-b
 expect_bad bif-carry bifurcation --model constant --eps 0.5 --range 15:16 --samples 2 --carry --certify
 expect_bad start-bits-typo certify-sticking --eps 0.5 --a 24 --start-bits doubel
 expect_bad scan-collapse scan --model veldep --veldep-collapse on --a-range 20:21 --c-range 100:200 --grid 2x2 --certify
-out=$("$BOUNCER" basin --model veldep --a 25 --c 1000 --veldep-collapse on --grid 4x4 --certify 2>&1 >/dev/null)
-[[ $out == *"collapse has no certified test"* ]] || fail collapse-reason "the refusal does not say why: $out"
+refused collapse-reason "collapse has no certified test" basin --model veldep --a 25 --c 1000 --veldep-collapse on --grid 4x4 --certify
 
 
 # Velocity-dependent restitution (no collapse): a = 25, c = 1000, the paper's "chaotic attractor
@@ -305,5 +297,4 @@ if len(rows("g1")) != 1 + 12 * 8:
 sys.exit(bad > 0)
 PY
 
-[[ $failures -eq 0 ]] && echo "certified_basin: all checks passed"
-exit $((failures > 0))
+finish

@@ -10,53 +10,29 @@
 #   bad input: exit 2, one line on stderr, and no output file (nor *.partial) left.
 # Usage: bash certify_commands.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash certify_commands.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash certify_commands.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed to check the outputs" >&2; exit 1; }
-
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-run() {  # run NAME ARGS... : stdout -> TMP/NAME.out; must exit 0
-  local name=$1 rc=0
-  shift
-  "$BOUNCER" "$@" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
-  if [[ $rc -ne 0 ]]; then
-    fail "$name" "exit status $rc (bouncer $*): $(head -c 500 "$TMP/$name.err")"
-    return 1
-  fi
-}
-check() {  # check NAME PYTHON-EXPR-ON-j : the JSON in TMP/NAME.out must satisfy it
-  local name=$1 expr=$2
-  python3 - "$TMP/$name.out" "$expr" <<'EOF' || fail "$name" "check failed: $expr"
-import json, sys
-j = json.load(open(sys.argv[1]))
-ok = eval(sys.argv[2], {"j": j})
-sys.exit(0 if ok else 1)
-EOF
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
 
 # --- certify-sticking: fields, analytic threshold -----------------------------------------
 if run above certify-sticking --eps 0.5 --a 64.5 --max-steps 200 --json; then
-  check above 'all(k in j for k in ["certified","period","bits","steps_checked","double_period","agrees","outcome","inputs","provenance","note"])'
-  check above 'j["certified"] is True and j["outcome"] == "sticks" and j["period"] == 1 and j["double_period"] == 1 and j["agrees"] is True'
-  check above 'j["inputs"]["a"] == "64.5" and j["inputs"]["eps"] == "0.5" and j["inputs"]["theta"] == "0.5" and j["inputs"]["v"] == "4"'
-  check above '"enclosed exactly" in j["note"] and j["provenance"]["command"] == "certify-sticking"'
-  check above 'isinstance(j["bits"], int) and j["bits"] >= 16 and j["steps_checked"] == 0'
+  json_holds above 'all(k in j for k in ["certified","period","bits","steps_checked","double_period","agrees","outcome","inputs","provenance","note"])'
+  json_holds above 'j["certified"] is True and j["outcome"] == "sticks" and j["period"] == 1 and j["double_period"] == 1 and j["agrees"] is True'
+  json_holds above 'j["inputs"]["a"] == "64.5" and j["inputs"]["eps"] == "0.5" and j["inputs"]["theta"] == "0.5" and j["inputs"]["v"] == "4"'
+  json_holds above '"enclosed exactly" in j["note"] and j["provenance"]["command"] == "certify-sticking"'
+  json_holds above 'isinstance(j["bits"], int) and j["bits"] >= 16 and j["steps_checked"] == 0'
 fi
 if run below certify-sticking --eps 0.5 --a 63.7 --max-steps 2000 --json; then
-  check below 'j["certified"] is True and j["period"] != 1 and j["steps_checked"] >= 1'
+  json_holds below 'j["certified"] is True and j["period"] != 1 and j["steps_checked"] >= 1'
 fi
 if run paper certify-sticking --eps 0.96 --a 28.82 --max-steps 5000 --json; then
-  check paper 'j["certified"] is True and j["outcome"] in ("never_sticks", "no_sticking_within_max_steps") and j["period"] is None'
-  check paper 'j["double_period"] is None and j["agrees"] is True'
+  json_holds paper 'j["certified"] is True and j["outcome"] in ("never_sticks", "no_sticking_within_max_steps") and j["period"] is None'
+  json_holds paper 'j["double_period"] is None and j["agrees"] is True'
 fi
 if run range certify-sticking --eps 0.5 --a-range 64:70 --max-steps 200 --max-depth 3 --json; then
-  check range 'j["certified"] is True and j["uncertified_length"] == "0"'
-  check range 'j["theorem"].startswith("Theorem (computer-assisted). For every a in [64, 70] except a set of total length L = 0,")'
-  check range 'all(p["period"] == 1 for p in j["pieces"]) and j["pieces"][0]["a_lo"] == "64" and j["pieces"][-1]["a_hi"] == "70"'
-  check range 'all(j["pieces"][i]["a_hi"] == j["pieces"][i+1]["a_lo"] for i in range(len(j["pieces"]) - 1))'
+  json_holds range 'j["certified"] is True and j["uncertified_length"] == "0"'
+  json_holds range 'j["theorem"].startswith("Theorem (computer-assisted). For every a in [64, 70] except a set of total length L = 0,")'
+  json_holds range 'all(p["period"] == 1 for p in j["pieces"]) and j["pieces"][0]["a_lo"] == "64" and j["pieces"][-1]["a_hi"] == "70"'
+  json_holds range 'all(j["pieces"][i]["a_hi"] == j["pieces"][i+1]["a_lo"] for i in range(len(j["pieces"]) - 1))'
 fi
 if run text certify-sticking --eps 0.5 --a 24 --max-steps 500; then
   grep -q '^# bouncer .* certify-sticking$' "$TMP/text.out" || fail text "no provenance line"
@@ -66,31 +42,31 @@ fi
 
 # --- sweep ----------------------------------------------------------------------------------
 if run sweep sweep --model constant --eps 0.96 --a 31 --theta 0.5 --v 4 --steps 1500 --out "$TMP/sw"; then
-  for ext in json csv png; do [[ -s "$TMP/sw.$ext" ]] || fail sweep "no $TMP/sw.$ext"; done
+  outputs sweep "$TMP/sw" json csv png
   cp "$TMP/sw.json" "$TMP/swj.out"
-  check swj '[r["precision"] for r in j["rows"]] == ["double","long","dd","quad","mpfr:64","mpfr:128","mpfr:256","mpfr:512","mpfr:1024","mpfr:2048","mpfr:4096"]'
-  check swj 'all(set(["precision","bits","leaves_enclosure_at","answer"]) <= set(r) for r in j["rows"]) and "implied_lyapunov" in j'
-  check swj 'j["reference"]["steps"] == 1500 and j["rows"][0]["leaves_enclosure_at"] is not None'
+  json_holds swj '[r["precision"] for r in j["rows"]] == ["double","long","dd","quad","mpfr:64","mpfr:128","mpfr:256","mpfr:512","mpfr:1024","mpfr:2048","mpfr:4096"]'
+  json_holds swj 'all(set(["precision","bits","leaves_enclosure_at","answer"]) <= set(r) for r in j["rows"]) and "implied_lyapunov" in j'
+  json_holds swj 'j["reference"]["steps"] == 1500 and j["rows"][0]["leaves_enclosure_at"] is not None'
   # more bits never leave earlier than fewer bits of the same kind (mpfr rows)
-  check swj 'all((a["leaves_enclosure_at"] or 10**9) <= (b["leaves_enclosure_at"] or 10**9) for a, b in zip(j["rows"][4:], j["rows"][5:]))'
+  json_holds swj 'all((a["leaves_enclosure_at"] or 10**9) <= (b["leaves_enclosure_at"] or 10**9) for a, b in zip(j["rows"][4:], j["rows"][5:]))'
   head -c 8 "$TMP/sw.png" | od -An -tx1 | grep -q '89 50 4e 47' || fail sweep "PREFIX.png is not a PNG"
   grep -q '^precision,bits,leaves_enclosure_at,answer$' "$TMP/sw.csv" || fail sweep "CSV header"
   [[ $(grep -c '^mpfr:' "$TMP/sw.csv") -eq 7 ]] || fail sweep "CSV rows"
 fi
 if run sweepj sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 100 --json; then
-  check sweepj 'len(j["rows"]) == 11 and all(r["answer"].startswith("sticks at step 4") for r in j["rows"])'
-  check sweepj 'all(r["class"] is None and r["lambda"] is None for r in j["rows"])'  # sticking: no classification
+  json_holds sweepj 'len(j["rows"]) == 11 and all(r["answer"].startswith("sticks at step 4") for r in j["rows"])'
+  json_holds sweepj 'all(r["class"] is None and r["lambda"] is None for r in j["rows"])'  # sticking: no classification
 fi
 # A chaotic elastic orbit: no sticking, no period, so each row classifies what its precision
 # sees. From 512 bits on the runs are the same orbit through all 1500 steps (they agree to
 # far below double), so they must agree on a chaotic class and on one positive exponent.
 if run sweepc sweep --model elastic --a 19 --theta 0.1 --v 5 --steps 1000 --json; then
-  check sweepc 'all(r["class"] is not None and "over 500 more steps: " + r["class"] in r["answer"] for r in j["rows"])'
-  check sweepc 'all(r["class"] == "chaotic" and r["lambda"] > 0.01 for r in j["rows"][7:])'
-  check sweepc 'max(r["lambda"] for r in j["rows"][7:]) - min(r["lambda"] for r in j["rows"][7:]) < 1e-9'
+  json_holds sweepc 'all(r["class"] is not None and "over 500 more steps: " + r["class"] in r["answer"] for r in j["rows"])'
+  json_holds sweepc 'all(r["class"] == "chaotic" and r["lambda"] > 0.01 for r in j["rows"][7:])'
+  json_holds sweepc 'max(r["lambda"] for r in j["rows"][7:]) - min(r["lambda"] for r in j["rows"][7:]) < 1e-9'
 fi
 if run sweepw sweep --model elastic --a 19 --theta 0.1 --v 5 --steps 300 --classify-steps 100 --json; then
-  check sweepw 'any(r["class"] for r in j["rows"]) and all("over 100 more steps: " in r["answer"] for r in j["rows"] if r["class"])'
+  json_holds sweepw 'any(r["class"] for r in j["rows"]) and all("over 100 more steps: " in r["answer"] for r in j["rows"] if r["class"])'
 fi
 
 # --- audit ----------------------------------------------------------------------------------
@@ -117,12 +93,10 @@ rc=$(audit_rc "$TMP/does_not_exist"); [[ $rc -eq 2 ]] || fail audit "missing fil
 
 # --- bad input: exit 2, no files --------------------------------------------------------------
 bad() {  # bad NAME ARGS... : must exit 2 with one stderr line and leave no TMP/bad_NAME*
-  local name=$1 rc=0
+  local name=$1
   shift
-  "$BOUNCER" "$@" >"$TMP/bad.out" 2>"$TMP/bad.err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "bad $name" "exit $rc, expected 2 (bouncer $*)"
-  [[ $(wc -l <"$TMP/bad.err") -eq 1 ]] || fail "bad $name" "stderr is not one line: $(cat "$TMP/bad.err")"
-  if compgen -G "$TMP/bad_$name*" >/dev/null; then fail "bad $name" "left a file: $(ls "$TMP"/bad_"$name"*)"; fi
+  refused "bad $name" "" "$@"
+  absent "bad $name" "$TMP/bad_$name*"
 }
 bad eps certify-sticking --eps 1.5 --a 24 --json --out "$TMP/bad_eps.json"
 bad law certify-sticking --model elastic --a 24 --out "$TMP/bad_law.json"
@@ -134,8 +108,4 @@ bad theta sweep --model constant --eps 0.5 --a 24 --theta 1.5 --v 4 --steps 10 -
 bad tol sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --tolerance -1 --out "$TMP/bad_tol"
 bad csteps sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --classify-steps 7 --out "$TMP/bad_csteps"
 
-if [[ $failures -ne 0 ]]; then
-  echo "certify_commands: $failures failure(s)" >&2
-  exit 1
-fi
-echo "certify_commands: all checks passed"
+finish

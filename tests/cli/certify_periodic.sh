@@ -8,45 +8,23 @@
 #   bad input: exit 2, one line on stderr, no output file left.
 # Usage: bash certify_periodic.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash certify_periodic.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash certify_periodic.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-run() {  # run NAME ARGS... : stdout -> TMP/NAME.out; must exit 0
-  local name=$1 rc=0
-  shift
-  "$BOUNCER" "$@" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
-  [[ $rc -eq 0 ]] || { fail "$name" "exit status $rc (bouncer $*): $(head -c 500 "$TMP/$name.err")"; return 1; }
-}
-check() {  # check NAME PYTHON-EXPR-ON-j
-  python3 - "$TMP/$1.out" "$2" <<'PY' || fail "$1" "check failed: $2"
-import json, sys
-from fractions import Fraction as F
-j = json.load(open(sys.argv[1]))
-def inside(x, e):  # exact rational x in the decimal enclosure e = [lo, hi]
-    return F(e[0]) <= F(x) <= F(e[1])
-sys.exit(0 if eval("(" + sys.argv[2] + ")", {"j": j, "inside": inside, "F": F}) else 1)
-PY
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 
 run iso certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.944,-0.345 --json &&
-  check iso 'j["certified"] and j["outcome"] == "isolated" and j["minimal_period"] == 2 and j["stability"] == "unstable"
+  json_holds iso 'j["certified"] and j["outcome"] == "isolated" and j["minimal_period"] == 2 and j["stability"] == "unstable"
              and inside("0.4096", j["multipliers"]["det"]) and len(j["points"]) == 2 and j["provenance"]["command"] == "certify-periodic"
              and F(j["krawczyk"]["box"][0][0]) < F(j["krawczyk"]["image"][0][0]) and F(j["krawczyk"]["image"][0][1]) < F(j["krawczyk"]["box"][0][1])'
 
 # Without --guess: Newton from a grid in the trapping region, then the same proof.
 run search certify-periodic --model constant --eps 0.8 --a 19 --period 2 --json &&
-  check search 'j["certified"] and j["inputs"]["guess"] is None and inside("0.4096", j["multipliers"]["det"])'
+  json_holds search 'j["certified"] and j["inputs"]["guess"] is None and inside("0.4096", j["multipliers"]["det"])'
 
 run fam certify-periodic --model constant --eps 0.5 --a 24 --period 1 --guess 0.3,12 --json &&
-  check fam 'j["outcome"] == "family" and inside(24, j["family"]["parameter_at_theta"]) and inside(12, j["points"][0]["v"])
+  json_holds fam 'j["outcome"] == "family" and inside(24, j["family"]["parameter_at_theta"]) and inside(12, j["points"][0]["v"])
              and inside(1, j["multipliers"]["mu1"]) and inside(F(1, 4), j["multipliers"]["mu2"]) and j["family"]["given_parameter"] == "inside"'
 
 run range certify-periodic --model constant --eps 0.8 --a-range 18.9:19.1 --period 2 --guess 0.944,-0.345 --json &&
-  check range 'j["certified"] and j["pieces"][0]["lo"] == "18.9" and j["pieces"][-1]["hi"] == "19.1"
+  json_holds range 'j["certified"] and j["pieces"][0]["lo"] == "18.9" and j["pieces"][-1]["hi"] == "19.1"
                and all(F(a["hi"]) == F(b["lo"]) for a, b in zip(j["pieces"], j["pieces"][1:])) and "Theorem" in j["theorem"]'
 
 # Text output: key: value lines with the provenance comment header.
@@ -57,7 +35,7 @@ run text certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0
 # --out, audit, scene.
 run out certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.944,-0.345 --json --out "$TMP/r.json"
 [[ -s "$TMP/r.json" && ! -s "$TMP/out.out" ]] || fail out "--out did not write the file (or also wrote stdout)"
-run audit audit "$TMP/r.json" && grep -q IDENTICAL "$TMP/audit.out" || fail audit "audit of a fresh result: $(cat "$TMP/audit.out")"
+audited audit "$TMP/r.json"
 # One more digit after the 17th of a number parses to the same double: audit compares the
 # text, so it must see the edit.
 python3 - "$TMP/r.json" "$TMP/r-edited.json" <<'PY'
@@ -80,23 +58,20 @@ a = "24"
 period = 1
 guess = ["0.3", "12"]
 TOML
-run scene certify-periodic --scene "$TMP/scene.toml" --json && check scene 'j["outcome"] == "family"'
+run scene certify-periodic --scene "$TMP/scene.toml" --json && json_holds scene 'j["outcome"] == "family"'
 
 # Accelerator ladders (--lift): a = 16 is one, a = 19 is not.
 run ladder certify-periodic --model elastic --a 16 --period 1 --guess 0.25,8 --lift 8 --json &&
-  check ladder 'j["certified"] and j["outcome"] == "accelerator_mode" and j["gain_per_impact"] == "8" and j["first_flight_periods"] == "1"'
+  json_holds ladder 'j["certified"] and j["outcome"] == "accelerator_mode" and j["gain_per_impact"] == "8" and j["first_flight_periods"] == "1"'
 run noladder certify-periodic --model elastic --a 19 --period 1 --guess 0.25,9.5 --lift 8 --json &&
-  check noladder 'not j["certified"] and j["outcome"] == "not_a_ladder" and "16/19" in j["statement"]'
+  json_holds noladder 'not j["certified"] and j["outcome"] == "not_a_ladder" and "16/19" in j["statement"]'
 
 # Bad input: exit 2, one line naming the option, no file.
 bad() {  # bad NAME EXPECTED-WORD ARGS...
-  local name=$1 word=$2 rc=0
+  local name=$1 word=$2
   shift 2
-  "$BOUNCER" certify-periodic "$@" --out "$TMP/bad.json" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "$name" "exit $rc, expected 2: $(cat "$TMP/$name.err")"
-  [[ $(wc -l <"$TMP/$name.err") -eq 1 ]] || fail "$name" "expected one line on stderr: $(cat "$TMP/$name.err")"
-  grep -q -- "$word" "$TMP/$name.err" || fail "$name" "message does not name $word: $(cat "$TMP/$name.err")"
-  [[ ! -e "$TMP/bad.json" && ! -e "$TMP/bad.json.partial" ]] || fail "$name" "left an output file"
+  refused "$name" "$word" certify-periodic "$@" --out "$TMP/bad.json"
+  absent "$name" "$TMP/bad.json" "$TMP/bad.json.partial"
 }
 bad no_period period --model constant --eps 0.5 --a 24
 bad period_range period --model constant --eps 0.5 --a 24 --period 0
@@ -114,8 +89,4 @@ bad lift_period lift --model elastic --a 16 --period 2 --guess 0.25,8 --lift 8
 bad lift_guess lift --model elastic --a 16 --period 1 --lift 8
 bad lift_value lift --model elastic --a 16 --period 1 --guess 0.25,8 --lift x
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "certify-periodic: all checks passed"
+finish

@@ -13,24 +13,12 @@
 #   - bad input exits 2 with one line on stderr naming the option, nothing on stdout.
 # Usage: bash continue_command.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash continue_command.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash continue_command.sh <bouncer-binary> <source-dir>}
-[[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-check() {
-  local got
-  got=$(jq -r "$2" "$4" 2>&1) || { fail "$1" "jq failed on $4: $got"; return; }
-  [[ $got == "$3" ]] || fail "$1" "$2 = '$got', expected '$3'"
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 
 # --- outputs and the closed-form sticking threshold ---------------------------------
 "$BOUNCER" continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 20:31 \
   --out "$TMP/st" >"$TMP/st.txt"
-for f in csv json png; do [[ -s $TMP/st.$f ]] || fail outputs "no $TMP/st.$f"; done
-[[ ! -e $TMP/st.csv.partial && ! -e $TMP/st.json.partial ]] || fail outputs "a .partial file is left"
+outputs outputs "$TMP/st" csv json png
 head -c 8 "$TMP/st.png" | od -An -c | grep -q 'P   N   G' || fail png "st.png is not a PNG"
 grep -q '^# bouncer ' "$TMP/st.csv" || fail csv "no provenance comment lines"
 # Header: the parameter first, then the documented columns; every row has as many cells.
@@ -39,18 +27,18 @@ header=$(awk '!/^#/ { print; exit }' "$TMP/st.csv")
 [[ $header == a,stability,mu1_re,mu1_im,mu1_abs,mu2_re,mu2_im,mu2_abs,events,knot_distance,* ]] ||
   fail csv.header "header is '$header'"
 ncol=$(awk -F, '{print NF}' <<<"$header")
-bad=$(grep -v '^#' "$TMP/st.csv" | tail -n +2 | awk -F, -v n="$ncol" 'NF != n || $1 !~ /^[0-9.e+-]+$/ {c++} END {print c+0}')
+bad=$(rows "$TMP/st.csv" | awk -F, -v n="$ncol" 'NF != n || $1 !~ /^[0-9.e+-]+$/ {c++} END {print c+0}')
 [[ $bad == 0 ]] || fail csv.rows "$bad rows do not parse"
-rows=$(grep -v '^#' "$TMP/st.csv" | tail -n +2 | wc -l)
-check json.points '.summary.points' "$rows" "$TMP/st.json"
-check json.command '.provenance.command' continue "$TMP/st.json"
-check json.fields '.summary | [has("start"), has("low"), has("high"), has("bifurcations")] | all' true "$TMP/st.json"
-check json.low.reason '.summary.low.reason' border "$TMP/st.json"
-check json.low.margin '.summary.low.margin' sticking_margin "$TMP/st.json"
+nrows=$(rows "$TMP/st.csv" | wc -l)
+jq_is json.points '.summary.points' "$nrows" "$TMP/st.json"
+jq_is json.command '.provenance.command' continue "$TMP/st.json"
+jq_is json.fields '.summary | [has("start"), has("low"), has("high"), has("bifurcations")] | all' true "$TMP/st.json"
+jq_is json.low.reason '.summary.low.reason' border "$TMP/st.json"
+jq_is json.low.margin '.summary.low.margin' sticking_margin "$TMP/st.json"
 # a* = 200/9 (hand-derived), to 1e-10 relative
-check json.low.astar '((.summary.low.param | tonumber) - 200/9 | fabs) < 200/9 * 1e-10' true "$TMP/st.json"
-check json.high.reason '.summary.high.reason' range_end "$TMP/st.json"
-check json.start.events '.summary.start.events' 'S0^' "$TMP/st.json"
+jq_is json.low.astar '((.summary.low.param | tonumber) - 200/9 | fabs) < 200/9 * 1e-10' true "$TMP/st.json"
+jq_is json.high.reason '.summary.high.reason' range_end "$TMP/st.json"
+jq_is json.start.events '.summary.start.events' 'S0^' "$TMP/st.json"
 grep -q '^low end:  period 1 ends at a\* = 22.22222222222' "$TMP/st.txt" || fail text "no located low end in the summary"
 # The rows are in increasing a and their sticking margin has the closed form
 # sqrt(8a)(1+eps)/2 - a(1-eps)/2 (its distance to 0 is reported).
@@ -61,14 +49,13 @@ awk -F, -v OFS=, '!/^#/ && NR > 0 && $1 != "a" {
 [[ ! -s $TMP/margins.txt ]] || fail csv.margin "$(head -3 "$TMP/margins.txt")"
 
 # --- audit reruns it ------------------------------------------------------------------
-"$BOUNCER" audit "$TMP/st.json" >"$TMP/audit.txt" || fail audit "$(cat "$TMP/audit.txt")"
-grep -q IDENTICAL "$TMP/audit.txt" || fail audit "not identical: $(cat "$TMP/audit.txt")"
+audited audit "$TMP/st.json"
 
 # --- JSON on stdout, and a scene ------------------------------------------------------
 "$BOUNCER" continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 24:33.5 --json >"$TMP/k.json"
-check knot.reason '.summary.high.reason' border "$TMP/k.json"
-check knot.astar '((.summary.high.param | tonumber) - 32 | fabs) < 32e-10' true "$TMP/k.json"
-check knot.knot '.summary.high.knot' 0 "$TMP/k.json"
+jq_is knot.reason '.summary.high.reason' border "$TMP/k.json"
+jq_is knot.astar '((.summary.high.param | tonumber) - 32 | fabs) < 32e-10' true "$TMP/k.json"
+jq_is knot.knot '.summary.high.knot' 0 "$TMP/k.json"
 # --quiet is accepted (as by every picture command) and changes nothing but the invocation.
 "$BOUNCER" continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 24:33.5 --json --quiet >"$TMP/kq.json" ||
   fail quiet "exit $?"
@@ -83,30 +70,25 @@ guess = ["0.5", "4"]
 range = "24:33.5"
 EOF
 "$BOUNCER" continue --scene "$TMP/scene.toml" --json >"$TMP/ks.json"
-check scene.same '.summary.high.param' "$(jq -r .summary.high.param "$TMP/k.json")" "$TMP/ks.json"
+jq_is scene.same '.summary.high.param' "$(jq -r .summary.high.param "$TMP/k.json")" "$TMP/ks.json"
 # The example scene of the README runs (shortened range: the test stays fast).
 "$BOUNCER" continue --scene "$SRC/data/scenes/continue-veldep-period7.toml" --json >"$TMP/v7.json"
-check scene.v7 '.summary.start.stability != null and .summary.period == 7' true "$TMP/v7.json"
+jq_is scene.v7 '.summary.start.stability != null and .summary.period == 7' true "$TMP/v7.json"
 
 # --- --certify: the certified one-sided bounds agree with the closed form -------------
 # Low end: the orbit is proved to exist on [c, ...], so a* <= c must hold for a* = 200/9;
 # high end: a* >= c for a* = 32. Both bounds within 1e-4 of a*.
 "$BOUNCER" continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 20:33.5 --certify \
   --json >"$TMP/cert.json"
-check certify.low '(.summary.low.certified.certified_to | tonumber) as $c | $c >= 200/9 and $c - 200/9 < 1e-4' true "$TMP/cert.json"
-check certify.high '(.summary.high.certified.certified_to | tonumber) as $c | $c <= 32 and 32 - $c < 1e-4' true "$TMP/cert.json"
-check certify.input '.provenance.inputs.certify' true "$TMP/cert.json"
+jq_is certify.low '(.summary.low.certified.certified_to | tonumber) as $c | $c >= 200/9 and $c - 200/9 < 1e-4' true "$TMP/cert.json"
+jq_is certify.high '(.summary.high.certified.certified_to | tonumber) as $c | $c <= 32 and 32 - $c < 1e-4' true "$TMP/cert.json"
+jq_is certify.input '.provenance.inputs.certify' true "$TMP/cert.json"
 
 # --- bad input: exit 2, one line naming the option, nothing on stdout -----------------
-bad_input() {
+bad_input() {  # bad_input NAME FIELD ARGS...
   local name=$1 field=$2
   shift 2
-  local status=0
-  "$BOUNCER" continue "$@" >"$TMP/bad.out" 2>"$TMP/bad.err" || status=$?
-  [[ $status == 2 ]] || fail "bad.$name" "exit status $status, expected 2"
-  [[ ! -s $TMP/bad.out ]] || fail "bad.$name" "wrote to stdout"
-  [[ $(wc -l <"$TMP/bad.err") == 1 ]] || fail "bad.$name" "stderr is not one line: $(cat "$TMP/bad.err")"
-  grep -q -- "$field" "$TMP/bad.err" || fail "bad.$name" "stderr does not name '$field': $(cat "$TMP/bad.err")"
+  refused "bad.$name" "$field" continue "$@"
 }
 OK=(--model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4)
 bad_input no-period period --model constant --eps 0.25 --a 26 --guess 0.5,4 --range 20:31
@@ -124,8 +106,4 @@ bad_input precision precision "${OK[@]}" --range 20:31 --precision interval:64
 bad_input step step "${OK[@]}" --range 20:31 --step 20
 [[ ! -e $TMP/none.csv ]] || fail bad.files "a file was written"
 
-if ((failures)); then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "continue_command: all checks passed"
+finish

@@ -8,13 +8,7 @@
 #   - `bouncer` without a subcommand is bad input (status 2, one line on stderr).
 # Usage: bash help.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash help.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash help.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 
 rc=0
 "$BOUNCER" --help >"$TMP/top" 2>&1 || rc=$?
@@ -52,13 +46,6 @@ rc=0
 [[ $rc -eq 0 ]] || fail "bouncer --version" "exit status $rc"
 grep -qE '[0-9]+\.[0-9]+\.[0-9]+.*commit' "$TMP/version" || fail "bouncer --version" "no version and commit: $(cat "$TMP/version")"
 
-rc=0
-"$BOUNCER" >"$TMP/none.out" 2>"$TMP/none.err" || rc=$?
-[[ $rc -eq 2 ]] || fail "bouncer (no subcommand)" "exit status $rc, expected 2"
-[[ $(wc -l <"$TMP/none.err") -eq 1 ]] || fail "bouncer (no subcommand)" "expected one line on stderr: $(cat "$TMP/none.err")"
+refused "bouncer (no subcommand)" ""
 
-if [[ $failures -ne 0 ]]; then
-  echo "help.sh: $failures failure(s)" >&2
-  exit 1
-fi
-echo "help.sh: help lists orbit and every orbit option; --version works"
+finish "help.sh: help lists orbit and every orbit option; --version works"

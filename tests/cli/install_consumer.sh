@@ -1,28 +1,25 @@
 #!/usr/bin/env bash
 # `cmake --install` the library, then build and run a separate project that uses it
 # through find_package(bouncer) (tests/consumer).
+# Usage: bash install_consumer.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-bouncer=$1
-src=$2
-build=$(cd "$(dirname "$bouncer")/.." && pwd)
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-cmake --install "$build" --prefix "$tmp/prefix" >/dev/null
-cmake -S "$src/tests/consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH="$tmp/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$tmp/consumer" >/dev/null
-"$tmp/consumer/consumer"  # prints the certified step; exits 1 if it is not a narrow enclosure of the fixed point
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+build=$(cd "$(dirname "$BOUNCER")/.." && pwd)
+cmake --install "$build" --prefix "$TMP/prefix" >/dev/null
+cmake -S "$SRC/tests/consumer" -B "$TMP/consumer" -DCMAKE_PREFIX_PATH="$TMP/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$TMP/consumer" >/dev/null
+"$TMP/consumer/consumer"  # prints the certified step; exits 1 if it is not a narrow enclosure of the fixed point
 # A sanitized install (BOUNCER_SANITIZE=ON, build-sanitize/): the consumer has no sanitizer
 # flags of its own; the exported target must carry -fsanitize to its compile and link lines,
 # or the sanitized libbouncer.a would not link. The consumer built, linked and ran above;
 # here: the flags came from the target, and the consumer runs with the ASan runtime.
-targets=$(cat "$tmp/prefix"/lib*/cmake/bouncer/bouncerTargets.cmake)
+targets=$(cat "$TMP/prefix"/lib*/cmake/bouncer/bouncerTargets.cmake)
 if [[ $targets == *-fsanitize=address,undefined* ]]; then
-  [[ $targets == *INTERFACE_LINK_OPTIONS*-fsanitize=address,undefined* ]] || {
-    echo "FAIL: the sanitized bouncer::bouncer has no -fsanitize link option for consumers" >&2; exit 1; }
-  grep -q fsanitize "$src/tests/consumer/CMakeLists.txt" && {
-    echo "FAIL: tests/consumer sets sanitizer flags itself" >&2; exit 1; }
-  [[ $(ldd "$tmp/consumer/consumer") == *libasan* ]] || {
-    echo "FAIL: the consumer of the sanitized install is not linked with the ASan runtime" >&2; exit 1; }
+  [[ $targets == *INTERFACE_LINK_OPTIONS*-fsanitize=address,undefined* ]] ||
+    die "the sanitized bouncer::bouncer has no -fsanitize link option for consumers"
+  grep -q fsanitize "$SRC/tests/consumer/CMakeLists.txt" && die "tests/consumer sets sanitizer flags itself"
+  [[ $(ldd "$TMP/consumer/consumer") == *libasan* ]] ||
+    die "the consumer of the sanitized install is not linked with the ASan runtime"
   echo "install_consumer: a consumer without sanitizer flags links and runs against the sanitized install"
 fi
 echo "install_consumer: find_package(bouncer) works"
@@ -30,15 +27,15 @@ echo "install_consumer: find_package(bouncer) works"
 # and imports from there alone, away from the source and build trees.
 if compgen -G "$build/python/bouncer/_core*.so" >/dev/null; then
   python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
-  core=$(find "$tmp/prefix" -name '_core*.so' -path '*/bouncer/*' | head -n 1)
-  [[ -n $core ]] || { echo "FAIL: cmake --install did not install the Python module" >&2; exit 1; }
+  core=$(find "$TMP/prefix" -name '_core*.so' -path '*/bouncer/*' | head -n 1)
+  [[ -n $core ]] || die "cmake --install did not install the Python module"
   site=$(dirname "$(dirname "$core")")
-  [[ $site == "$tmp/prefix"/lib/python3*/*-packages ]] || { echo "FAIL: the module went to $site" >&2; exit 1; }
-  (cd "$tmp" && PYTHONPATH="$site" "$python" -c "
+  [[ $site == "$TMP/prefix"/lib/python3*/*-packages ]] || die "the module went to $site"
+  (cd "$TMP" && PYTHONPATH="$site" "$python" -c "
 import bouncer
 assert bouncer.__file__.startswith('$site'), bouncer.__file__
 s = bouncer.step(model='constant', a='24', eps='0.5', theta='0.25', v='12')
 assert s['event'] == 'impact', s
-print('install_consumer: import bouncer works from', '$site'.replace('$tmp', '<prefix>'))
+print('install_consumer: import bouncer works from', '$site'.replace('$TMP', '<prefix>'))
 ")
 fi

@@ -9,14 +9,8 @@
 #   - bad input exits 2 with one line on stderr and no file.
 # Usage: bash lyapunov_curve.sh <bouncer-binary> <source-dir>
 set -uo pipefail
-BOUNCER=${1:?usage: bash lyapunov_curve.sh <bouncer-binary> <source-dir>}
-[[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed to check the outputs" >&2; exit 1; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-rows() { grep -v '^#' "$1"; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
 
 # Veldep, c = 1000 (the paper's fig. lyapunov_one model), short windows; 7 values over
 # [20, 30] (20 + 10k/6: most of them not exact decimals) x 2 starts.
@@ -29,17 +23,16 @@ C="lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 7 --ics 2 -
 T="lyapunov --model constant --eps 0.96 --vary a --range 28:28.5 --samples 2 --theta 0.5 --v 4 --transient 0 --steps 5000 --quiet"
 "$BOUNCER" $T --out "$TMP/t3" || fail curve.classify_opts "exit $?"
 "$BOUNCER" $T --recheck-factor 0 --out "$TMP/t4" || fail curve.classify_opts "exit $?"
-[[ $(rows "$TMP/t3.csv" | grep '^28,' | cut -d, -f7,8) == "transient_chaos,2" ]] || fail curve.recheck "a = 28: $(rows "$TMP/t3.csv" | grep '^28,')"
-[[ $(rows "$TMP/t4.csv" | grep '^28,' | cut -d, -f7,8) == "chaotic,0" ]] || fail curve.recheck_off "a = 28: $(rows "$TMP/t4.csv" | grep '^28,')"
-for ext in csv png json; do [[ -s $TMP/t1.$ext ]] || fail curve.files "missing t1.$ext"; done
-[[ -e $TMP/t1.tiles ]] && fail curve.files "t1.tiles left behind"
-cmp -s <(rows "$TMP/t1.csv") <(rows "$TMP/t2.csv") || fail curve.threads "CSV differs between 1 and 2 threads"
+[[ $(data "$TMP/t3.csv" | grep '^28,' | cut -d, -f7,8) == "transient_chaos,2" ]] || fail curve.recheck "a = 28: $(data "$TMP/t3.csv" | grep '^28,')"
+[[ $(data "$TMP/t4.csv" | grep '^28,' | cut -d, -f7,8) == "chaotic,0" ]] || fail curve.recheck_off "a = 28: $(data "$TMP/t4.csv" | grep '^28,')"
+outputs curve.files "$TMP/t1"
+cmp -s <(data "$TMP/t1.csv") <(data "$TMP/t2.csv") || fail curve.threads "CSV differs between 1 and 2 threads"
 
 # Shards of the same job, joined by merge, give the same rows.
 "$BOUNCER" $C --quiet --shard 0/2 --out "$TMP/sh" || fail curve.shard "shard 0 exit $?"
 "$BOUNCER" $C --quiet --shard 1/2 --out "$TMP/sh" || fail curve.shard "shard 1 exit $?"
 "$BOUNCER" merge "$TMP/sh" --quiet || fail curve.merge "exit $?"
-cmp -s <(rows "$TMP/t1.csv") <(rows "$TMP/sh.csv") || fail curve.merge "merged CSV differs"
+cmp -s <(data "$TMP/t1.csv") <(data "$TMP/sh.csv") || fail curve.merge "merged CSV differs"
 
 python3 - "$TMP/t1.csv" "$TMP/t1.json" <<'PY' || fail curve.content "rows or summary wrong"
 import json, sys
@@ -83,14 +76,11 @@ PY
 grep -q '^lambda: ' "$TMP/one.txt" || fail single.text "no 'lambda:' line"
 
 # Bad input: exit 2, one line on stderr, nothing written.
-bad() {
+bad() {  # bad NAME ARGS...
   local name=$1
   shift
-  local rc=0
-  "$BOUNCER" "$@" --quiet >"$TMP/bad.out" 2>"$TMP/bad.err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "bad.$name" "exit status $rc, expected 2 (bouncer $*)"
-  [[ $(wc -l <"$TMP/bad.err") -eq 1 ]] || fail "bad.$name" "expected one line on stderr, got: $(cat "$TMP/bad.err")"
-  ls "$TMP"/bad_out* >/dev/null 2>&1 && fail "bad.$name" "an output file was left behind"
+  refused "bad.$name" "" "$@" --quiet
+  absent "bad.$name" "$TMP/bad_out*"
   rm -rf "$TMP"/bad_out*
 }
 O="--out $TMP/bad_out"
@@ -111,8 +101,4 @@ bad recheck-without-vary lyapunov --model veldep --a 27 --c 1000 --theta 0.3 --v
 bad recheck-negative lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 3 --recheck-factor -1 $O
 bad interval lyapunov --model veldep --c 1000 --vary a --range 20:30 --samples 3 --precision interval:64 $O
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "lyapunov_curve: all checks passed"
+finish

@@ -6,17 +6,10 @@
 # be made (unshare -m needs root or CAP_SYS_ADMIN).
 # Usage: bash missing_font.sh <bouncer-binary> <source-dir>
 set -uo pipefail
-BOUNCER=${1:?usage: bash missing_font.sh <bouncer-binary> <source-dir>}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 FONT=/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf
-[[ -e $FONT ]] || { echo "FAIL: $FONT missing (apt-get install fonts-dejavu-core)"; exit 1; }
-if ! unshare -m true 2>/dev/null; then
-  echo "missing_font: SKIPPED: no private mount namespace here (unshare -m needs root or CAP_SYS_ADMIN)"
-  exit 77
-fi
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+[[ -e $FONT ]] || die "$FONT missing (apt-get install fonts-dejavu-core)"
+unshare -m true 2>/dev/null || skip "no private mount namespace here (unshare -m needs root or CAP_SYS_ADMIN)"
 BASIN=(basin --model constant --a 24 --eps 0.5 --v-range 2:20 --grid 24x16 --transient 100 --steps 64 --quiet)
 hidden() { unshare -m bash -c 'mount --bind /dev/null "$0" && exec "$@"' "$FONT" "$@"; }
 rc=0
@@ -30,8 +23,4 @@ rc=0
 hidden "$BOUNCER" sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 10 --out "$TMP/nofont_sw" >/dev/null 2>&1 || rc=$?
 [[ $rc -eq 1 ]] || fail nofont-sweep "exit $rc, expected 1"
 hidden "$BOUNCER" "${BASIN[@]}" >/dev/null 2>"$TMP/nofont2.err" || fail nofont-stdout "a run without --out failed: $(head -c 300 "$TMP/nofont2.err")"
-if [[ $failures -gt 0 ]]; then
-  echo "$failures failure(s)" >&2
-  exit 1
-fi
-echo "missing_font: all checks passed"
+finish

@@ -5,32 +5,25 @@
 # tools/setup installs Open MPI, so in CI it runs.
 # Usage: bash mpi_ranks.sh <bouncer-binary> <source-dir>
 set -uo pipefail
-BOUNCER=${1:?usage: bash mpi_ranks.sh <bouncer-binary> <source-dir>}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 if ! command -v mpirun >/dev/null || [[ $(ldd "$BOUNCER" 2>/dev/null) != *libmpi* ]]; then
-  echo "mpi_ranks: SKIPPED: the binary is not built with MPI, or mpirun is missing (apt-get install libopenmpi-dev openmpi-bin)"
-  exit 77
+  skip "the binary is not built with MPI, or mpirun is missing (apt-get install libopenmpi-dev openmpi-bin)"
 fi
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
 BA=(basin --model constant --a 24 --eps 0.5 --theta-range 0:1 --v-range 2:20 --transient 200 --steps 100 --grid 8x6 --quiet)
-"$BOUNCER" "${BA[@]}" --threads 1 --out "$TMP/one" || { echo "FAIL: the one-process basin: exit $?"; exit 1; }
+"$BOUNCER" "${BA[@]}" --threads 1 --out "$TMP/one" || die "the one-process basin: exit $?"
 # Under AddressSanitizer (build-sanitize/, `tools/setup sanitize`), LeakSanitizer reports
 # Open MPI's own allocations (MPI_Init/MPI_Finalize and its dlopen'ed components) as leaks,
 # with no bouncer frame; the components are unloaded before the report, so their frames
 # cannot even be named in a suppression file. The leak check is off for this one run only.
 mpi_env=()
-if grep -qa __asan_init "$BOUNCER"; then
+if asan_build; then
   echo "mpi_ranks: AddressSanitizer build: leak check off for the mpirun run (Open MPI's own allocations)"
   mpi_env=(env "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0")
 fi
 if ! "${mpi_env[@]}" mpirun --allow-run-as-root --oversubscribe -n 2 "$BOUNCER" "${BA[@]}" --threads 1 --out "$TMP/mpi" \
     >"$TMP/mpi.stdout" 2>"$TMP/mpi.stderr"; then
-  echo "FAIL: mpirun -n 2 failed: $(head -c 400 "$TMP/mpi.stderr")"
-  exit 1
+  die "mpirun -n 2 failed: $(head -c 400 "$TMP/mpi.stderr")"
 fi
-for ext in csv png json; do
-  [[ -s $TMP/mpi.$ext ]] || { echo "FAIL: mpi.$ext missing"; exit 1; }
-done
-[[ ! -e $TMP/mpi.tiles ]] || { echo "FAIL: mpi.tiles/ left behind"; exit 1; }
-cmp -s <(grep -v '^#' "$TMP/mpi.csv") <(grep -v '^#' "$TMP/one.csv") || { echo "FAIL: 2 MPI ranks differ from one process"; exit 1; }
-echo "mpi_ranks: 2 ranks give the one-process rows"
+outputs mpi "$TMP/mpi"
+cmp -s <(data "$TMP/mpi.csv") <(data "$TMP/one.csv") || fail mpi "2 MPI ranks differ from one process"
+finish "mpi_ranks: 2 ranks give the one-process rows"

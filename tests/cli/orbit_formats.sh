@@ -10,23 +10,8 @@
 #   --every K: rows n % K == 0 plus the last step, identical to those rows of --every 1.
 # Usage: bash orbit_formats.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash orbit_formats.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash orbit_formats.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed to check the outputs" >&2; exit 1; }
-
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-run() {  # run NAME ARGS... : stdout -> TMP/NAME.out, stderr -> TMP/NAME.err; must exit 0
-  local name=$1 rc=0
-  shift
-  "$BOUNCER" "$@" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
-  if [[ $rc -ne 0 ]]; then
-    fail "$name" "exit status $rc (bouncer $*): $(head -c 500 "$TMP/$name.err")"
-    return 1
-  fi
-}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
 
 M=(orbit --model constant --a 24 --eps 0.5)
 IC=(--theta 0.05,0.25 --v 10.5,12)
@@ -36,7 +21,7 @@ run csv "${M[@]}" "${IC[@]}" --steps 3 || true
 run csv_mpfr "${M[@]}" "${IC[@]}" --steps 3 --precision mpfr:100 || true
 run csv_interval "${M[@]}" "${IC[@]}" --steps 3 --precision interval:64 || true
 
-python3 - "$TMP" <<'PY' || failures=$((failures + 1))
+python3 - "$TMP" <<'PY' || fail csv "see above"
 import sys, re
 from fractions import Fraction
 tmp = sys.argv[1]
@@ -126,7 +111,7 @@ PY
 # ---------------------------------------------------------------- json
 run json "${M[@]}" "${IC[@]}" --steps 3 --format json || true
 run json_interval orbit --model elastic --a 19 --theta 0.1 --v 7 --steps 2000 --precision interval:20 --format json || true
-python3 - "$TMP" <<'PY' || failures=$((failures + 1))
+python3 - "$TMP" <<'PY' || fail json "see above"
 import sys, json
 tmp = sys.argv[1]
 bad = []
@@ -188,7 +173,7 @@ PY
 
 # ---------------------------------------------------------------- table
 run table "${M[@]}" "${IC[@]}" --steps 3 --format table || true
-python3 - "$TMP" <<'PY' || failures=$((failures + 1))
+python3 - "$TMP" <<'PY' || fail table "see above"
 import sys
 tmp = sys.argv[1]
 bad = []
@@ -221,11 +206,7 @@ if run out "${M[@]}" "${IC[@]}" --steps 3 --out "$TMP/o/orbit.csv"; then
   grep -q '^# inputs: .*out=' "$TMP/o/orbit.csv" || fail "out" "the inputs line does not record out="
 fi
 # unwritable destination: status 2, one line naming 'out', nothing left behind
-rc=0
-"$BOUNCER" "${M[@]}" "${IC[@]}" --out "$TMP/o/no-such-dir/x.csv" >/dev/null 2>"$TMP/err" || rc=$?
-[[ $rc -eq 2 ]] || fail "out unwritable" "exit status $rc, expected 2"
-[[ $(wc -l <"$TMP/err") -eq 1 ]] && grep -q '^bouncer: out: ' "$TMP/err" ||
-  fail "out unwritable" "expected one line 'bouncer: out: ...', got: $(cat "$TMP/err")"
+refused "out unwritable" '^bouncer: out: ' "${M[@]}" "${IC[@]}" --out "$TMP/o/no-such-dir/x.csv"
 [[ ! -e $TMP/o/no-such-dir ]] || fail "out unwritable" "a directory was created"
 [[ $(cd "$TMP/o" && ls -A) == "orbit.csv" ]] || fail "out unwritable" "files left: $(ls -A "$TMP/o")"
 
@@ -234,7 +215,7 @@ run every1 "${M[@]}" --theta 0.05 --v 10.5 --steps 25 || true
 run every7 "${M[@]}" --theta 0.05 --v 10.5 --steps 25 --every 7 || true
 run every30 "${M[@]}" --theta 0.05 --v 10.5 --steps 25 --every 30 || true
 run every5 "${M[@]}" --theta 0.05 --v 10.5 --steps 25 --every 5 || true
-python3 - "$TMP" <<'PY' || failures=$((failures + 1))
+python3 - "$TMP" <<'PY' || fail every "see above"
 import sys
 tmp = sys.argv[1]
 bad = []
@@ -256,8 +237,4 @@ for b in bad:
 sys.exit(1 if bad else 0)
 PY
 
-if [[ $failures -ne 0 ]]; then
-  echo "orbit_formats.sh: $failures check group(s) failed" >&2
-  exit 1
-fi
-echo "orbit_formats.sh: csv, json, table, --out and --every behave"
+finish "orbit_formats.sh: csv, json, table, --out and --every behave"

@@ -10,13 +10,8 @@
 #     no output file.
 # Usage: bash orbit_lohner.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash orbit_lohner.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed" >&2; exit 1; }
-
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
 
 # undecided_step FILE: the step at which the orbit stopped, or "none"
 undecided_step() {
@@ -27,7 +22,7 @@ undecided_step() {
 
 # encloses NAME INTERVAL-CSV REFERENCE-CSV
 encloses() {
-  python3 - "$2" "$3" "$1" <<'PY' || failures=$((failures + 1))
+  python3 - "$2" "$3" "$1" <<'PY' || fail "$1" "see above"
 import sys
 from fractions import Fraction as F
 def rows(f):
@@ -105,20 +100,13 @@ assert isinstance(e["lohner_fallbacks"], int) and 0 <= e["lohner_fallbacks"] <= 
 
 # 4. Bad input.
 bad() {  # bad NAME ARGS...: exit 2, one line naming method, no output file
-  local name=$1 rc=0
+  local name=$1
   shift
-  "$BOUNCER" orbit "${chaos[@]}" --steps 3 "$@" --out "$TMP/bad-$name.csv" >/dev/null 2>"$TMP/bad-$name.err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "bad-$name" "exit $rc, want 2"
-  [[ $(wc -l <"$TMP/bad-$name.err") -eq 1 ]] && grep -q 'method' "$TMP/bad-$name.err" ||
-    fail "bad-$name" "want one line naming 'method', got: $(cat "$TMP/bad-$name.err")"
-  [[ ! -e $TMP/bad-$name.csv && ! -e $TMP/bad-$name.csv.partial ]] || fail "bad-$name" "an output file was left"
+  refused "bad-$name" method orbit "${chaos[@]}" --steps 3 "$@" --out "$TMP/bad-$name.csv"
+  absent "bad-$name" "$TMP/bad-$name.csv" "$TMP/bad-$name.csv.partial"
 }
 bad point --precision mpfr:64 --method lohner
 bad default-double --method lohner
 bad unknown --precision interval:64 --method qr
 
-if [[ $failures -ne 0 ]]; then
-  echo "orbit_lohner.sh: $failures failure(s)" >&2
-  exit 1
-fi
-echo "orbit_lohner.sh: Lohner interval orbits enclose the exact orbit and outlast iterated boxes"
+finish "orbit_lohner.sh: Lohner interval orbits enclose the exact orbit and outlast iterated boxes"

@@ -8,22 +8,16 @@
 #     (the exact decimal orbit IS the fixed point), and mpfr:256 stays within 1e-70 of it.
 # Usage: bash orbit_precisions.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash orbit_precisions.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash orbit_precisions.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
 SCENE=$SRC/data/scenes/default.toml
-[[ -f $SCENE ]] || { echo "FAIL: no default scene at $SCENE" >&2; exit 1; }
+[[ -f $SCENE ]] || die "no default scene at $SCENE"
 
 for p in double long dd quad mpfr:256 interval:256; do
   rc=0
   "$BOUNCER" orbit --scene "$SCENE" --theta 0.25,0.05 --v 12,10.5 --steps 10 --every 1 --format csv \
     --precision "$p" >"$TMP/$p.csv" 2>"$TMP/$p.err" || rc=$?
-  if [[ $rc -ne 0 ]]; then
-    echo "FAIL [$p]: exit status $rc: $(cat "$TMP/$p.err")" >&2
-    exit 1
-  fi
+  [[ $rc -eq 0 ]] || die "$p: exit status $rc: $(cat "$TMP/$p.err")"
 done
 
 python3 - "$TMP" <<'PY'

@@ -6,13 +6,9 @@
 # through impacts on both wall segments, indirect flights and sticking (release at (1/2, 4)).
 # Usage: bash orbit_roundtrip.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash orbit_roundtrip.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash orbit_roundtrip.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed" >&2; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
 
-failures=0
 # check NAME STEPS PRECISION MODEL-ARGS... -- THETA V
 check() {
   local name=$1 steps=$2 precision=$3
@@ -24,8 +20,7 @@ check() {
   "$BOUNCER" orbit "${model[@]}" --theta "$theta" --v "$v" --steps "$steps" --precision "$precision" \
     >"$TMP/$name.orig" 2>"$TMP/$name.err" || rc=$?
   if [[ $rc -ne 0 ]]; then
-    echo "FAIL [$name]: the original run exited $rc: $(cat "$TMP/$name.err")" >&2
-    failures=$((failures + 1))
+    fail "$name" "the original run exited $rc: $(cat "$TMP/$name.err")"
     return
   fi
   # Every state but the last, as the initial conditions of a one-step run (one orbit each).
@@ -40,11 +35,10 @@ print(",".join(r[2] for r in rows[:-1]))' "$TMP/$name.orig")
   "$BOUNCER" orbit "${model[@]}" --theta="$thetas" --v="$vs" --steps 1 --precision "$precision" \
     >"$TMP/$name.restart" 2>"$TMP/$name.err" || rc=$?
   if [[ $rc -ne 0 ]]; then
-    echo "FAIL [$name]: restarting from the printed states exited $rc: $(cat "$TMP/$name.err")" >&2
-    failures=$((failures + 1))
+    fail "$name" "restarting from the printed states exited $rc: $(cat "$TMP/$name.err")"
     return
   fi
-  python3 - "$TMP/$name.orig" "$TMP/$name.restart" "$name" "$steps" <<'PY' || failures=$((failures + 1))
+  python3 - "$TMP/$name.orig" "$TMP/$name.restart" "$name" "$steps" <<'PY' || fail "$name" "see above"
 import sys
 orig_f, restart_f, name, steps = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4])
 def rows(f):
@@ -93,8 +87,4 @@ check dd-default 30 dd --model constant --a 24 --eps 0.5 -- 0.05 10.5
 check dd-096 40 dd --model constant --a 28.82 --eps 0.96 -- 0.5 4
 check dd-veldep 40 dd --model veldep --a 25 --c 1000 -- 0.1 5
 
-if [[ $failures -ne 0 ]]; then
-  echo "orbit_roundtrip.sh: $failures orbit(s) do not round-trip" >&2
-  exit 1
-fi
-echo "orbit_roundtrip.sh: printed states round-trip through the command line (double, dd, mpfr:200)"
+finish "orbit_roundtrip.sh: printed states round-trip through the command line (double, dd, mpfr:200)"

@@ -9,26 +9,12 @@
 #   - every orbit scene in data/scenes/ runs (the eps = 0.96 scene prints n = 0, 100, ..., 2000).
 # Usage: bash orbit_scene.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash orbit_scene.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash orbit_scene.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 SCENES=$SRC/data/scenes
 DEFAULT=$SCENES/default.toml
-[[ -f $DEFAULT ]] || { echo "FAIL: no default scene at $DEFAULT" >&2; exit 1; }
+[[ -f $DEFAULT ]] || die "no default scene at $DEFAULT"
 
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-run() {  # run NAME ARGS...  -> TMP/NAME.out; must exit 0
-  local name=$1 rc=0
-  shift
-  "$BOUNCER" "$@" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
-  if [[ $rc -ne 0 ]]; then
-    fail "$name" "exit status $rc (bouncer $*): $(head -c 500 "$TMP/$name.err")"
-    return 1
-  fi
-}
-data() { grep -v '^#' "$TMP/$1.out"; }  # header + rows
+out() { data "$TMP/$1.out"; }  # header + rows of the output of `run NAME`
 # (pipelines here always read their input to the end: with pipefail, `| head` or `| grep -q`
 # could fail the pipeline through SIGPIPE)
 
@@ -42,28 +28,28 @@ if run default orbit --scene "$DEFAULT"; then
   done
   grep -q '^# inputs: .*\ba=24\b.*\beps=0\.5\b.*\bmodel=constant\b' "$TMP/default.out" ||
     fail default "the provenance does not record the scene's a=24 eps=0.5 model=constant"
-  read -r -a hdr < <(data default | awk 'NR == 1')
+  read -r -a hdr < <(out default | awk 'NR == 1')
   [[ ${hdr[0]} == n && ${hdr[1]} == theta && ${hdr[2]} == v ]] ||
     fail default "the table header starts '${hdr[*]:0:3}'"
   # orbit 0 rows: the fixed point (0.25, 12); rows number steps+1 per orbit
-  nrows=$(data default | tail -n +2 | wc -l)
+  nrows=$(out default | tail -n +2 | wc -l)
   [[ $nrows -eq $((2 * (steps + 1))) ]] || fail default "$nrows rows, expected $((2 * (steps + 1)))"
-  off=$(data default | awk -v last=$((steps + 2)) 'NR >= 2 && NR <= last { d = $2 - 0.25; e = $3 - 12; if (d*d > 1e-24 || e*e > 1e-24) print }')
+  off=$(out default | awk -v last=$((steps + 2)) 'NR >= 2 && NR <= last { d = $2 - 0.25; e = $3 - 12; if (d*d > 1e-24 || e*e > 1e-24) print }')
   [[ -z $off ]] || fail default "orbit 0 left the fixed point (0.25, 12): $off"
 fi
 
 # ---- command line overrides the scene
 if run override orbit --scene "$DEFAULT" --steps 3 --format csv; then
-  got=$(data override | tail -n +2 | awk -F, '{ printf "%s:%s ", $NF, $1 }')
+  got=$(out override | tail -n +2 | awk -F, '{ printf "%s:%s ", $NF, $1 }')
   [[ $got == "0:0 0:1 0:2 0:3 1:0 1:1 1:2 1:3 " ]] || fail override "--steps 3: rows (orbit:n) are $got"
-  [[ $(data override | awk 'NR == 1') == n,theta,v,* ]] || fail override "--format csv did not override the scene's table"
+  [[ $(out override | awk 'NR == 1') == n,theta,v,* ]] || fail override "--format csv did not override the scene's table"
   grep -q '^# inputs: .*\bsteps=3\b' "$TMP/override.out" || fail override "the provenance does not record steps=3"
 fi
 if run override_ic orbit --scene "$DEFAULT" --theta 0.3 --v 12 --steps 4 --format csv; then
   # one orbit now; (0.3, 12) is also on the fixed-point family theta* in (0, 1/2), v* = 12
-  orbits=$(data override_ic | tail -n +2 | cut -d, -f15 | sort -u | tr '\n' ' ')
+  orbits=$(out override_ic | tail -n +2 | cut -d, -f15 | sort -u | tr '\n' ' ')
   [[ $orbits == "0 " ]] || fail override_ic "--theta/--v should replace the scene's lists: orbits $orbits"
-  off=$(data override_ic | tail -n +2 | awk -F, '{ d = $2 - 0.3; e = $3 - 12; if (d*d > 1e-24 || e*e > 1e-24) print }')
+  off=$(out override_ic | tail -n +2 | awk -F, '{ d = $2 - 0.3; e = $3 - 12; if (d*d > 1e-24 || e*e > 1e-24) print }')
   [[ -z $off ]] || fail override_ic "(0.3, 12) is a fixed point at eps = 0.5, a = 24 but moved: $off"
 fi
 sed 's/^eps = .*/eps = "1.5"/' "$DEFAULT" >"$TMP/bad-eps.toml"
@@ -87,9 +73,9 @@ steps = 5
 format = "csv"
 TOML
 if run multi orbit --scene "$TMP/multi.toml"; then
-  got=$(data multi | tail -n +2 | awk -F, '$1 == 0 { printf "%s:%s:%s ", $NF, $2, $3 }')
+  got=$(out multi | tail -n +2 | awk -F, '$1 == 0 { printf "%s:%s:%s ", $NF, $2, $3 }')
   [[ $got == "0:0.25:12 1:0.1:7.3 2:0.75:-2 " ]] || fail multi "rows n=0 (orbit:theta:v) are $got"
-  got=$(data multi | tail -n +2 | cut -d, -f15 | uniq -c | awk '{ printf "%s:%s ", $2, $1 }')
+  got=$(out multi | tail -n +2 | cut -d, -f15 | uniq -c | awk '{ printf "%s:%s ", $2, $1 }')
   [[ $got == "0:6 1:6 2:6 " ]] || fail multi "rows per orbit (orbit:count) are $got, expected 6 each"
   [[ $(grep -c '^# end: orbit [012] completed 5 steps$' "$TMP/multi.out") -eq 3 ]] || fail multi "not three '# end' lines"
 fi
@@ -117,11 +103,11 @@ for scene in "$SCENES"/*.toml; do
 done
 if [[ -f $SCENES/orbit-sticking-096.toml ]]; then
   if run sticking orbit --scene "$SCENES/orbit-sticking-096.toml"; then
-    got=$(data sticking | tail -n +2 | cut -d, -f1 | tr '\n' ' ')
+    got=$(out sticking | tail -n +2 | cut -d, -f1 | tr '\n' ' ')
     [[ $got == "$(seq -s ' ' 0 100 2000) " ]] || fail sticking "rows n = $got, expected 0, 100, ..., 2000"
-    [[ $(data sticking | awk 'NR == 2') == 0,0.5,4,start,* ]] || fail sticking "row 0 is not the release state (0.5, 4)"
+    [[ $(out sticking | awk 'NR == 2') == 0,0.5,4,start,* ]] || fail sticking "row 0 is not the release state (0.5, 4)"
     grep -q '^# inputs: .*\ba=28\.82\b.*\beps=0\.96\b' "$TMP/sticking.out" || fail sticking "inputs are not a=28.82 eps=0.96"
-    below=$(data sticking | tail -n +2 | awk -F, '{ u = ($2 < 0.5) ? 4 : -4; if ($3 < u - 1e-9) print "n=" $1 " theta=" $2 " v=" $3 }')
+    below=$(out sticking | tail -n +2 | awk -F, '{ u = ($2 < 0.5) ? 4 : -4; if ($3 < u - 1e-9) print "n=" $1 " theta=" $2 " v=" $3 }')
     [[ -z $below ]] || fail sticking "states below the wall velocity: $below"
   fi
 else
@@ -133,15 +119,11 @@ if [[ -f $SCENES/orbit-elastic-fermi.toml ]]; then
     grep -q '^# end: orbit 0 completed [0-9]* steps$' "$TMP/fermi.out" || fail fermi "did not complete: $(tail -n 1 "$TMP/fermi.out")"
     # every printed state is a post-impact state: v >= the wall velocity u(theta) (+4 on
     # [0, 1/2), -4 on [1/2, 1)), else the particle would be inside the wall
-    below=$(data fermi | tail -n +2 | awk -F, '{ u = ($2 < 0.5) ? 4 : -4; if ($3 < u - 1e-9) print "n=" $1 " theta=" $2 " v=" $3 }')
+    below=$(out fermi | tail -n +2 | awk -F, '{ u = ($2 < 0.5) ? 4 : -4; if ($3 < u - 1e-9) print "n=" $1 " theta=" $2 " v=" $3 }')
     [[ -z $below ]] || fail fermi "states below the wall velocity: $below"
   fi
 else
   fail fermi "data/scenes/orbit-elastic-fermi.toml is missing"
 fi
 
-if [[ $failures -ne 0 ]]; then
-  echo "orbit_scene.sh: $failures failure(s)" >&2
-  exit 1
-fi
-echo "orbit_scene.sh: scenes run, lists give several orbits, command line overrides"
+finish "orbit_scene.sh: scenes run, lists give several orbits, command line overrides"

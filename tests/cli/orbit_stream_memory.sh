@@ -6,25 +6,15 @@
 # quarantine of freed blocks are resident): exit 77, ctest's skipped.
 # Usage: bash orbit_stream_memory.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash orbit_stream_memory.sh <bouncer-binary> <source-dir>}
-if grep -qa __asan_init "$BOUNCER"; then
-  echo "orbit_stream_memory: SKIPPED: AddressSanitizer build (shadow memory and quarantine are resident)"
-  exit 77
-fi
-if ! /usr/bin/time -v true >/dev/null 2>&1; then
-  echo "FAIL: GNU time (/usr/bin/time -v) is missing: apt-get install time (tools/setup installs it)" >&2
-  exit 1
-fi
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+if asan_build; then skip "AddressSanitizer build (shadow memory and quarantine are resident)"; fi
+/usr/bin/time -v true >/dev/null 2>&1 ||
+  die "GNU time (/usr/bin/time -v) is missing: apt-get install time (tools/setup installs it)"
 limit_kb=$((50 * 1024))
 /usr/bin/time -v -o "$TMP/time" "$BOUNCER" orbit --model constant --a 24 --eps 0.5 --theta 0.25 --v 12 \
-  --steps 10000000 --every 1000000 >"$TMP/out.csv" 2>"$TMP/err" || { echo "FAIL: exit $?: $(head -c 300 "$TMP/err")" >&2; exit 1; }
-[[ $(grep -vc '^#' "$TMP/out.csv") -eq 12 ]] || { echo "FAIL: expected a header and 11 rows" >&2; exit 1; }
+  --steps 10000000 --every 1000000 >"$TMP/out.csv" 2>"$TMP/err" || die "exit $?: $(head -c 300 "$TMP/err")"
+[[ $(grep -vc '^#' "$TMP/out.csv") -eq 12 ]] || die "expected a header and 11 rows"
 rss_kb=$(sed -n 's/^[[:space:]]*Maximum resident set size (kbytes): *\([0-9][0-9]*\)$/\1/p' "$TMP/time")
-[[ -n $rss_kb ]] || { echo "FAIL: no peak RSS in GNU time's report: $(cat "$TMP/time")" >&2; exit 1; }
-if (( rss_kb >= limit_kb )); then
-  echo "FAIL: peak resident memory $rss_kb kB >= $limit_kb kB for 10^7 steps (not streaming?)" >&2
-  exit 1
-fi
+[[ -n $rss_kb ]] || die "no peak RSS in GNU time's report: $(cat "$TMP/time")"
+(( rss_kb < limit_kb )) || die "peak resident memory $rss_kb kB >= $limit_kb kB for 10^7 steps (not streaming?)"
 echo "orbit_stream_memory: peak resident memory $rss_kb kB (limit $limit_kb kB)"

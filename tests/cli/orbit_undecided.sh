@@ -10,14 +10,8 @@
 # elastic orbit at a = 19; at 20 bits neither can stay certified for 2000 steps.
 # Usage: bash orbit_undecided.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash orbit_undecided.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash orbit_undecided.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed" >&2; exit 1; }
-
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
 
 check() {  # check NAME MODEL-ARGS... : theta/v included in the args
   local name=$1 rc=0
@@ -50,7 +44,7 @@ check() {  # check NAME MODEL-ARGS... : theta/v included in the args
   local rc2=0
   "$BOUNCER" orbit "$@" --steps $((n - 1)) --precision mpfr:256 >"$TMP/$name.ref" 2>/dev/null || rc2=$?
   [[ $rc2 -eq 0 ]] || { fail "$name" "the mpfr:256 reference run failed"; return; }
-  python3 - "$TMP/$name.csv" "$TMP/$name.ref" "$name" <<'PY' || failures=$((failures + 1))
+  python3 - "$TMP/$name.csv" "$TMP/$name.ref" "$name" <<'PY' || fail "$name" "see above"
 import sys
 from fractions import Fraction as F
 def rows(f):
@@ -97,8 +91,4 @@ check default-sticking-naive --model constant --a 24 --eps 0.5 --theta 0.05 --v 
   fail lohner-sticking "the default (lohner) run did not complete: $(tail -n 1 "$TMP/lohner-sticking.csv")"
 check elastic-19 --model elastic --a 19 --theta 0.1 --v 7
 
-if [[ $failures -ne 0 ]]; then
-  echo "orbit_undecided.sh: $failures failure(s)" >&2
-  exit 1
-fi
-echo "orbit_undecided.sh: low-precision interval orbits stop at an undecided step and say so"
+finish "orbit_undecided.sh: low-precision interval orbits stop at an undecided step and say so"

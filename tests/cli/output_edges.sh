@@ -11,11 +11,7 @@
 #   * a path with a space is quoted on the "# inputs:" line and audit reruns it.
 # Usage: bash output_edges.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash output_edges.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 MODEL=(--model constant --eps 0.5 --a 24)
 
 expect() {  # expect NAME STATUS ARGS... (stdout to /dev/full unless --out is given)
@@ -53,24 +49,21 @@ grep -q '^10,' "$TMP/from-pipe" || fail out_fifo "the reader did not get the orb
 # naming --out, the link and its target as they were. A link to a device is written through.
 echo old >"$TMP/target"
 ln -s "$TMP/target" "$TMP/link"
-rc=0; "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/link" 2>"$TMP/link.err" || rc=$?
-[[ $rc -eq 2 ]] && grep -q '^bouncer: out: .* is a symbolic link' "$TMP/link.err" || fail out_link "exit $rc: $(cat "$TMP/link.err")"
+refused out_link '^bouncer: out: .* is a symbolic link' orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/link"
 [[ -L "$TMP/link" && $(cat "$TMP/target") == old && ! -e "$TMP/link.partial" ]] || fail out_link "the link or its target changed"
 ln -s /dev/null "$TMP/null-link"
 "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10 --out "$TMP/null-link" || fail out_link "link to /dev/null: exit $?"
 [[ -L "$TMP/null-link" && -c /dev/null ]] || fail out_link "the link to /dev/null was replaced"
 
 # Unbounded output is refused before anything is written (--force overrides; not run here).
-rc=0; "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10000000000 --out "$TMP/huge.csv" 2>"$TMP/huge.err" || rc=$?
-[[ $rc -eq 2 && ! -e "$TMP/huge.csv" ]] && grep -q '^bouncer: steps: would print' "$TMP/huge.err" ||
-  fail huge "exit $rc: $(head -c 300 "$TMP/huge.err")"
+refused huge '^bouncer: steps: would print' orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 10000000000 --out "$TMP/huge.csv"
+absent huge "$TMP/huge.csv"
 
 # A path with a space round-trips through the "# inputs:" line: audit reruns it.
 mkdir "$TMP/with space"
 "$BOUNCER" orbit "${MODEL[@]}" --theta 0.3 --v 12 --steps 5 --out "$TMP/with space/o.csv" || fail space "orbit exit $?"
 grep -q "out=\"$TMP/with space/o.csv\"" "$TMP/with space/o.csv" || fail space "the inputs line does not quote the path"
-"$BOUNCER" audit "$TMP/with space/o.csv" >"$TMP/space.out" 2>&1 && grep -q IDENTICAL "$TMP/space.out" ||
-  fail space "audit of a result whose path has a space: $(head -c 300 "$TMP/space.out")"
+audited space "$TMP/with space/o.csv"
 
 # Directories: exit 2, nothing written.
 mkdir "$TMP/dir"
@@ -78,10 +71,8 @@ for args in "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/dir" \
             "orbit ${MODEL[*]} --theta 0.3 --v 12 --steps 10 --out $TMP/dir/" \
             "basin ${MODEL[*]} --grid 3x3 --v-range 4:20 --transient 10 --steps 16 --quiet --out $TMP/dir/" \
             "certify-periodic ${MODEL[*]} --period 1 --guess 0.3,12 --out $TMP/dir"; do
-  rc=0
   # shellcheck disable=SC2086
-  "$BOUNCER" $args >/dev/null 2>"$TMP/dir.err" || rc=$?
-  [[ $rc -eq 2 ]] && grep -q '^bouncer: out:' "$TMP/dir.err" || fail out_dir "exit $rc for '$args': $(cat "$TMP/dir.err")"
+  refused out_dir '^bouncer: out:' $args
   [[ -z "$(ls -A "$TMP/dir")" ]] || fail out_dir "files written into the directory: $(ls -A "$TMP/dir")"
 done
 
@@ -134,8 +125,4 @@ wait "$pid" || rc=$?
 [[ ! -e "$TMP/long.csv.partial" && ! -e "$TMP/long.csv" ]] || fail sigterm "a partial or cut-off orbit was left"
 grep -q "interrupted by SIGTERM; partial files removed" "$TMP/long.err" || fail sigterm "message: $(head -c 300 "$TMP/long.err")"
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "output edges: all checks passed"
+finish "output edges: all checks passed"

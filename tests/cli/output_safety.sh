@@ -16,23 +16,13 @@
 #   * a grid larger than the memory the process may use (ulimit -v): exit 2 before any work.
 # Usage: bash output_safety.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash output_safety.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 cd "$TMP"
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 MODEL=(--model constant --eps 0.5 --a 24)
 LONG_ORBIT=(orbit --model constant --eps 0.9 --a 28.82 --theta 0.1 --v 10 --steps 40000000 --every 1000000)
 SLOW_BASIN=(basin --model constant --eps 0.5 --a 15 --grid 200x150 --transient 20000 --steps 2000 --threads 1 --quiet)
 
-refused() {  # refused NAME PATTERN ARGS...: exit 2 within 30 s, one stderr line matching PATTERN
-  local name=$1 pattern=$2 rc=0
-  shift 2
-  timeout 30 "$BOUNCER" "$@" >"$name.out" 2>"$name.err" || rc=$?
-  [[ $rc -eq 2 && $(wc -l <"$name.err") -eq 1 ]] || fail "$name" "exit $rc, expected 2 and one line: $(head -c 400 "$name.err")"
-  grep -q -- "$pattern" "$name.err" || fail "$name" "message does not match '$pattern': $(head -c 400 "$name.err")"
-}
+refused_soon() { refused -t 30 "$@"; }  # refused_soon NAME PATTERN ARGS...: refused within 30 s
 wait_for() {  # wait_for PATH: until it exists (at most 30 s)
   for _ in $(seq 300); do [[ -e $1 ]] && return 0; sleep 0.1; done
   return 1
@@ -42,7 +32,7 @@ wait_for() {  # wait_for PATH: until it exists (at most 30 s)
 "$BOUNCER" "${LONG_ORBIT[@]}" --out o.csv 2>first.err &
 first=$!
 wait_for o.csv.partial || fail race "the first run never staged its file"
-refused race "'o.csv' is in use by process $first " "${LONG_ORBIT[@]}" --out o.csv
+refused_soon race "'o.csv' is in use by process $first " "${LONG_ORBIT[@]}" --out o.csv
 wait "$first" || fail race "the first run failed: $(cat first.err)"
 [[ $(grep -c '^# bouncer' o.csv) -eq 1 && $(grep -vc '^#' o.csv) -eq 42 ]] || fail race "o.csv is not one whole orbit"
 grep -q "invocation: .*--out o.csv" o.csv || fail race "o.csv lacks its own provenance"
@@ -86,56 +76,55 @@ wait "$reader" || fail fifo_png "the reader failed"
 [[ $(head -c 4 from-fifo.png | tail -c 3) == PNG ]] || fail fifo_png "the reader did not get a PNG"
 mkdir dir.png
 start=$SECONDS
-refused png_dir "out: 'dir.png' is a directory" "${SLOW_BASIN[@]}" --out dir
+refused_soon png_dir "out: 'dir.png' is a directory" "${SLOW_BASIN[@]}" --out dir
 [[ $((SECONDS - start)) -lt 10 && ! -e dir.csv && ! -e dir.tiles ]] || fail png_dir "not refused at once, or files left"
 
 # --- Hostile scenes and job files ---------------------------------------------------------------
 mkfifo fifo.toml
-refused scene_fifo "scene: 'fifo.toml' is a named pipe" orbit --scene fifo.toml
+refused_soon scene_fifo "scene: 'fifo.toml' is a named pipe" orbit --scene fifo.toml
 python3 -c "print('command = \"orbit\"\n' + '.'.join(['k'] * 40000) + ' = 1')" >deep.toml
-refused scene_deep "scene: 'deep.toml' line 2: tables or arrays nested more than 32 deep" --scene deep.toml
-refused scene_deep_cmd "nested more than 32 deep" orbit --scene deep.toml
+refused_soon scene_deep "scene: 'deep.toml' line 2: tables or arrays nested more than 32 deep" --scene deep.toml
+refused_soon scene_deep_cmd "nested more than 32 deep" orbit --scene deep.toml
 printf 'command = "orbit"\nmodel = "constant"\na = "24\0junk"\n' >nul.toml
-refused scene_nul "scene: 'nul.toml' line 3: contains a NUL byte" orbit --scene nul.toml
+refused_soon scene_nul "scene: 'nul.toml' line 3: contains a NUL byte" orbit --scene nul.toml
 BASIN=(basin "${MODEL[@]}" --grid 4x3 --transient 10 --steps 16 --quiet)
 "$BOUNCER" "${BASIN[@]}" --shard 0/2 --out job
 cp job.tiles/job.toml job.toml.orig
 { cat job.toml.orig; echo "out = \"$TMP/elsewhere\""; } >job.tiles/job.toml
-refused merge_out "job.toml' names 'out', which is not part of a job" merge job
+refused_soon merge_out "job.toml' names 'out', which is not part of a job" merge job
 [[ ! -e elsewhere.csv ]] || fail merge_out "merge wrote where job.toml said"
 python3 -c "print('command = \"basin\"\n' + '.'.join(['k'] * 40000) + ' = 1')" >job.tiles/job.toml
-refused merge_deep "nested more than 32 deep" merge job
+refused_soon merge_deep "nested more than 32 deep" merge job
 cp job.toml.orig job.tiles/job.toml
 
 # --- Tiles that are not files, and a tile directory that is a link -----------------------------
 "$BOUNCER" "${BASIN[@]}" --shard 0/2 --out tdir
 mkdir tdir.tiles/tile-000001
-refused tile_dir "tile-000001' is a directory, not a regular file" "${BASIN[@]}" --out tdir
-refused tile_dir_merge "tile-000001' is a directory" merge tdir
+refused_soon tile_dir "tile-000001' is a directory, not a regular file" "${BASIN[@]}" --out tdir
+refused_soon tile_dir_merge "tile-000001' is a directory" merge tdir
 "$BOUNCER" "${BASIN[@]}" --shard 0/2 --out tfifo
 mkfifo tfifo.tiles/tile-000001
-refused tile_fifo "tile-000001' is a named pipe" "${BASIN[@]}" --out tfifo
-refused tile_fifo_merge "tile-000001' is a named pipe" merge tfifo
+refused_soon tile_fifo "tile-000001' is a named pipe" "${BASIN[@]}" --out tfifo
+refused_soon tile_fifo_merge "tile-000001' is a named pipe" merge tfifo
 mkdir precious
 echo key >precious/job.key
 echo keep >precious/notes.txt
 ln -s precious linked.tiles
-refused tiles_link "linked.tiles' is a symbolic link" "${BASIN[@]}" --out linked
+refused_soon tiles_link "linked.tiles' is a symbolic link" "${BASIN[@]}" --out linked
 [[ -e precious/notes.txt && -e precious/job.key && $(ls precious | wc -l) -eq 2 ]] || fail tiles_link "the linked directory changed: $(ls precious)"
 
 # --- Names the file system cannot hold; directories given as prefixes ----------------------------
 long=$(printf 'x%.0s' $(seq 300))
-refused tiles_from_long "tiles-from: a name in" "${BASIN[@]}" --out tl --tiles-from "$long"
+refused_soon tiles_from_long "tiles-from: a name in" "${BASIN[@]}" --out tl --tiles-from "$long"
 mkdir d
-refused sweep_dir "out: 'd/' is a directory" sweep "${MODEL[@]}" --theta 0.5 --v 4 --steps 10 --out d/
-refused continue_dir "out: 'd/' is a directory" continue "${MODEL[@]}" --period 1 --guess 0.5,4 --range 23:25 --out d/
+refused_soon sweep_dir "out: 'd/' is a directory" sweep "${MODEL[@]}" --theta 0.5 --v 4 --steps 10 --out d/
+refused_soon continue_dir "out: 'd/' is a directory" continue "${MODEL[@]}" --period 1 --guess 0.5,4 --range 23:25 --out d/
 [[ -z $(ls -A d) ]] || fail prefix_dir "hidden files written: $(ls -A d)"
 
 # --- Threads and memory ----------------------------------------------------------------------------
 # Both checks limit the address space (ulimit -v); AddressSanitizer reserves terabytes of
 # shadow address space at start, so under it (build-sanitize/) they cannot run at all.
-# (ASan is linked statically by clang, dynamically by g++: its entry point tells either.)
-if grep -qa __asan_init "$BOUNCER"; then
+if asan_build; then
   echo "output_safety: AddressSanitizer build: the thread and memory limits (ulimit -v) NOT checked"
 else
 rc=0
@@ -150,8 +139,4 @@ rc=0
 [[ ! -e mem.tiles && ! -e mem.csv ]] || fail memory "files left"
 fi
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "output safety: all checks passed"
+finish "output safety: all checks passed"

@@ -9,32 +9,15 @@
 #   - bad input exits 2 and leaves no file behind.
 # Usage: bash picture_commands.sh <bouncer-binary> <source-dir>
 set -uo pipefail
-BOUNCER=${1:?usage: bash picture_commands.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash picture_commands.sh <bouncer-binary> <source-dir>}
-[[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
-command -v python3 >/dev/null || { echo "FAIL: python3 is needed to check the outputs" >&2; exit 1; }
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
-run() {  # run NAME ARGS...: expect exit 0
-  local name=$1
-  shift
-  local rc=0
-  "$BOUNCER" "$@" --quiet >"$TMP/$name.stdout" 2>"$TMP/$name.stderr" || rc=$?
-  if [[ $rc -ne 0 ]]; then
-    fail "$name" "exit status $rc (bouncer $*): $(head -c 400 "$TMP/$name.stderr")"
-    return 1
-  fi
-}
-rows() { grep -v '^#' "$1" | tail -n +2; }  # data rows of a CSV (no comments, no header)
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
+run_quiet() { run "$@" --quiet; }  # run_quiet NAME ARGS...: `run` with --quiet
 
-# outputs NAME PREFIX: the three files exist, PNG signature, JSON with provenance, no tiles.
-outputs() {
+# picture_outputs NAME PREFIX: `outputs` (the three files, no tiles or partial files left),
+# and a PNG signature, a JSON with provenance.
+picture_outputs() {
   local name=$1 p=$2
-  for ext in csv png json; do [[ -s $p.$ext ]] || fail "$name" "missing $p.$ext"; done
-  [[ -e $p.tiles ]] && fail "$name" "$p.tiles was left behind"
-  ls "$p".*.partial >/dev/null 2>&1 && fail "$name" "a .partial file was left behind"
+  outputs "$name" "$p"
   if [[ -s $p.png ]] && [[ $(head -c 8 "$p.png" | od -An -tx1 | tr -d ' \n') != 89504e470d0a1a0a ]]; then
     fail "$name" "$p.png does not start with the PNG signature"
   fi
@@ -58,8 +41,8 @@ PY
 
 # --- bifurcation --------------------------------------------------------------------------
 B="bifurcation --model constant --eps 0.96 --vary a --range 28:29 --transient 100 --record 30 --theta 0.1 --v 5"
-run bif1 $B --samples 8 --threads 1 --out "$TMP/bif1" && outputs bif1 "$TMP/bif1"
-run bif2 $B --samples 8 --threads 2 --out "$TMP/bif2" && outputs bif2 "$TMP/bif2"
+run_quiet bif1 $B --samples 8 --threads 1 --out "$TMP/bif1" && picture_outputs bif1 "$TMP/bif1"
+run_quiet bif2 $B --samples 8 --threads 2 --out "$TMP/bif2" && picture_outputs bif2 "$TMP/bif2"
 [[ $(rows "$TMP/bif1.csv" | wc -l) -eq 240 ]] || fail bif "expected 8 x 30 = 240 rows, got $(rows "$TMP/bif1.csv" | wc -l)"
 cmp -s <(grep -v '^#' "$TMP/bif1.csv") <(grep -v '^#' "$TMP/bif2.csv") || fail bif "1 and 2 threads differ"
 # The parameter column runs through 28 .. 29 in 8 equal steps, each value 30 times.
@@ -84,21 +67,21 @@ cmp -s <(grep -v '^#' "$TMP/bif1.csv" | awk -F, '$1 == "29" {print $2 "," $3 ","
        <(grep -v '^#' "$TMP/orbit29.stdout" | awk -F, 'NR > 1 && $1 > 100 {print $1 "," $2 "," $3}') ||
   fail bif "rows at a = 29 differ from bouncer orbit --a 29"
 [[ $(grep -v '^#' "$TMP/bif1.csv" | awk -F, '$1 == "29"' | wc -l) -eq 30 ]] || fail bif "expected 30 rows at a = 29"
-run bifjson $B --samples 3 --json
-python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['summary']['rows']==90, d['summary']" "$TMP/bifjson.stdout" ||
+run_quiet bifjson $B --samples 3 --json
+python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert d['summary']['rows']==90, d['summary']" "$TMP/bifjson.out" ||
   fail bifjson "--json summary on stdout"
-run bifcarry $B --samples 8 --carry --show v --out "$TMP/bifc" && outputs bifcarry "$TMP/bifc"
-run bifmpfr $B --samples 3 --precision mpfr:100 --out "$TMP/bifm" && outputs bifmpfr "$TMP/bifm"
+run_quiet bifcarry $B --samples 8 --carry --show v --out "$TMP/bifc" && picture_outputs bifcarry "$TMP/bifc"
+run_quiet bifmpfr $B --samples 3 --precision mpfr:100 --out "$TMP/bifm" && picture_outputs bifmpfr "$TMP/bifm"
 
 # --- portrait -----------------------------------------------------------------------------
-run por portrait --model elastic --a 19 --theta 0.1,0.3 --v 10,12 --steps 200 --polar --out "$TMP/por" &&
-  outputs por "$TMP/por"
+run_quiet por portrait --model elastic --a 19 --theta 0.1,0.3 --v 10,12 --steps 200 --polar --out "$TMP/por" &&
+  picture_outputs por "$TMP/por"
 [[ $(rows "$TMP/por.csv" | wc -l) -eq 402 ]] || fail por "expected 2 x (1 + 200) rows"
 
 # --- basin --------------------------------------------------------------------------------
 BA="basin --model constant --a 24 --eps 0.5 --theta-range 0:1 --v-range 2:20 --transient 200 --steps 100"
-run bas1 $BA --grid 8x6 --threads 1 --out "$TMP/bas1" && outputs bas1 "$TMP/bas1"
-run bas2 $BA --grid 8x6 --threads 2 --out "$TMP/bas2" && outputs bas2 "$TMP/bas2"
+run_quiet bas1 $BA --grid 8x6 --threads 1 --out "$TMP/bas1" && picture_outputs bas1 "$TMP/bas1"
+run_quiet bas2 $BA --grid 8x6 --threads 2 --out "$TMP/bas2" && picture_outputs bas2 "$TMP/bas2"
 cmp -s <(grep -v '^#' "$TMP/bas1.csv") <(grep -v '^#' "$TMP/bas2.csv") || fail basin "1 and 2 threads differ"
 python3 - "$TMP/bas1.csv" <<'PY' || fail basin "grid rows, classes or the phase-space boundary wrong"
 import sys
@@ -114,35 +97,35 @@ for th, v, c, q in rows:
 assert sum(c == "fixed" for _, _, c, _ in rows) > 0
 PY
 # MPFR at 2 threads = 1 thread.
-run basm1 $BA --grid 4x3 --precision mpfr:128 --threads 1 --out "$TMP/basm1" && outputs basm1 "$TMP/basm1"
-run basm2 $BA --grid 4x3 --precision mpfr:128 --threads 2 --out "$TMP/basm2" && outputs basm2 "$TMP/basm2"
+run_quiet basm1 $BA --grid 4x3 --precision mpfr:128 --threads 1 --out "$TMP/basm1" && picture_outputs basm1 "$TMP/basm1"
+run_quiet basm2 $BA --grid 4x3 --precision mpfr:128 --threads 2 --out "$TMP/basm2" && picture_outputs basm2 "$TMP/basm2"
 cmp -s <(grep -v '^#' "$TMP/basm1.csv") <(grep -v '^#' "$TMP/basm2.csv") || fail basin-mpfr "1 and 2 threads differ"
 
 # --- shards, merge, resume ----------------------------------------------------------------
-run sh0 $BA --grid 8x6 --shard 0/2 --out "$TMP/sh"
+run_quiet sh0 $BA --grid 8x6 --shard 0/2 --out "$TMP/sh"
 [[ -e $TMP/sh.csv ]] && fail shard "a shard run wrote the final CSV"
 [[ -d $TMP/sh.tiles ]] || fail shard "no tiles directory after a shard run"
 rc=0; "$BOUNCER" merge "$TMP/sh" --quiet >/dev/null 2>"$TMP/merge-early.stderr" || rc=$?
 [[ $rc -eq 2 ]] || fail merge "merge with missing tiles: exit $rc, expected 2"
 [[ -e $TMP/sh.csv ]] && fail merge "merge with missing tiles wrote a CSV"
-run sh1 $BA --grid 8x6 --shard 1/2 --out "$TMP/sh"
-run merge merge "$TMP/sh" && outputs merge "$TMP/sh"
+run_quiet sh1 $BA --grid 8x6 --shard 1/2 --out "$TMP/sh"
+run_quiet merge merge "$TMP/sh" && picture_outputs merge "$TMP/sh"
 cmp -s <(grep -v '^#' "$TMP/sh.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail merge "merged shards differ from the whole run"
-run pa $BA --grid 8x6 --shard 0/3 --out "$TMP/pa"
-run pb $BA --grid 8x6 --shard 1/3 --out "$TMP/pb"
-run pc $BA --grid 8x6 --shard 2/3 --out "$TMP/pc"
-run merge3 merge --out "$TMP/m3" "$TMP/pa" "$TMP/pb" "$TMP/pc" && outputs merge3 "$TMP/m3"
+run_quiet pa $BA --grid 8x6 --shard 0/3 --out "$TMP/pa"
+run_quiet pb $BA --grid 8x6 --shard 1/3 --out "$TMP/pb"
+run_quiet pc $BA --grid 8x6 --shard 2/3 --out "$TMP/pc"
+run_quiet merge3 merge --out "$TMP/m3" "$TMP/pa" "$TMP/pb" "$TMP/pc" && picture_outputs merge3 "$TMP/m3"
 cmp -s <(grep -v '^#' "$TMP/m3.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail merge3 "merged prefixes differ from the whole run"
 # Resume: half the tiles exist (an interrupted run); the full run finishes from them.
-run rs0 $BA --grid 8x6 --shard 0/2 --out "$TMP/rs"
-run rs $BA --grid 8x6 --out "$TMP/rs" && outputs resume "$TMP/rs"
+run_quiet rs0 $BA --grid 8x6 --shard 0/2 --out "$TMP/rs"
+run_quiet rs $BA --grid 8x6 --out "$TMP/rs" && picture_outputs resume "$TMP/rs"
 cmp -s <(grep -v '^#' "$TMP/rs.csv") <(grep -v '^#' "$TMP/bas1.csv") || fail resume "resumed run differs"
 
 # MPI ranks as shards: tests/cli/mpi_ranks.sh (skipped, visibly, where MPI is not built in).
 
 # --- scan ---------------------------------------------------------------------------------
-run scan scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 3x2 --ics 2 --transient 100 --steps 64 \
-  --max-period 16 --out "$TMP/scan" && outputs scan "$TMP/scan"
+run_quiet scan scan --model constant --a-range 18:26 --eps-range 0.4:0.9 --grid 3x2 --ics 2 --transient 100 --steps 64 \
+  --max-period 16 --out "$TMP/scan" && picture_outputs scan "$TMP/scan"
 python3 - "$TMP/scan.csv" <<'PY' || fail scan "rows or counts wrong"
 import sys
 lines = [l.strip().split(",") for l in open(sys.argv[1]) if not l.startswith("#")]
@@ -157,30 +140,27 @@ for r in rows:
 a = sorted(set(round(float(r[0]), 9) for r in rows)); e = sorted(set(round(float(r[1]), 9) for r in rows))
 assert a == [round(18 + 8 / 6, 9), 22.0, round(26 - 8 / 6, 9)] and e == [0.525, 0.775], (a, e)
 PY
-run scanjson scan --model veldep --a-range 20:26 --c-range 500:1500 --grid 2x2 --ics 2 --transient 50 --steps 32 \
+run_quiet scanjson scan --model veldep --a-range 20:26 --c-range 500:1500 --grid 2x2 --ics 2 --transient 50 --steps 32 \
   --max-period 8 --json
 python3 -c "import json,sys; d=json.load(open(sys.argv[1])); assert sum(d['summary']['totals'].values())==16" \
-  "$TMP/scanjson.stdout" || fail scanjson "--json totals"
+  "$TMP/scanjson.out" || fail scanjson "--json totals"
 
 # --- scenes in data/scenes run as they are (short settings) ----------------------------------
 for scene in "$SRC"/data/scenes/picture-*.toml; do
   [[ -e $scene ]] || continue
   cmd=$(sed -n 's/^command = "\(.*\)"/\1/p' "$scene")
   name=$(basename "$scene" .toml)
-  run "$name" "$cmd" --scene "$scene" --out "$TMP/$name" && outputs "$name" "$TMP/$name"
+  run_quiet "$name" "$cmd" --scene "$scene" --out "$TMP/$name" && picture_outputs "$name" "$TMP/$name"
 done
 
 # --- bad input: exit 2, one line on stderr, no files -------------------------------------
-bad() {
+bad() {  # bad NAME ARGS...
   local name=$1
   shift
   rm -rf "$TMP/bad"
   mkdir "$TMP/bad"
-  local rc=0
-  "$BOUNCER" "$@" >"$TMP/bad.stdout" 2>"$TMP/bad.stderr" || rc=$?
-  [[ $rc -eq 2 ]] || fail "bad:$name" "exit $rc, expected 2 (bouncer $*): $(head -c 300 "$TMP/bad.stderr")"
-  [[ $(wc -l <"$TMP/bad.stderr") -eq 1 ]] || fail "bad:$name" "expected one line on stderr: $(head -c 300 "$TMP/bad.stderr")"
-  [[ -z $(ls -A "$TMP/bad") ]] || fail "bad:$name" "left files behind: $(ls -A "$TMP/bad")"
+  refused "bad:$name" "" "$@"
+  empty_dir "bad:$name" "$TMP/bad"
 }
 O="--out $TMP/bad/o"
 bad range-order bifurcation --model constant --eps 0.96 --range 29:28 --theta 0.1 --v 5 $O
@@ -207,8 +187,4 @@ bad scan-a-given scan --model constant --a 19 --a-range 18:20 --eps-range 0.5:0.
 bad merge-nothing merge "$TMP/bad/nothing"
 bad unknown-option $BA --grid 8x6 --colour red $O
 
-if [[ $failures -ne 0 ]]; then
-  echo "picture_commands: $failures failure(s)" >&2
-  exit 1
-fi
-echo "picture_commands: all checks passed"
+finish

@@ -17,11 +17,7 @@
 #     fonts-dejavu-core, nothing written; without --out no font is needed.
 # Usage: bash picture_formats.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash picture_formats.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 BASIN=(basin --model constant --a 24 --eps 0.5 --v-range 2:20 --grid 24x16 --transient 100 --steps 64 --quiet)
 
 # --- three formats, twice, a second apart -------------------------------------------------
@@ -119,14 +115,10 @@ cmp -s <(grep -v '^#' "$TMP/t.csv") <(grep -v '^#' "$TMP/p.csv") || fail tiles "
 
 # --- bad values: exit 2, one line naming the option, nothing written ------------------------------
 bad() {  # bad NAME OPTION ARGS...
-  local name=$1 option=$2 rc=0
+  local name=$1 option=$2
   shift 2
-  "$BOUNCER" "$@" --out "$TMP/bad_$name" >"$TMP/$name.out" 2>"$TMP/$name.err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "bad-$name" "exit $rc, expected 2"
-  [[ $(wc -l <"$TMP/$name.err") -eq 1 ]] || fail "bad-$name" "expected one line: $(head -c 300 "$TMP/$name.err")"
-  grep -q "$option" "$TMP/$name.err" || fail "bad-$name" "message does not name $option: $(cat "$TMP/$name.err")"
-  compgen -G "$TMP/bad_$name*" >/dev/null && fail "bad-$name" "something was written"
-  return 0
+  refused "bad-$name" "$option" "$@" --out "$TMP/bad_$name"
+  absent "bad-$name" "$TMP/bad_$name*"
 }
 bad format-gif format "${BASIN[@]}" --format gif
 bad format-empty-item format "${BASIN[@]}" --format png,,pdf
@@ -157,9 +149,7 @@ cmp -s <(grep -v '^#' "$TMP/tf1.csv") <(grep -v '^#' "$TMP/tf2.csv") || fail til
 grep -q '"show": "chaotic"' "$TMP/tf2.json" || fail tiles-from "the second picture does not show chaotic"
 bad tiles-from-other tiles-from "${SCAN[@]}" --max-period 16 --tiles-from "$TMP/tf1"
 bad tiles-from-none tiles-from "${SCAN[@]}" --tiles-from "$TMP/nothing-here"
-rc=0
-"$BOUNCER" "${SCAN[@]}" --tiles-from "$TMP/tf1" >"$TMP/tfn.out" 2>"$TMP/tfn.err" || rc=$?
-[[ $rc -eq 2 ]] && grep -q 'tiles-from: needs --out' "$TMP/tfn.err" || fail tiles-from-no-out "exit $rc: $(cat "$TMP/tfn.err")"
+refused tiles-from-no-out 'tiles-from: needs --out' "${SCAN[@]}" --tiles-from "$TMP/tf1"
 
 # --- scene keys, scan curves, sweep and continue ------------------------------------------------
 cat >"$TMP/scene.toml" <<'TOML'
@@ -189,8 +179,4 @@ grep -q 'width="600pt" height="400pt"' "$TMP/sc.svg" || fail scene "size/dpi fro
 
 # The font file missing: tests/cli/missing_font.sh (it needs a mount namespace).
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures failure(s)" >&2
-  exit 1
-fi
-echo "picture_formats: all checks passed"
+finish

@@ -12,12 +12,8 @@
 #     stdout, one line on stderr naming --bits and its range [16, 1048576].
 # Usage: bash proof_certificates.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash proof_certificates.sh <bouncer-binary> <source-dir>}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 PROOFS="$(dirname "$BOUNCER")/../proofs"
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 
 # Overall verdicts established in the proof headers (and the README claims table).
 declare -A VERDICT=(
@@ -97,8 +93,4 @@ rc=0; "$PROOFS/proof_veldep_fixed_points" --json --bits 160 >"$TMP/b160.json" 2>
 [[ $rc -eq 0 ]] || fail bits_160 "exit $rc: $(head -c 300 "$TMP/err")"
 msg=$(check_json veldep_fixed_points "$TMP/b160.json" 160 corrected) || fail bits_160 "$msg"
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "proof certificates: all checks passed"
+finish "proof certificates: all checks passed"

@@ -6,12 +6,7 @@
 # one-byte change of a source file.
 # Usage: bash provenance_without_git.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash provenance_without_git.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash provenance_without_git.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 form='^([0-9a-f]{40}(\+dirty-[0-9a-f]{16})?|tree-sha256:[0-9a-f]{64})$'
 
 commit=$("$BOUNCER" --version | sed -n 's/.*(commit \(.*\))$/\1/p')
@@ -29,8 +24,4 @@ echo "// one more byte" >>"$TMP/copy/lib/src/io/output.cpp"
 third=$(info c)
 [[ $third != "$first" && $third =~ ^tree-sha256: ]] || fail change "a changed source file kept the hash $first"
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "provenance without git: all checks passed"
+finish "provenance without git: all checks passed"

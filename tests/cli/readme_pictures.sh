@@ -11,12 +11,7 @@
 #   * --pictures with --quick is refused (exit 2), and so is a paper item in --only.
 # Usage: bash readme_pictures.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash readme_pictures.sh <bouncer-binary> <source-dir>}
-SRC=${2:?source dir}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 
 python3 - "$SRC" <<'PY' || fail committed "see above"
 import os, re, struct, sys, tomllib
@@ -84,15 +79,7 @@ grep -q 'tongues-p10' "$D/report.md" || fail report "report.md does not name the
 grep -q '## Claims' "$D/report.md" && fail report "a pictures report has a claims section"
 "$BOUNCER" audit "$D" > "$TMP/audit" 2>&1 || fail audit "exit $?: $(cat "$TMP/audit")"
 
-rc=0
-"$BOUNCER" reproduce --pictures --quick --out "$TMP/x" 2> "$TMP/err" || rc=$?
-[ "$rc" = 2 ] && grep -q 'pictures' "$TMP/err" || fail bad-quick "exit $rc: $(cat "$TMP/err")"
-rc=0
-"$BOUNCER" reproduce --pictures --only fig:basin1 --out "$TMP/y" 2> "$TMP/err" || rc=$?
-[ "$rc" = 2 ] && grep -q "unknown item 'fig:basin1'" "$TMP/err" || fail bad-only "exit $rc: $(cat "$TMP/err")"
+refused bad-quick 'pictures' reproduce --pictures --quick --out "$TMP/x"
+refused bad-only "unknown item 'fig:basin1'" reproduce --pictures --only fig:basin1 --out "$TMP/y"
 
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)" >&2
-  exit 1
-fi
-echo "ok: README pictures drawn by reproduce --pictures; one redrawn and audited"
+finish "ok: README pictures drawn by reproduce --pictures; one redrawn and audited"

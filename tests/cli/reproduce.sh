@@ -24,12 +24,7 @@
 #     is not a reproduce directory is refused with exit 2.
 # Usage: bash reproduce.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash reproduce.sh <bouncer-binary> <source-dir>}
-SRC=${2:?source dir}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 
 ONLY=fig:basin2,elastic-period2,elastic-fermi,fig:arnold
 D=$TMP/r
@@ -135,20 +130,13 @@ sys.exit(0 if s=={'wrong-verdict':'not reproduced','bad-command':'failed'} and j
 touch "$TMP/afile"
 bad() {  # bad NAME PATTERN ARGS...
   local name=$1 pat=$2; shift 2
-  set +e
-  "$BOUNCER" reproduce "$@" > "$TMP/out" 2> "$TMP/err"
-  local s=$?
-  set -e
-  [ "$s" = 2 ] || fail "$name" "exit $s, expected 2"
-  [ "$(wc -l < "$TMP/err")" = 1 ] || fail "$name" "stderr is not one line: $(cat "$TMP/err")"
-  grep -q -- "$pat" "$TMP/err" || fail "$name" "stderr does not name $pat: $(cat "$TMP/err")"
-  [ ! -s "$TMP/out" ] || fail "$name" "wrote to stdout"
+  refused "$name" "$pat" reproduce "$@"
 }
 bad jobs0 '--jobs\|jobs' --jobs 0 --out "$TMP/b1"
 bad jobsx 'jobs' --jobs x --out "$TMP/b2"
 bad quickfull 'quick' --quick --full --out "$TMP/b3"
 bad only "unknown item 'basin22'" --only basin22 --out "$TMP/b4"
-grep -q 'basin2' "$TMP/err" || fail only "no close match listed: $(cat "$TMP/err")"
+grep -q 'basin2' "$REFUSED_ERR" || fail only "no close match listed: $(cat "$REFUSED_ERR")"
 bad outfile 'out' --out "$TMP/afile"
 bad unknownopt 'unknown option' --fast
 
@@ -233,8 +221,4 @@ s=$?
 set -e
 [ "$s" = 2 ] || fail audit "plain directory: exit $s, expected 2"
 
-if [ "$failures" -gt 0 ]; then
-  echo "$failures failure(s)" >&2
-  exit 1
-fi
-echo "ok: reproduce --only, reports, resume, failing checks, missing proofs, bad options, audit DIR"
+finish "ok: reproduce --only, reports, resume, failing checks, missing proofs, bad options, audit DIR"

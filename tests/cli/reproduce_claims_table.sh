@@ -6,10 +6,7 @@
 # verdict word appears in the row's verdict cell.
 # Usage: bash reproduce_claims_table.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash reproduce_claims_table.sh <bouncer-binary> <source-dir>}
-SRC=${2:?source dir}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 "$BOUNCER" reproduce --claims-table > "$TMP/generated.md"
 python3 - "$SRC/README.md" "$TMP/generated.md" "$SRC/data/paper/manifest.toml" <<'PY'
 import re, sys, tomllib

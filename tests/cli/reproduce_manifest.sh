@@ -20,22 +20,20 @@
 #     presentation options (--show).
 # Usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash reproduce_manifest.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 if ! "$BOUNCER" reproduce --check > "$TMP/check" 2> "$TMP/check.err"; then
-  echo "FAIL: reproduce --check refused commands of the manifest:"; grep -v ': ok' "$TMP/check"; cat "$TMP/check.err"; exit 1
+  { grep -v ': ok' "$TMP/check" || true; cat "$TMP/check.err"; } >&2
+  die "reproduce --check refused commands of the manifest (above)"
 fi
 n=$(python3 -c 'import sys,tomllib; m=tomllib.load(open(sys.argv[1],"rb")); print(sum(2 for p in m["panel"] if p["status"]=="ready") + sum(1 + ("full_run" in c or c["run"][0].startswith("proof_")) for c in m["claim"]) + len(m.get("picture", [])))' "$SRC/data/paper/manifest.toml")
-grep -q "^$n commands checked, 0 refused$" "$TMP/check" || { echo "FAIL: expected $n commands checked: $(tail -1 "$TMP/check")"; exit 1; }
-grep -q '^fig:paramspace1 full: ok (validated' "$TMP/check" || { echo "FAIL: the full scan was not validated"; exit 1; }
+grep -q "^$n commands checked, 0 refused$" "$TMP/check" || die "expected $n commands checked: $(tail -1 "$TMP/check")"
+grep -q '^fig:paramspace1 full: ok (validated' "$TMP/check" || die "the full scan was not validated"
 set +e
 "$BOUNCER" reproduce --check --manifest "$SRC/tests/data/reproduce-failing-manifest.toml" > "$TMP/checkf" 2>&1
 s=$?
 set -e
-[ "$s" = 1 ] || { echo "FAIL: --check of a bad command: exit $s, expected 1"; exit 1; }
-grep -q "^bad-command run: refused (exit 2): a: " "$TMP/checkf" || { echo "FAIL: the bad command is not named: $(cat "$TMP/checkf")"; exit 1; }
+[ "$s" = 1 ] || die "--check of a bad command: exit $s, expected 1"
+grep -q "^bad-command run: refused (exit 2): a: " "$TMP/checkf" || die "the bad command is not named: $(cat "$TMP/checkf")"
 python3 - "$SRC/data/paper/manifest.toml" "$SRC/data/paper/figure-labels.txt" <<'PY'
 import os, re, sys, tomllib
 manifest, labels_file = sys.argv[1:3]

@@ -6,12 +6,9 @@
 # this test exits 77 (ctest: skipped, visibly) instead of passing.
 # Usage: bash reproduce_manifest_tex.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-SRC=${2:?usage: bash reproduce_manifest_tex.sh <bouncer-binary> <source-dir>}
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 TEX=${BOUNCER_PAPER_TEX:-$SRC/../shared/paper/langer-miller-2014.tex}
-if [[ ! -f $TEX ]]; then
-  echo "reproduce_manifest_tex: SKIPPED: the paper's .tex is not here (set BOUNCER_PAPER_TEX=PATH to check against it)"
-  exit 77
-fi
+[[ -f $TEX ]] || skip "the paper's .tex is not here (set BOUNCER_PAPER_TEX=PATH to check against it)"
 python3 - "$SRC/data/paper/manifest.toml" "$SRC/data/paper/figure-labels.txt" "$TEX" <<'PY'
 import re, sys, tomllib
 manifest, labels_file, tex = sys.argv[1:4]

@@ -10,19 +10,12 @@
 #   - `bouncer help tongues` documents the options; the scene file runs.
 # Usage: bash tongues.sh <bouncer-binary> <source-dir>
 set -uo pipefail
-BOUNCER=${1:?usage: bash tongues.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash tongues.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 cd "$TMP"
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 
 "$BOUNCER" tongues --out t10 || fail t10 "exit $?"
 "$BOUNCER" tongues --p-max 50 --a-range 0.5:100 --eps-range 0.01:0.99 --samples 40 --out t50 || fail t50 "exit $?"
-for p in t10 t50; do
-  for ext in csv png json; do [[ -s $p.$ext ]] || fail "$p" "missing $p.$ext"; done
-done
+for p in t10 t50; do outputs "$p" "$p"; done
 
 python3 - <<'PY' || fail properties "see above"
 import csv, json, sys
@@ -67,13 +60,10 @@ sys.exit(1 if bad else 0)
 PY
 
 bad() {  # NAME OPTION-NAME ARGS...
-  local name=$1 opt=$2 rc=0
+  local name=$1 opt=$2
   shift 2
-  "$BOUNCER" tongues "$@" --out "bad-$name" >"bad-$name.out" 2>"bad-$name.err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "bad $name" "exit $rc, expected 2"
-  [[ $(wc -l <"bad-$name.err") -eq 1 ]] || fail "bad $name" "stderr is not one line: $(cat "bad-$name.err")"
-  grep -q -- "$opt" "bad-$name.err" || fail "bad $name" "does not name $opt: $(cat "bad-$name.err")"
-  ls bad-"$name".csv bad-"$name".png bad-"$name".json >/dev/null 2>&1 && fail "bad $name" "left an output file"
+  refused "bad $name" "$opt" tongues "$@" --out "bad-$name"
+  absent "bad $name" "bad-$name.csv" "bad-$name.png" "bad-$name.json"
 }
 bad pmax0 p-max --p-max 0
 bad pmax51 p-max --p-max 51
@@ -91,9 +81,7 @@ rc=0
 ls blocked.csv blocked.json >/dev/null 2>&1 && fail "all-or-none" "wrote the CSV or JSON without the PNG"
 
 for f in t10.json t10.csv t50.json; do
-  rc=0
-  "$BOUNCER" audit "$f" >"$f.audit" 2>&1 || rc=$?
-  [[ $rc -eq 0 ]] && grep -q IDENTICAL "$f.audit" || fail "audit $f" "exit $rc: $(tail -c 300 "$f.audit")"
+  audited "audit $f" "$f"
 done
 sed 's/^1,8,0,1\/2,no,/1,8,0,1\/2,yes,/' t10.csv >tampered.csv
 cmp -s t10.csv tampered.csv && fail "audit tamper" "no line changed"
@@ -108,10 +96,6 @@ for opt in p-max a-range eps-range samples out scene; do
   grep -qE -- "--$opt([[:space:]]|$)" help.txt || fail help "does not document --$opt"
 done
 "$BOUNCER" --scene "$SRC/data/scenes/picture-tongues-p10.toml" --out scene || fail scene "exit $?"
-[[ -s scene.png && -s scene.csv && -s scene.json ]] || fail scene "outputs missing"
+outputs scene scene
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures failure(s)" >&2
-  exit 1
-fi
-echo "tongues: all checks passed"
+finish

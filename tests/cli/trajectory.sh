@@ -15,13 +15,8 @@
 #   - `bouncer help trajectory` documents the options; the scene file runs.
 # Usage: bash trajectory.sh <bouncer-binary> <source-dir>
 set -uo pipefail
-BOUNCER=${1:?usage: bash trajectory.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash trajectory.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 cd "$TMP"
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 
 FP=(--model constant --eps 0.5 --a 24 --theta 0.3 --v 12)
 "$BOUNCER" trajectory "${FP[@]}" --periods 3 --out fp || fail fp "exit $?"
@@ -38,9 +33,7 @@ DS=(--model constant --eps 0.3 --a 24 --theta 0.6 --v -3 --periods 2 --samples 6
 # collision of speed 8 sticks: ride, chatter, stuck, release at t = 1.5.
 "$BOUNCER" trajectory --model constant --eps 0.3 --a 24 --theta 0.7 --v -4 --downward-sticking impact --periods 2 \
   --samples 64 --precision mpfr:160 --out ri || fail ri "exit $?"
-for p in fp fpm st stm dp di ri; do
-  for ext in csv png json; do [[ -s $p.$ext ]] || fail "$p" "missing $p.$ext"; done
-done
+for p in fp fpm st stm dp di ri; do outputs "$p" "$p"; done
 
 python3 - <<'PY' || fail properties "see above"
 import csv, json, sys
@@ -141,13 +134,10 @@ PY
 
 # Bad input: exit 2, one line naming the option, no files.
 bad() {  # NAME OPTION-NAME ARGS...
-  local name=$1 opt=$2 rc=0
+  local name=$1 opt=$2
   shift 2
-  "$BOUNCER" trajectory "$@" --out "bad-$name" >"bad-$name.out" 2>"bad-$name.err" || rc=$?
-  [[ $rc -eq 2 ]] || fail "bad $name" "exit $rc, expected 2"
-  [[ $(wc -l <"bad-$name.err") -eq 1 ]] || fail "bad $name" "stderr is not one line: $(cat "bad-$name.err")"
-  grep -q -- "$opt" "bad-$name.err" || fail "bad $name" "does not name $opt: $(cat "bad-$name.err")"
-  ls bad-"$name".csv bad-"$name".png bad-"$name".json >/dev/null 2>&1 && fail "bad $name" "left an output file"
+  refused "bad $name" "$opt" trajectory "$@" --out "bad-$name"
+  absent "bad $name" "bad-$name.csv" "bad-$name.png" "bad-$name.json"
 }
 bad periods0 periods "${FP[@]}" --periods 0
 bad periods101 periods "${FP[@]}" --periods 101
@@ -168,9 +158,7 @@ ls blocked.csv blocked.json >/dev/null 2>&1 && fail "all-or-none" "wrote the CSV
 
 # Audit: both files reproduce; a changed digit is found.
 for f in fp.json fp.csv stm.json; do
-  rc=0
-  "$BOUNCER" audit "$f" >"$f.audit" 2>&1 || rc=$?
-  [[ $rc -eq 0 ]] && grep -q IDENTICAL "$f.audit" || fail "audit $f" "exit $rc: $(tail -c 300 "$f.audit")"
+  audited "audit $f" "$f"
 done
 sed 's/^1\.3,0\.19999/1.3,0.29999/' fp.csv >tampered.csv
 cmp -s fp.csv tampered.csv && fail "audit tamper" "no line changed"
@@ -186,10 +174,6 @@ for opt in model a eps c theta v periods samples precision out scene; do
   grep -qE -- "--$opt([[:space:]]|$)" help.txt || fail help "does not document --$opt"
 done
 "$BOUNCER" --scene "$SRC/data/scenes/picture-trajectory-fixed-point.toml" --out scene || fail scene "exit $?"
-[[ -s scene.png && -s scene.csv && -s scene.json ]] || fail scene "outputs missing"
+outputs scene scene
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures failure(s)" >&2
-  exit 1
-fi
-echo "trajectory: all checks passed"
+finish

@@ -17,23 +17,9 @@
 #   * SIGKILL of reproduce or of audit leaves no child running (PR_SET_PDEATHSIG).
 # Usage: bash trust_boundary.sh <bouncer-binary> <source-dir>
 set -euo pipefail
-BOUNCER=${1:?usage: bash trust_boundary.sh <bouncer-binary> <source-dir>}
-SRC=${2:?usage: bash trust_boundary.sh <bouncer-binary> <source-dir>}
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 cd "$TMP"
-failures=0
-fail() { echo "FAIL [$1]: $2" >&2; failures=$((failures + 1)); }
 VERSION=$("$BOUNCER" --version | awk '{print $1}')
-
-refused() {  # refused NAME PATTERN ARGS...: exit 2, one stderr line matching PATTERN, empty stdout
-  local name=$1 pattern=$2 rc=0
-  shift 2
-  "$BOUNCER" "$@" >"$name.out" 2>"$name.err" || rc=$?
-  [[ $rc -eq 2 && $(wc -l <"$name.err") -eq 1 && ! -s "$name.out" ]] ||
-    fail "$name" "exit $rc, expected 2 and one line: $(head -c 400 "$name.err") $(head -c 200 "$name.out")"
-  grep -q -- "$pattern" "$name.err" || fail "$name" "message does not match '$pattern': $(head -c 400 "$name.err")"
-}
 
 claim() {  # claim ID RUN-ARRAY: one [[claim]] table
   cat <<EOF
@@ -154,8 +140,4 @@ killed kill_reproduce 2 reproduce --manifest "$SRC/tests/data/reproduce-slow-man
 result long.csv orbit "model=constant a=20 eps=0.5 theta=0.1 v=5 steps=2000000000 every=1000000000"
 killed kill_audit 1 audit long.csv
 
-if [[ $failures -gt 0 ]]; then
-  echo "$failures check(s) failed" >&2
-  exit 1
-fi
-echo "trust boundary: all checks passed"
+finish "trust boundary: all checks passed"

@@ -60,6 +60,7 @@
 #include "bouncer/verify/periodic_certify.hpp"
 #include "bouncer/verify/sticking.hpp"
 #include "cli_common.hpp"
+#include "command_line.hpp"
 #include "picture_common.hpp"
 #include "run_command.hpp"
 
@@ -151,11 +152,18 @@ py::dict run(const std::vector<std::string>& words) {
 // each value as a list of texts (one text, or two for a pair such as guess).
 using Texts = std::map<std::string, std::vector<std::string>>;
 
+// A value with a NUL byte is refused as run_command refuses it (a C string would cut it),
+// with the whole value in the message (escaped by one_line, as every message of
+// run_command is): raised here, because InputError::what() would end at the NUL.
+[[noreturn]] void refuse_nul(const std::string& field, const std::string& value) {
+  throw py::value_error(cli::one_line(field + ": the value '" + value + "' contains a NUL byte"));
+}
+
 Options options_of(const Texts& texts) {
   Options o;
   for (const auto& [key, values] : texts) {
-    for (const std::string& v : values)  // as run_command refuses it: a C string would cut it
-      if (v.find('\0') != std::string::npos) throw InputError(key, "the value '" + v + "' contains a NUL byte");
+    for (const std::string& v : values)
+      if (v.find('\0') != std::string::npos) refuse_nul(key, v);
     o.set(key, values);
   }
   return o;
@@ -167,7 +175,7 @@ Options options_of(const Texts& texts) {
 std::string text_of(py::handle x, const char* field) {
   if (py::isinstance<py::str>(x)) {
     std::string s = x.cast<std::string>();
-    if (s.find('\0') != std::string::npos) throw InputError(field, "the value '" + s + "' contains a NUL byte");
+    if (s.find('\0') != std::string::npos) refuse_nul(field, s);
     return s;
   }
   if (py::isinstance<py::bool_>(x))
@@ -1061,8 +1069,8 @@ PYBIND11_MODULE(_core, mod) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
-    } catch (const InputError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+    } catch (const InputError& e) {  // one printable line, as run_command gives the CLI-parity layer
+      PyErr_SetString(PyExc_ValueError, cli::one_line(e.what()).c_str());
     }
   });
   py::register_exception<Undecided>(mod, "Undecided", PyExc_ArithmeticError);

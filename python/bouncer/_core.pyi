@@ -19,23 +19,36 @@ class Interval:
 
 _Real = Union[float, str, Interval]
 
-class Step:
-    theta: _Real
-    v: _Real
-    tau: _Real
-    event: str
-    periods: int
-    segment: int
-    wall: str
-    corner: bool
-    indirect: Optional[bool]
-    stick_segment: Optional[int]
-    stuck_theta: Optional[_Real]
-    stuck_v: Optional[_Real]
-    passed_upward_turn: bool
-    phase_bits: int
+class Step(Tuple[_Real, _Real]):
+    """The tuple (theta, v) after one step; the rest of the CLI's orbit row as attributes."""
     @property
-    def state(self) -> Tuple[_Real, _Real]: ...
+    def theta(self) -> _Real: ...
+    @property
+    def v(self) -> _Real: ...
+    @property
+    def tau(self) -> _Real: ...
+    @property
+    def event(self) -> str: ...
+    @property
+    def periods(self) -> int: ...
+    @property
+    def segment(self) -> int: ...
+    @property
+    def wall(self) -> str: ...
+    @property
+    def corner(self) -> bool: ...
+    @property
+    def indirect(self) -> Optional[bool]: ...
+    @property
+    def stick_segment(self) -> Optional[int]: ...
+    @property
+    def stuck_theta(self) -> Optional[_Real]: ...
+    @property
+    def stuck_v(self) -> Optional[_Real]: ...
+    @property
+    def passed_upward_turn(self) -> bool: ...
+    @property
+    def phase_bits(self) -> int: ...
 
 class Orbit:
     n: np.ndarray

@@ -315,8 +315,10 @@ class Model(_core.Model):
     Example::
 
         m = bouncer.Model(model="constant", a="24", eps="0.5")
-        s = m.step(0.25, 12.0)          # Step(theta=0.25, v=12.0, event='impact', tau=0.5)
-        o = m.orbit(0.25, 12.0, 1000)   # Orbit: o.theta, o.v, ... numpy arrays
+        s = m.step(0.3, 9.5)            # bouncer.Step(theta=0.15033547982814893, v=11.454025757937787)
+        s.event, s.tau                  # ('impact', 0.8503354798281488)
+        theta, v = m.step(*s)           # a Step is the tuple (theta, v)
+        o = m.orbit(0.3, 9.5, 1000)     # Orbit: o.theta, o.v, ... numpy arrays
     """
 
     def __init__(self, *, model: _Optional[str] = None, a: _Optional[Number] = None, eps: _Optional[Number] = None,
@@ -332,6 +334,7 @@ class Model(_core.Model):
         return f"bouncer.Model({given})"
 
     # step(theta, v) -> Step is the native method (module.cpp): no Python frame in between.
+    # A Step is the tuple (theta, v) with the rest of the step as attributes.
 
     def orbit(self, theta: Number, v: Number, steps: _Optional[int] = None, *, every: _Optional[int] = None,
               method: _Optional[str] = None) -> Orbit:

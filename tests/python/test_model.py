@@ -128,7 +128,7 @@ def test_step_is_row_one_of_the_cli_orbit():
             assert r["sticking"] == TRIANGLE_DIRECTION[s.stick_segment] + (":paper" if s.passed_upward_turn else "")
         else:
             assert s.stuck_theta is None and s.stick_segment is None and r["sticking"] in ("", -1)
-        assert s.state == (s.theta, s.v)
+        assert tuple(s) == (s.theta, s.v) and len(s) == 2  # theta, v = m.step(theta, v) iterates
 
 
 def test_step_in_other_precisions_gives_texts_and_intervals():
@@ -647,5 +647,10 @@ def test_repr_and_properties():
     assert repr(m) == "bouncer.Model(a='25', c='1000', model='veldep', precision='mpfr:128')"
     assert (m.model, m.a, m.eps, m.c, m.wall, m.precision, m.bits) == ("veldep", "25", None, "1000", "triangle",
                                                                        "mpfr:128", 128)
-    s = bouncer.Model(**CONSTANT).step(0.375, 12.0)
-    assert repr(s) == f"Step(theta={s.theta!r}, v={s.v!r}, event='impact', tau={s.tau!r})"
+    m = bouncer.Model(**CONSTANT)
+    s = m.step(0.375, 12.0)
+    assert repr(s) == f"bouncer.Step(theta={s.theta!r}, v={s.v!r})"
+    theta, v = 0.3, 9.5
+    for _ in range(5):
+        theta, v = m.step(theta, v)  # the step is the state: iterating the map
+    assert (theta, v) == tuple(m.orbit(0.3, 9.5, 5).theta[-1:]) + tuple(m.orbit(0.3, 9.5, 5).v[-1:])

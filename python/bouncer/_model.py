@@ -5,11 +5,13 @@ texts and the native results into dataclasses."""
 
 from __future__ import annotations
 
-import dataclasses as _dataclasses
-from decimal import Decimal as _Decimal
-from typing import Any as _Any, Dict as _Dict, List as _List, Optional as _Optional, Tuple as _Tuple, Union as _Union
+# (A private module: its names do not reach the bouncer namespace, which imports what it
+# exports by name; they are plain here so that help() shows plain annotations.)
+import dataclasses
+from decimal import Decimal
+from typing import Any, Dict, List, Optional, Tuple, Union
 
-import numpy as _np
+import numpy as np
 
 from . import _core
 from ._cli import _decimal
@@ -24,13 +26,13 @@ EVENTS = ("start", "impact", "sticking", "ride")
 
 #: A number given to bouncer: a decimal string or ``decimal.Decimal`` (exact), an int, or a
 #: float (its exact binary value, e.g. 0.1 is 0.1000000000000000055511151231257827...).
-Number = _Union[str, int, float, _Decimal]
+Number = Union[str, int, float, Decimal]
 #: A real number of a result: float in double, a decimal text (str) in long, dd, quad and
 #: mpfr:BITS (``bouncer.to_mpmath`` converts it), an Interval in interval precisions.
-Real = _Union[float, str, Interval]
+Real = Union[float, str, Interval]
 
 
-def _texts(**options: _Any) -> _Dict[str, _List[str]]:
+def _texts(**options: Any) -> Dict[str, List[str]]:
     """Keyword arguments -> the CLI's option texts ({"max-iter": ["30"]}); None is left out
     (the CLI's default applies), pairs become two texts."""
     out = {}
@@ -45,7 +47,7 @@ def _texts(**options: _Any) -> _Dict[str, _List[str]]:
     return out
 
 
-def _on_off(value: _Any, name: str) -> _Optional[str]:
+def _on_off(value: Any, name: str) -> Optional[str]:
     if value is None or isinstance(value, str):
         return value
     if isinstance(value, bool):
@@ -53,20 +55,20 @@ def _on_off(value: _Any, name: str) -> _Optional[str]:
     raise TypeError(f"{name}: expected True, False, 'on' or 'off', got {type(value).__name__}")
 
 
-def _range_text(value: _Any, name: str) -> _Optional[str]:
+def _range_text(value: Any, name: str) -> Optional[str]:
     if value is None or isinstance(value, str):
         return value
     lo, hi = value
     return _decimal(lo, name) + ":" + _decimal(hi, name)
 
 
-def _build(cls, fields: _Dict[str, _Any]):
+def _build(cls, fields: Dict[str, Any]):
     return cls(**fields)
 
 
 # ---- results ----------------------------------------------------------------------------------
 
-@_dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class Classification:
     """What an orbit does in the long run (``bouncer classify``), with the evidence.
 
@@ -85,21 +87,21 @@ class Classification:
     period: int
     lambda_: float
     evidence: str
-    growth_alpha: _Optional[float]
-    growth_per_step: _Optional[float]
-    phase_branches: _Optional[int]
-    accelerator_period: _Optional[int]
-    accelerator_gain: _Optional[float]
-    growth_kind: _Optional[str]
-    settled_class: _Optional[str]
-    settled_at: _Optional[int]
+    growth_alpha: Optional[float]
+    growth_per_step: Optional[float]
+    phase_branches: Optional[int]
+    accelerator_period: Optional[int]
+    accelerator_gain: Optional[float]
+    growth_kind: Optional[str]
+    settled_class: Optional[str]
+    settled_at: Optional[int]
     transient: int
     steps: int
     max_period: int
     recheck_factor: int
 
 
-@_dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class Lyapunov:
     """The leading Lyapunov exponent of one orbit (``bouncer lyapunov``).
 
@@ -123,7 +125,7 @@ class Lyapunov:
     note: str
 
 
-@_dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class PeriodicOrbit:
     """A period-q orbit from damped Newton (``bouncer periodic``).
 
@@ -137,20 +139,20 @@ class PeriodicOrbit:
     converged: bool
     period: int
     minimal_period: int
-    points: _List[_Tuple[Real, Real]]
-    multipliers: _List[_Tuple[Real, Real]]
-    multiplier_moduli: _Tuple[float, float]
+    points: List[Tuple[Real, Real]]
+    multipliers: List[Tuple[Real, Real]]
+    multiplier_moduli: Tuple[float, float]
     complex_pair: bool
     marginal: bool
-    events: _List[str]
-    wall_periods: _List[int]
+    events: List[str]
+    wall_periods: List[int]
     residual: float
     tolerance: float
     iterations: int
     note: str
 
 
-@_dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class BranchEnd:
     """Where a continued branch ends (one side).
 
@@ -164,17 +166,17 @@ class BranchEnd:
     """
     reason: str
     param: Real
-    bracket: _Tuple[Real, Real]
-    margin: _Optional[str]
-    impact: _Optional[int]
-    knot: _Optional[str]
+    bracket: Tuple[Real, Real]
+    margin: Optional[str]
+    impact: Optional[int]
+    knot: Optional[str]
     detail: str
-    last_point: _Tuple[Real, Real]
-    beyond: _Optional[_Dict[str, _Any]]
+    last_point: Tuple[Real, Real]
+    beyond: Optional[Dict[str, Any]]
     beyond_note: str
 
 
-@_dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class Branch:
     """A period-q orbit continued in a parameter (``bouncer continue``), K points.
 
@@ -190,22 +192,22 @@ class Branch:
     """
     vary: str
     period: int
-    param: _np.ndarray
-    theta: _np.ndarray
-    v: _np.ndarray
-    multiplier_moduli: _np.ndarray
-    residual: _np.ndarray
-    min_margin: _Dict[str, _np.ndarray]
-    stability: _List[str]
-    events: _List[str]
+    param: np.ndarray
+    theta: np.ndarray
+    v: np.ndarray
+    multiplier_moduli: np.ndarray
+    residual: np.ndarray
+    min_margin: Dict[str, np.ndarray]
+    stability: List[str]
+    events: List[str]
     start: int
     low: BranchEnd
     high: BranchEnd
-    bifurcations: _List[_Dict[str, _Any]]
+    bifurcations: List[Dict[str, Any]]
     corrector_runs: int
 
 
-@_dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class StickingCertificate:
     """A certified answer about sticking for one exact start (``bouncer certify-sticking``).
 
@@ -221,24 +223,24 @@ class StickingCertificate:
     """
     certified: bool
     outcome: str
-    period: _Optional[int]
-    scalar: _Optional[str]
+    period: Optional[int]
+    scalar: Optional[str]
     bits: int
     steps_checked: int
     statement: str
     reason: str
-    double_period: _Optional[int]
-    attractor: _Optional[_Dict[str, _Any]]
-    release_theta: _Optional[str]
-    release_v: _Optional[str]
+    double_period: Optional[int]
+    attractor: Optional[Dict[str, Any]]
+    release_theta: Optional[str]
+    release_v: Optional[str]
     lohner_fallbacks: int
     max_steps: int
     schedule: str
-    attempts: _List[_Dict[str, _Any]]
+    attempts: List[Dict[str, Any]]
     seconds: float
 
 
-@_dataclasses.dataclass(frozen=True)
+@dataclasses.dataclass(frozen=True)
 class PeriodicCertificate:
     """A period-Q orbit proved by the Krawczyk operator (``bouncer certify-periodic``).
 
@@ -262,18 +264,18 @@ class PeriodicCertificate:
     reason: str
     bits: int
     period: int
-    minimal_period: _Optional[int]
+    minimal_period: Optional[int]
     stability: str
-    points: _List[_Tuple[Interval, Interval]]
-    events: _List[str]
-    wall_periods: _List[int]
-    multipliers: _Dict[str, _Any]
-    krawczyk: _Optional[_Dict[str, _Any]]
-    family: _Optional[_Dict[str, _Any]]
-    double_newton: _Optional[_Tuple[str, str]]
-    double_distance: _Optional[float]
+    points: List[Tuple[Interval, Interval]]
+    events: List[str]
+    wall_periods: List[int]
+    multipliers: Dict[str, Any]
+    krawczyk: Optional[Dict[str, Any]]
+    family: Optional[Dict[str, Any]]
+    double_newton: Optional[Tuple[str, str]]
+    double_distance: Optional[float]
     schedule: str
-    attempts: _List[_Dict[str, _Any]]
+    attempts: List[Dict[str, Any]]
     seconds: float
 
 
@@ -321,9 +323,9 @@ class Model(_core.Model):
         o = m.orbit(0.3, 9.5, 1000)     # Orbit: o.theta, o.v, ... numpy arrays
     """
 
-    def __init__(self, *, model: _Optional[str] = None, a: _Optional[Number] = None, eps: _Optional[Number] = None,
-                 c: _Optional[Number] = None, wall: _Optional[str] = None, downward_sticking: _Optional[str] = None,
-                 veldep_collapse: _Union[bool, str, None] = None, precision: str = "double") -> None:
+    def __init__(self, *, model: Optional[str] = None, a: Optional[Number] = None, eps: Optional[Number] = None,
+                 c: Optional[Number] = None, wall: Optional[str] = None, downward_sticking: Optional[str] = None,
+                 veldep_collapse: Union[bool, str, None] = None, precision: str = "double") -> None:
         if model is None:
             model = "constant" if eps is not None else "veldep" if c is not None else None
         super().__init__(_texts(model=model, a=a, eps=eps, c=c, wall=wall, downward_sticking=downward_sticking,
@@ -336,8 +338,8 @@ class Model(_core.Model):
     # step(theta, v) -> Step is the native method (module.cpp): no Python frame in between.
     # A Step is the tuple (theta, v) with the rest of the step as attributes.
 
-    def orbit(self, theta: Number, v: Number, steps: _Optional[int] = None, *, every: _Optional[int] = None,
-              method: _Optional[str] = None) -> Orbit:
+    def orbit(self, theta: Number, v: Number, steps: Optional[int] = None, *, every: Optional[int] = None,
+              method: Optional[str] = None) -> Orbit:
         """The orbit from (theta, v) as numpy arrays (``bouncer orbit``, without the text).
 
         theta: phase in [0, 1); v: velocity after the impact, at least the wall's velocity
@@ -353,8 +355,8 @@ class Model(_core.Model):
         """
         return self._orbit(_texts(theta=theta, v=v, steps=steps, every=every, method=method))
 
-    def classify(self, theta: Number, v: Number, *, transient: _Optional[int] = None, steps: _Optional[int] = None,
-                 max_period: _Optional[int] = None, recheck_factor: _Optional[int] = None) -> Classification:
+    def classify(self, theta: Number, v: Number, *, transient: Optional[int] = None, steps: Optional[int] = None,
+                 max_period: Optional[int] = None, recheck_factor: Optional[int] = None) -> Classification:
         """The long-run class of the orbit from (theta, v) (``bouncer classify``).
 
         theta, v: the start, as for orbit
@@ -368,8 +370,8 @@ class Model(_core.Model):
         return _build(Classification, self._classify(_texts(
             theta=theta, v=v, transient=transient, steps=steps, max_period=max_period, recheck_factor=recheck_factor)))
 
-    def lyapunov(self, theta: Number, v: Number, *, transient: _Optional[int] = None, steps: _Optional[int] = None,
-                 blocks: _Optional[int] = None) -> Lyapunov:
+    def lyapunov(self, theta: Number, v: Number, *, transient: Optional[int] = None, steps: Optional[int] = None,
+                 blocks: Optional[int] = None) -> Lyapunov:
         """The leading Lyapunov exponent per collision of the orbit from (theta, v), through
         the AD tangent map (``bouncer lyapunov``; the exponent curves of ``--vary`` are
         ``bouncer.lyapunov(vary=..., range=...)``).
@@ -382,8 +384,8 @@ class Model(_core.Model):
         return _build(Lyapunov, self._lyapunov(_texts(theta=theta, v=v, transient=transient, steps=steps,
                                                       blocks=blocks)))
 
-    def periodic(self, period: int, *, guess: _Optional[_Tuple[Number, Number]] = None,
-                 max_iter: _Optional[int] = None, grid: _Optional[int] = None) -> PeriodicOrbit:
+    def periodic(self, period: int, *, guess: Optional[Tuple[Number, Number]] = None,
+                 max_iter: Optional[int] = None, grid: Optional[int] = None) -> PeriodicOrbit:
         """A period-q orbit by damped Newton, with its multipliers (``bouncer periodic``).
 
         period: q, an integer in [1, 100]
@@ -394,11 +396,11 @@ class Model(_core.Model):
         """
         return _build(PeriodicOrbit, self._periodic(_texts(period=period, guess=guess, max_iter=max_iter, grid=grid)))
 
-    def continue_branch(self, period: int, guess: _Tuple[Number, Number], range: _Tuple[Number, Number], *,
-                        vary: str = "a", step: _Optional[Number] = None, max_points: _Optional[int] = None,
-                        max_iter: _Optional[int] = None, beyond: _Optional[Number] = None,
-                        transient: _Optional[int] = None, steps: _Optional[int] = None,
-                        max_period: _Optional[int] = None, recheck_factor: _Optional[int] = None) -> Branch:
+    def continue_branch(self, period: int, guess: Tuple[Number, Number], range: Tuple[Number, Number], *,
+                        vary: str = "a", step: Optional[Number] = None, max_points: Optional[int] = None,
+                        max_iter: Optional[int] = None, beyond: Optional[Number] = None,
+                        transient: Optional[int] = None, steps: Optional[int] = None,
+                        max_period: Optional[int] = None, recheck_factor: Optional[int] = None) -> Branch:
         """Continues the period-q orbit near ``guess`` in ``vary`` over ``range`` from the
         model's own value of that parameter, and locates where the branch ends
         (``bouncer continue``, without its pictures and ``--certify``).
@@ -425,10 +427,10 @@ class Model(_core.Model):
         d["high"] = _build(BranchEnd, d["high"])
         return _build(Branch, d)
 
-    def certify_sticking(self, theta: Number = "0.5", v: Number = "4", *, max_steps: _Optional[int] = None,
-                         max_bits: _Optional[int] = None, start_bits: _Union[int, str, None] = None,
-                         method: _Optional[str] = None,
-                         prove_attractor: _Union[bool, str, None] = None) -> StickingCertificate:
+    def certify_sticking(self, theta: Number = "0.5", v: Number = "4", *, max_steps: Optional[int] = None,
+                         max_bits: Optional[int] = None, start_bits: Union[int, str, None] = None,
+                         method: Optional[str] = None,
+                         prove_attractor: Union[bool, str, None] = None) -> StickingCertificate:
         """A certified answer: does the orbit of the exact start (theta, v) stick, and when
         (``bouncer certify-sticking``; model constant). Interval arithmetic with precision
         escalation, whatever the model's precision.
@@ -448,10 +450,10 @@ class Model(_core.Model):
             theta=theta, v=v, max_steps=max_steps, max_bits=max_bits, start_bits=start_bits, method=method,
             prove_attractor=_on_off(prove_attractor, "prove_attractor"))))
 
-    def certify_periodic(self, period: int, *, guess: _Optional[_Tuple[Number, Number]] = None,
-                         vary: _Optional[str] = None, family: _Optional[str] = None,
-                         max_bits: _Optional[int] = None, start_bits: _Optional[int] = None,
-                         max_iter: _Optional[int] = None, grid: _Optional[int] = None) -> PeriodicCertificate:
+    def certify_periodic(self, period: int, *, guess: Optional[Tuple[Number, Number]] = None,
+                         vary: Optional[str] = None, family: Optional[str] = None,
+                         max_bits: Optional[int] = None, start_bits: Optional[int] = None,
+                         max_iter: Optional[int] = None, grid: Optional[int] = None) -> PeriodicCertificate:
         """A period-Q orbit proved to exist (and be locally unique) by the Krawczyk operator,
         with enclosures of its points and multipliers (``bouncer certify-periodic`` at the
         model's parameter values; over a parameter range: ``bouncer.certify_periodic(...,

@@ -6,7 +6,7 @@ Environment:
   BOUNCER_BUILD_DIR   an existing, configured CMake build tree of this source (e.g. build):
                       its bouncer_python target is brought up to date and used, instead of
                       configuring and building a tree of its own (which builds the library,
-                      minutes on 2 cores).
+                      about 20 minutes on 2 cores).
   BOUNCER_BUILD_JOBS  parallel jobs of that build (default: the number of CPUs).
 """
 

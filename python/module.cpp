@@ -1,52 +1,81 @@
-// bouncer._core: the Python module's one native entry point. run(words) runs a bouncer
-// command line in this process (tools/run_command.hpp: the same parsing, validation and
-// code as the command-line tool) on a worker thread, with the GIL released, and returns what
-// the command printed. The pure-Python layer (python/bouncer/__init__.py) builds the words
-// from keyword arguments and turns the JSON and CSV into result objects and numpy arrays.
+// bouncer._core: the Python module's native part. Two ways in:
 //
-// Interrupts: the calling thread waits for the worker in slices of 50 ms and, between them,
-// takes the GIL to let Python run its signal handlers (PyErr_CheckSignals: Ctrl-C in a
-// notebook). When a handler raises (KeyboardInterrupt), the worker's cancel flag is set
-// (io/cancel.hpp), the command unwinds at its next check (output files are written all or
-// none, so none is left half written), and the exception is re-raised here.
+//  * Model: the library itself. A model is built once from the CLI's option texts (the same
+//    parsers and validation: io/scene.cpp model_from, parse_precision), and its methods call
+//    the library's functions on it: ImpactMap<T>::step, an orbit loop that fills numpy arrays
+//    straight from the StepResult<T> fields (no text in between for double), classify,
+//    find_periodic / search_periodic, lyapunov, continue_branch, certify_sticking and
+//    certify_periodic. The analyses return plain dicts that the Python layer
+//    (python/bouncer/__init__.py) turns into dataclasses.
+//  * run(words): a bouncer command line run in this process (tools/run_command.hpp: the
+//    same parsing, validation and code as the command-line tool), which returns what the
+//    command printed. The CLI-parity path, and the way to the commands whose science is
+//    still in tools/ (basin, scan, bifurcation, exponent curves, ...).
+//
+// No science here: the collision law, the analyses and the certificates are the library's.
+// What this file does is conversion (Python values <-> option texts and scalars), the GIL and
+// interrupts, and the defaults and ranges of the analysis options, which are the CLI's
+// (tools/cmd_*.cpp; where the CLI parses them in a shared helper, that helper is called here).
+//
+// Interrupts: long calls run on a worker thread while the calling thread waits in slices of
+// 50 ms and, between them, takes the GIL to let Python run its signal handlers
+// (PyErr_CheckSignals: Ctrl-C in a notebook). When a handler raises (KeyboardInterrupt), the
+// worker's cancel flag is set (io/cancel.hpp), the computation unwinds at its next check
+// (output files are written all or none, so none is left half written), and the exception is
+// re-raised here. Model.step holds the GIL: one step is a fraction of a microsecond in double.
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
+#include <cstdint>
+#include <cstdlib>
 #include <exception>
+#include <limits>
+#include <map>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
+#include "analysis_common.hpp"
+#include "bouncer/analysis/classify.hpp"
+#include "bouncer/analysis/continuation.hpp"
+#include "bouncer/analysis/lyapunov.hpp"
+#include "bouncer/analysis/periodic.hpp"
 #include "bouncer/io/cancel.hpp"
+#include "bouncer/io/orbit.hpp"
 #include "bouncer/io/provenance.hpp"
+#include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/thread_caches.hpp"
+#include "bouncer/verify/enclosure.hpp"
+#include "bouncer/verify/periodic_certify.hpp"
+#include "bouncer/verify/sticking.hpp"
 #include "cli_common.hpp"
+#include "command_line.hpp"
+#include "picture_common.hpp"
 #include "run_command.hpp"
 
 namespace py = pybind11;
 
 namespace {
 
-const char* kind_name(bouncer::cli::CommandOutcome::Kind k) {
-  using K = bouncer::cli::CommandOutcome::Kind;
-  switch (k) {
-    case K::ok: return "ok";
-    case K::help: return "help";
-    case K::input: return "input";
-    case K::output: return "output";
-    case K::internal: return "internal";
-    case K::cancelled: return "cancelled";
-  }
-  return "internal";
-}
+using namespace bouncer;
 
-py::dict run(const std::vector<std::string>& words) {
-  bouncer::cli::CommandOutcome outcome;
-  bouncer::cli::CommandCapture capture;
+// ---- long calls: off the GIL, on a worker thread, Ctrl-C cancelling ------------------------
+
+template <class F>
+auto interruptible(F&& f) {
+  using R = std::invoke_result_t<F&>;
+  std::optional<R> result;
   std::exception_ptr failure;
   std::atomic<bool> cancel{false};
   std::mutex m;
@@ -56,11 +85,10 @@ py::dict run(const std::vector<std::string>& words) {
   {
     py::gil_scoped_release release;
     std::thread worker([&] {
-      const bouncer::MpfrThreadCaches caches;  // MPFR's per-thread caches, freed at the end
-      const bouncer::CancelScope cancel_scope(&cancel);
-      const bouncer::cli::CaptureScope capture_scope(&capture);
+      const MpfrThreadCaches caches;  // MPFR's per-thread caches, freed at the end
+      const CancelScope cancel_scope(&cancel);
       try {
-        outcome = bouncer::cli::run_command(words, false);
+        result.emplace(f());
       } catch (...) {
         failure = std::current_exception();
       }
@@ -73,7 +101,7 @@ py::dict run(const std::vector<std::string>& words) {
         std::unique_lock<std::mutex> lock(m);
         if (cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) break;
       }
-      if (interrupted) continue;  // cancelled: wait for the command to unwind
+      if (interrupted) continue;  // cancelled: wait for the computation to unwind
       py::gil_scoped_acquire acquire;
       if (PyErr_CheckSignals() != 0) {  // a handler raised; the error stays set until we return
         interrupted = true;
@@ -84,6 +112,30 @@ py::dict run(const std::vector<std::string>& words) {
   }
   if (interrupted) throw py::error_already_set();
   if (failure) std::rethrow_exception(failure);
+  return std::move(*result);
+}
+
+// ---- the CLI-parity path ------------------------------------------------------------------
+
+const char* kind_name(cli::CommandOutcome::Kind k) {
+  using K = cli::CommandOutcome::Kind;
+  switch (k) {
+    case K::ok: return "ok";
+    case K::help: return "help";
+    case K::input: return "input";
+    case K::output: return "output";
+    case K::internal: return "internal";
+    case K::cancelled: return "cancelled";
+  }
+  return "internal";
+}
+
+py::dict run(const std::vector<std::string>& words) {
+  cli::CommandCapture capture;
+  const cli::CommandOutcome outcome = interruptible([&] {
+    const cli::CaptureScope capture_scope(&capture);
+    return cli::run_command(words, false);
+  });
   py::dict r;
   r["status"] = outcome.status;
   r["kind"] = kind_name(outcome.kind);
@@ -94,13 +146,1030 @@ py::dict run(const std::vector<std::string>& words) {
   return r;
 }
 
+// ---- Python values -> option texts ----------------------------------------------------------
+
+// The options of one call, as the CLI's Options (long option names, texts). Python passes
+// each value as a list of texts (one text, or two for a pair such as guess).
+using Texts = std::map<std::string, std::vector<std::string>>;
+
+// A value with a NUL byte is refused as run_command refuses it (a C string would cut it),
+// with the whole value in the message (escaped by one_line, as every message of
+// run_command is): raised here, because InputError::what() would end at the NUL.
+[[noreturn]] void refuse_nul(const std::string& field, const std::string& value) {
+  throw py::value_error(cli::one_line(field + ": the value '" + value + "' contains a NUL byte"));
+}
+
+Options options_of(const Texts& texts) {
+  Options o;
+  for (const auto& [key, values] : texts) {
+    for (const std::string& v : values)
+      if (v.find('\0') != std::string::npos) refuse_nul(key, v);
+    o.set(key, values);
+  }
+  return o;
+}
+
+// The exact decimal text of a Python number or decimal string (floats: the exact decimal of
+// their binary value, as str(decimal.Decimal(x)) writes it; non-finite floats as repr, which
+// the parser refuses with bouncer's message).
+std::string text_of(py::handle x, const char* field) {
+  if (py::isinstance<py::str>(x)) {
+    std::string s = x.cast<std::string>();
+    if (s.find('\0') != std::string::npos) refuse_nul(field, s);
+    return s;
+  }
+  if (py::isinstance<py::bool_>(x))
+    throw py::type_error(std::string(field) + ": expected a number or a decimal string, got bool");
+  if (PyFloat_Check(x.ptr())) {
+    const double d = PyFloat_AsDouble(x.ptr());
+    if (!std::isfinite(d)) return py::repr(x).cast<std::string>();
+    return py::str(py::module_::import("decimal").attr("Decimal")(d)).cast<std::string>();
+  }
+  if (PyIndex_Check(x.ptr())) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(x.ptr()))).cast<std::string>();
+  if (py::isinstance(x, py::module_::import("decimal").attr("Decimal"))) return py::str(x).cast<std::string>();
+  throw py::type_error(std::string(field) + ": expected a number or a decimal string, got " +
+                       py::str(py::type::handle_of(x).attr("__name__")).cast<std::string>());
+}
+
+// ---- scalars -> Python ------------------------------------------------------------------------
+
+// An interval's ends as exact decimal texts, rounded outward (ScalarTraits::lower_string and
+// upper_string): they enclose the exact value.
+struct Interval {
+  std::string lo, hi;
+};
+
+double outward_double(const std::string& text, bool up) {
+  const std::optional<Decimal> parsed = Decimal::parse(text);
+  if (!parsed) return std::strtod(text.c_str(), nullptr);  // inf, -inf, nan
+  const mpq_class& q = parsed->value();
+  double d = q.get_d();  // truncated toward zero
+  if (!up && mpq_class(d) > q) d = std::nextafter(d, -std::numeric_limits<double>::infinity());
+  if (up && mpq_class(d) < q) d = std::nextafter(d, std::numeric_limits<double>::infinity());
+  return d;
+}
+
+py::object interval_to_mpmath(const Interval& x, std::optional<long> bits) {
+  const py::module_ mpmath = py::module_::import("mpmath");
+  const py::object libmp = mpmath.attr("libmp");
+  const long prec = bits ? *bits : std::max(53L, mpmath.attr("mp").attr("prec").cast<long>());
+  const py::object lo = mpmath.attr("mpf")(libmp.attr("from_str")(x.lo, prec, libmp.attr("round_floor")));
+  const py::object hi = mpmath.attr("mpf")(libmp.attr("from_str")(x.hi, prec, libmp.attr("round_ceiling")));
+  return mpmath.attr("mpi")(lo, hi);
+}
+
+// double -> float; the other point types -> their round-trip decimal text (str, as the CLI
+// prints them); interval types -> Interval.
+template <class T>
+py::object scalar(const T& x) {
+  using Tr = ScalarTraits<T>;
+  if constexpr (std::is_same_v<T, double>) {
+    return py::float_(x);
+  } else if constexpr (Tr::is_interval) {
+    return py::cast(Interval{Tr::lower_string(x), Tr::upper_string(x)});
+  } else {
+    return py::str(Tr::to_string(x));
+  }
+}
+
+py::object interval_of(const Enclosure& e) { return py::cast(Interval{e.lo, e.hi}); }
+
+const char* direction_name(int d) { return d > 0 ? "up" : d < 0 ? "down" : "flat"; }
+
+// numpy arrays that own a std::vector's buffer (no copy).
+template <class X>
+py::array numpy_of(std::vector<X>&& v, std::vector<py::ssize_t> shape, py::dtype dtype = py::dtype::of<X>()) {
+  auto* heap = new std::vector<X>(std::move(v));
+  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<X>*>(p); });
+  return py::array(dtype, std::move(shape), heap->data(), owner);
+}
+
+py::object str_array(const std::vector<std::string>& v, std::vector<py::ssize_t> shape) {
+  py::list items;
+  for (const std::string& s : v) items.append(py::str(s));
+  return py::module_::import("numpy").attr("array")(items, py::arg("dtype") = "str").attr("reshape")(py::tuple(py::cast(shape)));
+}
+
+// One real column of an orbit: float64 in double and interval:double ((N, 2) [lo, hi] for
+// the interval), decimal texts (str) for the other types, NaN or "" where a row has none.
+template <class T>
+struct RealColumn {
+  using Tr = ScalarTraits<T>;
+  static constexpr bool doubles = std::is_same_v<T, double> || std::is_same_v<T, DoubleInterval>;
+  std::vector<std::conditional_t<doubles, double, std::string>> data;
+
+  void reserve(size_t n) { data.reserve(Tr::is_interval ? 2 * n : n); }
+  void push(const T& x) {
+    if constexpr (std::is_same_v<T, double>) {
+      data.push_back(x);
+    } else if constexpr (std::is_same_v<T, DoubleInterval>) {
+      data.push_back(x.lower());
+      data.push_back(x.upper());
+    } else if constexpr (Tr::is_interval) {
+      data.push_back(Tr::lower_string(x));
+      data.push_back(Tr::upper_string(x));
+    } else {
+      data.push_back(Tr::to_string(x));
+    }
+  }
+  void push_none() {
+    for (int i = 0; i < (Tr::is_interval ? 2 : 1); ++i) {
+      if constexpr (doubles) data.push_back(std::numeric_limits<double>::quiet_NaN());
+      else data.emplace_back();
+    }
+  }
+  py::object numpy(py::ssize_t rows) && {
+    std::vector<py::ssize_t> shape{rows};
+    if (Tr::is_interval) shape.push_back(2);
+    if constexpr (doubles) return numpy_of(std::move(data), shape);
+    else return str_array(data, shape);
+  }
+};
+
+// ---- Step and Orbit -----------------------------------------------------------------------------
+
+// One step's result, the CLI's orbit row for it (io/orbit.cpp), as a struct sequence
+// (C's named tuple, like os.stat_result): the tuple (theta, v), so that
+// `theta, v = m.step(theta, v)` iterates the map, and the other fields as attributes. A
+// struct sequence is built and read at C speed: a pybind11 class took 0.6 us to build and
+// 0.26 us per attribute read, most of Model.step's time.
+PyStructSequence_Field kStepFields[] = {
+    {"theta", "Phase of the next impact (or release), in [0, 1)"},
+    {"v", "Velocity just after it"},
+    {"tau", "Time from the start state to the next one"},
+    {"event", "impact | sticking | ride"},
+    {"periods", "Whole wall periods begun during the step"},
+    {"segment", "Wall segment of the last contact"},
+    {"wall", "Direction of that segment: up | down | flat"},
+    {"corner", "The last impact was exactly at a wall corner"},
+    {"indirect", "The flight rose above the wall's top (None: undecided)"},
+    {"stick_segment", "Sticking only (else None): segment of the collision that stuck"},
+    {"stuck_theta", "Sticking only (else None): phase where the collapse completed"},
+    {"stuck_v", "Sticking only (else None): velocity there (the wall's)"},
+    {"passed_upward_turn", "Sticking only: the ride passed an upward turn (the downward-sticking convention applied)"},
+    {"phase_bits", "Correct bits of theta left after long flights, at best"},
+    {nullptr, nullptr}};
+PyStructSequence_Desc kStepDesc{
+    "bouncer.Step",
+    "One step of the impact map: the tuple (theta, v) of the state after it, and what happened as attributes "
+    "(the CLI's orbit row). Real numbers are float in double, decimal texts (str) in long, dd, quad and "
+    "mpfr:BITS, Interval in interval precisions.",
+    kStepFields, 2};
+PyTypeObject* step_type = nullptr;  // made at import, never freed
+
+template <class T>
+py::object step_of(const StepResult<T>& r, const Model<T>& m) {
+  py::object s = py::reinterpret_steal<py::object>(PyStructSequence_New(step_type));
+  if (!s) throw py::error_already_set();
+  int i = 0;
+  auto put = [&](py::object x) { PyStructSequence_SetItem(s.ptr(), i++, x.release().ptr()); };
+  put(scalar(r.next.theta));
+  put(scalar(r.next.v));
+  put(scalar(r.tau));
+  put(py::str(name(r.kind)));
+  put(py::int_(r.periods));
+  put(py::int_(r.segment));
+  put(py::str(direction_name(m.wall.direction[r.segment])));
+  put(py::bool_(r.corner));
+  put(r.indirect == Truth::yes ? py::object(py::bool_(true))
+      : r.indirect == Truth::no ? py::object(py::bool_(false))
+                                : py::object(py::none()));
+  const bool stuck = r.kind == EventKind::sticking;
+  put(stuck ? py::object(py::int_(r.stick_segment)) : py::object(py::none()));
+  put(stuck ? scalar(r.stuck_theta) : py::object(py::none()));
+  put(stuck ? scalar(r.stuck_v) : py::object(py::none()));
+  put(py::bool_(stuck && r.passed_upward_turn));
+  put(py::int_(ScalarTraits<T>::bits(r.next.theta) - r.phase_bits_lost));
+  return s;
+}
+
+// Codes of Orbit.event (bouncer.EVENTS): the start row, then EventKind.
+constexpr std::int8_t kStartEvent = 0;
+std::int8_t event_code(EventKind k) { return static_cast<std::int8_t>(1 + static_cast<int>(k)); }
+
+struct Orbit {
+  py::object n, theta, v, event, tau, periods, segment, wall, corner, indirect, stick_segment, stuck_theta, stuck_v,
+      passed_upward_turn, phase_bits;
+  std::string status = "completed";  // completed | undecided
+  long long steps_done = 0;
+  std::string reason;                // why undecided
+  py::object phase_lost_at, lohner_fallbacks;
+  std::string precision;
+  py::ssize_t rows = 0;
+};
+
+template <class T>
+struct OrbitColumns {
+  std::vector<long long> n, periods;
+  RealColumn<T> theta, v, tau, stuck_theta, stuck_v;
+  std::vector<std::int8_t> event, wall, indirect;
+  std::vector<std::int32_t> segment, stick_segment, phase_bits;
+  std::vector<std::uint8_t> corner, passed;
+  long long steps_done = 0;
+  bool undecided = false;
+  std::string reason;
+  long long phase_lost_at = -1, fallbacks = -1;
+
+  void reserve(size_t rows) {
+    for (auto* c : {&n, &periods}) c->reserve(rows);
+    for (auto* c : {&theta, &v, &tau, &stuck_theta, &stuck_v}) c->reserve(rows);
+    for (auto* c : {&event, &wall, &indirect}) c->reserve(rows);
+    for (auto* c : {&segment, &stick_segment, &phase_bits}) c->reserve(rows);
+    for (auto* c : {&corner, &passed}) c->reserve(rows);
+  }
+  void start(const State<T>& s) {
+    n.push_back(0);
+    theta.push(s.theta);
+    v.push(s.v);
+    event.push_back(kStartEvent);
+    tau.push_none();
+    periods.push_back(-1);
+    segment.push_back(-1);
+    wall.push_back(0);
+    corner.push_back(0);
+    indirect.push_back(0);
+    stick_segment.push_back(-1);
+    stuck_theta.push_none();
+    stuck_v.push_none();
+    passed.push_back(0);
+    phase_bits.push_back(-1);
+  }
+  void row(long long k, const StepResult<T>& r, const Model<T>& m) {
+    n.push_back(k);
+    theta.push(r.next.theta);
+    v.push(r.next.v);
+    event.push_back(event_code(r.kind));
+    tau.push(r.tau);
+    periods.push_back(r.periods);
+    segment.push_back(r.segment);
+    wall.push_back(static_cast<std::int8_t>(m.wall.direction[r.segment]));
+    corner.push_back(r.corner ? 1 : 0);
+    indirect.push_back(r.indirect == Truth::yes ? 1 : r.indirect == Truth::no ? 0 : -1);
+    const bool stuck = r.kind == EventKind::sticking;
+    stick_segment.push_back(stuck ? r.stick_segment : -1);
+    if (stuck) {
+      stuck_theta.push(r.stuck_theta);
+      stuck_v.push(r.stuck_v);
+    } else {
+      stuck_theta.push_none();
+      stuck_v.push_none();
+    }
+    passed.push_back(stuck && r.passed_upward_turn ? 1 : 0);
+    phase_bits.push_back(static_cast<std::int32_t>(ScalarTraits<T>::bits(r.next.theta) - r.phase_bits_lost));
+  }
+  Orbit result(const Precision& p) && {
+    Orbit o;
+    o.rows = static_cast<py::ssize_t>(n.size());
+    const std::vector<py::ssize_t> shape{o.rows};
+    o.n = numpy_of(std::move(n), shape);
+    o.theta = std::move(theta).numpy(o.rows);
+    o.v = std::move(v).numpy(o.rows);
+    o.event = numpy_of(std::move(event), shape);
+    o.tau = std::move(tau).numpy(o.rows);
+    o.periods = numpy_of(std::move(periods), shape);
+    o.segment = numpy_of(std::move(segment), shape);
+    o.wall = numpy_of(std::move(wall), shape);
+    o.corner = numpy_of(std::move(corner), shape, py::dtype("bool"));
+    o.indirect = numpy_of(std::move(indirect), shape);
+    o.stick_segment = numpy_of(std::move(stick_segment), shape);
+    o.stuck_theta = std::move(stuck_theta).numpy(o.rows);
+    o.stuck_v = std::move(stuck_v).numpy(o.rows);
+    o.passed_upward_turn = numpy_of(std::move(passed), shape, py::dtype("bool"));
+    o.phase_bits = numpy_of(std::move(phase_bits), shape);
+    o.status = undecided ? "undecided" : "completed";
+    o.steps_done = steps_done;
+    o.reason = reason;
+    o.phase_lost_at = phase_lost_at >= 0 ? py::object(py::int_(phase_lost_at)) : py::object(py::none());
+    o.lohner_fallbacks = fallbacks >= 0 ? py::object(py::int_(fallbacks)) : py::object(py::none());
+    o.precision = p.text();
+    return o;
+  }
+};
+
+// More rows than this is refused (as `bouncer orbit` refuses to print more than 1e8 rows
+// without --force): about 8 GB of arrays.
+constexpr double kMaxOrbitRows = 1e8;
+
+// ---- the model in one scalar type -------------------------------------------------------------
+
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  virtual py::object step(py::handle theta, py::handle v) const = 0;
+  virtual Orbit orbit(const OrbitRequest& req) const = 0;
+};
+
+template <class T>
+class TypedStepper final : public Stepper {
+  using Tr = ScalarTraits<T>;
+
+ public:
+  TypedStepper(const ModelSpec& spec, const Precision& p) : spec_(spec), prec_(p), map_(make_model<T>(spec, p.bits)) {
+    if constexpr (std::is_same_v<T, double>) prepare_fast_check();
+  }
+
+  py::object step(py::handle theta, py::handle v) const override {
+    return step_of(map_.step(start(theta, v)), map_.model());
+  }
+
+  // The orbit loop of `bouncer orbit` (io/orbit.cpp run()), into arrays: the same start
+  // (make_state with the knot), the same steps, Lohner's method for interval runs unless
+  // naive is asked for, and an undecided step ends the run (status "undecided").
+  Orbit orbit(const OrbitRequest& req) const override {
+    const State<T> s0 = make_state<T>(map_.model(), req.initial.at(0));
+    OrbitColumns<T> cols = interruptible([&] {
+      OrbitColumns<T> c;
+      c.reserve(static_cast<size_t>(req.steps / req.every) + 2);
+      State<T> s = s0;
+      c.start(s);
+      std::optional<OrbitEnclosureOf<std::conditional_t<Tr::is_interval, T, Mpfi>>> lohner;
+      if constexpr (Tr::is_interval) {
+        if (req.method == EnclosureMethod::lohner) {
+          lohner.emplace(map_.model(), s, EnclosureMethod::lohner);
+          c.fallbacks = 0;
+        }
+      }
+      auto advance = [&](const State<T>& from) -> StepResult<T> {
+        if constexpr (Tr::is_interval) {
+          if (lohner) {
+            auto e = lohner->step();
+            c.fallbacks = lohner->fallbacks();
+            e.event.next = std::move(e.next);  // the Lohner box, tighter than the box image
+            return std::move(e.event);
+          }
+        }
+        return map_.step(from);
+      };
+      for (long long k = 1; k <= req.steps; ++k) {
+        throw_if_cancelled(k);
+        try {
+          StepResult<T> r = advance(s);
+          s = r.next;
+          c.steps_done = k;
+          if (c.phase_lost_at < 0 && r.phase_bits_lost >= Tr::bits(s.theta)) c.phase_lost_at = k;
+          if (k % req.every == 0 || k == req.steps) c.row(k, r, map_.model());
+        } catch (const Undecided& u) {
+          c.undecided = true;
+          c.reason = u.what();
+          break;
+        }
+      }
+      return c;
+    });
+    return std::move(cols).result(prec_);
+  }
+
+ private:
+  // A start from Python values, validated as the CLI validates --theta and --v
+  // (model/spec.hpp validate: theta in [0, 1), v at least the wall's velocity at theta,
+  // v <= 1e15), converted as `bouncer orbit` converts them (make_state, knots recognised).
+  State<T> start(py::handle theta, py::handle v) const {
+    if constexpr (std::is_same_v<T, double>) {
+      double th = 0, vv = 0;
+      if (as_double(theta, th) && as_double(v, vv) && certainly_valid(th, vv)) {
+        State<double> s{th, vv};
+        for (size_t k = 0; k < knot_.size(); ++k)
+          if (knot_exact_[k] && th == knot_[k]) s.knot = static_cast<int>(k);
+        return s;
+      }
+    }
+    InitialCondition ic{parse_decimal("theta", text_of(theta, "theta")), parse_decimal("v", text_of(v, "v"))};
+    validate(spec_, ic, "theta", "v");
+    return make_state<T>(map_.model(), ic);
+  }
+
+  // Fast path of Model.step in double: a Python float is a double, and its exact decimal
+  // rounds to itself, so the state is (theta, v) as given. The exact validation (above) is
+  // skipped only when these double comparisons prove that it passes: 0 <= theta < 1,
+  // v <= 1e15, and theta strictly inside a segment j (between doubles that bound its exact
+  // knots) with v at least the exact wall velocity u_j rounded up. Anything else (a knot,
+  // a start near the wall's velocity, NaN) takes the exact path and its messages.
+  static bool as_double(py::handle x, double& out) {
+    if (PyFloat_Check(x.ptr())) {
+      out = PyFloat_AS_DOUBLE(x.ptr());
+      return true;
+    }
+    if (PyLong_CheckExact(x.ptr())) {
+      int overflow = 0;
+      const long long n = PyLong_AsLongLongAndOverflow(x.ptr(), &overflow);
+      if (overflow || n > (1LL << 53) || n < -(1LL << 53)) return false;
+      out = static_cast<double>(n);
+      return true;
+    }
+    return false;
+  }
+  void prepare_fast_check() {
+    const auto& knots = spec_.wall.knots;
+    for (size_t j = 0; j < knots.size(); ++j) {
+      const mpq_class& q = knots[j].value();
+      knot_.push_back(q.get_d());
+      knot_exact_.push_back(mpq_class(knot_.back()) == q);
+      knot_below_.push_back(outward_double(knots[j].text(), false));
+      knot_above_.push_back(outward_double(knots[j].text(), true));
+      const mpq_class u = wall_velocity_exact(spec_.wall, q);
+      double up = u.get_d();
+      if (mpq_class(up) < u) up = std::nextafter(up, std::numeric_limits<double>::infinity());
+      velocity_up_.push_back(up);
+    }
+  }
+  bool certainly_valid(double theta, double v) const {
+    if (!(theta >= 0 && theta < 1 && v <= 1e15)) return false;  // also NaN
+    size_t j = 0;
+    for (size_t k = 1; k < knot_below_.size(); ++k)
+      if (knot_below_[k] <= theta) j = k;
+    const bool after_start = theta >= knot_above_[j];
+    const bool before_end = j + 1 < knot_below_.size() ? theta < knot_below_[j + 1] : true;
+    return after_start && before_end && v >= velocity_up_[j];
+  }
+
+  ModelSpec spec_;
+  Precision prec_;
+  ImpactMap<T> map_;
+  std::vector<double> knot_, knot_below_, knot_above_, velocity_up_;
+  std::vector<bool> knot_exact_;
+};
+
+std::unique_ptr<Stepper> make_stepper(const ModelSpec& spec, const Precision& p) {
+  return with_scalar(p, [&](auto tag) -> std::unique_ptr<Stepper> {
+    return std::make_unique<TypedStepper<typename decltype(tag)::type>>(spec, p);
+  });
+}
+
+// ---- the analyses: the CLI's option handling, the library's functions --------------------------
+
+py::list attempts_of(const std::vector<Attempt>& attempts) {
+  py::list out;
+  for (const Attempt& t : attempts) {
+    py::dict a;
+    a["scalar"] = t.scalar;
+    a["bits"] = t.bits;
+    a["decided"] = t.decided;
+    a["steps"] = t.steps;
+    a["reason"] = t.reason;
+    a["seconds"] = t.seconds;
+    out.append(a);
+  }
+  return out;
+}
+
+template <class T>
+py::tuple pair_of(const T& x, const T& y) {
+  return py::make_tuple(scalar(x), scalar(y));
+}
+
+// The guess THETA,V of periodic, continue and certify-periodic, validated as there.
+std::optional<InitialCondition> guess_from(const Options& o, const ModelSpec& spec) {
+  if (!o.has("guess")) return std::nullopt;
+  const auto& g = o.values.at("guess");
+  if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
+  InitialCondition ic{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
+  validate(spec, ic, "guess", "guess");
+  return ic;
+}
+
+class ModelCore {
+ public:
+  explicit ModelCore(const Texts& texts) : options_(options_of(texts)) {
+    for (const auto& [k, v] : options_.values)
+      if (!model_keys().count(k) && k != "precision") throw InputError(k, "is not an option of a model");
+    spec_ = model_from(options_);
+    precision_ = precision_from(options_);
+    stepper_ = make_stepper(spec_, precision_);
+  }
+
+  py::object step(py::handle theta, py::handle v) const { return stepper_->step(theta, v); }
+
+  // `bouncer orbit`'s request (io/orbit.cpp orbit_request: the same ranges, defaults and
+  // messages) for this model and one start.
+  Orbit orbit(const Texts& texts) const {
+    Options o = with_model(texts);
+    const OrbitRequest req = orbit_request(o);
+    const double rows = static_cast<double>(req.steps / req.every) + 2;
+    if (rows > kMaxOrbitRows)
+      throw InputError("steps", "would return " + std::to_string(static_cast<long long>(rows)) +
+                                    " rows (more than 1e8, about 8 GB of arrays): raise every");
+    return stepper_->orbit(req);
+  }
+
+  // bouncer classify (tools/cmd_classify.cpp).
+  py::dict classify(const Texts& texts) const {
+    const Options o = with_model(texts);
+    const InitialCondition ic = cli::start_from(o, spec_);
+    const ClassifyOptions co = cli::classify_options_from(o);
+    const Precision prec = cli::analysis_precision(o, "classify");
+    return with_point_scalar(prec, [&](auto tag) {
+      using T = typename decltype(tag)::type;
+      const Classification c = interruptible([&] {
+        const ImpactMap<T> map(make_model<T>(spec_, prec.bits));
+        return bouncer::classify<T>(map, make_state<T>(ic, prec.bits), co);
+      });
+      py::dict d;
+      d["class_"] = name(c.cls);
+      d["period"] = c.period;
+      d["lambda_"] = c.lambda;
+      d["evidence"] = c.evidence;
+      const bool unbounded = c.cls == OrbitClass::unbounded;
+      d["growth_alpha"] = unbounded ? py::object(py::float_(c.alpha)) : py::object(py::none());
+      d["growth_per_step"] = unbounded ? py::object(py::float_(c.growth_rate)) : py::object(py::none());
+      d["phase_branches"] = unbounded ? py::object(py::int_(c.branches)) : py::object(py::none());
+      d["accelerator_period"] = unbounded ? py::object(py::int_(c.accel_period)) : py::object(py::none());
+      d["accelerator_gain"] = unbounded ? py::object(py::float_(c.accel_gain)) : py::object(py::none());
+      d["growth_kind"] = unbounded ? py::object(py::str(c.growth_kind)) : py::object(py::none());
+      const bool transient = c.cls == OrbitClass::transient_chaos;
+      d["settled_class"] = transient ? py::object(py::str(name(c.settled_class))) : py::object(py::none());
+      d["settled_at"] = transient ? py::object(py::int_(c.settled_at)) : py::object(py::none());
+      d["transient"] = co.transient;
+      d["steps"] = co.steps;
+      d["max_period"] = co.max_period;
+      d["recheck_factor"] = co.recheck_factor;
+      return d;
+    });
+  }
+
+  // bouncer lyapunov without --vary (tools/cmd_lyapunov.cpp: its ranges and defaults).
+  py::dict lyapunov(const Texts& texts) const {
+    const Options o = with_model(texts);
+    const InitialCondition ic = cli::start_from(o, spec_);
+    LyapunovOptions lo;
+    lo.transient = integer_from(o, "transient", 0, 1000000000000LL, 1000);
+    lo.steps = integer_from(o, "steps", 1, 1000000000000LL, 10000);
+    lo.blocks = integer_from(o, "blocks", 1, 10000, 20);
+    const Precision prec = cli::analysis_precision(o, "lyapunov");
+    return with_point_scalar(prec, [&](auto tag) {
+      using T = typename decltype(tag)::type;
+      const LyapunovResult r = interruptible([&] {
+        return bouncer::lyapunov(make_model<T>(spec_, prec.bits), make_state<T>(ic, prec.bits), lo);
+      });
+      py::dict d;
+      d["lambda_"] = r.lambda;
+      d["stderr"] = r.stderr_;
+      d["steps"] = r.steps;
+      d["transient"] = lo.transient;
+      d["blocks"] = r.blocks;
+      d["contracted"] = r.contracted;
+      d["unbounded"] = r.unbounded;
+      d["growth_alpha"] = r.alpha;
+      d["v_max"] = r.v_max;
+      d["undecided"] = r.undecided;
+      d["note"] = r.note;
+      return d;
+    });
+  }
+
+  // bouncer periodic (tools/cmd_periodic.cpp: its ranges and defaults).
+  py::dict periodic(const Texts& texts) const {
+    const Options o = with_model(texts);
+    const long q = integer_from(o, "period", 1, 100, 0);
+    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
+    NewtonOptions no;
+    no.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
+    no.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+    const std::optional<InitialCondition> guess = guess_from(o, spec_);
+    const Precision prec = cli::analysis_precision(o, "periodic");
+    return with_point_scalar(prec, [&](auto tag) {
+      using T = typename decltype(tag)::type;
+      const PeriodicOrbit<T> p = interruptible([&] {
+        const Model<T> m = make_model<T>(spec_, prec.bits);
+        return guess ? find_periodic(m, q, make_state<T>(*guess, prec.bits), no) : search_periodic(m, q, no);
+      });
+      return periodic_dict(p, q);
+    });
+  }
+
+  // bouncer continue without --certify and --out (tools/cmd_continue.cpp: its checks,
+  // ranges and defaults).
+  py::dict continue_branch(const Texts& texts) const {
+    Options o = with_model(texts);
+    const std::string vary_name = o.get_or("vary", "a");
+    if (vary_name != "a" && vary_name != "eps" && vary_name != "c")
+      throw InputError("vary", "must be a, eps or c (got '" + vary_name + "')");
+    const Parameter vary = parse_parameter("vary", vary_name);
+    if (!o.has("range")) throw InputError("range", "is required (LO:HI, the interval of " + vary_name + ")");
+    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
+    if (!o.has("guess")) throw InputError("guess", "is required (theta,v of a point near the period-q orbit)");
+    if (vary == Parameter::eps && spec_.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
+    if (vary == Parameter::c && spec_.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
+    const std::pair<Decimal, Decimal> range = cli::parse_range("range", o.get("range"));
+    const Decimal& lo = range.first;
+    const Decimal& hi = range.second;
+    cli::validate_range_ends(spec_, vary, "range", lo, hi);
+    const Decimal& start = parameter_of(spec_, vary);
+    if (start < lo || hi < start)
+      throw InputError(vary_name, "the start value " + start.text() + " must lie in the range [" + lo.text() + ", " +
+                                      hi.text() + "]");
+    const long period = integer_from(o, "period", 1, 100, 0);
+    const InitialCondition guess = *guess_from(o, spec_);
+    const Precision prec = cli::analysis_precision(o, "continue");
+    ContinuationOptions opt;
+    if (o.has("step")) {
+      const Decimal s = parse_decimal("step", o.get("step"));
+      const double width = hi.approx() - lo.approx();
+      if (!(s.approx() > 0) || s.approx() > width)
+        throw InputError("step", "must be a decimal in (0, HI - LO] = (0, " + std::to_string(width) + "] (got " + s.text() + ")");
+      opt.step = s.approx();
+    }
+    opt.max_points = integer_from(o, "max-points", 2, 100000, 2000);
+    opt.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 30);
+    if (o.has("beyond")) {
+      const Decimal b = parse_decimal("beyond", o.get("beyond"));
+      if (!(b.approx() > 0) || b.approx() > 0.1)
+        throw InputError("beyond", "must be a decimal in (0, 0.1] (relative distance past a*; got " + b.text() + ")");
+      opt.beyond = b.approx();
+    }
+    opt.classify = cli::classify_options_from(o);
+    return with_point_scalar(prec, [&](auto tag) {
+      using T = typename decltype(tag)::type;
+      using Tr = ScalarTraits<T>;
+      const Model<T> m = make_model<T>(spec_, prec.bits);
+      const Branch<T> b = interruptible([&] {
+        const T tlo = Tr::from_decimal(lo.text(), prec.bits), thi = Tr::from_decimal(hi.text(), prec.bits);
+        return bouncer::continue_branch(m, vary, period, make_state<T>(guess, prec.bits), tlo, thi, opt);
+      });
+      if (!b.started) throw InputError("guess", b.note);
+      return branch_dict(b, m, vary_name);
+    });
+  }
+
+  // bouncer certify-sticking without --a-range (tools/cmd_certify_sticking.cpp: its checks,
+  // ranges and defaults).
+  py::dict certify_sticking(const Texts& texts) const {
+    Options o = with_model(texts);
+    if (spec_.law != Law::constant)
+      throw InputError("model", "certify-sticking needs --model constant (its certified collapse test is the "
+                                "constant-restitution threshold; velocity-dependent collapse, which does occur: "
+                                "bouncer orbit --model veldep --veldep-collapse on)");
+    if (!o.has("theta")) o.set("theta", "0.5");
+    if (!o.has("v")) o.set("v", "4");
+    StickingQuestion q;
+    q.model = spec_;
+    q.start = cli::start_from(o, spec_);
+    q.max_steps = integer_from(o, "max-steps", 1, 1000000000LL, 100000);
+    q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 4096);
+    const std::string start = o.get_or("start-bits", "double");
+    q.schedule.double_first = start == "double";
+    if (!q.schedule.double_first && (start.empty() || start.find_first_not_of("0123456789") != std::string::npos))
+      throw InputError("start-bits", "'" + start + "' (allowed: double, or BITS with " + std::to_string(kMinBits) +
+                                         " <= BITS <= " + std::to_string(kMaxBits) + ")");
+    q.schedule.start_bits = q.schedule.double_first ? 64 : integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
+    if (q.schedule.start_bits > q.schedule.max_bits)
+      throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(q.schedule.max_bits) + ")");
+    q.method = parse_enclosure_method("method", o.get_or("method", "lohner"));
+    const std::string pa = o.get_or("prove-attractor", "on");
+    if (pa != "on" && pa != "off") throw InputError("prove-attractor", "must be on or off (got '" + pa + "')");
+    q.prove_attractor = pa == "on";
+    const auto [c, plain] = interruptible([&] {
+      StickingCertificate cert = bouncer::certify_sticking(q);
+      PlainSticking d = plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
+      return std::make_pair(std::move(cert), d);
+    });
+    py::dict d;
+    d["certified"] = c.certified;
+    d["outcome"] = name(c.outcome);
+    d["period"] = c.period ? py::object(py::int_(*c.period)) : py::object(py::none());
+    d["scalar"] = c.scalar.empty() ? py::object(py::none()) : py::object(py::str(c.scalar));
+    d["bits"] = c.bits;
+    d["steps_checked"] = c.steps_checked;
+    d["statement"] = describe(c, q.max_steps);
+    d["reason"] = c.reason;
+    d["double_period"] = plain.period ? py::object(py::int_(*plain.period)) : py::object(py::none());
+    if (c.attractor) {
+      py::dict a;
+      a["period"] = c.attractor->period;
+      a["iterate"] = c.attractor->iterate;
+      a["entered_at"] = c.attractor->entered_at;
+      a["box"] = c.attractor->box;
+      d["attractor"] = a;
+    } else {
+      d["attractor"] = py::none();
+    }
+    d["release_theta"] = c.release_theta.empty() ? py::object(py::none()) : py::object(py::str(c.release_theta));
+    d["release_v"] = c.release_v.empty() ? py::object(py::none()) : py::object(py::str(c.release_v));
+    d["lohner_fallbacks"] = c.fallbacks;
+    d["max_steps"] = q.max_steps;
+    d["schedule"] = q.schedule.text();
+    d["attempts"] = attempts_of(c.attempts);
+    d["seconds"] = c.seconds;
+    return d;
+  }
+
+  // bouncer certify-periodic at the model's parameter values (no range, no --lift:
+  // tools/cmd_certify_periodic.cpp: its checks, ranges and defaults).
+  py::dict certify_periodic(const Texts& texts) const {
+    const Options o = with_model(texts);
+    PeriodicQuestion q;
+    q.model = spec_;
+    q.vary = parse_parameter("vary", o.get_or("vary", "a"));
+    if ((q.vary == Parameter::eps && spec_.law != Law::constant) || (q.vary == Parameter::c && spec_.law != Law::veldep))
+      throw InputError("vary", std::string(name(q.vary)) + " varies only with --model " +
+                                   (q.vary == Parameter::eps ? "constant" : "veldep"));
+    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 1000])");
+    q.period = integer_from(o, "period", 1, 1000, 1);
+    q.guess = guess_from(o, spec_);
+    q.family = parse_family_mode("family", o.get_or("family", "auto"));
+    q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 1024);
+    q.schedule.start_bits = integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
+    if (q.schedule.start_bits > q.schedule.max_bits)
+      throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(q.schedule.max_bits) + ")");
+    q.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
+    q.newton.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+    const PeriodicCertificate c = interruptible([&] { return bouncer::certify_periodic(q); });
+    py::dict d;
+    d["certified"] = c.certified;
+    d["outcome"] = name(c.outcome);
+    d["statement"] = c.statement;
+    d["reason"] = c.reason;
+    d["bits"] = c.bits;
+    d["period"] = c.period;
+    d["minimal_period"] = c.minimal_period_certified ? py::object(py::int_(c.minimal_period)) : py::object(py::none());
+    d["stability"] = c.stability;
+    py::list pts;
+    for (const EnclosedOrbitPoint& p : c.points) pts.append(py::make_tuple(interval_of(p.theta), interval_of(p.v)));
+    d["points"] = pts;
+    d["events"] = c.events;
+    d["wall_periods"] = c.wall_periods;
+    py::dict mu;
+    mu["kind"] = c.multipliers.kind;
+    if (c.certified) {
+      mu["trace"] = interval_of(c.multipliers.trace);
+      mu["det"] = interval_of(c.multipliers.det);
+      if (c.multipliers.kind == "real") {
+        mu["mu1"] = interval_of(c.multipliers.mu[0]);
+        mu["mu2"] = interval_of(c.multipliers.mu[1]);
+      } else if (c.multipliers.kind == "complex") {
+        mu["re"] = interval_of(c.multipliers.mu[0]);
+        mu["im"] = interval_of(c.multipliers.mu[1]);
+        mu["modulus"] = interval_of(c.multipliers.modulus);
+      }
+    }
+    d["multipliers"] = mu;
+    if (c.certified && c.outcome != PeriodicOutcome::through_release) {
+      py::dict k;
+      k["unknowns"] = c.unknowns;
+      k["box"] = py::make_tuple(interval_of(c.box[0]), interval_of(c.box[1]));
+      k["image"] = py::make_tuple(interval_of(c.image[0]), interval_of(c.image[1]));
+      k["free"] = c.free_name;
+      k["free_range"] = interval_of(c.free_range);
+      k["inflations"] = c.inflations;
+      d["krawczyk"] = k;
+    } else {
+      d["krawczyk"] = py::none();
+    }
+    if (c.certified && c.family_parameter) {
+      py::dict f;
+      f["parameter_at_theta"] = interval_of(*c.family_parameter);
+      f["given_parameter"] = c.given_parameter;
+      f["strip_theta"] = c.strip_theta ? interval_of(*c.strip_theta) : py::object(py::none());
+      f["strip_v"] = c.strip_v ? interval_of(*c.strip_v) : py::object(py::none());
+      f["strip_parameter"] = c.strip_parameter ? interval_of(*c.strip_parameter) : py::object(py::none());
+      d["family"] = f;
+    } else {
+      d["family"] = py::none();
+    }
+    d["double_newton"] = c.double_theta.empty() ? py::object(py::none()) : py::object(py::make_tuple(c.double_theta, c.double_v));
+    d["double_distance"] = c.double_distance ? py::object(py::float_(*c.double_distance)) : py::object(py::none());
+    d["schedule"] = q.schedule.text();
+    d["attempts"] = attempts_of(c.attempts);
+    d["seconds"] = c.seconds;
+    return d;
+  }
+
+  // What the model was built from, for repr and provenance: the option texts.
+  py::dict options() const {
+    py::dict d;
+    for (const auto& [k, v] : options_.values) d[py::str(k)] = v.size() == 1 ? py::object(py::str(v[0])) : py::object(py::cast(v));
+    return d;
+  }
+  std::string precision_text() const { return precision_.text(); }
+  long bits() const { return precision_.bits; }
+  std::string law() const { return name(spec_.law); }
+  std::string a() const { return spec_.a.text(); }
+  py::object eps() const { return spec_.law == Law::constant ? py::object(py::str(spec_.eps.text())) : py::object(py::none()); }
+  py::object c() const { return spec_.law == Law::veldep ? py::object(py::str(spec_.c.text())) : py::object(py::none()); }
+  std::string wall() const { return spec_.wall.text; }
+
+ private:
+  // The model's options with the call's on top. A call may not redefine the model.
+  Options with_model(const Texts& texts) const {
+    Options o = options_;
+    for (const auto& [k, v] : options_of(texts).values) {
+      if (o.has(k)) throw InputError(k, "belongs to the model: build another Model to change it");
+      o.set(k, v);
+    }
+    if (!o.has("precision")) o.set("precision", precision_.text());
+    return o;
+  }
+
+  template <class T>
+  static py::dict periodic_dict(const PeriodicOrbit<T>& p, long q) {
+    py::dict d;
+    d["converged"] = p.converged;
+    d["period"] = q;
+    d["minimal_period"] = p.minimal_period;
+    py::list pts;
+    for (const State<T>& s : p.points) pts.append(pair_of(s.theta, s.v));
+    d["points"] = pts;
+    py::list mu;
+    for (int i = 0; i < 2; ++i) mu.append(pair_of(p.multipliers.re[i], p.multipliers.im[i]));
+    d["multipliers"] = mu;
+    d["multiplier_moduli"] = py::make_tuple(p.multipliers.modulus(0), p.multipliers.modulus(1));
+    d["complex_pair"] = p.multipliers.complex;
+    d["marginal"] = p.marginal;
+    py::list kinds;
+    for (EventKind k : p.kinds) kinds.append(name(k));
+    d["events"] = kinds;
+    d["wall_periods"] = p.wall_periods;
+    d["residual"] = p.residual;
+    d["tolerance"] = p.tolerance;
+    d["iterations"] = p.iterations;
+    d["note"] = p.note;
+    return d;
+  }
+
+  template <class T>
+  static py::dict end_dict(const BranchEnd<T>& e, const Model<T>& m) {
+    py::dict d;
+    d["reason"] = name(e.reason);
+    d["param"] = scalar(e.param);
+    d["bracket"] = pair_of(e.bracket_lo, e.bracket_hi);
+    d["margin"] = e.margin >= 0 ? py::object(py::str(name(static_cast<Margin>(e.margin)))) : py::object(py::none());
+    d["impact"] = e.impact >= 0 ? py::object(py::int_(e.impact + 1)) : py::object(py::none());  // 1-based, as the CLI
+    d["knot"] = e.knot >= 0 ? py::object(py::str(m.wall.knot_exact[e.knot].get_str())) : py::object(py::none());
+    d["detail"] = e.detail;
+    d["last_point"] = pair_of(e.last_point.theta, e.last_point.v);
+    if (e.beyond_done) {
+      py::dict by;
+      by["param"] = scalar(e.beyond_param);
+      by["class_"] = name(e.beyond.cls);
+      by["period"] = e.beyond.period;
+      by["lambda_"] = e.beyond.lambda;
+      by["evidence"] = e.beyond.evidence;
+      by["newton_orbit_events"] = e.beyond_orbit;
+      by["newton_orbit_minimal_period"] = e.beyond_orbit_period;
+      d["beyond"] = by;
+    } else {
+      d["beyond"] = py::none();
+    }
+    d["beyond_note"] = e.beyond_note;
+    return d;
+  }
+
+  template <class T>
+  static py::dict branch_dict(const Branch<T>& b, const Model<T>& m, const std::string& vary) {
+    const py::ssize_t k = static_cast<py::ssize_t>(b.points.size());
+    RealColumn<T> param, theta, v;
+    std::vector<double> moduli, residual;
+    std::vector<std::array<double, kMargins>> margins;
+    py::list stability, events;
+    for (const BranchPoint<T>& p : b.points) {
+      param.push(p.param);
+      for (const State<T>& s : p.orbit.points) {
+        theta.push(s.theta);
+        v.push(s.v);
+      }
+      moduli.push_back(p.orbit.multipliers.modulus(0));
+      moduli.push_back(p.orbit.multipliers.modulus(1));
+      residual.push_back(p.orbit.residual);
+      margins.push_back(p.min_margin);
+      stability.append(p.stability);
+      events.append(event_text(p.events));
+    }
+    py::dict d;
+    d["vary"] = vary;
+    d["period"] = b.period;
+    d["param"] = std::move(param).numpy(k);
+    d["theta"] = std::move(theta).numpy(k * b.period).attr("reshape")(k, b.period);
+    d["v"] = std::move(v).numpy(k * b.period).attr("reshape")(k, b.period);
+    d["multiplier_moduli"] = numpy_of(std::move(moduli), {k, 2});
+    d["residual"] = numpy_of(std::move(residual), {k});
+    py::dict mins;
+    for (int j = 0; j < kMargins; ++j) {
+      std::vector<double> col;
+      for (const auto& row : margins) col.push_back(row[j]);
+      mins[py::str(name(static_cast<Margin>(j)))] = numpy_of(std::move(col), {k});
+    }
+    d["min_margin"] = mins;
+    d["stability"] = stability;
+    d["events"] = events;
+    d["start"] = b.start;
+    d["low"] = end_dict(b.low, m);
+    d["high"] = end_dict(b.high, m);
+    py::list bif;
+    for (const Bifurcation<T>& x : b.bifurcations) {
+      py::dict e;
+      e["kind"] = name(x.kind);
+      e["param"] = scalar(x.param);
+      e["bracket"] = pair_of(x.bracket_lo, x.bracket_hi);
+      bif.append(e);
+    }
+    d["bifurcations"] = bif;
+    d["corrector_runs"] = b.corrector_runs;
+    return d;
+  }
+
+  Options options_;
+  ModelSpec spec_;
+  Precision precision_;
+  std::unique_ptr<Stepper> stepper_;
+};
+
 }  // namespace
 
 PYBIND11_MODULE(_core, mod) {
-  mod.doc() = "bouncer's native core: runs bouncer command lines in this process (see the bouncer package)";
+  // The docstrings give their own signatures, in Python's terms (pybind11's would say "handle").
+  py::options options;
+  options.disable_function_signatures();
+  mod.doc() = "bouncer's native core: the library's model, map and analyses (Model), and run(), which runs a bouncer "
+              "command line in this process (see the bouncer package)";
+
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {  // one printable line, as run_command gives the CLI-parity layer
+      PyErr_SetString(PyExc_ValueError, cli::one_line(e.what()).c_str());
+    }
+  });
+  py::register_exception<Undecided>(mod, "Undecided", PyExc_ArithmeticError);
+
   mod.def("run", &run, py::arg("words"),
-          "Run a bouncer command line (words[0] is the program name) in this process, with the GIL released; "
+          "run(words: list[str]) -> dict\n\nRun a bouncer command line (words[0] is the program name) in this process, with the GIL released; "
           "returns {status, kind, message, unknown_option, out, csv}. Ctrl-C cancels it (KeyboardInterrupt).");
-  mod.attr("version") = bouncer::build_info().version;
-  mod.attr("commit") = bouncer::build_info().commit;
+  mod.attr("version") = build_info().version;
+  mod.attr("commit") = build_info().commit;
+
+  py::class_<Interval>(mod, "Interval",
+                       "An interval [lo, hi] that encloses an exact value: lo and hi are exact decimal texts, rounded "
+                       "outward at the run's precision (float(lo) is exact for interval:double).")
+      .def(py::init<std::string, std::string>(), py::arg("lo"), py::arg("hi"), "Interval(lo: str, hi: str)")
+      .def_readonly("lo", &Interval::lo, "The lower end, an exact decimal text (rounded down)")
+      .def_readonly("hi", &Interval::hi, "The upper end, an exact decimal text (rounded up)")
+      .def("to_floats", [](const Interval& x) { return py::make_tuple(outward_double(x.lo, false), outward_double(x.hi, true)); },
+           "to_floats() -> tuple[float, float]\n\n(lo, hi) as floats rounded outward: the float interval still encloses "
+           "the value")
+      .def("to_mpmath", &interval_to_mpmath, py::arg("bits") = py::none(),
+           "to_mpmath(bits: int | None = None) -> mpmath.mpi\n\nmpmath.mpi(lo, hi) with the ends rounded outward at "
+           "`bits` bits (default: max(53, mpmath.mp.prec))")
+      .def("__eq__", [](const Interval& x, const Interval& y) { return x.lo == y.lo && x.hi == y.hi; })
+      .def("__repr__", [](const Interval& x) { return "Interval('" + x.lo + "', '" + x.hi + "')"; });
+
+  step_type = PyStructSequence_NewType(&kStepDesc);
+  if (!step_type) throw py::error_already_set();
+  mod.add_object("Step", py::handle(reinterpret_cast<PyObject*>(step_type)));
+
+  py::class_<Orbit>(mod, "Orbit",
+                    "An orbit as numpy arrays, one entry per row (row 0: the start; then every `every`-th step and "
+                    "the last). Real columns are float64 in double, (N, 2) float64 [lo, hi] in interval:double, "
+                    "str arrays of decimal texts in the other precisions ((N, 2) for intervals); NaN or '' where a "
+                    "row has none. Integer columns hold -1 in the start row.")
+      .def_readonly("n", &Orbit::n, "int64: step number")
+      .def_readonly("theta", &Orbit::theta, "phase")
+      .def_readonly("v", &Orbit::v, "velocity after the impact")
+      .def_readonly("event", &Orbit::event, "int8 codes into bouncer.EVENTS: start, impact, sticking, ride")
+      .def_readonly("tau", &Orbit::tau, "time of the step (NaN in the start row)")
+      .def_readonly("periods", &Orbit::periods, "int64: wall periods begun during the step")
+      .def_readonly("segment", &Orbit::segment, "int32: wall segment of the last contact")
+      .def_readonly("wall", &Orbit::wall, "int8: direction of that segment, +1 up, -1 down, 0 flat (0 at the start)")
+      .def_readonly("corner", &Orbit::corner, "bool: the impact was exactly at a wall corner")
+      .def_readonly("indirect", &Orbit::indirect, "int8: 1 the flight rose above the wall's top, 0 not, -1 undecided")
+      .def_readonly("stick_segment", &Orbit::stick_segment, "int32: segment of the collision that stuck (-1: none)")
+      .def_readonly("stuck_theta", &Orbit::stuck_theta, "phase where a collapse completed (NaN: none)")
+      .def_readonly("stuck_v", &Orbit::stuck_v, "velocity there (NaN: none)")
+      .def_readonly("passed_upward_turn", &Orbit::passed_upward_turn, "bool: the ride passed an upward turn")
+      .def_readonly("phase_bits", &Orbit::phase_bits, "int32: correct bits of theta left, at best")
+      .def_readonly("status", &Orbit::status, "completed | undecided (an interval step could not be decided)")
+      .def_readonly("steps_done", &Orbit::steps_done, "steps completed")
+      .def_readonly("reason", &Orbit::reason, "why the run stopped, when undecided")
+      .def_readonly("phase_lost_at", &Orbit::phase_lost_at, "first step after which theta had no correct bit, or None")
+      .def_readonly("lohner_fallbacks", &Orbit::lohner_fallbacks,
+                    "interval runs with Lohner's method: steps that fell back to the box image (else None)")
+      .def_readonly("precision", &Orbit::precision, "the precision of the run")
+      .def("__len__", [](const Orbit& o) { return o.rows; })
+      .def("__repr__", [](const Orbit& o) {
+        return "Orbit(" + std::to_string(o.rows) + " rows, " + o.status + " " + std::to_string(o.steps_done) +
+               " steps, precision='" + o.precision + "')";
+      });
+
+  py::class_<ModelCore>(mod, "Model", "The model core (see bouncer.Model)")
+      .def(py::init<const Texts&>(), py::arg("options"))
+      .def("step", &ModelCore::step, py::arg("theta"), py::arg("v"),
+           "step(theta, v) -> Step\n\n"
+           "One step of the impact map from the state (theta, v): theta, the phase of an impact, in [0, 1); v, the "
+           "velocity just after it, at least the wall's velocity at theta and at most 1e15. Floats are taken as "
+           "their exact binary value; str and decimal.Decimal as exact decimals. Raises ValueError (bouncer's "
+           "message) for a state outside those ranges, bouncer.Undecided when an interval step cannot be decided.")
+      .def("_orbit", &ModelCore::orbit, py::arg("options"))
+      .def("_classify", &ModelCore::classify, py::arg("options"))
+      .def("_lyapunov", &ModelCore::lyapunov, py::arg("options"))
+      .def("_periodic", &ModelCore::periodic, py::arg("options"))
+      .def("_continue_branch", &ModelCore::continue_branch, py::arg("options"))
+      .def("_certify_sticking", &ModelCore::certify_sticking, py::arg("options"))
+      .def("_certify_periodic", &ModelCore::certify_periodic, py::arg("options"))
+      .def_property_readonly("options", &ModelCore::options, "The option texts the model was built from")
+      .def_property_readonly("precision", &ModelCore::precision_text, "The precision: double, long, dd, quad, mpfr:BITS, "
+                                                                      "interval:BITS or interval:double")
+      .def_property_readonly("bits", &ModelCore::bits, "Significand bits of the precision")
+      .def_property_readonly("model", &ModelCore::law, "The collision law: elastic, constant or veldep")
+      .def_property_readonly("a", &ModelCore::a, "a = g T^2 / A as an exact decimal text")
+      .def_property_readonly("eps", &ModelCore::eps, "The restitution coefficient (constant law), else None")
+      .def_property_readonly("c", &ModelCore::c, "The scale of eps(v) (veldep law), else None")
+      .def_property_readonly("wall", &ModelCore::wall, "The wall profile as given (triangle, sawtooth, ...)");
 }

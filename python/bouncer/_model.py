@@ -1,0 +1,474 @@
+"""The library layer: ``Model``, the impact map with one set of parameters, built once, and
+the analyses on it, each a call of the library's own function (python/module.cpp) that
+returns a typed result. No science here: this file converts arguments to the CLI's option
+texts and the native results into dataclasses."""
+
+from __future__ import annotations
+
+# (A private module: its names do not reach the bouncer namespace, which imports what it
+# exports by name; they are plain here so that help() shows plain annotations.)
+import dataclasses
+from decimal import Decimal
+from typing import Any, Dict, List, Optional, Tuple, Union
+
+import numpy as np
+
+from . import _core
+from ._cli import _decimal
+
+Interval = _core.Interval
+Step = _core.Step
+Orbit = _core.Orbit
+Undecided = _core.Undecided
+
+#: The codes of ``Orbit.event``: ``EVENTS[orbit.event[i]]`` is the name of row i's event.
+EVENTS = ("start", "impact", "sticking", "ride")
+
+#: A number given to bouncer: a decimal string or ``decimal.Decimal`` (exact), an int, or a
+#: float (its exact binary value, e.g. 0.1 is 0.1000000000000000055511151231257827...).
+Number = Union[str, int, float, Decimal]
+#: A real number of a result: float in double, a decimal text (str) in long, dd, quad and
+#: mpfr:BITS (``bouncer.to_mpmath`` converts it), an Interval in interval precisions.
+Real = Union[float, str, Interval]
+
+
+def _texts(**options: Any) -> Dict[str, List[str]]:
+    """Keyword arguments -> the CLI's option texts ({"max-iter": ["30"]}); None is left out
+    (the CLI's default applies), pairs become two texts."""
+    out = {}
+    for name, value in options.items():
+        if value is None:
+            continue
+        key = name.replace("_", "-")
+        if isinstance(value, (tuple, list)):
+            out[key] = [_decimal(x, name) for x in value]
+        else:
+            out[key] = [_decimal(value, name)]
+    return out
+
+
+def _on_off(value: Any, name: str) -> Optional[str]:
+    if value is None or isinstance(value, str):
+        return value
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    raise TypeError(f"{name}: expected True, False, 'on' or 'off', got {type(value).__name__}")
+
+
+def _range_text(value: Any, name: str) -> Optional[str]:
+    if value is None or isinstance(value, str):
+        return value
+    lo, hi = value
+    return _decimal(lo, name) + ":" + _decimal(hi, name)
+
+
+def _build(cls, fields: Dict[str, Any]):
+    return cls(**fields)
+
+
+# ---- results ----------------------------------------------------------------------------------
+
+@dataclasses.dataclass(frozen=True)
+class Classification:
+    """What an orbit does in the long run (``bouncer classify``), with the evidence.
+
+    class_: fixed | periodic | sticking | quasiperiodic | chaotic | unbounded |
+        effective_sticking | undecided | transient_chaos
+    period: q for fixed/periodic, the sticking period k for sticking, else 0
+    lambda_: leading Lyapunov exponent per collision (NaN if not computed)
+    evidence: one line: what decided the class
+    growth_alpha, growth_per_step, phase_branches, accelerator_period, accelerator_gain,
+    growth_kind: unbounded only (else None): v ~ n^alpha, mean dv per step, phase clusters,
+        accelerator period Q and gain D per Q steps, accelerator | diffusive | irregular
+    settled_class, settled_at: transient_chaos only (else None): what it settled on, from when
+    transient, steps, max_period, recheck_factor: the classifier's window as used
+    """
+    class_: str
+    period: int
+    lambda_: float
+    evidence: str
+    growth_alpha: Optional[float]
+    growth_per_step: Optional[float]
+    phase_branches: Optional[int]
+    accelerator_period: Optional[int]
+    accelerator_gain: Optional[float]
+    growth_kind: Optional[str]
+    settled_class: Optional[str]
+    settled_at: Optional[int]
+    transient: int
+    steps: int
+    max_period: int
+    recheck_factor: int
+
+
+@dataclasses.dataclass(frozen=True)
+class Lyapunov:
+    """The leading Lyapunov exponent of one orbit (``bouncer lyapunov``).
+
+    lambda_: per collision; -inf when contracted (a sticking step has Jacobian 0)
+    stderr: standard error of the block means (NaN with fewer than 2 blocks)
+    steps, transient, blocks: as measured
+    contracted: a sticking or ride step in the window; unbounded: velocity grows without
+        bound (growth_alpha: v ~ n^alpha); v_max: largest v in the window
+    undecided: a step could not be completed; note: why, for the special outcomes
+    """
+    lambda_: float
+    stderr: float
+    steps: int
+    transient: int
+    blocks: int
+    contracted: bool
+    unbounded: bool
+    growth_alpha: float
+    v_max: float
+    undecided: bool
+    note: str
+
+
+@dataclasses.dataclass(frozen=True)
+class PeriodicOrbit:
+    """A period-q orbit from damped Newton (``bouncer periodic``).
+
+    converged; period: q asked for; minimal_period: the smallest d | q with P^d(x) = x
+    points: the q points (theta, v) in orbit order
+    multipliers: the eigenvalues of DP^q as (re, im), largest modulus first;
+        multiplier_moduli: their moduli; complex_pair; marginal: a multiplier within 1e-6 of 1
+    events: what each step was (impact | sticking | ride); wall_periods: periods begun per step
+    residual, tolerance, iterations; note: why not converged, or remarks
+    """
+    converged: bool
+    period: int
+    minimal_period: int
+    points: List[Tuple[Real, Real]]
+    multipliers: List[Tuple[Real, Real]]
+    multiplier_moduli: Tuple[float, float]
+    complex_pair: bool
+    marginal: bool
+    events: List[str]
+    wall_periods: List[int]
+    residual: float
+    tolerance: float
+    iterations: int
+    note: str
+
+
+@dataclasses.dataclass(frozen=True)
+class BranchEnd:
+    """Where a continued branch ends (one side).
+
+    reason: range_end | border | fold | event_change | period_collapse | lost | max_points
+    param: a* (the bracket's midpoint); bracket: (lo, hi)
+    margin: knot | clearance | speed | sticking for a border end, else None; impact: its step
+        (1-based), knot: the wall knot involved (exact rational text), detail: one phrase
+    last_point: the orbit's first point on the branch side
+    beyond: what the map does just past a* (param, class_, period, lambda_, evidence,
+        newton_orbit_events, newton_orbit_minimal_period), or None; beyond_note
+    """
+    reason: str
+    param: Real
+    bracket: Tuple[Real, Real]
+    margin: Optional[str]
+    impact: Optional[int]
+    knot: Optional[str]
+    detail: str
+    last_point: Tuple[Real, Real]
+    beyond: Optional[Dict[str, Any]]
+    beyond_note: str
+
+
+@dataclasses.dataclass(frozen=True)
+class Branch:
+    """A period-q orbit continued in a parameter (``bouncer continue``), K points.
+
+    vary: a | eps | c; period: q
+    param: (K,) the parameter values, increasing; theta, v: (K, q) the orbit points
+    multiplier_moduli: (K, 2); residual: (K,); min_margin: {knot, clearance, speed,
+        sticking} -> (K,) the least margin of each kind over the orbit
+    stability: stable | unstable | marginal per point; events: the event text per point
+        ("I0 I1^ S0": impact, sticking, ride and segment; c = corner, ^ = indirect)
+    start: index of the start point; low, high: the ends; bifurcations: period doubling,
+        Neimark-Sacker and folds on the way (kind, param, bracket); corrector_runs
+    Arrays are float64 in double, str (decimal texts) in the other precisions.
+    """
+    vary: str
+    period: int
+    param: np.ndarray
+    theta: np.ndarray
+    v: np.ndarray
+    multiplier_moduli: np.ndarray
+    residual: np.ndarray
+    min_margin: Dict[str, np.ndarray]
+    stability: List[str]
+    events: List[str]
+    start: int
+    low: BranchEnd
+    high: BranchEnd
+    bifurcations: List[Dict[str, Any]]
+    corrector_runs: int
+
+
+@dataclasses.dataclass(frozen=True)
+class StickingCertificate:
+    """A certified answer about sticking for one exact start (``bouncer certify-sticking``).
+
+    certified: the outcome's statement is proved (all but undecided)
+    outcome: sticks | never_sticks | no_sticking_within_max_steps | undecided
+    period: the sticking period (sticks only); statement: one line
+    scalar, bits: the interval type and bits of the run that certified it
+    steps_checked: steps certified free of sticking; reason: why undecided, or detail
+    double_period: what plain double computes for the same question (None: no sticking)
+    attractor: the trapping-set proof of never_sticks (period, iterate, entered_at, box)
+    release_theta, release_v: the exact release state after the sticking (sticks), or None
+    lohner_fallbacks, max_steps, schedule, attempts (one dict per run), seconds
+    """
+    certified: bool
+    outcome: str
+    period: Optional[int]
+    scalar: Optional[str]
+    bits: int
+    steps_checked: int
+    statement: str
+    reason: str
+    double_period: Optional[int]
+    attractor: Optional[Dict[str, Any]]
+    release_theta: Optional[str]
+    release_v: Optional[str]
+    lohner_fallbacks: int
+    max_steps: int
+    schedule: str
+    attempts: List[Dict[str, Any]]
+    seconds: float
+
+
+@dataclasses.dataclass(frozen=True)
+class PeriodicCertificate:
+    """A period-Q orbit proved by the Krawczyk operator (``bouncer certify-periodic``).
+
+    certified; outcome: isolated | family | through_release | not_found | undecided
+    statement: the theorem, one paragraph; reason: why not certified
+    bits: the precision that certified; period; minimal_period (None unless certified)
+    stability: stable | unstable | neutral-stable | neutral-unstable | superstable | undecided
+    points: enclosures (theta, v) of the Q points, as Intervals; events; wall_periods
+    multipliers: {kind: real | complex | undecided, trace, det, and mu1, mu2 (real) or re, im,
+        modulus (complex)} as Intervals
+    krawczyk: {unknowns, box, image, free, free_range, inflations} or None
+    family: {parameter_at_theta, given_parameter, strip_theta, strip_v, strip_parameter}
+        for a certified family, else None
+    double_newton: the double-precision Newton point (texts); double_distance: its distance
+        to the certified box (0 inside)
+    schedule, attempts, seconds
+    """
+    certified: bool
+    outcome: str
+    statement: str
+    reason: str
+    bits: int
+    period: int
+    minimal_period: Optional[int]
+    stability: str
+    points: List[Tuple[Interval, Interval]]
+    events: List[str]
+    wall_periods: List[int]
+    multipliers: Dict[str, Any]
+    krawczyk: Optional[Dict[str, Any]]
+    family: Optional[Dict[str, Any]]
+    double_newton: Optional[Tuple[str, str]]
+    double_distance: Optional[float]
+    schedule: str
+    attempts: List[Dict[str, Any]]
+    seconds: float
+
+
+# ---- the model ----------------------------------------------------------------------------------
+
+class Model(_core.Model):
+    """The piecewise linear bouncer with one set of parameters: its impact map, orbits and
+    analyses, computed by the library (the same code as the command line; the parameters
+    are validated once, here).
+
+    Keyword arguments (the CLI's options, ``--downward-sticking`` is ``downward_sticking``):
+
+    model: "constant" (restitution eps), "veldep" (eps(v) = exp(-|(v- - fdot)/c|^(3/5))) or
+        "elastic". Default: constant when eps is given, veldep when c is given.
+    a: dimensionless gravity a = g T^2 / A, a decimal with 0 < a <= 1e9 (required).
+    eps: restitution coefficient, a decimal in [0, 1] (model constant only, required there).
+    c: scale of eps(v), a decimal > 0 (model veldep only, required there).
+    wall: "triangle" (default) | "sawtooth" | "asymmetric:R" (0 < R < 1) |
+        "knots:0:H0,S1:H1,..." (a continuous periodic piecewise-linear wall).
+    downward_sticking: "paper" (default) | "impact": a collapse on a downward wall at its
+        upward turn rides on to the next release (paper) or is an impact there.
+    veldep_collapse: False (default) | True (model veldep only): stick when the chatter
+        provably collapses before the wall turns.
+    precision: "double" (default) | "long" | "dd" | "quad" | "mpfr:BITS" | "interval:BITS" |
+        "interval:double", 16 <= BITS <= 1048576. step and orbit run in it; the analyses
+        (classify, lyapunov, periodic, continue_branch) need a point precision (not
+        interval); the certified ones (certify_sticking, certify_periodic) choose their own
+        interval precisions and ignore it.
+
+    Numbers: decimal strings and ``decimal.Decimal`` are exact (``a="28.82"``); ints exact;
+    a float is the exact decimal of its binary value (``a=28.82`` is 28.8200000000000002842...:
+    the same double in double precision, another number at 256 bits).
+
+    Errors: bad input raises ValueError with bouncer's one-line message, which names the
+    option and its range (``ValueError: eps: must be in [0, 1] (got 1.5)``); an undecided
+    interval step raises bouncer.Undecided; Ctrl-C raises KeyboardInterrupt (long calls run
+    with the GIL released and check for it every 256 steps).
+
+    Example::
+
+        m = bouncer.Model(model="constant", a="24", eps="0.5")
+        s = m.step(0.3, 9.5)            # bouncer.Step(theta=0.15033547982814893, v=11.454025757937787)
+        s.event, s.tau                  # ('impact', 0.8503354798281488)
+        theta, v = m.step(*s)           # a Step is the tuple (theta, v)
+        o = m.orbit(0.3, 9.5, 1000)     # Orbit: o.theta, o.v, ... numpy arrays
+    """
+
+    def __init__(self, *, model: Optional[str] = None, a: Optional[Number] = None, eps: Optional[Number] = None,
+                 c: Optional[Number] = None, wall: Optional[str] = None, downward_sticking: Optional[str] = None,
+                 veldep_collapse: Union[bool, str, None] = None, precision: str = "double") -> None:
+        if model is None:
+            model = "constant" if eps is not None else "veldep" if c is not None else None
+        super().__init__(_texts(model=model, a=a, eps=eps, c=c, wall=wall, downward_sticking=downward_sticking,
+                                veldep_collapse=_on_off(veldep_collapse, "veldep_collapse"), precision=precision))
+
+    def __repr__(self) -> str:
+        given = ", ".join(f"{k.replace('-', '_')}={v!r}" for k, v in self.options.items())
+        return f"bouncer.Model({given})"
+
+    # step(theta, v) -> Step is the native method (module.cpp): no Python frame in between.
+    # A Step is the tuple (theta, v) with the rest of the step as attributes.
+
+    def orbit(self, theta: Number, v: Number, steps: Optional[int] = None, *, every: Optional[int] = None,
+              method: Optional[str] = None) -> Orbit:
+        """The orbit from (theta, v) as numpy arrays (``bouncer orbit``, without the text).
+
+        theta: phase in [0, 1); v: velocity after the impact, at least the wall's velocity
+            at theta, at most 1e15 (exact decimals, ints, or floats as their binary value)
+        steps: number of steps, an integer in [0, 1e15] (default 10, as the CLI); the
+            arrays have one row per kept step and the start row
+        every: keep every K-th step (and the last), an integer in [1, 1e15] (default 1)
+        method: interval precisions only: "lohner" (default, as the CLI: Lohner's QR
+            method, tight enclosures) | "naive" (iterate the box)
+
+        Returns an Orbit (see its fields); an undecided interval step ends the run with
+        ``status == "undecided"`` and ``reason``. More than 1e8 rows is refused (raise every).
+        """
+        return self._orbit(_texts(theta=theta, v=v, steps=steps, every=every, method=method))
+
+    def classify(self, theta: Number, v: Number, *, transient: Optional[int] = None, steps: Optional[int] = None,
+                 max_period: Optional[int] = None, recheck_factor: Optional[int] = None) -> Classification:
+        """The long-run class of the orbit from (theta, v) (``bouncer classify``).
+
+        theta, v: the start, as for orbit
+        transient: steps discarded first, an integer in [0, 1e10] (default 5000, the paper's)
+        steps: steps examined, an integer in [8, 1e9] (default 500, the paper's)
+        max_period: longest period looked for, an integer in [1, steps/2] (default
+            min(64, steps/2))
+        recheck_factor: a chaotic label is re-checked F x max(transient, steps) steps later
+            (settled: transient_chaos), an integer in [0, 1000], 0 = off (default 20)
+        """
+        return _build(Classification, self._classify(_texts(
+            theta=theta, v=v, transient=transient, steps=steps, max_period=max_period, recheck_factor=recheck_factor)))
+
+    def lyapunov(self, theta: Number, v: Number, *, transient: Optional[int] = None, steps: Optional[int] = None,
+                 blocks: Optional[int] = None) -> Lyapunov:
+        """The leading Lyapunov exponent per collision of the orbit from (theta, v), through
+        the AD tangent map (``bouncer lyapunov``; the exponent curves of ``--vary`` are
+        ``bouncer.lyapunov(vary=..., range=...)``).
+
+        theta, v: the start, as for orbit
+        transient: steps discarded first, an integer in [0, 1e12] (default 1000)
+        steps: steps measured, an integer in [1, 1e12] (default 10000)
+        blocks: blocks of the error estimate, an integer in [1, 10000] (default 20)
+        """
+        return _build(Lyapunov, self._lyapunov(_texts(theta=theta, v=v, transient=transient, steps=steps,
+                                                      blocks=blocks)))
+
+    def periodic(self, period: int, *, guess: Optional[Tuple[Number, Number]] = None,
+                 max_iter: Optional[int] = None, grid: Optional[int] = None) -> PeriodicOrbit:
+        """A period-q orbit by damped Newton, with its multipliers (``bouncer periodic``).
+
+        period: q, an integer in [1, 100]
+        guess: (theta, v) to start Newton from (validated as a start); default: a grid of
+            guesses in the trapping region
+        max_iter: Newton iterations per guess, an integer in [1, 10000] (default 60)
+        grid: guesses per axis without guess, an integer in [1, 64] (default 8)
+        """
+        return _build(PeriodicOrbit, self._periodic(_texts(period=period, guess=guess, max_iter=max_iter, grid=grid)))
+
+    def continue_branch(self, period: int, guess: Tuple[Number, Number], range: Tuple[Number, Number], *,
+                        vary: str = "a", step: Optional[Number] = None, max_points: Optional[int] = None,
+                        max_iter: Optional[int] = None, beyond: Optional[Number] = None,
+                        transient: Optional[int] = None, steps: Optional[int] = None,
+                        max_period: Optional[int] = None, recheck_factor: Optional[int] = None) -> Branch:
+        """Continues the period-q orbit near ``guess`` in ``vary`` over ``range`` from the
+        model's own value of that parameter, and locates where the branch ends
+        (``bouncer continue``, without its pictures and ``--certify``).
+
+        period: q, an integer in [1, 100]
+        guess: (theta, v) near the orbit at the model's parameter value
+        range: (lo, hi), decimals with lo < hi, both valid for the model, containing the
+            model's value of the parameter
+        vary: "a" (default) | "eps" (model constant) | "c" (model veldep)
+        step: first continuation step, a decimal in (0, hi - lo] (default (hi - lo)/100)
+        max_points: most branch points, both directions together, an integer in
+            [2, 100000] (default 2000)
+        max_iter: Newton iterations per corrector run, an integer in [1, 10000] (default 30)
+        beyond: classify at a* + beyond * max(1, |a*|) past each end, a decimal in (0, 0.1]
+            (default 1e-6)
+        transient, steps, max_period, recheck_factor: the classifier past each end, as in
+            classify (defaults 5000, 500, min(64, steps/2), 20)
+        """
+        d = self._continue_branch(_texts(
+            period=period, guess=guess, range=_range_text(range, "range"), vary=vary, step=step,
+            max_points=max_points, max_iter=max_iter, beyond=beyond, transient=transient, steps=steps,
+            max_period=max_period, recheck_factor=recheck_factor))
+        d["low"] = _build(BranchEnd, d["low"])
+        d["high"] = _build(BranchEnd, d["high"])
+        return _build(Branch, d)
+
+    def certify_sticking(self, theta: Number = "0.5", v: Number = "4", *, max_steps: Optional[int] = None,
+                         max_bits: Optional[int] = None, start_bits: Union[int, str, None] = None,
+                         method: Optional[str] = None,
+                         prove_attractor: Union[bool, str, None] = None) -> StickingCertificate:
+        """A certified answer: does the orbit of the exact start (theta, v) stick, and when
+        (``bouncer certify-sticking``; model constant). Interval arithmetic with precision
+        escalation, whatever the model's precision.
+
+        theta, v: the start (default: the release state (0.5, 4)), as for orbit
+        max_steps: follow the orbit at most this many steps, an integer in [1, 1e9]
+            (default 100000)
+        max_bits: largest interval precision of the schedule, an integer in
+            [16, 1048576] (default 4096)
+        start_bits: "double" (default: interval:double first, then MPFI at 64, 128, ...)
+            or BITS (MPFI at BITS, 2 BITS, ...), at most max_bits
+        method: "lohner" (default) | "naive"
+        prove_attractor: True (default) | False: when no sticking is found, try to prove
+            that the orbit never sticks
+        """
+        return _build(StickingCertificate, self._certify_sticking(_texts(
+            theta=theta, v=v, max_steps=max_steps, max_bits=max_bits, start_bits=start_bits, method=method,
+            prove_attractor=_on_off(prove_attractor, "prove_attractor"))))
+
+    def certify_periodic(self, period: int, *, guess: Optional[Tuple[Number, Number]] = None,
+                         vary: Optional[str] = None, family: Optional[str] = None,
+                         max_bits: Optional[int] = None, start_bits: Optional[int] = None,
+                         max_iter: Optional[int] = None, grid: Optional[int] = None) -> PeriodicCertificate:
+        """A period-Q orbit proved to exist (and be locally unique) by the Krawczyk operator,
+        with enclosures of its points and multipliers (``bouncer certify-periodic`` at the
+        model's parameter values; over a parameter range: ``bouncer.certify_periodic(...,
+        a_range=...)``). Interval arithmetic with precision escalation.
+
+        period: Q, an integer in [1, 1000]
+        guess: (theta, v) for Newton (default: a grid of guesses in the trapping region)
+        vary: the parameter of a family, its unknown: "a" (default) | "eps" | "c"
+        family: "auto" (default: when Newton finds a multiplier 1) | "on" | "off"
+        max_bits: largest precision of the schedule, an integer in [16, 1048576] (default 1024)
+        start_bits: first precision (64, 128, ... doubling), an integer in [16, 1048576]
+            at most max_bits (default 64)
+        max_iter: Newton iterations, an integer in [1, 10000] (default 60)
+        grid: Newton guesses per axis without guess, an integer in [1, 64] (default 8)
+        """
+        return _build(PeriodicCertificate, self._certify_periodic(_texts(
+            period=period, guess=guess, vary=vary, family=family, max_bits=max_bits, start_bits=start_bits,
+            max_iter=max_iter, grid=grid)))

@@ -12,16 +12,15 @@
 # Exit 77 (skipped) when this build has no Python module, or Debian's python3-venv,
 # python3-pip, python3-setuptools or python3-wheel is missing.
 set -euo pipefail
-bouncer=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-src=$(cd "$2" && pwd)
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+bouncer=$(cd "$(dirname "$BOUNCER")" && pwd)/$(basename "$BOUNCER")
+src=$(cd "$SRC" && pwd)
 build=$(cd "$(dirname "$bouncer")/.." && pwd)
-skip() { echo "python_pip: skipped: $*"; exit 77; }
+tmp=$TMP
 compgen -G "$build/python/bouncer/_core*.so" >/dev/null || skip "this build has no Python module"
 python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
 [[ -x $python ]] || skip "no Python3_EXECUTABLE in $build/CMakeCache.txt"
 "$python" -c "import setuptools, wheel" 2>/dev/null || skip "python3-setuptools or python3-wheel is missing"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
 "$python" -m venv --system-site-packages "$tmp/venv" >/dev/null 2>&1 || skip "python3-venv is missing"
 [[ -x $tmp/venv/bin/pip ]] || skip "the virtual environment has no pip (python3-pip)"
 

@@ -690,10 +690,7 @@ class ModelCore {
   py::dict lyapunov(const Texts& texts) const {
     const Options o = with_model(texts);
     const InitialCondition ic = cli::start_from(o, spec_);
-    LyapunovOptions lo;
-    lo.transient = integer_from(o, "transient", 0, 1000000000000LL, 1000);
-    lo.steps = integer_from(o, "steps", 1, 1000000000000LL, 10000);
-    lo.blocks = integer_from(o, "blocks", 1, 10000, 20);
+    const LyapunovOptions lo = cli::lyapunov_options_from(o);
     const Precision prec = cli::analysis_precision(o, "lyapunov");
     return with_point_scalar(prec, [&](auto tag) {
       using T = typename decltype(tag)::type;
@@ -719,11 +716,8 @@ class ModelCore {
   // bouncer periodic (tools/cmd_periodic.cpp: its ranges and defaults).
   py::dict periodic(const Texts& texts) const {
     const Options o = with_model(texts);
-    const long q = integer_from(o, "period", 1, 100, 0);
-    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
-    NewtonOptions no;
-    no.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
-    no.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+    const long q = cli::periodic_period_from(o);
+    const NewtonOptions no = cli::periodic_newton_from(o);
     const std::optional<InitialCondition> guess = guess_from(o, spec_);
     const Precision prec = cli::analysis_precision(o, "periodic");
     return with_point_scalar(prec, [&](auto tag) {

@@ -9,6 +9,8 @@
 #include <iostream>
 #include <string>
 
+#include "bouncer/analysis/lyapunov.hpp"
+#include "bouncer/analysis/periodic.hpp"
 #include "cli_common.hpp"
 
 namespace bouncer::cli {
@@ -43,6 +45,26 @@ inline void print_summary(const Provenance& p, const nlohmann::ordered_json& bod
   }
   command_out() << p.as_comment_lines();
   for (const auto& [k, v] : body.items()) command_out() << k << ": " << (v.is_string() ? v.get<std::string>() : v.dump()) << "\n";
+}
+
+// The options of `bouncer lyapunov` (one exponent) and `bouncer periodic`, their ranges and
+// defaults, read once for the command line and the Python module (python/module.cpp).
+inline LyapunovOptions lyapunov_options_from(const Options& o) {
+  LyapunovOptions lo;
+  lo.transient = integer_from(o, "transient", 0, 1000000000000LL, 1000);
+  lo.steps = integer_from(o, "steps", 1, 1000000000000LL, 10000);
+  lo.blocks = integer_from(o, "blocks", 1, 10000, 20);
+  return lo;
+}
+inline long periodic_period_from(const Options& o) {
+  if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
+  return integer_from(o, "period", 1, 100, 0);
+}
+inline NewtonOptions periodic_newton_from(const Options& o) {
+  NewtonOptions no;
+  no.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
+  no.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+  return no;
 }
 
 }  // namespace bouncer::cli

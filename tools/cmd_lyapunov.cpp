@@ -360,10 +360,7 @@ Command add_lyapunov(CLI::App& app) {
       throw InputError("vary", "--quiet/--keep-tiles/--force belong to an exponent curve (--vary)");
     const ModelSpec spec = model_from(o);
     const InitialCondition ic = start_from(o, spec);
-    LyapunovOptions lo;
-    lo.transient = integer_from(o, "transient", 0, 1000000000000LL, 1000);
-    lo.steps = integer_from(o, "steps", 1, 1000000000000LL, 10000);
-    lo.blocks = integer_from(o, "blocks", 1, 10000, 20);
+    const LyapunovOptions lo = lyapunov_options_from(o);
     const Precision prec = analysis_precision(o, "lyapunov");
     const Provenance p = provenance_for("lyapunov", o, prec, argv_text);
     const nlohmann::ordered_json body = with_point_scalar(

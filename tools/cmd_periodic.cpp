@@ -74,11 +74,8 @@ Command add_periodic(CLI::App& app) {
   auto run = [opts, scene, json](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "periodic", periodic_keys()), opts->collected());
     const ModelSpec spec = model_from(o);
-    const long q = integer_from(o, "period", 1, 100, 0);
-    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
-    NewtonOptions no;
-    no.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
-    no.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+    const long q = periodic_period_from(o);
+    const NewtonOptions no = periodic_newton_from(o);
     std::optional<InitialCondition> guess;
     if (o.has("guess")) {
       const auto& g = o.values.at("guess");

@@ -47,6 +47,7 @@
 #include <vector>
 
 #include "analysis_common.hpp"
+#include "bouncer/io/options.hpp"
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
@@ -654,9 +655,9 @@ class ModelCore {
   // bouncer classify (tools/cmd_classify.cpp).
   py::dict classify(const Texts& texts) const {
     const Options o = with_model(texts);
-    const InitialCondition ic = cli::start_from(o, spec_);
-    const ClassifyOptions co = cli::classify_options_from(o);
-    const Precision prec = cli::analysis_precision(o, "classify");
+    const InitialCondition ic = start_from(o, spec_);
+    const ClassifyOptions co = classify_options_from(o);
+    const Precision prec = analysis_precision(o, "classify");
     return with_point_scalar(prec, [&](auto tag) {
       using T = typename decltype(tag)::type;
       const Classification c = interruptible([&] {
@@ -689,9 +690,9 @@ class ModelCore {
   // bouncer lyapunov without --vary (tools/cmd_lyapunov.cpp: its ranges and defaults).
   py::dict lyapunov(const Texts& texts) const {
     const Options o = with_model(texts);
-    const InitialCondition ic = cli::start_from(o, spec_);
-    const LyapunovOptions lo = cli::lyapunov_options_from(o);
-    const Precision prec = cli::analysis_precision(o, "lyapunov");
+    const InitialCondition ic = start_from(o, spec_);
+    const LyapunovOptions lo = lyapunov_options_from(o);
+    const Precision prec = analysis_precision(o, "lyapunov");
     return with_point_scalar(prec, [&](auto tag) {
       using T = typename decltype(tag)::type;
       const LyapunovResult r = interruptible([&] {
@@ -716,10 +717,10 @@ class ModelCore {
   // bouncer periodic (tools/cmd_periodic.cpp: its ranges and defaults).
   py::dict periodic(const Texts& texts) const {
     const Options o = with_model(texts);
-    const long q = cli::periodic_period_from(o);
-    const NewtonOptions no = cli::periodic_newton_from(o);
+    const long q = periodic_period_from(o);
+    const NewtonOptions no = periodic_newton_from(o);
     const std::optional<InitialCondition> guess = guess_from(o, spec_);
-    const Precision prec = cli::analysis_precision(o, "periodic");
+    const Precision prec = analysis_precision(o, "periodic");
     return with_point_scalar(prec, [&](auto tag) {
       using T = typename decltype(tag)::type;
       const PeriodicOrbit<T> p = interruptible([&] {
@@ -743,17 +744,17 @@ class ModelCore {
     if (!o.has("guess")) throw InputError("guess", "is required (theta,v of a point near the period-q orbit)");
     if (vary == Parameter::eps && spec_.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
     if (vary == Parameter::c && spec_.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
-    const std::pair<Decimal, Decimal> range = cli::parse_range("range", o.get("range"));
+    const std::pair<Decimal, Decimal> range = parse_range("range", o.get("range"));
     const Decimal& lo = range.first;
     const Decimal& hi = range.second;
-    cli::validate_range_ends(spec_, vary, "range", lo, hi);
+    validate_range_ends(spec_, vary, "range", lo, hi);
     const Decimal& start = parameter_of(spec_, vary);
     if (start < lo || hi < start)
       throw InputError(vary_name, "the start value " + start.text() + " must lie in the range [" + lo.text() + ", " +
                                       hi.text() + "]");
     const long period = integer_from(o, "period", 1, 100, 0);
     const InitialCondition guess = *guess_from(o, spec_);
-    const Precision prec = cli::analysis_precision(o, "continue");
+    const Precision prec = analysis_precision(o, "continue");
     ContinuationOptions opt;
     if (o.has("step")) {
       const Decimal s = parse_decimal("step", o.get("step"));
@@ -770,7 +771,7 @@ class ModelCore {
         throw InputError("beyond", "must be a decimal in (0, 0.1] (relative distance past a*; got " + b.text() + ")");
       opt.beyond = b.approx();
     }
-    opt.classify = cli::classify_options_from(o);
+    opt.classify = classify_options_from(o);
     return with_point_scalar(prec, [&](auto tag) {
       using T = typename decltype(tag)::type;
       using Tr = ScalarTraits<T>;
@@ -796,7 +797,7 @@ class ModelCore {
     if (!o.has("v")) o.set("v", "4");
     StickingQuestion q;
     q.model = spec_;
-    q.start = cli::start_from(o, spec_);
+    q.start = start_from(o, spec_);
     q.max_steps = integer_from(o, "max-steps", 1, 1000000000LL, 100000);
     q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 4096);
     const std::string start = o.get_or("start-bits", "double");

@@ -26,6 +26,7 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/io/input.hpp"
+#include "bouncer/io/options.hpp"
 #include "bouncer/io/output.hpp"
 #include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
@@ -287,11 +288,6 @@ inline void add_start_options(OptionSet& o) {
   o.add("theta", "Initial phase in [0, 1)");
   o.add("v", "Initial velocity after impact, >= the wall velocity at theta");
 }
-inline InitialCondition start_from(const Options& o, const ModelSpec& spec) {
-  InitialCondition ic{parse_decimal("theta", o.get("theta")), parse_decimal("v", o.get("v"))};
-  validate(spec, ic, "theta", "v");
-  return ic;
-}
 
 // The classifier's window (classify, basin, scan, lyapunov --vary): one help text, one validation.
 // lyapunov --vary has its own transient and steps (the exponent's), hence the split.
@@ -304,16 +300,6 @@ inline void add_classify_options(OptionSet& o) {
   o.add("transient", "Steps discarded before classifying, integer in [0, 1e10] (default 5000, as the paper)");
   o.add("steps", "Steps examined by the classifier, integer in [8, 1e9] (default 500, as the paper)");
   add_classify_period_options(o);
-}
-inline ClassifyOptions classify_options_from(const Options& o) {
-  ClassifyOptions c;
-  c.transient = integer_from(o, "transient", 0, 10000000000LL, 5000);
-  c.steps = integer_from(o, "steps", 8, 1000000000LL, 500);
-  c.max_period = integer_from(o, "max-period", 1, 1000000000LL, std::min<long>(64, c.steps / 2));
-  if (c.max_period * 2 > c.steps)
-    throw InputError("max-period", "must be at most steps/2 (" + std::to_string(c.steps / 2) + ")");
-  c.recheck_factor = integer_from(o, "recheck-factor", 0, 1000, 20);
-  return c;
 }
 
 // The text form of a certified command's result: "# " provenance lines, then one
@@ -338,28 +324,7 @@ inline void print_key_values(std::ostream& out, const Provenance& p, const nlohm
   put("", j);
 }
 
-// A swept parameter needs no value of its own: the model is built at the range's start,
-// parsed here first so that a bad range is blamed on --range, not on the parameter.
-inline void default_to_range_start(Options& o, const std::string& vary) {
-  if (o.has(vary) || !o.has("range") || (vary != "a" && vary != "eps" && vary != "c")) return;
-  const std::string range = o.get("range");
-  const auto colon = range.find(':');
-  if (colon == std::string::npos) throw InputError("range", "must be LO:HI (got '" + range + "')");
-  o.set(vary, parse_decimal("range", range.substr(0, colon)).text());
-}
 
-// Both ends of a varied parameter's range (bifurcation, lyapunov --vary, continue,
-// certify-periodic --a-range ...) must give a valid model; InputError names `field`.
-inline void validate_range_ends(const ModelSpec& m, Parameter p, const std::string& field, const Decimal& lo,
-                                const Decimal& hi) {
-  for (const Decimal& end : {lo, hi}) {
-    try {
-      validate(with_parameter(m, p, end));
-    } catch (const InputError& e) {
-      throw InputError(field, "end " + end.text() + " is outside the model's range (" + e.what() + ")");
-    }
-  }
-}
 
 // A certified command's result (certify-sticking, certify-periodic): JSON with the
 // provenance first, or the key: value text; to --out (atomically) or stdout.

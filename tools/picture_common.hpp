@@ -419,29 +419,7 @@ mpq_class exact_value(const T& x) {
   return exact_value(ScalarTraits<T>::to_string(x));
 }
 
-// "A:B" with two decimals, A < B (or A <= B when `allow_equal`).
-inline std::pair<Decimal, Decimal> parse_range(const std::string& field, const std::string& text, bool allow_equal = false) {
-  const auto colon = text.find(':');
-  if (colon == std::string::npos) throw InputError(field, "must be LO:HI (got '" + text + "')");
-  const Decimal lo = parse_decimal(field, text.substr(0, colon));
-  const Decimal hi = parse_decimal(field, text.substr(colon + 1));
-  if (allow_equal ? !(lo <= hi) : !(lo < hi)) throw InputError(field, "needs LO < HI (got '" + text + "')");
-  return {lo, hi};
-}
 
-// "NxM" with 1 <= N, M <= limit.
-inline std::pair<long, long> parse_grid(const std::string& field, const std::string& text, long limit) {
-  const auto x = text.find('x');
-  auto whole = [&](const std::string& s) {
-    if (s.empty() || s.size() > 7 || s.find_first_not_of("0123456789") != std::string::npos)
-      throw InputError(field, "must be NxM with whole numbers 1.." + std::to_string(limit) + " (got '" + text + "')");
-    const long n = std::stol(s);
-    if (n < 1 || n > limit) throw InputError(field, "must be NxM with 1 <= N, M <= " + std::to_string(limit) + " (got '" + text + "')");
-    return n;
-  };
-  if (x == std::string::npos) throw InputError(field, "must be NxM, e.g. 200x150 (got '" + text + "')");
-  return {whole(text.substr(0, x)), whole(text.substr(x + 1))};
-}
 
 // Points of a grid over [lo, hi]: cell centres lo + (hi - lo)(2i + 1)/(2n), in T.
 template <class T>
@@ -449,14 +427,6 @@ T cell_centre(const T& lo, const T& hi, long i, long n) {
   return lo + (hi - lo) * (2 * i + 1) / (2 * n);
 }
 
-// Precisions the picture commands support: the analysis scalars (an interval has no picture).
-inline Precision point_precision(const Options& o) {
-  Precision p = precision_from(o);
-  if (!p.is_analysis())
-    throw InputError("precision", "interval precision is not supported here (use " +
-                                      precision_names<AnalysisScalars>(" or ") + ")");
-  return p;
-}
 
 // The colour of an attractor type (basin, scan legends, exponent curves); `rank` orders the
 // periodic types by their share, `sub_rank` the sticking periods and the periods transient

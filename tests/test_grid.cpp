@@ -8,7 +8,7 @@
 #include <iterator>
 #include <random>
 
-#include "bouncer/analysis/grid.hpp"
+#include "bouncer/run/grid.hpp"
 #include "bouncer/io/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"

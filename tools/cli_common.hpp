@@ -178,7 +178,6 @@ inline const std::set<std::string>& picture_keys() {
   static const std::set<std::string> k{"format", "size", "dpi", "palette"};
   return k;
 }
-enum class Palette { safe, paper };
 struct Presentation {
   std::vector<ImageFormat> formats{ImageFormat::png};
   RenderOptions render;
@@ -253,15 +252,6 @@ inline std::vector<std::string> output_paths(const std::string& prefix, const Pr
 }
 
 // The models as the paper names them, for titles.
-inline std::string model_title(Law law) {
-  switch (law) {
-    case Law::constant: return "constant restitution";
-    case Law::veldep: return "velocity-dependent restitution";
-    case Law::elastic: return "elastic";
-  }
-  return name(law);
-}
-
 // The command line as one string, for provenance.
 inline std::string invocation(int argc, char** argv) {
   std::string s;

@@ -129,6 +129,7 @@ std::string class_words(const Classification& c) {
     case OrbitClass::unbounded: s << "unbounded growth (Fermi acceleration)"; break;
     case OrbitClass::effective_sticking: s << "effective sticking (chatter to the wall's velocity)"; break;
     case OrbitClass::undecided: s << "an undecided orbit (" << c.evidence << ")"; break;
+    case OrbitClass::outside: s << "a start outside the phase space"; break;
   }
   return s.str();
 }

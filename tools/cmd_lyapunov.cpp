@@ -242,8 +242,9 @@ void curve_finish(const CurveRequest& r, const std::vector<std::string>& items, 
   int sticking_rank = 0;
   for (const auto& [cls, n] : order) {
     Series s;
-    s.color = attractor_color(cls, 0, sticking_rank, f.picture.palette);
-    if (cls == "sticking") ++sticking_rank;
+    const OrbitClass oc = orbit_class_named(cls).value_or(OrbitClass::undecided);
+    s.color = attractor_color(oc, 0, sticking_rank, f.picture.palette);
+    if (oc == OrbitClass::sticking) ++sticking_rank;
     std::string label = cls;
     std::replace(label.begin(), label.end(), '_', ' ');
     s.label = label + " (" + std::to_string(n) + ")";

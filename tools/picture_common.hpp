@@ -31,7 +31,8 @@
 #include <string>
 #include <vector>
 
-#include "bouncer/analysis/grid.hpp"
+#include "bouncer/io/grid_figures.hpp"
+#include "bouncer/run/grid.hpp"
 #include "bouncer/io/input.hpp"
 #include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
@@ -421,39 +422,6 @@ mpq_class exact_value(const T& x) {
 
 
 
-// Points of a grid over [lo, hi]: cell centres lo + (hi - lo)(2i + 1)/(2n), in T.
-template <class T>
-T cell_centre(const T& lo, const T& hi, long i, long n) {
-  return lo + (hi - lo) * (2 * i + 1) / (2 * n);
-}
-
-
-// The colour of an attractor type (basin, scan legends, exponent curves); `rank` orders the
-// periodic types by their share, `sub_rank` the sticking periods and the periods transient
-// chaos settles on. Palette safe (default): fixed points black, periodic types Okabe-Ito
-// colours, sticking vermillion shades, chaos bluish green, unbounded blue. Palette paper: as
-// the paper's figures, every periodic type (fixed points too) black, sticking red, chaos green.
-inline Rgb attractor_color(const std::string& cls, int rank, int sub_rank, Palette palette = Palette::safe) {
-  const bool paper = palette == Palette::paper;
-  if (cls == "fixed" || (paper && cls == "periodic")) return Rgb{0, 0, 0};
-  if (cls == "sticking") {
-    if (paper) return Rgb{215, 25, 28};
-    static const Rgb reds[] = {{213, 94, 0}, {150, 50, 0}, {240, 150, 100}, {110, 30, 10}, {235, 110, 60}, {180, 80, 40}};
-    return reds[sub_rank % 6];
-  }
-  if (cls == "unbounded") return paper ? Rgb{30, 70, 210} : Rgb{0, 114, 178};
-  if (cls == "chaotic") return paper ? Rgb{0, 150, 40} : Rgb{0, 158, 115};
-  if (cls == "transient_chaos") {  // pale greens: chaos that settled later
-    static const Rgb greens[] = {{150, 215, 110}, {200, 240, 160}, {105, 170, 75}, {175, 200, 60}};
-    return greens[sub_rank % 4];
-  }
-  if (cls == "quasiperiodic") return Rgb{150, 60, 200};
-  if (cls == "effective_sticking") return Rgb{255, 170, 160};
-  if (cls == "undecided") return Rgb{150, 150, 150};
-  if (cls == "outside") return Rgb{238, 238, 238};
-  return category_color(rank);  // periodic
-}
-
 // The registry used by `bouncer merge`: the command name -> its keys and its runner.
 struct PictureCommand {
   const std::set<std::string>& (*keys)();
@@ -473,164 +441,64 @@ int run_scan(const Options& o, const RunFlags& f);
 const std::set<std::string>& lyapunov_curve_keys();
 int run_lyapunov_curve(const Options& o, const RunFlags& f);
 
-// A certified map (basin --certify, scan --certify): items "X,Y,class,period,certified_steps,
-// scalar,double_class,double_period,agreement" (verify/certified_point.hpp and the double twin),
-// drawn as two pictures, PREFIX.png (the certified classes, grey = undecided) and
-// PREFIX-artefacts.png (where double's class is refuted), with the CSV and the JSON summary
-// (m.summary first, then the counts).
-struct CertifiedMap {
-  std::string x_name, y_name;  // CSV column names of the two coordinates
-  long nx = 0, ny = 0;         // item i: column i mod nx, row i / nx (bottom row first)
-  mpq_class x0, x1, y0, y1;    // the window
-  std::string title, subtitle, xlabel, ylabel, twin_precision;
-  long long max_steps = 0;
-  long max_bits = 0;
-  bool collapses = true;  // constant restitution (sticking exists); false: velocity-dependent or elastic
-  bool area_preserving = false;  // elastic: no trapping set exists (not_trapped is all a point can be)
-  nlohmann::ordered_json summary;
-};
-
-// Certified grids (basin, scan, bifurcation --certify; verify/certified_point.hpp) exist for
-// the models of why_no_certified_answers (verify/sticking.hpp) and for the elastic model
-// (certified orbits, no attractor: not_trapped or undecided); velocity-dependent collapse is
-// refused before any work, naming the command, what is allowed, and why.
-inline void require_certified_model(const ModelSpec& m, const std::string& command) {
-  if (m.law == Law::elastic) return;
-  if (const std::string why = why_no_certified_answers(m); !why.empty())
-    throw InputError("certify", command + " --certify needs --model constant, elastic or veldep (without "
-                                          "--veldep-collapse): " + why);
-}
-
-// `collapses`: the model has sticking (constant restitution), so "never sticks" is news;
-// without collapse (velocity-dependent) the statement is the trapping alone.
-inline std::string certified_label(const std::string& cls, long period, long long max_steps, long max_bits,
-                                   bool collapses, bool area_preserving = false) {
-  const std::string never = collapses ? "never sticks: " : "";
-  if (cls == "sticking") return "sticking, k = " + std::to_string(period);
-  if (cls == "fixed") return never + "trapped at a fixed point";
-  if (cls == "periodic") return never + "trapped, period " + std::to_string(period);
-  if (cls == "no_sticking") return "no (further) sticking in >= " + std::to_string(max_steps) + " steps";
-  if (cls == "not_trapped" && area_preserving) return "exact orbit certified through " + std::to_string(max_steps) + " steps";
-  if (cls == "not_trapped") return "certified " + std::to_string(max_steps) + " steps, no trapping set";
-  if (cls == "undecided") return "undecided at " + std::to_string(max_bits) + " bits";
-  return "outside the phase space (v < wall velocity)";
-}
-
-inline void certified_map_finish(const CertifiedMap& m, const std::vector<std::string>& items, const RunFlags& f,
-                                 const Provenance& prov) {
+// A certified map (basin --certify, scan --certify; io/grid_figures.hpp): the CSV rows
+// "X,Y,class,period,certified_steps,scalar,double_class,double_period,agreement", the two
+// pictures PREFIX.png (the certified classes) and PREFIX-artefacts.png (where double's class
+// is refuted), and the JSON summary (`summary` first, then the counts).
+inline void write_certified_map(const CertifiedMap& m, const std::vector<Number>& xs, const std::vector<Number>& ys,
+                                const std::vector<CertifiedCell>& cells, nlohmann::ordered_json s,
+                                const std::string& twin_precision, const RunFlags& f, const Provenance& prov) {
   std::string csv = m.x_name + "," + m.y_name + ",class,period,certified_steps,scalar,double_class,double_period,agreement\n";
-  struct Cell {
-    std::string cls;
-    long period = 0;
-    std::string agreement;
-  };
-  std::vector<Cell> cells(items.size());
-  std::map<std::pair<std::string, long>, long> count;
-  std::map<std::string, long> agreement;
   std::map<std::string, long> scalars;
-  for (size_t i = 0; i < items.size(); ++i) {
-    csv += items[i];
-    csv += '\n';
-    std::istringstream ls(items[i]);
-    std::string cell[9];
-    for (auto& c : cell) std::getline(ls, c, ',');
-    cells[i] = {cell[2], std::atol(cell[3].c_str()), cell[8]};
-    ++count[{cells[i].cls, cells[i].period}];
-    ++agreement[cell[8]];
-    if (!cell[5].empty()) ++scalars[cell[5]];
+  long outside = 0, agrees = 0, differs = 0, undecided = 0;
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const CertifiedCell& c = cells[i];
+    csv += xs[i % static_cast<size_t>(m.nx)].digits + ',' + ys[i / static_cast<size_t>(m.nx)].digits + ',' + encode(c) + '\n';
+    if (!c.scalar.empty()) ++scalars[c.scalar];
+    outside += c.agreement == Agreement::outside;
+    agrees += c.agreement == Agreement::agrees;
+    differs += c.agreement == Agreement::differs;
+    undecided += c.agreement == Agreement::undecided;
   }
-  const long outside = agreement.count("outside") ? agreement["outside"] : 0;
-  const double inside = static_cast<double>(items.size()) - static_cast<double>(outside);
-  auto share = [&](long n) {
-    char pct[32];
-    std::snprintf(pct, sizeof pct, " (%.1f%%)", inside > 0 ? 100.0 * n / inside : 0.0);
-    return std::string(pct);
-  };
-  std::vector<std::pair<std::pair<std::string, long>, long>> order(count.begin(), count.end());
-  std::sort(order.begin(), order.end(), [](const auto& x, const auto& y) {
-    return x.second != y.second ? x.second > y.second : x.first < y.first;
-  });
-  const Palette palette = f.picture.palette;
-  std::map<std::pair<std::string, long>, Rgb> color;
-  int periodic_rank = 0, sticking_rank = 0;
-  for (const auto& [k, n] : order) {
-    // pale blue: a weaker statement, and no colour of the attractor palette (whose sky blue
-    // marks a periodic class)
-    if (k.first == "no_sticking") color[k] = Rgb{198, 219, 239};
-    else if (k.first == "not_trapped") color[k] = Rgb{218, 210, 235};  // pale lavender: the same weak kind
-    else color[k] = attractor_color(k.first, periodic_rank, sticking_rank, palette);
-    if (k.first == "periodic") ++periodic_rank;
-    if (k.first == "sticking") ++sticking_rank;
-  }
-  auto make_figure = [&](const std::string& title) {
-    ImageFigure fig;
-    fig.raster.nx = static_cast<int>(m.nx);
-    fig.raster.ny = static_cast<int>(m.ny);
-    set_exact_window(fig.raster, m.x0, m.x1, m.y0, m.y1);
-    fig.raster.pixels.resize(items.size());
-    fig.title = title;
-    fig.subtitle = m.subtitle;
-    fig.xlabel = m.xlabel;
-    fig.ylabel = m.ylabel;
-    fig.width = 1000;
-    fig.height = 700;
-    fig.metadata = png_metadata(prov, title);
-    return fig;
-  };
-  auto pixel = [&](size_t i) {
-    const long col = static_cast<long>(i) % m.nx, row = m.ny - 1 - static_cast<long>(i) / m.nx;
-    return static_cast<size_t>(row * m.nx + col);
-  };
-  ImageFigure cert = make_figure(m.title);
-  for (size_t i = 0; i < items.size(); ++i) cert.raster.pixels[pixel(i)] = color[{cells[i].cls, cells[i].period}];
-  // The legend names the 12 largest classes; a scan can have a hundred sticking periods,
-  // which the CSV and the JSON list in full.
-  constexpr size_t kLegendClasses = 12;
-  long rest = 0;
-  for (size_t j = 0; j < order.size(); ++j) {
-    const auto& [k, n] = order[j];
-    if (j >= kLegendClasses && order.size() > kLegendClasses + 1) {
-      rest += k.first == "outside" ? 0 : n;
-      continue;
-    }
-    cert.raster.legend.emplace_back(certified_label(k.first, k.second, m.max_steps, m.max_bits, m.collapses, m.area_preserving) +
-                                        (k.first == "outside" ? "" : share(n)),
-                                    color[k]);
-  }
-  if (order.size() > kLegendClasses + 1)
-    cert.raster.legend.emplace_back(std::to_string(order.size() - kLegendClasses) + " more classes" + share(rest) +
-                                        ": in the CSV and JSON",
-                                    Rgb{255, 255, 255});
-  // The artefact map: where double's class differs from the certified one.
-  const Rgb agree_rgb{205, 205, 205}, differ_rgb = palette == Palette::paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0},
-            undecided_rgb{90, 90, 90}, outside_rgb{255, 255, 255};
-  ImageFigure art = make_figure("Where double is wrong: double's class against the certified one");
-  for (size_t i = 0; i < items.size(); ++i) {
-    const std::string& a = cells[i].agreement;
-    art.raster.pixels[pixel(i)] = a == "agrees" ? agree_rgb : a == "differs" ? differ_rgb : a == "undecided" ? undecided_rgb : outside_rgb;
-  }
-  auto n_of = [&](const char* k) { return agreement.count(k) ? agreement[k] : 0L; };
-  art.raster.legend.emplace_back("double agrees" + share(n_of("agrees")), agree_rgb);
-  art.raster.legend.emplace_back("double differs: an artefact" + share(n_of("differs")), differ_rgb);
-  art.raster.legend.emplace_back("no certified answer" + share(n_of("undecided")), undecided_rgb);
-
-  nlohmann::ordered_json s = m.summary;
-  s["points"] = items.size();
-  s["points_in_phase_space"] = items.size() - static_cast<size_t>(outside);
+  const double inside = static_cast<double>(cells.size()) - static_cast<double>(outside);
+  auto [cert, art] = certified_figures(m, cells, f.picture.palette);
+  cert.metadata = png_metadata(prov, cert.title);
+  art.metadata = png_metadata(prov, art.title);
+  s["points"] = cells.size();
+  s["points_in_phase_space"] = cells.size() - static_cast<size_t>(outside);
   s["max_steps"] = m.max_steps;
   s["schedule"] = "interval:double, then MPFI at 64, 128, ... up to " + std::to_string(m.max_bits) + " bits";
   nlohmann::ordered_json types = nlohmann::ordered_json::array();
-  for (const auto& [k, n] : order)
-    types.push_back({{"class", k.first}, {"period", k.second}, {"points", n},
-                     {"share_of_phase_space", k.first == "outside" || inside <= 0 ? nlohmann::ordered_json() : nlohmann::ordered_json(n / inside)}});
+  for (const CertifiedCount& k : certified_census(cells))
+    types.push_back({{"class", name(k.cls)}, {"period", k.period}, {"points", k.points},
+                     {"share_of_phase_space", k.cls == CertifiedClass::outside || inside <= 0
+                                                  ? nlohmann::ordered_json()
+                                                  : nlohmann::ordered_json(k.points / inside)}});
   s["classes"] = types;
-  s["double_vs_certified"] = {{"agrees", n_of("agrees")}, {"differs", n_of("differs")}, {"undecided", n_of("undecided")}};
+  s["double_vs_certified"] = {{"agrees", agrees}, {"differs", differs}, {"undecided", undecided}};
   s["decided_by"] = scalars;
-  s["twin_precision"] = m.twin_precision;
+  s["twin_precision"] = twin_precision;
   write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, cert, fmt, f.picture.render); }, s,
                 {{"artefacts", [&](std::ostream& out, ImageFormat fmt) { write_figure(out, art, fmt, f.picture.render); }}});
 }
 
+// Runs a grid of typed cells (run/: BasinGrid, ScanGrid, BifurcationGrid) through the job's
+// tiles; returns the cells once every tile is done (nothing after a shard run, which leaves
+// its tiles for `bouncer merge`).
+template <class Cell, class Grid>
+std::optional<std::vector<Cell>> run_cells(const std::string& command, const Options& o, const RunFlags& f, Grid& grid,
+                                           double item_bytes = 32, const std::string& size_field = "grid") {
+  PictureJob job;
+  job.command = command;
+  job.job = job_options(o);
+  job.plan = grid.plan();
+  job.item = [&grid](long i) { return grid.item(i); };
+  job.item_bytes = item_bytes;
+  job.size_field = size_field;
+  const auto items = run_job(job, f);
+  if (!items) return std::nullopt;
+  return decode_cells<Cell>(*items);
+}
 
 // A grid job whose items are computed by Grid<T> (T the point type of req.precision), in
 // tiles of about items/64 (at most max_tile) items; `finish(req, items, flags, provenance)`
@@ -641,8 +509,7 @@ int run_point_grid(const std::string& command, const Options& o, const RunFlags&
   PictureJob job;
   job.command = command;
   job.job = job_options(o);
-  job.plan.items = items;
-  job.plan.tile_items = std::max<long>(1, std::min<long>(max_tile, items / 64 + 1));
+  job.plan = point_grid_plan(items, max_tile);
   const Provenance prov = provenance_for(command, job.job, req.precision, f.invocation);
   return with_point_scalar(req.precision, [&](auto tag) {
     auto grid = std::make_shared<Grid<typename decltype(tag)::type>>(req);

@@ -26,7 +26,7 @@
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/continuation.hpp"
-#include "bouncer/analysis/grid.hpp"
+#include "bouncer/run/grid.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
 #include "bouncer/model/impact_map.hpp"
 

@@ -63,8 +63,15 @@ const char* name(OrbitClass c) {
     case OrbitClass::effective_sticking: return "effective_sticking";
     case OrbitClass::undecided: return "undecided";
     case OrbitClass::transient_chaos: return "transient_chaos";
+    case OrbitClass::outside: return "outside";
   }
   return "?";
+}
+
+std::optional<OrbitClass> orbit_class_named(std::string_view text) {
+  for (int i = 0; i < kOrbitClassCount; ++i)
+    if (text == name(static_cast<OrbitClass>(i))) return static_cast<OrbitClass>(i);
+  return std::nullopt;
 }
 
 namespace {

@@ -26,6 +26,12 @@ std::pair<long, long> parse_grid(const std::string& field, const std::string& te
   return {whole(text.substr(0, x)), whole(text.substr(x + 1))};
 }
 
+bool flag_from(const Options& o, const std::string& key) {
+  const std::string v = o.get_or(key, "false");
+  if (v != "true" && v != "false") throw InputError(key, "must be true or false (got '" + v + "')");
+  return v == "true";
+}
+
 InitialCondition start_from(const Options& o, const ModelSpec& spec) {
   InitialCondition ic{parse_decimal("theta", o.get("theta")), parse_decimal("v", o.get("v"))};
   validate(spec, ic, "theta", "v");

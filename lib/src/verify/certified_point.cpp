@@ -32,16 +32,16 @@ void set_from_trap_or_none(CertifiedPoint& p, const StickingCertificate& c, Law 
   switch (c.outcome) {
     case StickingOutcome::never_sticks:
       p.period = c.attractor->period;
-      p.cls = p.period == 1 ? "fixed" : "periodic";
+      p.cls = p.period == 1 ? CertifiedClass::fixed : CertifiedClass::periodic;
       break;
     case StickingOutcome::no_sticking_within_max_steps:
       // Velocity-dependent: no orbit collapses, so "no sticking" says nothing; what is
       // certified is the orbit through every step, with no trapping set at its end (elastic:
       // none can exist).
-      p.cls = law == Law::constant ? "no_sticking" : "not_trapped";
+      p.cls = law == Law::constant ? CertifiedClass::no_sticking : CertifiedClass::not_trapped;
       break;
     default:
-      p.cls = "undecided";
+      p.cls = CertifiedClass::undecided;
       p.reason = c.reason;
       break;
   }
@@ -88,37 +88,82 @@ CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& sta
   }
   p.first_sticking = *c.period;
   if (c.release_theta.empty()) {
-    p.cls = "undecided";
+    p.cls = CertifiedClass::undecided;
     p.reason = "sticks at step " + std::to_string(*c.period) + "; the release state is not a single number";
     return p;
   }
   const StickingCertificate r = releases.get(model, c.release_theta, c.release_v, opt);
   if (r.outcome == StickingOutcome::sticks) {
-    p.cls = "sticking";
+    p.cls = CertifiedClass::sticking;
     p.period = *r.period;
     return p;
   }
   set_from_trap_or_none(p, r, model.law);
   p.free_steps = r.steps_checked;
-  if (p.cls == "undecided" && r.steps_checked >= opt.max_steps) p.cls = "no_sticking";
-  if (p.cls == "undecided") p.reason = "sticks at step " + std::to_string(*c.period) + ", then the release orbit: " + r.reason;
+  if (p.cls == CertifiedClass::undecided && r.steps_checked >= opt.max_steps) p.cls = CertifiedClass::no_sticking;
+  if (p.cls == CertifiedClass::undecided) p.reason = "sticks at step " + std::to_string(*c.period) + ", then the release orbit: " + r.reason;
   return p;
 }
 
-std::string compare_with_certified(const CertifiedPoint& c, const std::string& double_class, long double_period) {
-  if (c.cls == "undecided") return "undecided";
-  if (c.cls == "sticking") return double_class == "sticking" && double_period == c.period ? "agrees" : "differs";
-  if (c.cls == "fixed" || c.cls == "periodic") {
-    const bool periodic = double_class == "fixed" || double_class == "periodic";
-    return periodic && double_period == c.period ? "agrees" : "differs";
+void require_certified_model(const ModelSpec& m, const std::string& command) {
+  if (m.law == Law::elastic) return;
+  if (const std::string why = why_no_certified_answers(m); !why.empty())
+    throw InputError("certify", command + " --certify needs --model constant, elastic or veldep (without "
+                                          "--veldep-collapse): " + why);
+}
+
+Agreement compare_with_certified(const CertifiedPoint& c, OrbitClass double_class, long double_period) {
+  using C = CertifiedClass;
+  if (c.cls == C::outside) return Agreement::outside;
+  if (c.cls == C::undecided) return Agreement::undecided;
+  if (c.cls == C::sticking)
+    return double_class == OrbitClass::sticking && double_period == c.period ? Agreement::agrees : Agreement::differs;
+  if (c.cls == C::fixed || c.cls == C::periodic) {
+    const bool periodic = double_class == OrbitClass::fixed || double_class == OrbitClass::periodic;
+    return periodic && double_period == c.period ? Agreement::agrees : Agreement::differs;
   }
   // not_trapped (velocity-dependent): the orbit is certified, its attractor is not: double's
   // class can be neither confirmed nor refuted.
-  if (c.cls == "not_trapped") return "undecided";
+  if (c.cls == C::not_trapped) return Agreement::undecided;
   // no_sticking: the certified statement is only that it does not stick (again) for a while.
-  if (double_class != "sticking") return "agrees";
-  if (c.first_sticking == 0) return "differs";  // double stuck within max_steps, the exact orbit does not
-  return double_period <= c.free_steps ? "differs" : "undecided";
+  if (double_class != OrbitClass::sticking) return Agreement::agrees;
+  if (c.first_sticking == 0) return Agreement::differs;  // double stuck within max_steps, the exact orbit does not
+  return double_period <= c.free_steps ? Agreement::differs : Agreement::undecided;
+}
+
+const char* name(CertifiedClass c) {
+  switch (c) {
+    case CertifiedClass::sticking: return "sticking";
+    case CertifiedClass::fixed: return "fixed";
+    case CertifiedClass::periodic: return "periodic";
+    case CertifiedClass::no_sticking: return "no_sticking";
+    case CertifiedClass::not_trapped: return "not_trapped";
+    case CertifiedClass::undecided: return "undecided";
+    case CertifiedClass::outside: return "outside";
+  }
+  return "?";
+}
+
+std::optional<CertifiedClass> certified_class_named(std::string_view text) {
+  for (int i = 0; i < kCertifiedClassCount; ++i)
+    if (text == name(static_cast<CertifiedClass>(i))) return static_cast<CertifiedClass>(i);
+  return std::nullopt;
+}
+
+const char* name(Agreement a) {
+  switch (a) {
+    case Agreement::agrees: return "agrees";
+    case Agreement::differs: return "differs";
+    case Agreement::undecided: return "undecided";
+    case Agreement::outside: return "outside";
+  }
+  return "?";
+}
+
+std::optional<Agreement> agreement_named(std::string_view text) {
+  for (Agreement a : {Agreement::agrees, Agreement::differs, Agreement::undecided, Agreement::outside})
+    if (text == name(a)) return a;
+  return std::nullopt;
 }
 
 }  // namespace bouncer

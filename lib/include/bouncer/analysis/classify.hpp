@@ -2,7 +2,9 @@
 // (Implemented in lib/src/analysis/classify.cpp for double and Mpfr.)
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/scalar_set.hpp"
@@ -19,8 +21,14 @@ enum class OrbitClass {
   effective_sticking,  // velocity-dependent chatter to the wall's velocity within precision
   undecided,           // the evidence does not decide, or a step was undecided
   transient_chaos,     // chaotic in the window, settled later (re-check): see settled_*
+  outside,             // not an orbit: a grid start below the wall's velocity (never from classify)
 };
+inline constexpr int kOrbitClassCount = static_cast<int>(OrbitClass::outside) + 1;
+// The class's name in every output ("fixed", ..., "transient_chaos", "outside"): the one
+// spelling of the classes, used by the CSV/JSON writers, the scan's columns and Python.
 const char* name(OrbitClass c);
+// The class of a name (the inverse of name); nullopt for any other text.
+std::optional<OrbitClass> orbit_class_named(std::string_view text);
 
 struct Classification {
   OrbitClass cls = OrbitClass::undecided;

@@ -22,6 +22,9 @@ std::pair<Decimal, Decimal> parse_range(const std::string& field, const std::str
 // "NxM" with 1 <= N, M <= limit.
 std::pair<long, long> parse_grid(const std::string& field, const std::string& text, long limit);
 
+// A flag (--certify, --carry): "true" or "false" (default false), else InputError.
+bool flag_from(const Options& o, const std::string& key);
+
 // The single initial condition (--theta, --v) of an orbit command, validated against the model.
 InitialCondition start_from(const Options& o, const ModelSpec& spec);
 

@@ -139,6 +139,9 @@ struct ImageFigure {
 };
 
 enum class ImageFormat { png, pdf, svg };
+// Colours of categories and densities: safe (Okabe-Ito categories, viridis densities,
+// colour-blind safe) or paper (the paper's: black periodic, red sticking, green chaos).
+enum class Palette { safe, paper };
 // "png", "pdf", "svg" (also the file extension without its dot).
 const char* format_name(ImageFormat f);
 

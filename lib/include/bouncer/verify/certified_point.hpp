@@ -38,6 +38,7 @@
 #include <optional>
 #include <utility>
 #include <string>
+#include <string_view>
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/spec.hpp"
@@ -45,8 +46,20 @@
 
 namespace bouncer {
 
+// What a certificate states of one start (the header above); `outside` marks a grid start
+// below the wall's velocity (no orbit, never returned by certify_point).
+enum class CertifiedClass { sticking, fixed, periodic, no_sticking, not_trapped, undecided, outside };
+inline constexpr int kCertifiedClassCount = static_cast<int>(CertifiedClass::outside) + 1;
+const char* name(CertifiedClass c);  // "sticking", ..., "not_trapped", "undecided", "outside"
+std::optional<CertifiedClass> certified_class_named(std::string_view text);
+
+// A point answer against the certified one (compare_with_certified); `outside` as above.
+enum class Agreement { agrees, differs, undecided, outside };
+const char* name(Agreement a);  // "agrees", "differs", "undecided", "outside"
+std::optional<Agreement> agreement_named(std::string_view text);
+
 struct CertifiedPoint {
-  std::string cls = "undecided";     // sticking | fixed | periodic | no_sticking | not_trapped | undecided
+  CertifiedClass cls = CertifiedClass::undecided;
   long period = 0;                   // sticking: k; fixed / periodic: the attractor's period
   long long first_sticking = 0;      // sticking (and classes reached through a release): step
   long long certified_steps = 0;     // steps of the start's own run certified
@@ -75,14 +88,20 @@ class ReleaseCache {
   std::map<std::string, StickingCertificate> done_;
 };
 
+// Certified grids (basin, scan, bifurcation --certify) exist for the models of
+// why_no_certified_answers (verify/sticking.hpp) and for the elastic model (certified orbits,
+// no attractor: not_trapped or undecided). Throws InputError("certify", ...) naming `command`,
+// what is allowed and why, for any other model (velocity-dependent collapse).
+void require_certified_model(const ModelSpec& m, const std::string& command);
+
 // Certifies the orbit of the exact start (theta, v) (decimal text, exact).
 CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& start, const CertifyPointOptions& opt,
                              ReleaseCache& releases);
 
-// Does a point answer agree with the certified one? "agrees", "differs" (the point answer
-// is an artefact of its precision) or "undecided" (no certified answer to compare with).
-// double_class / double_period: bouncer::classify's class name and period (a double run of
-// the grid's transient + steps <= max_steps, so a double "sticking" stuck within max_steps).
-std::string compare_with_certified(const CertifiedPoint& c, const std::string& double_class, long double_period);
+// Does a point answer agree with the certified one? agrees, differs (the point answer is an
+// artefact of its precision) or undecided (no certified answer to compare with).
+// double_class / double_period: bouncer::classify's class and period (a double run of the
+// grid's transient + steps <= max_steps, so a double "sticking" stuck within max_steps).
+Agreement compare_with_certified(const CertifiedPoint& c, OrbitClass double_class, long double_period);
 
 }  // namespace bouncer

@@ -1,4 +1,4 @@
-#include "bouncer/analysis/grid.hpp"
+#include "bouncer/run/grid.hpp"
 #include "bouncer/io/cancel.hpp"
 #include "bouncer/io/input.hpp"
 #include "bouncer/io/output.hpp"

@@ -1,0 +1,96 @@
+// Parameter-space scans (`bouncer scan`, the paper's figs. paramspace1 and paramspace2): over
+// a p x q grid of (a, eps) (constant model) or (a, c) (velocity-dependent model), k x k starts
+// per parameter point (paper: 10 x 10, in the trapping region) are classified and the classes
+// counted; certified (`scan --certify`), each parameter point gets the certificate of one
+// exact start at the exact double (a, eps) or (a, c), with double's class beside it.
+//
+//     ScanRequest r;  r.model = ...;  r.a_lo = ...;  r.y_lo = ...;
+//     const ScanResult s = scan(r);
+//     s.cells[i].count[OrbitClass::chaotic]: how many of the k x k starts at point i are chaotic
+#pragma once
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bouncer/model/spec.hpp"
+#include "bouncer/run/cells.hpp"
+#include "bouncer/scalar/precision.hpp"
+
+namespace bouncer {
+
+struct ScanRequest {
+  ModelSpec model;  // a and the scanned parameter are set to each grid point
+  // The scanned axes: a, and eps (constant model) or c (velocity-dependent model).
+  Decimal a_lo, a_hi, y_lo, y_hi;
+  long p = 20, q = 20;  // parameter points, 1..4096 each
+  long k = 10;          // k x k starts per point, 1..1000
+  Decimal theta_lo = Decimal::from_int(0), theta_hi = Decimal::from_int(1);
+  // The starting velocities; none: the trapping region of each point (model/trapping.hpp).
+  std::optional<std::pair<Decimal, Decimal>> v_range;
+  ClassifyOptions classify;
+  Precision precision;  // an analysis scalar; certified: double, the twin run
+  // certified_scan only: the certified start (exact) and the certificate's schedule.
+  InitialCondition start{Decimal::from_int(0), Decimal::from_int(0)};
+  CertifyPointOptions cert;
+};
+
+// The scanned parameter: eps (constant model) or c (velocity-dependent); InputError("model")
+// for the elastic model.
+Parameter scan_parameter(const ModelSpec& m);
+
+// The classes a scan counts, in the order of its CSV columns (the classifier's, then outside).
+const std::vector<OrbitClass>& scan_classes();
+
+struct ScanCell {
+  std::array<long, kOrbitClassCount> count{};  // starts of each class
+  long operator[](OrbitClass c) const { return count[static_cast<size_t>(c)]; }
+  long total() const;
+  long in_phase_space() const { return total() - (*this)[OrbitClass::outside]; }
+  friend bool operator==(const ScanCell&, const ScanCell&) = default;
+};
+std::string encode(const ScanCell& c);
+template <>
+ScanCell decode_cell<ScanCell>(std::string_view text);
+
+struct ScanResult {
+  ScanRequest request;
+  Parameter y = Parameter::eps;
+  std::vector<Number> a, y_values;  // the p and q centres, in the run's scalar
+  std::vector<ScanCell> cells;      // p * q: item i at a index i mod p, y index i / p
+};
+struct CertifiedScanResult {
+  ScanRequest request;
+  Parameter y = Parameter::eps;
+  std::vector<Number> a, y_values;  // the exact double centres (digits: their exact decimals)
+  std::vector<CertifiedCell> cells;
+};
+
+// The grid of a scan request, cell by cell (any thread).
+class ScanGrid {
+ public:
+  ScanGrid(const ScanRequest& r, bool certified);
+  ~ScanGrid();
+  ScanGrid(const ScanGrid&) = delete;
+  ScanGrid& operator=(const ScanGrid&) = delete;
+  const ScanRequest& request() const;
+  Parameter y() const;
+  GridPlan plan() const;
+  std::string item(long i) const;
+  ScanCell cell(long i) const;
+  CertifiedCell certified_cell(long i) const;
+  ScanResult result(std::vector<ScanCell> cells) const;
+  CertifiedScanResult certified_result(std::vector<CertifiedCell> cells) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+ScanResult scan(const ScanRequest& r, const GridOptions& run = {});
+CertifiedScanResult certified_scan(const ScanRequest& r, const GridOptions& run = {});
+
+}  // namespace bouncer

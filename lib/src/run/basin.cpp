@@ -1,0 +1,143 @@
+// Basins of attraction (run/basin.hpp).
+#include "bouncer/run/basin.hpp"
+
+#include <charconv>
+#include <stdexcept>
+
+#include "bouncer/model/impact_map.hpp"
+#include "bouncer/model/trapping.hpp"
+#include "bouncer/run/cells.hpp"
+
+namespace bouncer {
+
+namespace {
+
+void check_basin(const BasinRequest& r, bool certified) {
+  if (r.nx < 1 || r.ny < 1 || r.nx > 8192 || r.ny > 8192)
+    throw InputError("grid", "must be NxM with 1 <= N, M <= 8192 (got " + std::to_string(r.nx) + "x" + std::to_string(r.ny) + ")");
+  if (!(r.theta_lo < r.theta_hi)) throw InputError("theta-range", "needs LO < HI");
+  if (r.theta_lo < Decimal::from_int(0) || r.theta_hi > Decimal::from_int(1))
+    throw InputError("theta-range", "must lie in [0, 1] (got '" + r.theta_lo.text() + ":" + r.theta_hi.text() + "')");
+  if (r.v_range) {
+    if (!(r.v_range->first < r.v_range->second)) throw InputError("v-range", "needs LO < HI");
+    if (r.v_range->second.approx() > 1e15 || r.v_range->first.approx() < -1e15)
+      throw InputError("v-range", "must lie within +-1e15");
+  }
+  if (!r.precision.is_analysis())
+    throw InputError("precision", "interval precision is not supported here (use " +
+                                      precision_names<AnalysisScalars>(" or ") + ")");
+  if (certified) {
+    require_certified_model(r.model, "basin");
+    if (r.precision.kind != Precision::Kind::double_)
+      throw InputError("precision", "with --certify the twin run is double (the artefact map compares double with the "
+                                    "certified answer); got '" + r.precision.text() + "'");
+  }
+}
+
+struct GridBase {
+  virtual ~GridBase() = default;
+  virtual AttractorCell cell(long i) const = 0;
+  virtual CertifiedCell certified_cell(long i) const = 0;
+  virtual std::vector<Number> theta() const = 0;
+  virtual std::vector<Number> v() const = 0;
+};
+
+template <class T>
+struct Grid final : GridBase {
+  using Tr = ScalarTraits<T>;
+  const BasinRequest& r;
+  ImpactMap<T> map;
+  T t0, t1, v0, v1;
+  mutable ReleaseCache releases;  // certified: release orbits shared by every start
+
+  T num(const Decimal& d) const { return Tr::from_decimal(d.text(), r.precision.bits); }
+  explicit Grid(const BasinRequest& req)
+      : r(req), map(make_model<T>(req.model, req.precision.bits)), t0(num(req.theta_lo)), t1(num(req.theta_hi)),
+        v0(num(req.v_range->first)), v1(num(req.v_range->second)) {}
+
+  T theta_at(long col) const { return cell_centre(t0, t1, col, r.nx); }
+  T v_at(long row) const { return cell_centre(v0, v1, row, r.ny); }
+  bool outside(const T& theta, const T& v) const {
+    const auto& wall = map.model().wall;
+    return v < wall.velocity[wall.segment_of(theta)];
+  }
+
+  AttractorCell cell(long i) const override {
+    const T theta = theta_at(i % r.nx), v = v_at(i / r.nx);
+    if (outside(theta, v)) return {OrbitClass::outside, 0};
+    const Classification c = classify<T>(map, State<T>{theta, v}, r.classify);
+    return {c.cls, c.period};
+  }
+
+  CertifiedCell certified_cell(long i) const override {
+    const T theta = theta_at(i % r.nx), v = v_at(i / r.nx);
+    if (outside(theta, v)) return CertifiedCell::outside();
+    // The exact start: the grid point itself (a dyadic number, printed exactly).
+    const InitialCondition start{*Decimal::parse(exact_decimal(mpq_class(Tr::to_double(theta)))),
+                                 *Decimal::parse(exact_decimal(mpq_class(Tr::to_double(v))))};
+    return certified_with_twin(certify_point(r.model, start, r.cert, releases),
+                               classify<T>(map, State<T>{theta, v}, r.classify));
+  }
+
+  std::vector<Number> theta() const override { return axis(r.nx, [&](long k) { return theta_at(k); }); }
+  std::vector<Number> v() const override { return axis(r.ny, [&](long k) { return v_at(k); }); }
+};
+
+}  // namespace
+
+std::pair<Decimal, Decimal> basin_v_range(const BasinRequest& r) {
+  if (r.v_range) return *r.v_range;
+  const auto range = trapping_v_range(r.model);
+  if (!range && r.model.law == Law::constant)
+    throw InputError("v-range", "is needed when eps = 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
+  if (!range) throw InputError("v-range", "is needed for --model elastic (no trapping region: velocities grow without bound)");
+  return *range;
+}
+
+struct BasinGrid::Impl {
+  BasinRequest request;
+  bool certified;
+  std::unique_ptr<GridBase> grid;
+};
+
+BasinGrid::BasinGrid(const BasinRequest& r, bool certified) : impl_(new Impl{r, certified, nullptr}) {
+  check_basin(r, certified);
+  impl_->request.v_range = basin_v_range(r);
+  with_point_scalar(r.precision, [&](auto tag) {
+    impl_->grid = std::make_unique<Grid<typename decltype(tag)::type>>(impl_->request);
+  });
+}
+BasinGrid::~BasinGrid() = default;
+
+const BasinRequest& BasinGrid::request() const { return impl_->request; }
+
+GridPlan BasinGrid::plan() const {
+  const long items = impl_->request.nx * impl_->request.ny;
+  return point_grid_plan(items, impl_->certified ? 16 : 256);
+}
+
+std::string BasinGrid::item(long i) const {
+  return impl_->certified ? encode(impl_->grid->certified_cell(i)) : encode(impl_->grid->cell(i));
+}
+AttractorCell BasinGrid::cell(long i) const { return impl_->grid->cell(i); }
+CertifiedCell BasinGrid::certified_cell(long i) const { return impl_->grid->certified_cell(i); }
+
+BasinResult BasinGrid::result(std::vector<AttractorCell> cells) const {
+  return {impl_->request, impl_->grid->theta(), impl_->grid->v(), std::move(cells)};
+}
+CertifiedBasinResult BasinGrid::certified_result(std::vector<CertifiedCell> cells) const {
+  return {impl_->request, impl_->grid->theta(), impl_->grid->v(), std::move(cells)};
+}
+
+BasinResult basin(const BasinRequest& r, const GridOptions& run) {
+  const BasinGrid grid(r, false);
+  return grid.result(decode_cells<AttractorCell>(run_in_memory(grid.plan(), [&](long i) { return grid.item(i); }, run)));
+}
+
+CertifiedBasinResult certified_basin(const BasinRequest& r, const GridOptions& run) {
+  const BasinGrid grid(r, true);
+  return grid.certified_result(
+      decode_cells<CertifiedCell>(run_in_memory(grid.plan(), [&](long i) { return grid.item(i); }, run)));
+}
+
+}  // namespace bouncer

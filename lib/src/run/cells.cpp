@@ -1,0 +1,97 @@
+// Grid cells and their tile texts (run/cells.hpp).
+#include "bouncer/run/cells.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <stdexcept>
+
+namespace bouncer {
+
+namespace {
+
+// The comma-separated fields of a tile text.
+std::vector<std::string_view> fields(std::string_view text) {
+  std::vector<std::string_view> out;
+  size_t from = 0;
+  while (true) {
+    const size_t comma = text.find(',', from);
+    out.push_back(text.substr(from, comma == std::string_view::npos ? std::string_view::npos : comma - from));
+    if (comma == std::string_view::npos) return out;
+    from = comma + 1;
+  }
+}
+
+[[noreturn]] void bad_cell(std::string_view text) {
+  throw std::runtime_error("a grid tile holds a cell no bouncer wrote: '" + std::string(text.substr(0, 80)) + "'");
+}
+
+template <class I>
+I whole(std::string_view s, std::string_view text) {
+  I v = 0;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || end != s.data() + s.size()) bad_cell(text);
+  return v;
+}
+
+template <class E>
+E named(std::optional<E> e, std::string_view text) {
+  if (!e) bad_cell(text);
+  return *e;
+}
+
+}  // namespace
+
+std::string encode(const AttractorCell& c) { return std::string(name(c.cls)) + ',' + std::to_string(c.period); }
+
+template <>
+AttractorCell decode_cell<AttractorCell>(std::string_view text) {
+  const auto f = fields(text);
+  if (f.size() != 2) bad_cell(text);
+  return {named(orbit_class_named(f[0]), text), whole<long>(f[1], text)};
+}
+
+std::string encode(const CertifiedCell& c) {
+  std::string s = name(c.cls);
+  s += ',' + std::to_string(c.period) + ',' + std::to_string(c.certified_steps) + ',' + c.scalar + ',' +
+       name(c.double_class) + ',' + std::to_string(c.double_period) + ',' + name(c.agreement);
+  return s;
+}
+
+template <>
+CertifiedCell decode_cell<CertifiedCell>(std::string_view text) {
+  const auto f = fields(text);
+  if (f.size() != 7) bad_cell(text);
+  CertifiedCell c;
+  c.cls = named(certified_class_named(f[0]), text);
+  c.period = whole<long>(f[1], text);
+  c.certified_steps = whole<long long>(f[2], text);
+  c.scalar = std::string(f[3]);
+  c.double_class = named(orbit_class_named(f[4]), text);
+  c.double_period = whole<long>(f[5], text);
+  c.agreement = named(agreement_named(f[6]), text);
+  return c;
+}
+
+CertifiedCell certified_with_twin(const CertifiedPoint& c, const Classification& twin) {
+  return {c.cls, c.period, c.certified_steps, c.scalar, twin.cls, twin.period, compare_with_certified(c, twin.cls, twin.period)};
+}
+
+GridPlan point_grid_plan(long items, long max_tile) {
+  GridPlan plan;
+  plan.items = items;
+  plan.tile_items = std::max<long>(1, std::min<long>(max_tile, items / 64 + 1));
+  return plan;
+}
+
+std::vector<std::string> run_in_memory(const GridPlan& plan, const std::function<std::string(long)>& item,
+                                       const GridOptions& run) {
+  GridOptions g = run;
+  g.tile_dir.clear();
+  g.shard = Shard{};
+  g.compute = true;
+  GridResult r = run_grid(plan, item, g);
+  if (!r.complete()) throw std::runtime_error("grid: tiles missing after an in-memory run");
+  return std::move(r.items);
+}
+
+}  // namespace bouncer

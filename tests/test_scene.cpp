@@ -268,7 +268,7 @@ TEST(ModelKeys, AreTheKeysModelFromReads) {
 
 // ---- precision ----------------------------------------------------------------------------
 
-TEST(Precision, ParsesEveryFamilyAndItsTextReadsBack) {
+TEST(PrecisionOption, ParsesEveryFamilyAndItsTextReadsBack) {
   struct Case {
     const char* text;
     Precision::Kind kind;
@@ -298,7 +298,7 @@ TEST(Precision, ParsesEveryFamilyAndItsTextReadsBack) {
   EXPECT_EQ(precision_from(o).bits, 64);
 }
 
-TEST(Precision, BitsAreBoundedAndWhole) {
+TEST(PrecisionOption, BitsAreBoundedAndWhole) {
   const std::string lo = std::to_string(kMinBits), hi = std::to_string(kMaxBits);
   EXPECT_EQ(parse_precision("precision", "mpfr:" + lo).bits, kMinBits);
   EXPECT_EQ(parse_precision("precision", "interval:" + hi).bits, kMaxBits);
@@ -317,7 +317,7 @@ TEST(Precision, BitsAreBoundedAndWhole) {
   expect_input_error([&] { precision_from(o); }, "precision");
 }
 
-TEST(Precision, DecimalNoteSaysRoundedOrEnclosed) {
+TEST(PrecisionOption, DecimalNoteSaysRoundedOrEnclosed) {
   const std::string point = decimal_note(parse_precision("p", "mpfr:256"));
   EXPECT_TRUE(contains(point, "rounded to the nearest mpfr:256 value")) << point;
   const std::string box = decimal_note(parse_precision("p", "interval:256"));

@@ -327,9 +327,12 @@ int OutputSet::descriptor(const std::string& path) {
 
 void OutputSet::commit() {
   try {
+    // Every file must be written before any is renamed into place: a set is all or none.
+    for (const Impl::Entry& e : impl_->entries)
+      if (!e.stream && !e.committed && !e.written)
+        throw std::logic_error("OutputSet::commit: '" + e.path + "' was reserved but never written");
     for (Impl::Entry& e : impl_->entries) {
       if (e.stream || e.committed) continue;
-      if (!e.written) throw std::logic_error("OutputSet::commit: '" + e.path + "' was reserved but never written");
       // close() reports errors of deferred writes (NFS); a duplicate keeps the lock until
       // the file is in place.
       const int keep = ::dup(e.fd);

@@ -1,5 +1,5 @@
-// Precision sweep: one orbit question in double, long double, quad and MPFR at 64 ... 4096
-// bits, each compared step by step with a certified interval reference.
+// Precision sweep: one orbit question in double, long double, double-double, quad and MPFR at
+// 64 ... 4096 bits, each compared step by step with a certified interval reference.
 //
 // Reference: the orbit's certified enclosure (verify/enclosure.hpp, Lohner by default),
 // escalated (64, 128, ... up to reference_max_bits) until it covers all N steps; if no
@@ -40,7 +40,7 @@ struct SweepQuestion {
 };
 
 // Every point type of the scalar set (scalar/scalar_set.hpp), those of variable precision at
-// 64, 128, ..., 4096 bits: double, long, quad, mpfr:64, 128, 256, 512, 1024, 2048, 4096.
+// 64, 128, ..., 4096 bits: double, long, dd, quad, mpfr:64, 128, 256, 512, 1024, 2048, 4096.
 std::vector<Precision> default_sweep_precisions();
 
 struct SweepRow {

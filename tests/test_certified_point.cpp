@@ -48,7 +48,7 @@ TEST(CertifyPoint, TheReleaseStateSticksWithPeriodOneInsideTheExistenceInterval)
   // 200/9 <= a < 32 at eps = 1/4; one a near each end and one inside.
   for (const char* a : {"22.3", "24", "31.9"}) {
     const CertifiedPoint p = certify(spec(Law::constant, a, "0.25"), start("0.5", "4"), small());
-    EXPECT_EQ(p.cls, "sticking") << a << ": " << p.reason;
+    EXPECT_EQ(p.cls, CertifiedClass::sticking) << a << ": " << p.reason;
     EXPECT_EQ(p.period, 1) << a;
     EXPECT_EQ(p.first_sticking, 1) << a;
     EXPECT_EQ(p.certified_steps, 0) << a;  // the first step sticks: nothing before it
@@ -59,21 +59,21 @@ TEST(CertifyPoint, TheReleaseStateSticksWithPeriodOneInsideTheExistenceInterval)
 TEST(CertifyPoint, BelowTheStickingThresholdTheFirstStepDoesNotStick) {
   // a = 22 < 200/9: the bounce after the first impact is above the sticking threshold.
   const CertifiedPoint p = certify(spec(Law::constant, "22", "0.25"), start("0.5", "4"), small());
-  EXPECT_FALSE(p.cls == "sticking" && p.first_sticking == 1) << p.cls << " " << p.first_sticking;
-  EXPECT_GE(p.certified_steps, 1) << p.cls << ": " << p.reason;
+  EXPECT_FALSE(p.cls == CertifiedClass::sticking && p.first_sticking == 1) << name(p.cls) << " " << p.first_sticking;
+  EXPECT_GE(p.certified_steps, 1) << name(p.cls) << ": " << p.reason;
 }
 
 TEST(CertifyPoint, TheFallingSegmentCollapseIsPeriodOne) {
   // eps = 1/2: sticking period 1 for a >= 32/(1 - eps) = 64 (test_sticking.cpp).
   const CertifiedPoint p = certify(spec(Law::constant, "70", "0.5"), start("0.5", "4"), small());
-  EXPECT_EQ(p.cls, "sticking") << p.reason;
+  EXPECT_EQ(p.cls, CertifiedClass::sticking) << p.reason;
   EXPECT_EQ(p.period, 1);
   EXPECT_EQ(p.first_sticking, 1);
 }
 
 TEST(CertifyPoint, AnExactCornerHitIsUndecidedAfterSixCertifiedSteps) {
   const CertifiedPoint p = certify(spec(Law::constant, "63.5", "0.5"), start("0.5", "4"), small(40, 256));
-  EXPECT_EQ(p.cls, "undecided");
+  EXPECT_EQ(p.cls, CertifiedClass::undecided);
   EXPECT_EQ(p.certified_steps, 6);
   EXPECT_NE(p.reason.find(describe(Reason::impact_at_corner)), std::string::npos) << p.reason;
   EXPECT_EQ(p.period, 0);
@@ -84,7 +84,7 @@ TEST(CertifyPoint, TheEq5FixedPointNeverSticksAndIsNotClaimedAttracting) {
   const CertifiedPoint p = certify(spec(Law::constant, "24", "0.5"), start("0.25", "12"), o);
   // Certified free of sticking through every step; with a multiplier exactly 1 no set
   // F^q(K) inside K around it exists, so "fixed" would be a false theorem.
-  EXPECT_EQ(p.cls, "no_sticking") << p.reason;
+  EXPECT_EQ(p.cls, CertifiedClass::no_sticking) << p.reason;
   EXPECT_EQ(p.certified_steps, o.max_steps);
   EXPECT_EQ(p.first_sticking, 0);
 }
@@ -108,13 +108,13 @@ TEST(CertifyPoint, AnAttractingPeriodTwoOrbitIsProvedPeriodic) {
   for (int i = 0; i < 400; ++i) y = map.step(y).next;
   EXPECT_LT(std::min(dist(y, x0), dist(y, x1)), 1e-8);
   const CertifiedPoint p = certify(m, s, small(60));
-  EXPECT_EQ(p.cls, "periodic") << p.reason;
+  EXPECT_EQ(p.cls, CertifiedClass::periodic) << p.reason;
   EXPECT_EQ(p.period, 2);
   EXPECT_EQ(p.first_sticking, 0);
   // The same attractor reached from the perturbed start (it needs more steps to come close
   // enough for the proof; with too few the certificate only says no_sticking, which is true).
   const CertifiedPoint q = certify(m, near, small(300));
-  EXPECT_EQ(q.cls, "periodic") << q.reason;
+  EXPECT_EQ(q.cls, CertifiedClass::periodic) << q.reason;
   EXPECT_EQ(q.period, 2);
 }
 
@@ -122,8 +122,8 @@ TEST(CertifyPoint, ElasticOrbitsAreOnlyNotTrappedOrUndecided) {
   const CertifyPointOptions o = small(30);
   for (const auto& [theta, v] : std::vector<std::pair<const char*, const char*>>{{"0.25", "12"}, {"0.1", "7"}, {"0.5", "4"}}) {
     const CertifiedPoint p = certify(spec(Law::elastic, "24"), start(theta, v), o);
-    EXPECT_TRUE(p.cls == "not_trapped" || p.cls == "undecided") << theta << "," << v << ": " << p.cls;
-    if (p.cls == "not_trapped") {
+    EXPECT_TRUE(p.cls == CertifiedClass::not_trapped || p.cls == CertifiedClass::undecided) << theta << "," << v << ": " << name(p.cls);
+    if (p.cls == CertifiedClass::not_trapped) {
       EXPECT_EQ(p.certified_steps, o.max_steps);
     } else {
       EXPECT_LT(p.certified_steps, o.max_steps);
@@ -136,8 +136,8 @@ TEST(CertifyPoint, ElasticOrbitsAreOnlyNotTrappedOrUndecided) {
 TEST(CertifyPoint, VelocityDependentOrbitsNeverClaimSticking) {
   // eps(v) -> 1 as the relative speed -> 0: no collapse in finitely many steps.
   const CertifiedPoint p = certify(spec(Law::veldep, "24", "1", "1000"), start("0.1", "7"), small(30));
-  EXPECT_NE(p.cls, "sticking");
-  EXPECT_NE(p.cls, "no_sticking");
+  EXPECT_NE(p.cls, CertifiedClass::sticking);
+  EXPECT_NE(p.cls, CertifiedClass::no_sticking);
   EXPECT_EQ(p.first_sticking, 0);
 }
 
@@ -146,16 +146,16 @@ TEST(CertifyPoint, AnExactParameterRangeActsAsTheParameter) {
   CertifyPointOptions o = small();
   o.a_range = std::make_pair(mpq_class(31), mpq_class(31));
   CertifiedPoint p = certify(m, start("0.5", "4"), o);
-  EXPECT_EQ(p.cls, "sticking");
+  EXPECT_EQ(p.cls, CertifiedClass::sticking);
   EXPECT_EQ(p.period, 1);
   o.a_range = std::make_pair(mpq_class(20), mpq_class(20));
   p = certify(m, start("0.5", "4"), o);
-  EXPECT_FALSE(p.cls == "sticking" && p.first_sticking == 1) << p.cls;
+  EXPECT_FALSE(p.cls == CertifiedClass::sticking && p.first_sticking == 1) << name(p.cls);
   // A range holding the threshold 200/9: the first step sticks for part of it and not for
   // the rest, so no certificate can decide it.
   o.a_range = std::make_pair(mpq_class(22), mpq_class(23));
   p = certify(m, start("0.5", "4"), o);
-  EXPECT_EQ(p.cls, "undecided");
+  EXPECT_EQ(p.cls, CertifiedClass::undecided);
   EXPECT_EQ(p.certified_steps, 0);
 }
 
@@ -176,7 +176,7 @@ TEST(ReleaseCache, TheReleaseCertificateIsComputedOnceAndShared) {
   }
   // A start that sticks uses the cache's certificate for its release.
   const CertifiedPoint p = certify_point(m, start("0.5", "4"), o, cache);
-  EXPECT_EQ(p.cls, "sticking");
+  EXPECT_EQ(p.cls, CertifiedClass::sticking);
   EXPECT_EQ(p.period, 1);
 }
 
@@ -184,7 +184,7 @@ TEST(ReleaseCache, TheReleaseCertificateIsComputedOnceAndShared) {
 
 CertifiedPoint point(const char* cls, long period = 0, long long first = 0, long long free = 0) {
   CertifiedPoint p;
-  p.cls = cls;
+  p.cls = certified_class_named(cls).value();
   p.period = period;
   p.first_sticking = first;
   p.free_steps = free;
@@ -193,30 +193,30 @@ CertifiedPoint point(const char* cls, long period = 0, long long first = 0, long
 
 TEST(CompareWithCertified, FollowsTheHeadersDefinitions) {
   // Nothing certified: nothing to compare with.
-  EXPECT_EQ(compare_with_certified(point("undecided"), "sticking", 3), "undecided");
-  EXPECT_EQ(compare_with_certified(point("undecided"), "fixed", 1), "undecided");
+  EXPECT_EQ(compare_with_certified(point("undecided"), OrbitClass::sticking, 3), Agreement::undecided);
+  EXPECT_EQ(compare_with_certified(point("undecided"), OrbitClass::fixed, 1), Agreement::undecided);
   // Sticking k: only double's sticking k agrees.
-  EXPECT_EQ(compare_with_certified(point("sticking", 3, 2), "sticking", 3), "agrees");
-  EXPECT_EQ(compare_with_certified(point("sticking", 3, 2), "sticking", 4), "differs");
-  EXPECT_EQ(compare_with_certified(point("sticking", 3, 2), "periodic", 3), "differs");
+  EXPECT_EQ(compare_with_certified(point("sticking", 3, 2), OrbitClass::sticking, 3), Agreement::agrees);
+  EXPECT_EQ(compare_with_certified(point("sticking", 3, 2), OrbitClass::sticking, 4), Agreement::differs);
+  EXPECT_EQ(compare_with_certified(point("sticking", 3, 2), OrbitClass::periodic, 3), Agreement::differs);
   // Fixed / periodic p: double's fixed or periodic of the same period.
-  EXPECT_EQ(compare_with_certified(point("fixed", 1), "fixed", 1), "agrees");
-  EXPECT_EQ(compare_with_certified(point("periodic", 2), "periodic", 2), "agrees");
-  EXPECT_EQ(compare_with_certified(point("periodic", 2), "periodic", 4), "differs");
-  EXPECT_EQ(compare_with_certified(point("periodic", 2), "chaotic", 0), "differs");
-  EXPECT_EQ(compare_with_certified(point("fixed", 1), "sticking", 1), "differs");
+  EXPECT_EQ(compare_with_certified(point("fixed", 1), OrbitClass::fixed, 1), Agreement::agrees);
+  EXPECT_EQ(compare_with_certified(point("periodic", 2), OrbitClass::periodic, 2), Agreement::agrees);
+  EXPECT_EQ(compare_with_certified(point("periodic", 2), OrbitClass::periodic, 4), Agreement::differs);
+  EXPECT_EQ(compare_with_certified(point("periodic", 2), OrbitClass::chaotic, 0), Agreement::differs);
+  EXPECT_EQ(compare_with_certified(point("fixed", 1), OrbitClass::sticking, 1), Agreement::differs);
   // not_trapped: the attractor is not certified, so double can be neither confirmed nor refuted.
-  EXPECT_EQ(compare_with_certified(point("not_trapped"), "chaotic", 0), "undecided");
-  EXPECT_EQ(compare_with_certified(point("not_trapped"), "fixed", 1), "undecided");
+  EXPECT_EQ(compare_with_certified(point("not_trapped"), OrbitClass::chaotic, 0), Agreement::undecided);
+  EXPECT_EQ(compare_with_certified(point("not_trapped"), OrbitClass::fixed, 1), Agreement::undecided);
   // no_sticking from the start: any non-sticking answer agrees; a double sticking (within
   // max_steps) is refuted.
-  EXPECT_EQ(compare_with_certified(point("no_sticking"), "chaotic", 0), "agrees");
-  EXPECT_EQ(compare_with_certified(point("no_sticking"), "sticking", 3773), "differs");
+  EXPECT_EQ(compare_with_certified(point("no_sticking"), OrbitClass::chaotic, 0), Agreement::agrees);
+  EXPECT_EQ(compare_with_certified(point("no_sticking"), OrbitClass::sticking, 3773), Agreement::differs);
   // no_sticking after a first sticking: the release orbit is free for free_steps steps, so a
   // double period within them is refuted and a longer one is beyond the certificate.
-  EXPECT_EQ(compare_with_certified(point("no_sticking", 0, 5, 13672), "sticking", 3773), "differs");
-  EXPECT_EQ(compare_with_certified(point("no_sticking", 0, 5, 13672), "sticking", 13672), "differs");
-  EXPECT_EQ(compare_with_certified(point("no_sticking", 0, 5, 13672), "sticking", 13673), "undecided");
+  EXPECT_EQ(compare_with_certified(point("no_sticking", 0, 5, 13672), OrbitClass::sticking, 3773), Agreement::differs);
+  EXPECT_EQ(compare_with_certified(point("no_sticking", 0, 5, 13672), OrbitClass::sticking, 13672), Agreement::differs);
+  EXPECT_EQ(compare_with_certified(point("no_sticking", 0, 5, 13672), OrbitClass::sticking, 13673), Agreement::undecided);
 }
 
 }  // namespace

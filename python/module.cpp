@@ -14,8 +14,8 @@
 //
 // No science here: the collision law, the analyses and the certificates are the library's.
 // What this file does is conversion (Python values <-> option texts and scalars), the GIL and
-// interrupts, and the defaults and ranges of the analysis options, which are the CLI's
-// (tools/cmd_*.cpp; where the CLI parses them in a shared helper, that helper is called here).
+// interrupts. The defaults and ranges of the analysis options are the CLI's: the same
+// library readers (io/options.hpp, io/requests/*.hpp) read them here and in tools/cmd_*.cpp.
 //
 // Interrupts: long calls run on a worker thread while the calling thread waits in slices of
 // 50 ms and, between them, takes the GIL to let Python run its signal handlers
@@ -48,6 +48,10 @@
 
 #include "analysis_common.hpp"
 #include "bouncer/io/options.hpp"
+#include "bouncer/io/requests/certify_periodic.hpp"
+#include "bouncer/io/requests/certify_sticking.hpp"
+#include "bouncer/io/requests/continue.hpp"
+#include "bouncer/io/requests/guess.hpp"
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
@@ -618,16 +622,6 @@ py::tuple pair_of(const T& x, const T& y) {
   return py::make_tuple(scalar(x), scalar(y));
 }
 
-// The guess THETA,V of periodic, continue and certify-periodic, validated as there.
-std::optional<InitialCondition> guess_from(const Options& o, const ModelSpec& spec) {
-  if (!o.has("guess")) return std::nullopt;
-  const auto& g = o.values.at("guess");
-  if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
-  InitialCondition ic{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
-  validate(spec, ic, "guess", "guess");
-  return ic;
-}
-
 class ModelCore {
  public:
   explicit ModelCore(const Texts& texts) : options_(options_of(texts)) {
@@ -731,87 +725,26 @@ class ModelCore {
     });
   }
 
-  // bouncer continue without --certify and --out (tools/cmd_continue.cpp: its checks,
-  // ranges and defaults).
+  // bouncer continue without --certify and --out (its request: io/requests/continue.hpp).
   py::dict continue_branch(const Texts& texts) const {
-    Options o = with_model(texts);
-    const std::string vary_name = o.get_or("vary", "a");
-    if (vary_name != "a" && vary_name != "eps" && vary_name != "c")
-      throw InputError("vary", "must be a, eps or c (got '" + vary_name + "')");
-    const Parameter vary = parse_parameter("vary", vary_name);
-    if (!o.has("range")) throw InputError("range", "is required (LO:HI, the interval of " + vary_name + ")");
-    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
-    if (!o.has("guess")) throw InputError("guess", "is required (theta,v of a point near the period-q orbit)");
-    if (vary == Parameter::eps && spec_.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
-    if (vary == Parameter::c && spec_.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
-    const std::pair<Decimal, Decimal> range = parse_range("range", o.get("range"));
-    const Decimal& lo = range.first;
-    const Decimal& hi = range.second;
-    validate_range_ends(spec_, vary, "range", lo, hi);
-    const Decimal& start = parameter_of(spec_, vary);
-    if (start < lo || hi < start)
-      throw InputError(vary_name, "the start value " + start.text() + " must lie in the range [" + lo.text() + ", " +
-                                      hi.text() + "]");
-    const long period = integer_from(o, "period", 1, 100, 0);
-    const InitialCondition guess = *guess_from(o, spec_);
-    const Precision prec = analysis_precision(o, "continue");
-    ContinuationOptions opt;
-    if (o.has("step")) {
-      const Decimal s = parse_decimal("step", o.get("step"));
-      const double width = hi.approx() - lo.approx();
-      if (!(s.approx() > 0) || s.approx() > width)
-        throw InputError("step", "must be a decimal in (0, HI - LO] = (0, " + std::to_string(width) + "] (got " + s.text() + ")");
-      opt.step = s.approx();
-    }
-    opt.max_points = integer_from(o, "max-points", 2, 100000, 2000);
-    opt.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 30);
-    if (o.has("beyond")) {
-      const Decimal b = parse_decimal("beyond", o.get("beyond"));
-      if (!(b.approx() > 0) || b.approx() > 0.1)
-        throw InputError("beyond", "must be a decimal in (0, 0.1] (relative distance past a*; got " + b.text() + ")");
-      opt.beyond = b.approx();
-    }
-    opt.classify = classify_options_from(o);
-    return with_point_scalar(prec, [&](auto tag) {
+    const ContinueRequest r = continue_request(with_model(texts));
+    return with_point_scalar(r.precision, [&](auto tag) {
       using T = typename decltype(tag)::type;
       using Tr = ScalarTraits<T>;
-      const Model<T> m = make_model<T>(spec_, prec.bits);
+      const long bits = r.precision.bits;
+      const Model<T> m = make_model<T>(spec_, bits);
       const Branch<T> b = interruptible([&] {
-        const T tlo = Tr::from_decimal(lo.text(), prec.bits), thi = Tr::from_decimal(hi.text(), prec.bits);
-        return bouncer::continue_branch(m, vary, period, make_state<T>(guess, prec.bits), tlo, thi, opt);
+        const T tlo = Tr::from_decimal(r.lo.text(), bits), thi = Tr::from_decimal(r.hi.text(), bits);
+        return bouncer::continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), tlo, thi, r.opt);
       });
       if (!b.started) throw InputError("guess", b.note);
-      return branch_dict(b, m, vary_name);
+      return branch_dict(b, m, name(r.vary));
     });
   }
 
-  // bouncer certify-sticking without --a-range (tools/cmd_certify_sticking.cpp: its checks,
-  // ranges and defaults).
+  // bouncer certify-sticking without --a-range (its request: io/requests/certify_sticking.hpp).
   py::dict certify_sticking(const Texts& texts) const {
-    Options o = with_model(texts);
-    if (spec_.law != Law::constant)
-      throw InputError("model", "certify-sticking needs --model constant (its certified collapse test is the "
-                                "constant-restitution threshold; velocity-dependent collapse, which does occur: "
-                                "bouncer orbit --model veldep --veldep-collapse on)");
-    if (!o.has("theta")) o.set("theta", "0.5");
-    if (!o.has("v")) o.set("v", "4");
-    StickingQuestion q;
-    q.model = spec_;
-    q.start = start_from(o, spec_);
-    q.max_steps = integer_from(o, "max-steps", 1, 1000000000LL, 100000);
-    q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 4096);
-    const std::string start = o.get_or("start-bits", "double");
-    q.schedule.double_first = start == "double";
-    if (!q.schedule.double_first && (start.empty() || start.find_first_not_of("0123456789") != std::string::npos))
-      throw InputError("start-bits", "'" + start + "' (allowed: double, or BITS with " + std::to_string(kMinBits) +
-                                         " <= BITS <= " + std::to_string(kMaxBits) + ")");
-    q.schedule.start_bits = q.schedule.double_first ? 64 : integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
-    if (q.schedule.start_bits > q.schedule.max_bits)
-      throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(q.schedule.max_bits) + ")");
-    q.method = parse_enclosure_method("method", o.get_or("method", "lohner"));
-    const std::string pa = o.get_or("prove-attractor", "on");
-    if (pa != "on" && pa != "off") throw InputError("prove-attractor", "must be on or off (got '" + pa + "')");
-    q.prove_attractor = pa == "on";
+    const StickingQuestion q = certify_sticking_request(with_model(texts)).question;
     const auto [c, plain] = interruptible([&] {
       StickingCertificate cert = bouncer::certify_sticking(q);
       PlainSticking d = plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
@@ -847,26 +780,10 @@ class ModelCore {
     return d;
   }
 
-  // bouncer certify-periodic at the model's parameter values (no range, no --lift:
-  // tools/cmd_certify_periodic.cpp: its checks, ranges and defaults).
+  // bouncer certify-periodic at the model's parameter values, no range, no --lift (its
+  // request: io/requests/certify_periodic.hpp).
   py::dict certify_periodic(const Texts& texts) const {
-    const Options o = with_model(texts);
-    PeriodicQuestion q;
-    q.model = spec_;
-    q.vary = parse_parameter("vary", o.get_or("vary", "a"));
-    if ((q.vary == Parameter::eps && spec_.law != Law::constant) || (q.vary == Parameter::c && spec_.law != Law::veldep))
-      throw InputError("vary", std::string(name(q.vary)) + " varies only with --model " +
-                                   (q.vary == Parameter::eps ? "constant" : "veldep"));
-    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 1000])");
-    q.period = integer_from(o, "period", 1, 1000, 1);
-    q.guess = guess_from(o, spec_);
-    q.family = parse_family_mode("family", o.get_or("family", "auto"));
-    q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 1024);
-    q.schedule.start_bits = integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
-    if (q.schedule.start_bits > q.schedule.max_bits)
-      throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(q.schedule.max_bits) + ")");
-    q.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
-    q.newton.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+    const PeriodicQuestion q = certify_periodic_request(with_model(texts)).question;
     const PeriodicCertificate c = interruptible([&] { return bouncer::certify_periodic(q); });
     py::dict d;
     d["certified"] = c.certified;

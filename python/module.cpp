@@ -2,8 +2,9 @@
 //
 //  * Model: the library itself. A model is built once from the CLI's option texts (the same
 //    parsers and validation: io/scene.cpp model_from, parse_precision), and its methods call
-//    the library's functions on it: ImpactMap<T>::step, an orbit loop that fills numpy arrays
-//    straight from the StepResult<T> fields (no text in between for double), classify,
+//    the library's functions on it: ImpactMap<T>::step, the orbit driver (run/orbit.hpp)
+//    with a sink that fills numpy arrays straight from the StepResult<T> fields (no text in
+//    between for double), classify,
 //    find_periodic / search_periodic, lyapunov, continue_branch, certify_sticking and
 //    certify_periodic. The analyses return plain dicts that the Python layer
 //    (python/bouncer/__init__.py) turns into dataclasses.
@@ -61,6 +62,7 @@
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/thread_caches.hpp"
+#include "bouncer/run/orbit.hpp"
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
 #include "bouncer/verify/sticking.hpp"
@@ -370,10 +372,7 @@ struct OrbitColumns {
   std::vector<std::int8_t> event, wall, indirect;
   std::vector<std::int32_t> segment, stick_segment, phase_bits;
   std::vector<std::uint8_t> corner, passed;
-  long long steps_done = 0;
-  bool undecided = false;
-  std::string reason;
-  long long phase_lost_at = -1, fallbacks = -1;
+  OrbitOutcome outcome;
 
   void reserve(size_t rows) {
     for (auto* c : {&n, &periods}) c->reserve(rows);
@@ -441,14 +440,27 @@ struct OrbitColumns {
     o.stuck_v = std::move(stuck_v).numpy(o.rows);
     o.passed_upward_turn = numpy_of(std::move(passed), shape, py::dtype("bool"));
     o.phase_bits = numpy_of(std::move(phase_bits), shape);
-    o.status = undecided ? "undecided" : "completed";
-    o.steps_done = steps_done;
-    o.reason = reason;
-    o.phase_lost_at = phase_lost_at >= 0 ? py::object(py::int_(phase_lost_at)) : py::object(py::none());
-    o.lohner_fallbacks = fallbacks >= 0 ? py::object(py::int_(fallbacks)) : py::object(py::none());
+    o.status = outcome.undecided ? "undecided" : "completed";
+    o.steps_done = outcome.steps_done;
+    o.reason = outcome.reason;
+    o.phase_lost_at = outcome.phase_lost_at >= 0 ? py::object(py::int_(outcome.phase_lost_at)) : py::object(py::none());
+    o.lohner_fallbacks = outcome.fallbacks >= 0 ? py::object(py::int_(outcome.fallbacks)) : py::object(py::none());
     o.precision = p.text();
     return o;
   }
+};
+
+// The numpy sink of the orbit driver (run/orbit.hpp follow_orbit).
+template <class T>
+class ColumnSink final : public OrbitSink<T> {
+ public:
+  ColumnSink(OrbitColumns<T>& c, const Model<T>& m) : c_(c), m_(m) {}
+  void start(const State<T>& s) override { c_.start(s); }
+  void row(long long n, const StepResult<T>& r) override { c_.row(n, r, m_); }
+
+ private:
+  OrbitColumns<T>& c_;
+  const Model<T>& m_;
 };
 
 // More rows than this is refused (as `bouncer orbit` refuses to print more than 1e8 rows
@@ -477,48 +489,16 @@ class TypedStepper final : public Stepper {
     return step_of(map_.step(start(theta, v)), map_.model());
   }
 
-  // The orbit loop of `bouncer orbit` (io/orbit.cpp run()), into arrays: the same start
-  // (make_state with the knot), the same steps, Lohner's method for interval runs unless
-  // naive is asked for, and an undecided step ends the run (status "undecided").
+  // The orbit driver of `bouncer orbit` (run/orbit.hpp follow_orbit), into arrays: the same
+  // start (make_state with the knot), the same steps, Lohner's method for interval runs
+  // unless naive is asked for, and an undecided step ends the run (status "undecided").
   Orbit orbit(const OrbitRequest& req) const override {
     const State<T> s0 = make_state<T>(map_.model(), req.initial.at(0));
     OrbitColumns<T> cols = interruptible([&] {
       OrbitColumns<T> c;
       c.reserve(static_cast<size_t>(req.steps / req.every) + 2);
-      State<T> s = s0;
-      c.start(s);
-      std::optional<OrbitEnclosureOf<std::conditional_t<Tr::is_interval, T, Mpfi>>> lohner;
-      if constexpr (Tr::is_interval) {
-        if (req.method == EnclosureMethod::lohner) {
-          lohner.emplace(map_.model(), s, EnclosureMethod::lohner);
-          c.fallbacks = 0;
-        }
-      }
-      auto advance = [&](const State<T>& from) -> StepResult<T> {
-        if constexpr (Tr::is_interval) {
-          if (lohner) {
-            auto e = lohner->step();
-            c.fallbacks = lohner->fallbacks();
-            e.event.next = std::move(e.next);  // the Lohner box, tighter than the box image
-            return std::move(e.event);
-          }
-        }
-        return map_.step(from);
-      };
-      for (long long k = 1; k <= req.steps; ++k) {
-        throw_if_cancelled(k);
-        try {
-          StepResult<T> r = advance(s);
-          s = r.next;
-          c.steps_done = k;
-          if (c.phase_lost_at < 0 && r.phase_bits_lost >= Tr::bits(s.theta)) c.phase_lost_at = k;
-          if (k % req.every == 0 || k == req.steps) c.row(k, r, map_.model());
-        } catch (const Undecided& u) {
-          c.undecided = true;
-          c.reason = u.what();
-          break;
-        }
-      }
+      ColumnSink<T> sink(c, map_.model());
+      c.outcome = follow_orbit(map_, s0, orbit_steps(req), sink);
       return c;
     });
     return std::move(cols).result(prec_);

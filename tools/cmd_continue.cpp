@@ -204,20 +204,18 @@ int run_typed(const Request& req, const Provenance& prov, bool print_json, Outpu
   json low = end_json(b, b.low, par, m.wall), high = end_json(b, b.high, par, m.wall);
   if (r.certify) {
     // Krawczyk over an interval of width 1e-6 max(1, |a*|) on the branch side of each border
-    // end: a certified run of it proves the branch reaches at least its inner end.
+    // end (verify/branch_end.hpp): a certified run of it proves the branch reaches at least
+    // its inner end.
     for (const auto& [ej, e, high] : {std::tuple<json*, const BranchEnd<T>*, bool>{&low, &b.low, false},
                                       std::tuple<json*, const BranchEnd<T>*, bool>{&high, &b.high, true}}) {
       if (e->reason != EndReason::border) continue;
-      const T& g = high ? e->bracket_lo : e->bracket_hi;
-      const T w = Tr::from_decimal(num(std::max(1.0, std::fabs(Tr::to_double(g))) * 1e-6), bits);
-      const T far = high ? T(g - w) : T(g + w);
       BranchEndQuestion c;
       c.model = r.model;
       c.vary = r.vary;
       c.period = r.period;
       c.last_point = {parse_decimal("certify", Tr::to_string(e->last_point.theta)),
                       parse_decimal("certify", Tr::to_string(e->last_point.v))};
-      const std::string lo_text = Tr::to_string(high ? far : g), hi_text = Tr::to_string(high ? g : far);
+      const auto [lo_text, hi_text] = branch_end_interval(e->bracket_lo, e->bracket_hi, high, bits);
       c.lo = parse_decimal("certify", lo_text);
       c.hi = parse_decimal("certify", hi_text);
       c.high_end = high;

@@ -8,10 +8,14 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
+#include <utility>
 
 #include "bouncer/model/spec.hpp"
+#include "bouncer/scalar/traits.hpp"
 
 namespace bouncer {
 
@@ -33,6 +37,19 @@ struct BranchEndCertificate {
   std::string theorem;     // certify_periodic_range's statement over [lo, hi]
   size_t pieces = 0;       // certification runs of the bisection
 };
+
+// The interval next to an end located in the bracket (bracket_lo, bracket_hi): width
+// 1e-6 max(1, |g|) on the branch side of g, the bracket's end on the branch side (bracket_lo
+// at a high end, bracket_hi at a low end), as the round-trip texts of T (lo, hi).
+template <class T>
+std::pair<std::string, std::string> branch_end_interval(const T& bracket_lo, const T& bracket_hi, bool high_end, long bits) {
+  using Tr = ScalarTraits<T>;
+  const T& g = high_end ? bracket_lo : bracket_hi;
+  const double width = std::max(1.0, std::fabs(Tr::to_double(g))) * 1e-6;
+  const T w = Tr::from_decimal(ScalarTraits<double>::to_string(width), bits);
+  const T far = high_end ? T(g - w) : T(g + w);
+  return {Tr::to_string(high_end ? far : g), Tr::to_string(high_end ? g : far)};
+}
 
 // Adaptive bisection of [lo, hi] (depth 10, at most 512 pieces, 64 to 256 bits: the pieces
 // next to a* straddle the border and fail, and a short schedule bounds their cost).

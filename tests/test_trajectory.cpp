@@ -220,6 +220,27 @@ TEST(Trajectory, Eq5FixedPointReturnsEveryPeriod) {
   fixed_point_returns<Mpfr>("mpfr:200", 1e-14);
 }
 
+TEST(Trajectory, VeldepCollapseRestickingAtTheValleyStaysAboveTheWall) {
+  // veldep (c = 1) with --veldep-collapse on and --downward-sticking impact from (0.6, -3):
+  // the flight meets the falling wall at 0.6 + 1/12 (the gap s - 12 s^2, whatever the law),
+  // and the corner collision at the valley sticks again. (A copy of the walk that tested
+  // the corner with the constant law's threshold drew this collision half a period late,
+  // through the wall.)
+  TrajectoryRequest r = request(Law::veldep, "24", "1", "0.6", "-3", 2, 40, "mpfr:120");
+  r.model.c = parse_decimal("c", "1");
+  r.model.veldep_collapse = true;
+  r.model.downward = DownwardSticking::impact;
+  const Trajectory<Mpfr> tr = trace_trajectory<Mpfr>(r);
+  EXPECT_GE(tr.sticking_steps, 1);
+  const auto impact = std::find_if(tr.points.begin(), tr.points.end(), [](const Point& q) { return q.event == TraceEvent::impact; });
+  ASSERT_NE(impact, tr.points.end());
+  EXPECT_LT(dist(impact->t, Mpfr(num("0.6") + num("1") / 12)), 1e-30);
+  for (const Point& q : tr.points) {
+    EXPECT_GT(Mpfr(q.particle - q.wall).to_double(), -1e-30) << "below the wall at t " << q.t.to_double();
+    EXPECT_LT(dist(q.wall, triangle(q.t)), 1e-30);
+  }
+}
+
 TEST(Trajectory, ReboundIsTheCollisionLaw) {
   const ImpactMap<Mpfr> constant(make_model<Mpfr>(test_support::spec(Law::constant, "24", "0.3"), kBits));
   const ImpactMap<Mpfr> elastic(make_model<Mpfr>(test_support::spec(Law::elastic, "24"), kBits));

@@ -461,7 +461,10 @@ inline void write_certified_map(const CertifiedMap& m, const std::vector<Number>
     undecided += c.agreement == Agreement::undecided;
   }
   const double inside = static_cast<double>(cells.size()) - static_cast<double>(outside);
-  auto [cert, art] = certified_figures(m, cells, f.picture.palette);
+  // (Named references, not a structured binding: clang 14 cannot capture one in the lambdas below.)
+  std::pair<ImageFigure, ImageFigure> figures = certified_figures(m, cells, f.picture.palette);
+  ImageFigure& cert = figures.first;
+  ImageFigure& art = figures.second;
   cert.metadata = png_metadata(prov, cert.title);
   art.metadata = png_metadata(prov, art.title);
   s["points"] = cells.size();

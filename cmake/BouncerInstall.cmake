@@ -2,10 +2,16 @@
 # project can use `find_package(bouncer)` and link `bouncer::bouncer`.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
+# Two export sets, one per library target: a consumer of bouncer::numerics alone
+# (find_package(bouncer COMPONENTS numerics)) loads no I/O dependency (Cairo, libpng, ...).
+install(TARGETS bouncer_numerics EXPORT bouncerNumericsTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS bouncer EXPORT bouncerTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY lib/include/bouncer DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(EXPORT bouncerNumericsTargets NAMESPACE bouncer:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)
 install(EXPORT bouncerTargets NAMESPACE bouncer:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)
 configure_package_config_file(cmake/bouncerConfig.cmake.in
   ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfig.cmake

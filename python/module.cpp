@@ -20,7 +20,7 @@
 // Interrupts: long calls run on a worker thread while the calling thread waits in slices of
 // 50 ms and, between them, takes the GIL to let Python run its signal handlers
 // (PyErr_CheckSignals: Ctrl-C in a notebook). When a handler raises (KeyboardInterrupt), the
-// worker's cancel flag is set (io/cancel.hpp), the computation unwinds at its next check
+// worker's cancel flag is set (base/cancel.hpp), the computation unwinds at its next check
 // (output files are written all or none, so none is left half written), and the exception is
 // re-raised here. Model.step holds the GIL: one step is a fraction of a microsecond in double.
 #include <pybind11/numpy.h>
@@ -48,11 +48,12 @@
 
 #include "analysis_common.hpp"
 #include "bouncer/io/options.hpp"
+#include "bouncer/io/requests/grids.hpp"
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
 #include "bouncer/analysis/periodic.hpp"
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/io/orbit.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/model/impact_map.hpp"
@@ -628,6 +629,85 @@ std::optional<InitialCondition> guess_from(const Options& o, const ModelSpec& sp
   return ic;
 }
 
+// ---- grids (run/): typed results -> numpy -------------------------------------------------
+
+// threads (default: all cores) for the library's grid calls; no progress bar from Python.
+GridOptions grid_run_options(const Options& o) {
+  GridOptions g;
+  g.threads = static_cast<unsigned>(integer_from(o, "threads", 1, 4096, 0));
+  return g;
+}
+
+// The axes of a grid: float64 arrays (the nearest doubles) and the numbers' own digits.
+void put_axes(py::dict& d, const std::string& x, const std::vector<Number>& xs, const std::string& y,
+              const std::vector<Number>& ys) {
+  for (const auto& [key, axis] : {std::pair{x, &xs}, std::pair{y, &ys}}) {
+    py::array_t<double> values(static_cast<py::ssize_t>(axis->size()));
+    py::list digits;
+    for (size_t i = 0; i < axis->size(); ++i) {
+      values.mutable_at(static_cast<py::ssize_t>(i)) = (*axis)[i].value;
+      digits.append((*axis)[i].digits);
+    }
+    d[py::str(key)] = values;
+    d[py::str(key + "_text")] = digits;
+  }
+  d["shape"] = py::make_tuple(ys.size(), xs.size());
+}
+
+// Class names as int8 codes into `names` (reshaped to the grid by the Python layer).
+template <class Cells, class Name>
+py::array_t<std::int8_t> codes_of(const Cells& cells, Name&& name_of, std::vector<std::string>& names) {
+  py::array_t<std::int8_t> codes(static_cast<py::ssize_t>(cells.size()));
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const std::string n = name_of(cells[i]);
+    auto it = std::find(names.begin(), names.end(), n);
+    if (it == names.end()) it = names.insert(names.end(), n);
+    codes.mutable_at(static_cast<py::ssize_t>(i)) = static_cast<std::int8_t>(it - names.begin());
+  }
+  return codes;
+}
+
+template <class Cells, class F>
+py::array_t<std::int64_t> ints_of(const Cells& cells, F&& f) {
+  py::array_t<std::int64_t> a(static_cast<py::ssize_t>(cells.size()));
+  for (size_t i = 0; i < cells.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = f(cells[i]);
+  return a;
+}
+
+void put_attractors(py::dict& d, const std::vector<AttractorCell>& cells) {
+  std::vector<std::string> names;
+  d["class_"] = codes_of(cells, [](const AttractorCell& c) { return name(c.cls); }, names);
+  d["period"] = ints_of(cells, [](const AttractorCell& c) { return c.period; });
+  d["class_names"] = names;
+}
+
+void put_certified(py::dict& d, const std::vector<CertifiedCell>& cells) {
+  std::vector<std::string> names;
+  d["class_"] = codes_of(cells, [](const CertifiedCell& c) { return name(c.cls); }, names);
+  d["double_class"] = codes_of(cells, [](const CertifiedCell& c) { return name(c.double_class); }, names);
+  d["agreement"] = codes_of(cells, [](const CertifiedCell& c) { return name(c.agreement); }, names);
+  d["period"] = ints_of(cells, [](const CertifiedCell& c) { return c.period; });
+  d["certified_steps"] = ints_of(cells, [](const CertifiedCell& c) { return c.certified_steps; });
+  d["double_period"] = ints_of(cells, [](const CertifiedCell& c) { return c.double_period; });
+  py::list scalars;
+  for (const CertifiedCell& c : cells) scalars.append(c.scalar);
+  d["scalar"] = scalars;
+  d["class_names"] = names;
+}
+
+py::dict certified_dict(const std::string& exact_value, const CertifiedCell& c) {
+  py::dict d;
+  d["value"] = exact_value;
+  d["class_"] = name(c.cls);
+  d["period"] = c.period;
+  d["certified_steps"] = c.certified_steps;
+  d["scalar"] = c.scalar;
+  d["double_class"] = name(c.double_class);
+  d["double_period"] = c.double_period;
+  d["agreement"] = name(c.agreement);
+  return d;
+}
+
 class ModelCore {
  public:
   explicit ModelCore(const Texts& texts) : options_(options_of(texts)) {
@@ -928,6 +1008,110 @@ class ModelCore {
     return d;
   }
 
+  // bouncer basin (run/basin.hpp): the same reader (io/requests/grids.hpp) and library call.
+  py::dict basin(const Texts& texts) const {
+    const Options o = with_model(texts);
+    const BasinOptions b = basin_options(o);
+    const GridOptions run = grid_run_options(o);
+    py::dict d;
+    if (b.certify) {
+      const CertifiedBasinResult r = interruptible([&] { return certified_basin(b.request, run); });
+      put_axes(d, "theta", r.theta, "v", r.v);
+      put_certified(d, r.cells);
+      d["v_range"] = py::make_tuple(r.request.v_range->first.text(), r.request.v_range->second.text());
+    } else {
+      const BasinResult r = interruptible([&] { return bouncer::basin(b.request, run); });
+      put_axes(d, "theta", r.theta, "v", r.v);
+      put_attractors(d, r.cells);
+      d["v_range"] = py::make_tuple(r.request.v_range->first.text(), r.request.v_range->second.text());
+    }
+    d["certified"] = b.certify;
+    return d;
+  }
+
+  // bouncer scan (run/scan.hpp): this model's law, wall and sticking rule; a and eps (or c)
+  // are the scanned axes, so the model's own values of them are not used.
+  py::dict scan(const Texts& texts) const {
+    Options o = with_model(texts);
+    for (const char* k : {"a", "eps", "c"}) o.values.erase(k);
+    const ScanOptions so = scan_options(o);
+    const GridOptions run = grid_run_options(o);
+    py::dict d;
+    const std::string y = name(scan_parameter(so.request.model));
+    if (so.certify) {
+      const CertifiedScanResult r = interruptible([&] { return certified_scan(so.request, run); });
+      put_axes(d, "a", r.a, y, r.y_values);
+      put_certified(d, r.cells);
+    } else {
+      const ScanResult r = interruptible([&] { return bouncer::scan(so.request, run); });
+      put_axes(d, "a", r.a, y, r.y_values);
+      const auto nx = static_cast<py::ssize_t>(so.request.p), ny = static_cast<py::ssize_t>(so.request.q);
+      py::array_t<std::int64_t> counts({ny, nx, static_cast<py::ssize_t>(scan_classes().size())});
+      auto c = counts.mutable_unchecked<3>();
+      for (size_t i = 0; i < r.cells.size(); ++i)
+        for (size_t k = 0; k < scan_classes().size(); ++k)
+          c(static_cast<py::ssize_t>(i) / nx, static_cast<py::ssize_t>(i) % nx, static_cast<py::ssize_t>(k)) =
+              r.cells[i][scan_classes()[k]];
+      py::list names;
+      for (OrbitClass k : scan_classes()) names.append(name(k));
+      d["counts"] = counts;
+      d["count_classes"] = names;
+    }
+    d["y"] = y;
+    d["certified"] = so.certify;
+    return d;
+  }
+
+  // bouncer bifurcation (run/bifurcation.hpp): one row per recorded point, as the CSV.
+  py::dict bifurcation(const Texts& texts) const {
+    const Options o = with_model(texts);
+    const BifurcationOptions b = bifurcation_options(o);
+    const GridOptions run = grid_run_options(o);
+    const BifurcationResult r = interruptible([&] { return bouncer::bifurcation(b.request, run); });
+    size_t rows = 0;
+    for (const BifurcationColumn& c : r.columns) rows += c.points.size();
+    py::array_t<double> value(static_cast<py::ssize_t>(rows)), theta(static_cast<py::ssize_t>(rows)),
+        v(static_cast<py::ssize_t>(rows));
+    py::array_t<std::int64_t> n(static_cast<py::ssize_t>(rows)), column(static_cast<py::ssize_t>(rows));
+    py::array_t<bool> sticking(static_cast<py::ssize_t>(rows));
+    py::list value_text, theta_text, v_text, undecided, certified;
+    const bool texts_too = b.request.precision.kind != Precision::Kind::double_;
+    size_t at = 0;
+    for (size_t k = 0; k < r.columns.size(); ++k) {
+      const BifurcationColumn& c = r.columns[k];
+      for (const BifurcationPoint& p : c.points) {
+        value.mutable_at(at) = c.value.value;
+        theta.mutable_at(at) = p.theta.value;
+        v.mutable_at(at) = p.v.value;
+        n.mutable_at(at) = p.n;
+        column.mutable_at(at) = static_cast<std::int64_t>(k);
+        sticking.mutable_at(at) = p.sticking;
+        if (texts_too) {
+          theta_text.append(p.theta.digits);
+          v_text.append(p.v.digits);
+        }
+        ++at;
+      }
+      value_text.append(c.value.digits);
+      if (c.undecided_step) undecided.append(py::make_tuple(k, *c.undecided_step, c.undecided_reason));
+      if (c.certified) certified.append(certified_dict(*c.exact_value, *c.certified));
+    }
+    py::dict d;
+    d["vary"] = name(b.request.vary);
+    d["value"] = value;
+    d["column"] = column;
+    d["n"] = n;
+    d["theta"] = theta;
+    d["v"] = v;
+    d["sticking"] = sticking;
+    d["values"] = value_text;
+    d["theta_text"] = texts_too ? py::object(theta_text) : py::object(py::none());
+    d["v_text"] = texts_too ? py::object(v_text) : py::object(py::none());
+    d["undecided"] = undecided;
+    d["certified"] = b.request.certify ? py::object(certified) : py::object(py::none());
+    return d;
+  }
+
   // What the model was built from, for repr and provenance: the option texts.
   py::dict options() const {
     py::dict d;
@@ -1158,6 +1342,9 @@ PYBIND11_MODULE(_core, mod) {
       .def("_continue_branch", &ModelCore::continue_branch, py::arg("options"))
       .def("_certify_sticking", &ModelCore::certify_sticking, py::arg("options"))
       .def("_certify_periodic", &ModelCore::certify_periodic, py::arg("options"))
+      .def("_basin", &ModelCore::basin, py::arg("options"))
+      .def("_scan", &ModelCore::scan, py::arg("options"))
+      .def("_bifurcation", &ModelCore::bifurcation, py::arg("options"))
       .def_property_readonly("options", &ModelCore::options, "The option texts the model was built from")
       .def_property_readonly("precision", &ModelCore::precision_text, "The precision: double, long, dd, quad, mpfr:BITS, "
                                                                       "interval:BITS or interval:double")

@@ -9,7 +9,7 @@
 #include <random>
 
 #include "bouncer/run/grid.hpp"
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"
 
@@ -305,7 +305,7 @@ TEST(Grid, AnItemErrorStopsTheRunAndKeepsFinishedTiles) {
 }
 
 TEST(Grid, ACancelledRunStopsOnEveryWorkerAndWithoutTheFlagNothingChanges) {
-  // The caller's flag (io/cancel.hpp) reaches the workers: set while item 40 is computed,
+  // The caller's flag (base/cancel.hpp) reaches the workers: set while item 40 is computed,
   // the run throws Cancelled long before the 4000 items are done, on 1 and on 2 threads.
   for (unsigned threads : {1u, 2u}) {
     std::atomic<bool> cancel{false};

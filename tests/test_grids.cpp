@@ -17,7 +17,7 @@
 #include <atomic>
 #include <map>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/run/basin.hpp"
 #include "bouncer/run/bifurcation.hpp"
 #include "bouncer/run/scan.hpp"

@@ -1,4 +1,4 @@
-// The one output writer and the bounded readers (io/output.hpp, io/input.hpp) against hostile
+// The one output writer and the bounded readers (base/output.hpp, base/input.hpp) against hostile
 // file systems: links and FIFOs planted at output and staging paths, a second writer of the
 // same path in this process, stale staging files of a killed run, and TOML shaped to
 // overflow a recursive parser. Each expectation is what the header promises, checked on real
@@ -17,8 +17,8 @@
 #include <string>
 #include <thread>
 
-#include "bouncer/io/input.hpp"
-#include "bouncer/io/output.hpp"
+#include "bouncer/base/input.hpp"
+#include "bouncer/base/output.hpp"
 #include "bouncer/model/spec.hpp"
 
 namespace {

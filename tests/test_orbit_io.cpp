@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "bouncer/io/orbit.hpp"
-#include "bouncer/io/output.hpp"
+#include "bouncer/base/output.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {

@@ -1,4 +1,4 @@
-// The output writer (io/output.hpp): what test_io_safety.cpp does not cover (planted links
+// The output writer (base/output.hpp): what test_io_safety.cpp does not cover (planted links
 // and FIFOs, a second writer in this process, stale staging files, TOML shapes are there).
 // Here: the kinds output_target gives each path, OutputSet's contract (rewrites, bodies that
 // throw, descriptors, commit preconditions), failed writes (/dev/full, a closed pipe),
@@ -26,7 +26,7 @@
 #include <string>
 #include <thread>
 
-#include "bouncer/io/output.hpp"
+#include "bouncer/base/output.hpp"
 #include "bouncer/model/spec.hpp"
 
 extern char** environ;

@@ -25,9 +25,9 @@
 #include <vector>
 
 #include "bouncer/analysis/classify.hpp"
-#include "bouncer/io/input.hpp"
+#include "bouncer/base/input.hpp"
 #include "bouncer/io/options.hpp"
-#include "bouncer/io/output.hpp"
+#include "bouncer/base/output.hpp"
 #include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
@@ -90,7 +90,7 @@ class CaptureScope {
   CommandCapture* previous_;
 };
 
-// Writes an --out file (io/output.hpp: staged in a locked PATH.partial and renamed over
+// Writes an --out file (base/output.hpp: staged in a locked PATH.partial and renamed over
 // PATH only when complete; devices and pipes written through; directories and links to
 // regular files refused) or, without a path, stdout (checked: a failed write is an
 // OutputError, exit status 1). `reserved`, when given, holds the path reserved before the

@@ -41,8 +41,8 @@
 #include <sstream>
 
 #include "audit.hpp"
-#include "bouncer/io/cancel.hpp"
-#include "bouncer/io/input.hpp"
+#include "bouncer/base/cancel.hpp"
+#include "bouncer/base/input.hpp"
 #include "child_process.hpp"
 #include "cli_common.hpp"
 #include "command_line.hpp"

@@ -43,13 +43,13 @@
 #include <sstream>
 #include <thread>
 
-#include "bouncer/io/input.hpp"
+#include "bouncer/base/input.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "child_process.hpp"
 #include "cli_common.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "paper_manifest.hpp"
 #include "run_command.hpp"
 
@@ -566,7 +566,7 @@ std::string claims_table(const Manifest& m) {
 
 // --check: every command of the manifest, quick and full, is parsed and validated without
 // being run: each bouncer command runs in this process with its cancellation flag already
-// set (io/cancel.hpp), so it validates its options and inputs as it always does and stops at
+// set (base/cancel.hpp), so it validates its options and inputs as it always does and stops at
 // its first step; proof binaries must exist. Prints one line per command; exit 1 if any
 // command is refused.
 int check_manifest(const Manifest& m, const fs::path& exe_dir) {

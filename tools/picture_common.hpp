@@ -33,7 +33,7 @@
 
 #include "bouncer/io/grid_figures.hpp"
 #include "bouncer/run/grid.hpp"
-#include "bouncer/io/input.hpp"
+#include "bouncer/base/input.hpp"
 #include "bouncer/io/plot.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"

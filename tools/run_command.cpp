@@ -2,8 +2,8 @@
 
 #include <iostream>
 
-#include "bouncer/io/cancel.hpp"
-#include "bouncer/io/output.hpp"
+#include "bouncer/base/cancel.hpp"
+#include "bouncer/base/output.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
 #include "bouncer/model/spec.hpp"
@@ -150,7 +150,7 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
     }
     return failed(Kind::input, 2, std::string(e.what()) + " (see bouncer --help)");
   }
-  if (standalone) install_interrupt_cleanup();  // SIGINT/SIGTERM/SIGHUP remove partial files (io/output.hpp)
+  if (standalone) install_interrupt_cleanup();  // SIGINT/SIGTERM/SIGHUP remove partial files (base/output.hpp)
   try {
     for (const Command& c : commands)
       if (c.app->parsed()) {

@@ -16,7 +16,7 @@ struct CommandOutcome {
     input,      // bad input: status 2, `message` is the one-line error
     output,     // the output failed: status 1
     internal,   // an unexpected error: status 1
-    cancelled,  // the host's CancelScope flag was set (io/cancel.hpp): status 130
+    cancelled,  // the host's CancelScope flag was set (base/cancel.hpp): status 130
   };
   Kind kind = Kind::ok;
   int status = 0;

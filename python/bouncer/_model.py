@@ -14,7 +14,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 import numpy as np
 
 from . import _core
-from ._cli import _decimal
+from ._cli import CLASSES, _decimal
 
 Interval = _core.Interval
 Step = _core.Step
@@ -279,6 +279,122 @@ class PeriodicCertificate:
     seconds: float
 
 
+@dataclasses.dataclass(frozen=True)
+class Basin:
+    """Basins of attraction (``bouncer basin``; the library's ``basin`` / ``certified_basin``).
+
+    theta (N,), v (M,): the grid's cell centres as float64 (the nearest doubles); theta_text,
+        v_text: the same numbers as the run's precision prints them (exact in that type)
+    class_ (M, N) int8: codes into ``classes``; period (M, N): the attractor's period
+        (sticking: k), 0 for classes without one
+    classes: the code table, bouncer.CLASSES (class_[j, i] names classes[class_[j, i]])
+    v_range: the velocity window (texts; the default is the trapping region)
+    certified: True for certify=True, which also fills certified_steps, double_class (codes
+        into classes), double_period, agreement (codes: "agrees" | "differs" | "undecided" |
+        "outside", in ``agreements``) and scalar (the tier that decided each start)
+    """
+    theta: np.ndarray
+    v: np.ndarray
+    theta_text: List[str]
+    v_text: List[str]
+    class_: np.ndarray
+    period: np.ndarray
+    classes: Tuple[str, ...]
+    v_range: Tuple[str, str]
+    certified: bool
+    certified_steps: Optional[np.ndarray] = None
+    double_class: Optional[np.ndarray] = None
+    double_period: Optional[np.ndarray] = None
+    agreement: Optional[np.ndarray] = None
+    agreements: Tuple[str, ...] = ("agrees", "differs", "undecided", "outside")
+    scalar: Optional[np.ndarray] = None
+
+
+@dataclasses.dataclass(frozen=True)
+class Scan:
+    """A parameter scan (``bouncer scan``; the library's ``scan`` / ``certified_scan``).
+
+    a (P,), y_values (Q,): the parameter points as float64; a_text, y_text as the run's
+        precision prints them (certified: the exact decimals of the double points); y: "eps" or "c"
+    counts (Q, P, K) int64: how many of the k x k starts of each point are of each class,
+        the classes in the order of ``count_classes`` (the CSV's columns); None when certified
+    certified: certify=True gives, per parameter point (Q, P), class_ (codes into
+        ``classes``), period, certified_steps, double_class, double_period, agreement
+        (codes into ``agreements``) and scalar, as for Basin
+    """
+    a: np.ndarray
+    y_values: np.ndarray
+    a_text: List[str]
+    y_text: List[str]
+    y: str
+    certified: bool
+    counts: Optional[np.ndarray] = None
+    count_classes: Tuple[str, ...] = ()
+    class_: Optional[np.ndarray] = None
+    period: Optional[np.ndarray] = None
+    classes: Tuple[str, ...] = CLASSES
+    certified_steps: Optional[np.ndarray] = None
+    double_class: Optional[np.ndarray] = None
+    double_period: Optional[np.ndarray] = None
+    agreement: Optional[np.ndarray] = None
+    agreements: Tuple[str, ...] = ("agrees", "differs", "undecided", "outside")
+    scalar: Optional[np.ndarray] = None
+
+
+@dataclasses.dataclass(frozen=True)
+class Bifurcation:
+    """A bifurcation diagram (``bouncer bifurcation``; the library's ``bifurcation``): one row
+    per recorded point, in the CSV's order.
+
+    vary: "a" | "eps" | "c"; value, n, theta, v (float64), column (int64: the value's index),
+        sticking (bool): the rows; values: each parameter value as the run's precision prints
+        it; theta_text, v_text: the rows' numbers so (None in double, where the floats are exact)
+    undecided: (column, step, reason) of each column stopped by an undecided step
+    certified: certify=True: one dict per column (value: the exact parameter, class_,
+        period, certified_steps, scalar, double_class, double_period, agreement), else None
+    """
+    vary: str
+    value: np.ndarray
+    column: np.ndarray
+    n: np.ndarray
+    theta: np.ndarray
+    v: np.ndarray
+    sticking: np.ndarray
+    values: List[str]
+    theta_text: Optional[List[str]]
+    v_text: Optional[List[str]]
+    undecided: List[Tuple[int, int, str]]
+    certified: Optional[List[Dict[str, Any]]]
+
+
+def _grid_text(value: Any, name: str) -> Optional[str]:
+    if value is None or isinstance(value, str):
+        return value
+    nx, ny = value
+    return f"{int(nx)}x{int(ny)}"
+
+
+def _recode(raw: np.ndarray, names: List[str], table: Tuple[str, ...], shape: Tuple[int, int]) -> np.ndarray:
+    """Codes into the native call's own name list -> codes into `table`, reshaped."""
+    remap = np.array([table.index(n) if n in table else -1 for n in names] or [0], dtype=np.int8)
+    return remap[raw].reshape(shape)
+
+
+def _grid_fields(d: Dict[str, Any]) -> Dict[str, Any]:
+    """The per-cell arrays of a native grid result, reshaped to (M, N), codes into CLASSES."""
+    shape = tuple(d["shape"])
+    names = d["class_names"]
+    agreements = ("agrees", "differs", "undecided", "outside")
+    out = {"class_": _recode(d["class_"], names, CLASSES, shape), "period": d["period"].reshape(shape)}
+    if "agreement" in d:
+        out.update(certified_steps=d["certified_steps"].reshape(shape),
+                   double_class=_recode(d["double_class"], names, CLASSES, shape),
+                   double_period=d["double_period"].reshape(shape),
+                   agreement=_recode(d["agreement"], names, agreements, shape),
+                   scalar=np.array(d["scalar"], dtype=str).reshape(shape))
+    return out
+
+
 # ---- the model ----------------------------------------------------------------------------------
 
 class Model(_core.Model):
@@ -472,3 +588,82 @@ class Model(_core.Model):
         return _build(PeriodicCertificate, self._certify_periodic(_texts(
             period=period, guess=guess, vary=vary, family=family, max_bits=max_bits, start_bits=start_bits,
             max_iter=max_iter, grid=grid)))
+
+
+    def basin(self, *, grid: Tuple[int, int] = (100, 100), theta_range: Optional[Tuple[Number, Number]] = None,
+              v_range: Optional[Tuple[Number, Number]] = None, transient: Optional[int] = None,
+              steps: Optional[int] = None, max_period: Optional[int] = None, recheck_factor: Optional[int] = None,
+              certify: bool = False, max_bits: Optional[int] = None, threads: Optional[int] = None) -> Basin:
+        """Basins of attraction: every start of an N x M grid (cell centres) classified, or
+        certified (``bouncer basin``, the same library call, reader and defaults).
+
+        grid: (N, M) phases by velocities, each in [1, 8192] (default (100, 100))
+        theta_range: (T0, T1) within [0, 1] (default (0, 1))
+        v_range: (V0, V1) within +-1e15 (default: the trapping region; needed for the elastic
+            model and eps = 1); starts below the wall's velocity are "outside"
+        transient, steps, max_period, recheck_factor: the classifier's window, as classify
+        certify: True: every start certified (constant, elastic, or veldep without collapse;
+            the model's precision must be double, the twin run); max_bits: the schedule's last
+            MPFI precision, an integer in [64, 4096] (default 256)
+        threads: worker threads, an integer >= 1 (default: all cores); results do not depend on it
+        """
+        d = self._basin(_texts(grid=_grid_text(grid, "grid"), theta_range=_range_text(theta_range, "theta_range"),
+                               v_range=_range_text(v_range, "v_range"), transient=transient, steps=steps,
+                               max_period=max_period, recheck_factor=recheck_factor,
+                               certify="true" if certify else None, max_bits=max_bits, threads=threads))
+        return Basin(theta=d["theta"], v=d["v"], theta_text=d["theta_text"], v_text=d["v_text"], classes=CLASSES,
+                     v_range=tuple(d["v_range"]), certified=d["certified"], **_grid_fields(d))
+
+    def scan(self, *, a_range: Tuple[Number, Number], eps_range: Optional[Tuple[Number, Number]] = None,
+             c_range: Optional[Tuple[Number, Number]] = None, grid: Tuple[int, int] = (20, 20),
+             ics: Optional[int] = None, theta_range: Optional[Tuple[Number, Number]] = None,
+             v_range: Optional[Tuple[Number, Number]] = None, transient: Optional[int] = None,
+             steps: Optional[int] = None, max_period: Optional[int] = None, recheck_factor: Optional[int] = None,
+             certify: bool = False, theta: Optional[Number] = None, v: Optional[Number] = None,
+             max_bits: Optional[int] = None, threads: Optional[int] = None) -> Scan:
+        """A parameter scan over (a, eps) (constant model) or (a, c) (veldep model) with this
+        model's law, wall and sticking rule (its own a and eps or c are not used): at each of
+        P x Q points, K x K starts classified and counted (``bouncer scan``).
+
+        a_range; eps_range (constant) or c_range (veldep): the ranges (cell centres)
+        grid: (P, Q), each in [1, 4096] (default (20, 20)); ics: K in [1, 1000] (default 10)
+        theta_range, v_range: the starts (default: theta in (0, 1), v in each point's
+            trapping region); transient, steps, max_period, recheck_factor: as classify
+        certify: True: the exact orbit of (theta, v) (default the release state (0.5, 4))
+            certified at each exact double point, with double's class; max_bits as for basin
+        threads: worker threads (default: all cores)
+        """
+        d = self._scan(_texts(a_range=_range_text(a_range, "a_range"), eps_range=_range_text(eps_range, "eps_range"),
+                              c_range=_range_text(c_range, "c_range"), grid=_grid_text(grid, "grid"), ics=ics,
+                              theta_range=_range_text(theta_range, "theta_range"),
+                              v_range=_range_text(v_range, "v_range"), transient=transient, steps=steps,
+                              max_period=max_period, recheck_factor=recheck_factor,
+                              certify="true" if certify else None, theta=theta, v=v, max_bits=max_bits,
+                              threads=threads))
+        y = d["y"]
+        common = dict(a=d["a"], y_values=d[y], a_text=d["a_text"], y_text=d[y + "_text"], y=y,
+                      certified=d["certified"])
+        if d["certified"]:
+            return Scan(**common, **_grid_fields(d))
+        return Scan(**common, counts=d["counts"], count_classes=tuple(d["count_classes"]))
+
+    def bifurcation(self, *, range: Tuple[Number, Number], theta: Number, v: Number, vary: str = "a",
+                    samples: Optional[int] = None, transient: Optional[int] = None, record: Optional[int] = None,
+                    carry: bool = False, certify: bool = False, max_bits: Optional[int] = None,
+                    threads: Optional[int] = None) -> Bifurcation:
+        """A bifurcation diagram: at each of K values of a, eps or c (LO and HI included), the
+        orbit of (theta, v) after `transient` steps, `record` steps recorded
+        (``bouncer bifurcation``). This model's value of the varied parameter is not used.
+
+        range: (LO, HI), LO < HI; vary: "a" (default) | "eps" (constant) | "c" (veldep)
+        theta, v: the start, valid for the model at LO
+        samples: K in [1, 100000] (default 200); transient: N in [0, 1e8] (default 5000);
+            record: M in [1, 1e6] (default 500); samples x record <= 5e7
+        carry: each value starts from the last state of the previous one (one worker)
+        certify: each column also certified (double only); max_bits as for basin
+        threads: worker threads (default: all cores)
+        """
+        d = self._bifurcation(_texts(range=_range_text(range, "range"), theta=theta, v=v, vary=vary, samples=samples,
+                                     transient=transient, record=record, carry="true" if carry else None,
+                                     certify="true" if certify else None, max_bits=max_bits, threads=threads))
+        return Bifurcation(**d)

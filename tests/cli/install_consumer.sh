@@ -13,16 +13,23 @@ cmake --build "$TMP/consumer" >/dev/null
 # flags of its own; the exported target must carry -fsanitize to its compile and link lines,
 # or the sanitized libbouncer.a would not link. The consumer built, linked and ran above;
 # here: the flags came from the target, and the consumer runs with the ASan runtime.
-targets=$(cat "$TMP/prefix"/lib*/cmake/bouncer/bouncerTargets.cmake)
+targets=$(cat "$TMP/prefix"/lib*/cmake/bouncer/bouncer*Targets.cmake)
 if [[ $targets == *-fsanitize=address,undefined* ]]; then
   [[ $targets == *INTERFACE_LINK_OPTIONS*-fsanitize=address,undefined* ]] ||
-    die "the sanitized bouncer::bouncer has no -fsanitize link option for consumers"
+    die "the sanitized bouncer::numerics has no -fsanitize link option for consumers"
   grep -q fsanitize "$SRC/tests/consumer/CMakeLists.txt" && die "tests/consumer sets sanitizer flags itself"
   [[ $(ldd "$TMP/consumer/consumer") == *libasan* ]] ||
     die "the consumer of the sanitized install is not linked with the ASan runtime"
   echo "install_consumer: a consumer without sanitizer flags links and runs against the sanitized install"
 fi
-echo "install_consumer: find_package(bouncer) works"
+echo "install_consumer: find_package(bouncer COMPONENTS numerics) works"
+# The whole library (both components, the I/O layer with Cairo): a scene read and its
+# provenance written through bouncer::bouncer.
+cmake -S "$SRC/tests/consumer/io" -B "$TMP/consumer-io" -DCMAKE_PREFIX_PATH="$TMP/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$TMP/consumer-io" >/dev/null
+"$TMP/consumer-io/consumer_io" "$SRC/data/scenes/default.toml" | grep -q '^# bouncer ' ||
+  die "the consumer of bouncer::bouncer did not write the provenance of a scene"
+echo "install_consumer: find_package(bouncer) and bouncer::bouncer work"
 # The Python module (when this build has it) is installed into the prefix's Python directory
 # and imports from there alone, away from the source and build trees.
 if compgen -G "$build/python/bouncer/_core*.so" >/dev/null; then

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # End-to-end: outputs under races, pipes, hostile inputs and scarce resources (issue 21;
-# io/output.hpp, io/input.hpp). Each case is one of the audit's reproducing commands:
+# base/output.hpp, base/input.hpp). Each case is one of the audit's reproducing commands:
 #   * two `orbit --out o.csv` at once: the second is refused at its start (exit 2, naming the
 #     first's process), the first's file is whole and its own; two `trajectory` runs on one
 #     prefix likewise, so no set mixes two runs;

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Links and FIFOs planted at every output and staging path of every command that writes
-files (issue 21; io/output.hpp). For each command, a clean run first lists the files it
+files (issue 21; base/output.hpp). For each command, a clean run first lists the files it
 writes (its output set). Then, in a fresh folder each time, for every file F of the set:
 
   link at F           a symbolic link to a victim file outside the set: refused (exit 2) or

@@ -1,5 +1,5 @@
 // Shared by the libFuzzer targets of tests/fuzz/: running a bouncer command line in this
-// process the way `reproduce --check` and `audit` validate one (io/cancel.hpp: the flag is
+// process the way `reproduce --check` and `audit` validate one (base/cancel.hpp: the flag is
 // set before the command starts, so it validates its inputs as usual and stops at its first
 // long step; its stdout is captured), in a private temporary directory, and the properties
 // every outcome must have. A property that fails aborts, so libFuzzer records the input as a
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "cli_common.hpp"
 #include "run_command.hpp"
 

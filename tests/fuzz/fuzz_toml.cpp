@@ -1,5 +1,5 @@
 // libFuzzer target: the TOML readers. Input: the bytes of a file, read as
-//   * TOML text: check_toml_text (io/input.hpp: size, NUL bytes, nesting depth) and, when it
+//   * TOML text: check_toml_text (base/input.hpp: size, NUL bytes, nesting depth) and, when it
 //     passes, toml++'s parser, as every reader does; only InputError / toml::parse_error may
 //     come out (a stack overflow in the parser, as 40,000 dotted keys once caused, is a crash);
 //   * a scene: `bouncer orbit --scene F` and `bouncer --scene F` (the scene's own command);
@@ -14,7 +14,7 @@
 #include <cstdint>
 #include <fstream>
 
-#include "bouncer/io/input.hpp"
+#include "bouncer/base/input.hpp"
 #include "fuzz_common.hpp"
 
 namespace {

@@ -48,7 +48,7 @@
 
 #include "bouncer/analysis/jacobian.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 
 namespace bouncer {
 

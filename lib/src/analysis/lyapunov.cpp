@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "bouncer/analysis/jacobian.hpp"
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 
 namespace bouncer {
 

@@ -1,12 +1,12 @@
 #include "bouncer/io/orbit.hpp"
-#include "bouncer/io/output.hpp"
+#include "bouncer/base/output.hpp"
 
 #include <iomanip>
 #include <optional>
 #include <ostream>
 #include <sstream>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {

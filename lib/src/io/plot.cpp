@@ -24,7 +24,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "bouncer/io/output.hpp"
+#include "bouncer/base/output.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/scalar/decimal.hpp"
 
@@ -124,7 +124,7 @@ std::string unit_text(int exponent) {
 }
 
 // Bits of a PNG writer that must not hold C++ objects across setjmp. Encodes into `out`
-// (the bytes go to the output through the one writer, io/output.hpp).
+// (the bytes go to the output through the one writer, base/output.hpp).
 void png_append(png_structp png, png_bytep data, png_size_t length) {
   static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), length);
 }

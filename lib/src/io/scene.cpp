@@ -1,5 +1,5 @@
 #include "bouncer/io/scene.hpp"
-#include "bouncer/io/input.hpp"
+#include "bouncer/base/input.hpp"
 
 #include <toml++/toml.h>
 
@@ -64,7 +64,7 @@ std::string scalar_text(const std::string& key, const toml::node& n) {
 }  // namespace
 
 // The scene file as a TOML table; a directory, a missing file, a FIFO, a file over 1 MiB,
-// nesting deeper than any scene (io/input.hpp) or bad TOML is InputError("scene").
+// nesting deeper than any scene (base/input.hpp) or bad TOML is InputError("scene").
 static toml::table read_scene_file(const std::string& path) {
   const std::string text = read_input_file("scene", path, kMaxSceneBytes);
   check_toml_text("scene", text, "'" + path + "'", kMaxSceneBytes);
@@ -176,45 +176,6 @@ std::vector<InitialCondition> initial_conditions_from(const Options& o, const Mo
     out.push_back(ic);
   }
   return out;
-}
-
-std::string Precision::text() const {
-  return with_scalar(*this, [&](auto tag) {
-    using Tr = ScalarTraits<typename decltype(tag)::type>;
-    return Tr::fixed_bits ? std::string(Tr::family) : std::string(Tr::family) + ":" + std::to_string(bits);
-  });
-}
-
-// Each type of the scalar set is one family: its name alone for the types of fixed
-// precision, NAME:BITS for the others (in the set's order).
-Precision parse_precision(const std::string& field, const std::string& text) {
-  std::optional<Precision> fixed;
-  for_each_scalar<Scalars>([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    using Tr = ScalarTraits<T>;
-    if (Tr::fixed_bits && !fixed && text == Tr::family) fixed = Precision{precision_kind<T>(), Tr::fixed_bits};
-  });
-  if (fixed) return *fixed;
-  const std::string allowed = "allowed: " + precision_names<Scalars>() + " with " + std::to_string(kMinBits) +
-                              " <= BITS <= " + std::to_string(kMaxBits);
-  std::optional<Precision> chosen;
-  for_each_scalar<Scalars>([&](auto tag) {
-    using T = typename decltype(tag)::type;
-    using Tr = ScalarTraits<T>;
-    if (Tr::fixed_bits || chosen) return;
-    const std::string pre = std::string(Tr::family) + ":";
-    if (text.rfind(pre, 0) != 0) return;
-    const std::string num = text.substr(pre.size());
-    auto d = Decimal::parse(num);
-    if (!d || d->value().get_den() != 1 || num.find_first_not_of("0123456789") != std::string::npos)
-      throw InputError(field, "'" + text + "': bits must be a whole number (" + allowed + ")");
-    const mpz_class bits = d->value().get_num();
-    if (bits < kMinBits || bits > kMaxBits)
-      throw InputError(field, "'" + text + "': bits out of range (" + allowed + ")");
-    chosen = Precision{precision_kind<T>(), bits.get_si()};
-  });
-  if (chosen) return *chosen;
-  throw InputError(field, "unknown precision '" + text + "' (" + allowed + ")");
 }
 
 std::string decimal_note(const Precision& p) {

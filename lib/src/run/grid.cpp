@@ -1,8 +1,8 @@
 #include "bouncer/run/grid.hpp"
-#include "bouncer/io/cancel.hpp"
-#include "bouncer/io/input.hpp"
-#include "bouncer/io/output.hpp"
-#include "bouncer/io/provenance.hpp"
+#include "bouncer/base/cancel.hpp"
+#include "bouncer/base/input.hpp"
+#include "bouncer/base/output.hpp"
+#include "bouncer/base/build_info.hpp"
 #include "bouncer/scalar/thread_caches.hpp"
 
 #include <fcntl.h>

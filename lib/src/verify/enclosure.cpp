@@ -4,7 +4,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/model/spec.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 // Instantiate the step for interval duals (Dual<S> over the enclosure scalars).

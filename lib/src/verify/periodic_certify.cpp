@@ -10,7 +10,7 @@
 #include <set>
 #include <sstream>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 #include "bouncer/verify/sticking.hpp"

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <type_traits>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/scalar_set.hpp"
 

@@ -8,7 +8,7 @@
 #include <iomanip>
 #include <sstream>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {

@@ -163,7 +163,7 @@ const char* figure_font_path();
 void check_figure_font();
 
 // Throw std::runtime_error (OutputError for I/O and a missing font) on failure. The stream
-// forms write the picture's bytes to `out` (an OutputSet's file: io/output.hpp); the path
+// forms write the picture's bytes to `out` (an OutputSet's file: base/output.hpp); the path
 // forms write one file through write_output (staged, then renamed into place).
 void write_figure(std::ostream& out, const Figure& f, ImageFormat format, const RenderOptions& r = {});
 void write_figure(std::ostream& out, const ImageFigure& f, ImageFormat format, const RenderOptions& r = {});

@@ -6,12 +6,9 @@
 #include <utility>
 #include <vector>
 
-namespace bouncer {
+#include "bouncer/base/build_info.hpp"
 
-struct BuildInfo {
-  std::string version, commit, compiler, flags, build_type;
-};
-const BuildInfo& build_info();  // generated at build time (cmake/BuildInfo.cmake)
+namespace bouncer {
 
 std::string library_versions();  // "boost 1.74.0, mpfr 4.2.0, mpfi 1.5.3, gmp 6.2.1"
 

@@ -6,16 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "bouncer/base/error.hpp"
 #include "bouncer/scalar/decimal.hpp"
 
 namespace bouncer {
-
-// Bad input: names the field (command-line option or scene key) and the allowed range.
-struct InputError : std::runtime_error {
-  std::string field;
-  InputError(std::string f, const std::string& what)
-      : std::runtime_error(f + ": " + what), field(std::move(f)) {}
-};
 
 // Collision models (paper sec. I, eq. 2 and the eps(v) law).
 enum class Law { elastic, constant, veldep };

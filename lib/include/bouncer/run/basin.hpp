@@ -77,7 +77,7 @@ class BasinGrid {
 
 // The library calls: every cell computed in this process (GridOptions: threads, progress;
 // no tile directory is needed). Throws InputError for a bad request, Cancelled when the
-// caller's cancellation flag is set (io/cancel.hpp).
+// caller's cancellation flag is set (base/cancel.hpp).
 BasinResult basin(const BasinRequest& r, const GridOptions& run = {});
 CertifiedBasinResult certified_basin(const BasinRequest& r, const GridOptions& run = {});
 

@@ -68,7 +68,7 @@ struct GridResult {
 // Runs the plan: loads saved tiles, computes the shard's missing ones in parallel with
 // `item(index)` (which must depend on the index only), saves each finished tile.
 // An exception thrown by `item` stops the workers and is rethrown (finished tiles stay
-// saved); a worker thread that cannot be created stops them too (ResourceError, io/output.hpp).
+// saved); a worker thread that cannot be created stops them too (ResourceError, base/output.hpp).
 // Threads = 1 runs in the calling thread. The tile directory must be a real directory
 // (created if missing; a symbolic link is refused: InputError).
 GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>& item, const GridOptions& opt);

@@ -30,7 +30,7 @@ struct Precision {
 constexpr long kMinBits = 16;
 constexpr long kMaxBits = 1L << 20;
 
-// Throws InputError naming `field` (see model/spec.hpp).
+// Throws InputError naming `field` (base/error.hpp). Defined in lib/src/scalar/precision.cpp.
 Precision parse_precision(const std::string& field, const std::string& text);
 
 // The Precision::Kind of a type of the set.

@@ -38,19 +38,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "bouncer/base/error.hpp"
+
 namespace bouncer {
-
-// The computation was done, but its output could not be written (disk full, permissions,
-// a closed pipe). Front ends report it in one line with exit status 1.
-struct OutputError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
-
-// The computation could not get what it needs from the machine (threads, memory): exit
-// status 1, like a failed output, with a message that says what to ask for instead.
-struct ResourceError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 struct OutputTarget {
   enum class Kind { file, stream } kind = Kind::file;

@@ -1,5 +1,5 @@
-// Reading untrusted files (io/input.hpp).
-#include "bouncer/io/input.hpp"
+// Reading untrusted files (base/input.hpp).
+#include "bouncer/base/input.hpp"
 
 #include <fcntl.h>
 #include <limits.h>
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <vector>
 
-#include "bouncer/model/spec.hpp"
+#include "bouncer/base/error.hpp"
 
 namespace bouncer {
 

@@ -4,7 +4,7 @@
 // call throw_if_cancelled(), which throws Cancelled once the flag is set. Cancelled unwinds
 // like any error: output sets are written all or none, so no partial file is left behind.
 // The grid runner hands its caller's flag to its worker threads. With no scope (the
-// command-line tool, which ends on a signal instead: io/output.hpp) the check is one
+// command-line tool, which ends on a signal instead: base/output.hpp) the check is one
 // thread-local load.
 #pragma once
 

@@ -1,5 +1,5 @@
-// Output files (io/output.hpp).
-#include "bouncer/io/output.hpp"
+// Output files (base/output.hpp).
+#include "bouncer/base/output.hpp"
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -18,8 +18,8 @@
 #include <streambuf>
 #include <vector>
 
-#include "bouncer/io/input.hpp"
-#include "bouncer/model/spec.hpp"
+#include "bouncer/base/input.hpp"
+#include "bouncer/base/error.hpp"
 
 namespace bouncer {
 

@@ -27,7 +27,7 @@
 #include <cstdio>
 #include <limits>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 #include "bouncer/io/curve_figures.hpp"
 #include "bouncer/io/requests/exponent_curve.hpp"
 #include "bouncer/io/requests/portrait.hpp"

@@ -5,7 +5,7 @@
 #include <charconv>
 #include <stdexcept>
 
-#include "bouncer/io/cancel.hpp"
+#include "bouncer/base/cancel.hpp"
 
 namespace bouncer {
 

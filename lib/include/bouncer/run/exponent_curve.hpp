@@ -108,7 +108,7 @@ class ExponentCurveGrid {
 };
 
 // The library call: every value computed in this process (GridOptions: threads, progress).
-// Throws InputError for a bad request, Cancelled when the caller's flag is set (io/cancel.hpp).
+// Throws InputError for a bad request, Cancelled when the caller's flag is set (base/cancel.hpp).
 ExponentCurveResult exponent_curve(const ExponentCurveRequest& r, const GridOptions& run = {});
 
 }  // namespace bouncer

@@ -78,7 +78,7 @@ class PortraitGrid {
 };
 
 // The library call: every orbit computed in this process (GridOptions: threads, progress).
-// Throws InputError for a bad request, Cancelled when the caller's flag is set (io/cancel.hpp).
+// Throws InputError for a bad request, Cancelled when the caller's flag is set (base/cancel.hpp).
 PortraitResult portrait(const PortraitRequest& r, const GridOptions& run = {});
 
 }  // namespace bouncer

@@ -2,12 +2,13 @@
 //
 //  * Model: the library itself. A model is built once from the CLI's option texts (the same
 //    parsers and validation: io/scene.cpp model_from, parse_precision), and its methods call
-//    the library's functions on it: ImpactMap<T>::step, an orbit loop that fills numpy arrays
-//    straight from the StepResult<T> fields (no text in between for double), classify,
-//    find_periodic / search_periodic, lyapunov, continue_branch, certify_sticking,
-//    certify_periodic, and the grids (run/: basin, scan, bifurcation, portrait, exponent
-//    curves, read by the CLI's own request readers, io/requests/). The analyses return plain
-//    dicts that the Python layer (python/bouncer/_model.py) turns into dataclasses.
+//    the library's functions on it: ImpactMap<T>::step, the orbit driver (run/orbit.hpp)
+//    with a sink that fills numpy arrays straight from the StepResult<T> fields (no text in
+//    between for double), classify, find_periodic / search_periodic, lyapunov,
+//    continue_branch, certify_sticking, certify_periodic, and the grids (run/: basin, scan,
+//    bifurcation, portrait, exponent curves, read by the CLI's own request readers,
+//    io/requests/). The analyses return plain dicts that the Python layer
+//    (python/bouncer/_model.py) turns into dataclasses.
 //  * run(words): a bouncer command line run in this process (tools/run_command.hpp: the
 //    same parsing, validation and code as the command-line tool), which returns what the
 //    command printed. The CLI-parity path, and the way to the commands with no typed call
@@ -15,8 +16,8 @@
 //
 // No science here: the collision law, the analyses and the certificates are the library's.
 // What this file does is conversion (Python values <-> option texts and scalars), the GIL and
-// interrupts, and the defaults and ranges of the analysis options, which are the CLI's
-// (tools/cmd_*.cpp; where the CLI parses them in a shared helper, that helper is called here).
+// interrupts. The defaults and ranges of the analysis options are the CLI's: the same
+// library readers (io/options.hpp, io/requests/*.hpp) read them here and in tools/cmd_*.cpp.
 //
 // Interrupts: long calls run on a worker thread while the calling thread waits in slices of
 // 50 ms and, between them, takes the GIL to let Python run its signal handlers
@@ -52,6 +53,10 @@
 #include "bouncer/io/curve_figures.hpp"
 #include "bouncer/io/requests/exponent_curve.hpp"
 #include "bouncer/io/requests/grids.hpp"
+#include "bouncer/io/requests/certify_periodic.hpp"
+#include "bouncer/io/requests/certify_sticking.hpp"
+#include "bouncer/io/requests/continue.hpp"
+#include "bouncer/io/requests/guess.hpp"
 #include "bouncer/io/requests/portrait.hpp"
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/continuation.hpp"
@@ -62,6 +67,7 @@
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/thread_caches.hpp"
+#include "bouncer/run/orbit.hpp"
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
 #include "bouncer/verify/sticking.hpp"
@@ -371,10 +377,7 @@ struct OrbitColumns {
   std::vector<std::int8_t> event, wall, indirect;
   std::vector<std::int32_t> segment, stick_segment, phase_bits;
   std::vector<std::uint8_t> corner, passed;
-  long long steps_done = 0;
-  bool undecided = false;
-  std::string reason;
-  long long phase_lost_at = -1, fallbacks = -1;
+  OrbitOutcome outcome;
 
   void reserve(size_t rows) {
     for (auto* c : {&n, &periods}) c->reserve(rows);
@@ -442,14 +445,27 @@ struct OrbitColumns {
     o.stuck_v = std::move(stuck_v).numpy(o.rows);
     o.passed_upward_turn = numpy_of(std::move(passed), shape, py::dtype("bool"));
     o.phase_bits = numpy_of(std::move(phase_bits), shape);
-    o.status = undecided ? "undecided" : "completed";
-    o.steps_done = steps_done;
-    o.reason = reason;
-    o.phase_lost_at = phase_lost_at >= 0 ? py::object(py::int_(phase_lost_at)) : py::object(py::none());
-    o.lohner_fallbacks = fallbacks >= 0 ? py::object(py::int_(fallbacks)) : py::object(py::none());
+    o.status = outcome.undecided ? "undecided" : "completed";
+    o.steps_done = outcome.steps_done;
+    o.reason = outcome.reason;
+    o.phase_lost_at = outcome.phase_lost_at >= 0 ? py::object(py::int_(outcome.phase_lost_at)) : py::object(py::none());
+    o.lohner_fallbacks = outcome.fallbacks >= 0 ? py::object(py::int_(outcome.fallbacks)) : py::object(py::none());
     o.precision = p.text();
     return o;
   }
+};
+
+// The numpy sink of the orbit driver (run/orbit.hpp follow_orbit).
+template <class T>
+class ColumnSink final : public OrbitSink<T> {
+ public:
+  ColumnSink(OrbitColumns<T>& c, const Model<T>& m) : c_(c), m_(m) {}
+  void start(const State<T>& s) override { c_.start(s); }
+  void row(long long n, const StepResult<T>& r) override { c_.row(n, r, m_); }
+
+ private:
+  OrbitColumns<T>& c_;
+  const Model<T>& m_;
 };
 
 // More rows than this is refused (as `bouncer orbit` refuses to print more than 1e8 rows
@@ -478,48 +494,16 @@ class TypedStepper final : public Stepper {
     return step_of(map_.step(start(theta, v)), map_.model());
   }
 
-  // The orbit loop of `bouncer orbit` (io/orbit.cpp run()), into arrays: the same start
-  // (make_state with the knot), the same steps, Lohner's method for interval runs unless
-  // naive is asked for, and an undecided step ends the run (status "undecided").
+  // The orbit driver of `bouncer orbit` (run/orbit.hpp follow_orbit), into arrays: the same
+  // start (make_state with the knot), the same steps, Lohner's method for interval runs
+  // unless naive is asked for, and an undecided step ends the run (status "undecided").
   Orbit orbit(const OrbitRequest& req) const override {
     const State<T> s0 = make_state<T>(map_.model(), req.initial.at(0));
     OrbitColumns<T> cols = interruptible([&] {
       OrbitColumns<T> c;
       c.reserve(static_cast<size_t>(req.steps / req.every) + 2);
-      State<T> s = s0;
-      c.start(s);
-      std::optional<OrbitEnclosureOf<std::conditional_t<Tr::is_interval, T, Mpfi>>> lohner;
-      if constexpr (Tr::is_interval) {
-        if (req.method == EnclosureMethod::lohner) {
-          lohner.emplace(map_.model(), s, EnclosureMethod::lohner);
-          c.fallbacks = 0;
-        }
-      }
-      auto advance = [&](const State<T>& from) -> StepResult<T> {
-        if constexpr (Tr::is_interval) {
-          if (lohner) {
-            auto e = lohner->step();
-            c.fallbacks = lohner->fallbacks();
-            e.event.next = std::move(e.next);  // the Lohner box, tighter than the box image
-            return std::move(e.event);
-          }
-        }
-        return map_.step(from);
-      };
-      for (long long k = 1; k <= req.steps; ++k) {
-        throw_if_cancelled(k);
-        try {
-          StepResult<T> r = advance(s);
-          s = r.next;
-          c.steps_done = k;
-          if (c.phase_lost_at < 0 && r.phase_bits_lost >= Tr::bits(s.theta)) c.phase_lost_at = k;
-          if (k % req.every == 0 || k == req.steps) c.row(k, r, map_.model());
-        } catch (const Undecided& u) {
-          c.undecided = true;
-          c.reason = u.what();
-          break;
-        }
-      }
+      ColumnSink<T> sink(c, map_.model());
+      c.outcome = follow_orbit(map_, s0, orbit_steps(req), sink);
       return c;
     });
     return std::move(cols).result(prec_);
@@ -621,16 +605,6 @@ py::list attempts_of(const std::vector<Attempt>& attempts) {
 template <class T>
 py::tuple pair_of(const T& x, const T& y) {
   return py::make_tuple(scalar(x), scalar(y));
-}
-
-// The guess THETA,V of periodic, continue and certify-periodic, validated as there.
-std::optional<InitialCondition> guess_from(const Options& o, const ModelSpec& spec) {
-  if (!o.has("guess")) return std::nullopt;
-  const auto& g = o.values.at("guess");
-  if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
-  InitialCondition ic{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
-  validate(spec, ic, "guess", "guess");
-  return ic;
 }
 
 // ---- grids (run/): typed results -> numpy -------------------------------------------------
@@ -815,87 +789,26 @@ class ModelCore {
     });
   }
 
-  // bouncer continue without --certify and --out (tools/cmd_continue.cpp: its checks,
-  // ranges and defaults).
+  // bouncer continue without --certify and --out (its request: io/requests/continue.hpp).
   py::dict continue_branch(const Texts& texts) const {
-    Options o = with_model(texts);
-    const std::string vary_name = o.get_or("vary", "a");
-    if (vary_name != "a" && vary_name != "eps" && vary_name != "c")
-      throw InputError("vary", "must be a, eps or c (got '" + vary_name + "')");
-    const Parameter vary = parse_parameter("vary", vary_name);
-    if (!o.has("range")) throw InputError("range", "is required (LO:HI, the interval of " + vary_name + ")");
-    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
-    if (!o.has("guess")) throw InputError("guess", "is required (theta,v of a point near the period-q orbit)");
-    if (vary == Parameter::eps && spec_.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
-    if (vary == Parameter::c && spec_.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
-    const std::pair<Decimal, Decimal> range = parse_range("range", o.get("range"));
-    const Decimal& lo = range.first;
-    const Decimal& hi = range.second;
-    validate_range_ends(spec_, vary, "range", lo, hi);
-    const Decimal& start = parameter_of(spec_, vary);
-    if (start < lo || hi < start)
-      throw InputError(vary_name, "the start value " + start.text() + " must lie in the range [" + lo.text() + ", " +
-                                      hi.text() + "]");
-    const long period = integer_from(o, "period", 1, 100, 0);
-    const InitialCondition guess = *guess_from(o, spec_);
-    const Precision prec = analysis_precision(o, "continue");
-    ContinuationOptions opt;
-    if (o.has("step")) {
-      const Decimal s = parse_decimal("step", o.get("step"));
-      const double width = hi.approx() - lo.approx();
-      if (!(s.approx() > 0) || s.approx() > width)
-        throw InputError("step", "must be a decimal in (0, HI - LO] = (0, " + std::to_string(width) + "] (got " + s.text() + ")");
-      opt.step = s.approx();
-    }
-    opt.max_points = integer_from(o, "max-points", 2, 100000, 2000);
-    opt.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 30);
-    if (o.has("beyond")) {
-      const Decimal b = parse_decimal("beyond", o.get("beyond"));
-      if (!(b.approx() > 0) || b.approx() > 0.1)
-        throw InputError("beyond", "must be a decimal in (0, 0.1] (relative distance past a*; got " + b.text() + ")");
-      opt.beyond = b.approx();
-    }
-    opt.classify = classify_options_from(o);
-    return with_point_scalar(prec, [&](auto tag) {
+    const ContinueRequest r = continue_request(with_model(texts));
+    return with_point_scalar(r.precision, [&](auto tag) {
       using T = typename decltype(tag)::type;
       using Tr = ScalarTraits<T>;
-      const Model<T> m = make_model<T>(spec_, prec.bits);
+      const long bits = r.precision.bits;
+      const Model<T> m = make_model<T>(spec_, bits);
       const Branch<T> b = interruptible([&] {
-        const T tlo = Tr::from_decimal(lo.text(), prec.bits), thi = Tr::from_decimal(hi.text(), prec.bits);
-        return bouncer::continue_branch(m, vary, period, make_state<T>(guess, prec.bits), tlo, thi, opt);
+        const T tlo = Tr::from_decimal(r.lo.text(), bits), thi = Tr::from_decimal(r.hi.text(), bits);
+        return bouncer::continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), tlo, thi, r.opt);
       });
       if (!b.started) throw InputError("guess", b.note);
-      return branch_dict(b, m, vary_name);
+      return branch_dict(b, m, name(r.vary));
     });
   }
 
-  // bouncer certify-sticking without --a-range (tools/cmd_certify_sticking.cpp: its checks,
-  // ranges and defaults).
+  // bouncer certify-sticking without --a-range (its request: io/requests/certify_sticking.hpp).
   py::dict certify_sticking(const Texts& texts) const {
-    Options o = with_model(texts);
-    if (spec_.law != Law::constant)
-      throw InputError("model", "certify-sticking needs --model constant (its certified collapse test is the "
-                                "constant-restitution threshold; velocity-dependent collapse, which does occur: "
-                                "bouncer orbit --model veldep --veldep-collapse on)");
-    if (!o.has("theta")) o.set("theta", "0.5");
-    if (!o.has("v")) o.set("v", "4");
-    StickingQuestion q;
-    q.model = spec_;
-    q.start = start_from(o, spec_);
-    q.max_steps = integer_from(o, "max-steps", 1, 1000000000LL, 100000);
-    q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 4096);
-    const std::string start = o.get_or("start-bits", "double");
-    q.schedule.double_first = start == "double";
-    if (!q.schedule.double_first && (start.empty() || start.find_first_not_of("0123456789") != std::string::npos))
-      throw InputError("start-bits", "'" + start + "' (allowed: double, or BITS with " + std::to_string(kMinBits) +
-                                         " <= BITS <= " + std::to_string(kMaxBits) + ")");
-    q.schedule.start_bits = q.schedule.double_first ? 64 : integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
-    if (q.schedule.start_bits > q.schedule.max_bits)
-      throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(q.schedule.max_bits) + ")");
-    q.method = parse_enclosure_method("method", o.get_or("method", "lohner"));
-    const std::string pa = o.get_or("prove-attractor", "on");
-    if (pa != "on" && pa != "off") throw InputError("prove-attractor", "must be on or off (got '" + pa + "')");
-    q.prove_attractor = pa == "on";
+    const StickingQuestion q = certify_sticking_request(with_model(texts)).question;
     const auto [c, plain] = interruptible([&] {
       StickingCertificate cert = bouncer::certify_sticking(q);
       PlainSticking d = plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
@@ -931,26 +844,10 @@ class ModelCore {
     return d;
   }
 
-  // bouncer certify-periodic at the model's parameter values (no range, no --lift:
-  // tools/cmd_certify_periodic.cpp: its checks, ranges and defaults).
+  // bouncer certify-periodic at the model's parameter values, no range, no --lift (its
+  // request: io/requests/certify_periodic.hpp).
   py::dict certify_periodic(const Texts& texts) const {
-    const Options o = with_model(texts);
-    PeriodicQuestion q;
-    q.model = spec_;
-    q.vary = parse_parameter("vary", o.get_or("vary", "a"));
-    if ((q.vary == Parameter::eps && spec_.law != Law::constant) || (q.vary == Parameter::c && spec_.law != Law::veldep))
-      throw InputError("vary", std::string(name(q.vary)) + " varies only with --model " +
-                                   (q.vary == Parameter::eps ? "constant" : "veldep"));
-    if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 1000])");
-    q.period = integer_from(o, "period", 1, 1000, 1);
-    q.guess = guess_from(o, spec_);
-    q.family = parse_family_mode("family", o.get_or("family", "auto"));
-    q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 1024);
-    q.schedule.start_bits = integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
-    if (q.schedule.start_bits > q.schedule.max_bits)
-      throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(q.schedule.max_bits) + ")");
-    q.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
-    q.newton.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+    const PeriodicQuestion q = certify_periodic_request(with_model(texts)).question;
     const PeriodicCertificate c = interruptible([&] { return bouncer::certify_periodic(q); });
     py::dict d;
     d["certified"] = c.certified;

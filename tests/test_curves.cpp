@@ -38,19 +38,10 @@
 namespace bouncer {
 namespace {
 
+using test_support::expect_input_error;
 using test_support::spec;
 
 Decimal dec(const char* s) { return *Decimal::parse(s); }
-
-template <class F>
-void expect_input_error(F&& f, const std::string& field) {
-  try {
-    f();
-    ADD_FAILURE() << "no InputError (expected one naming " << field << ")";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field, field) << e.what();
-  }
-}
 
 PortraitRequest fixed_point_portrait(long steps) {
   PortraitRequest r;

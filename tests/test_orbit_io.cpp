@@ -29,28 +29,14 @@
 #include "bouncer/io/orbit.hpp"
 #include "bouncer/base/output.hpp"
 #include "bouncer/model/impact_map.hpp"
+#include "test_support.hpp"
 
 namespace bouncer {
 namespace {
 
+using namespace test_support;
+
 namespace fs = std::filesystem;
-
-template <class F>
-std::string expect_input_error(F&& f, const std::string& field) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field, field) << e.what();
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError(" << field << "), got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError(" << field << "), nothing was thrown";
-  return {};
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 Options options(const std::string& eps, const std::string& a, const std::vector<std::string>& theta,
                 const std::vector<std::string>& v, const std::string& steps, const std::string& precision) {

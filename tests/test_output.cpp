@@ -28,6 +28,7 @@
 
 #include "bouncer/base/output.hpp"
 #include "bouncer/model/spec.hpp"
+#include "test_support.hpp"
 
 extern char** environ;
 
@@ -35,35 +36,11 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace bouncer;
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "bouncer-out-XXXXXX").string();
-    path = ::mkdtemp(t.data());
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-  long entries() const { return std::distance(fs::directory_iterator(path), fs::directory_iterator()); }
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  std::ostringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
-void put(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+using namespace bouncer::test_support;
 
 auto text(const std::string& t) {
   return [t](std::ostream& s) { s << t; };
 }
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // The InputError's message (checking that it names `field`), or "" when none is thrown.
 template <class F>

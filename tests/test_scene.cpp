@@ -18,46 +18,10 @@
 namespace bouncer {
 namespace {
 
+using namespace test_support;
+
 namespace fs = std::filesystem;
 using test_support::spec;
-
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::string t = (fs::temp_directory_path() / "bouncer-scene-XXXXXX").string();
-    path = ::mkdtemp(t.data());
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
-std::string put(const std::string& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-// Runs f, expects an InputError naming `field` (and a message starting with it); returns
-// its message.
-template <class F>
-std::string expect_input_error(F&& f, const std::string& field) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field, field) << e.what();
-    EXPECT_EQ(std::string(e.what()).rfind(field + ": ", 0), 0u) << e.what();
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError(" << field << "), got: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError(" << field << "), nothing was thrown";
-  return {};
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 Options model_options(const std::string& law, const std::string& a) {
   Options o;

@@ -10,9 +10,12 @@
 #include <string>
 
 #include "bouncer/model/spec.hpp"
+#include "test_support.hpp"
 
 namespace bouncer {
 namespace {
+
+using namespace test_support;
 
 mpq_class Q(const char* s) { return mpq_class(s); }  // "1/2", "-3", ...
 
@@ -30,24 +33,6 @@ ModelSpec triangle_spec(Law law = Law::constant) {
   m.c = D("1000");
   m.wall = parse_wall("wall", "triangle");
   return m;
-}
-
-// Runs f, expects an InputError naming `field`; returns its message.
-template <class F>
-std::string expect_input_error(F&& f, const std::string& field) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field, field) << e.what();
-    // The message starts with the field name, so a user sees which input is wrong.
-    EXPECT_EQ(std::string(e.what()).rfind(field + ": ", 0), 0u) << e.what();
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "expected InputError(" << field << "), got another exception: " << e.what();
-    return {};
-  }
-  ADD_FAILURE() << "expected InputError(" << field << "), nothing was thrown";
-  return {};
 }
 
 void expect_wall(const WallSpec& w, std::vector<const char*> knots, std::vector<const char*> heights) {

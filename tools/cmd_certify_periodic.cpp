@@ -6,7 +6,7 @@
 #include <set>
 
 #include "bouncer/verify/accelerator.hpp"
-#include "bouncer/verify/periodic_certify.hpp"
+#include "bouncer/io/requests/certify_periodic.hpp"
 #include "bouncer/verify/sticking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -16,8 +16,6 @@ namespace bouncer::cli {
 namespace {
 
 using json = nlohmann::ordered_json;
-
-const char* kRangeKeys[] = {"a-range", "eps-range", "c-range"};
 
 const std::set<std::string>& certify_periodic_keys() {
   static const std::set<std::string> keys = [] {
@@ -29,6 +27,8 @@ const std::set<std::string>& certify_periodic_keys() {
   return keys;
 }
 
+// The science inputs are the library's request (io/requests/certify_periodic.hpp); --json
+// and --out are the command's.
 struct Request {
   PeriodicQuestion q;
   std::optional<Decimal> lift;  // accelerator ladder (verify/accelerator.hpp)
@@ -36,70 +36,11 @@ struct Request {
   std::optional<std::string> out;
 };
 
-Request request_from(Options& o) {
+Request request_from(const Options& o) {
+  CertifyPeriodicRequest science = certify_periodic_request(o);
   Request r;
-  // --a-range, --eps-range or --c-range: at most one; it names the varied parameter.
-  std::optional<std::string> range_key;
-  for (const char* k : kRangeKeys)
-    if (o.has(k)) {
-      if (range_key) throw InputError(k, "give at most one of --a-range, --eps-range, --c-range");
-      range_key = k;
-    }
-  r.q.vary = parse_parameter("vary", o.get_or("vary", range_key ? range_key->substr(0, range_key->find('-')) : "a"));
-  const std::string par = name(r.q.vary);
-  if (range_key && *range_key != par + "-range")
-    throw InputError("vary", "is " + par + " but the range is --" + *range_key);
-  const std::string law = o.get_or("model", "");
-  if ((r.q.vary == Parameter::eps && law != "constant") || (r.q.vary == Parameter::c && law != "veldep"))
-    throw InputError(range_key ? *range_key : "vary", par + " varies only with --model " +
-                                                          (r.q.vary == Parameter::eps ? "constant" : "veldep"));
-  Options parse = o;
-  std::optional<std::pair<Decimal, Decimal>> range;
-  if (range_key) {
-    if (o.has(par)) throw InputError(*range_key, "give either --" + par + " or --" + *range_key + ", not both");
-    const std::string text = o.get(*range_key);
-    const auto colon = text.find(':');
-    if (colon == std::string::npos) throw InputError(*range_key, "must be LO:HI with LO < HI (got '" + text + "')");
-    range = std::make_pair(parse_decimal(*range_key, text.substr(0, colon)), parse_decimal(*range_key, text.substr(colon + 1)));
-    if (!(range->first < range->second)) throw InputError(*range_key, "needs LO < HI (got '" + text + "')");
-    parse.set(par, range->first.text());
-  }
-  r.q.model = model_from(parse);
-  if (range) {
-    validate_range_ends(r.q.model, r.q.vary, *range_key, range->first, range->second);
-    r.q.range = std::make_pair(range->first.value(), range->second.value());
-  }
-  if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 1000])");
-  r.q.period = integer_from(o, "period", 1, 1000, 1);
-  if (o.has("guess")) {
-    const auto& g = o.values.at("guess");
-    if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
-    InitialCondition ic{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
-    validate(r.q.model, ic, "guess", "guess");
-    r.q.guess = ic;
-  }
-  r.q.family = parse_family_mode("family", o.get_or("family", "auto"));
-  if (o.has("lift")) {
-    r.lift = parse_decimal("lift", o.get("lift"));
-    if (r.q.model.law != Law::elastic) throw InputError("lift", "needs --model elastic (accelerator modes are elastic)");
-    if (r.q.period != 1)
-      throw InputError("lift", "needs --period 1 (exact accelerator modes are ladders of period 1: README, certify-periodic)");
-    if (!r.q.guess) throw InputError("lift", "needs --guess THETA,V (the start of the ladder)");
-    if (range) throw InputError("lift", "cannot be combined with a parameter range");
-  }
-  if (r.q.family == FamilyMode::family && range)
-    throw InputError("family", "on cannot be combined with a parameter range: a family exists at one parameter value "
-                               "(its parameter is one of the unknowns)");
-  r.q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 1024);
-  r.q.schedule.start_bits = integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
-  if (r.q.schedule.start_bits > r.q.schedule.max_bits)
-    throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(r.q.schedule.max_bits) + ")");
-  r.q.max_depth = static_cast<int>(integer_from(o, "max-depth", 0, 40, 8));
-  r.q.max_pieces = static_cast<int>(integer_from(o, "max-pieces", 1, 100000, 256));
-  if (!range && (o.has("max-depth") || o.has("max-pieces")))
-    throw InputError(o.has("max-depth") ? "max-depth" : "max-pieces", "is only used with a parameter range");
-  r.q.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 60);
-  r.q.newton.grid = static_cast<int>(integer_from(o, "grid", 1, 64, 8));
+  r.q = std::move(science.question);
+  r.lift = science.lift;
   r.json = o.get_or("json", "false") == "true";
   if (o.has("out")) r.out = o.get("out");
   return r;

@@ -8,7 +8,7 @@
 #include <set>
 #include <sstream>
 
-#include "bouncer/verify/sticking.hpp"
+#include "bouncer/io/requests/certify_sticking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -32,17 +32,8 @@ const std::set<std::string>& certify_keys() {
   return keys;
 }
 
-std::pair<mpq_class, mpq_class> parse_a_range(const std::string& text) {
-  const auto colon = text.find(':');
-  if (colon == std::string::npos) throw InputError("a-range", "must be A0:A1 with 0 < A0 < A1 (got '" + text + "')");
-  const Decimal lo = parse_decimal("a-range", text.substr(0, colon));
-  const Decimal hi = parse_decimal("a-range", text.substr(colon + 1));
-  if (!(Decimal::from_int(0) < lo) || !(lo < hi))
-    throw InputError("a-range", "must be A0:A1 with 0 < A0 < A1 (got '" + text + "')");
-  if (hi > *Decimal::parse("1e9")) throw InputError("a-range", "A1 must be <= 1e9 (got '" + text + "')");
-  return {lo.value(), hi.value()};
-}
-
+// The science inputs are the library's request (io/requests/certify_sticking.hpp); --json
+// and --out are the command's.
 struct Request {
   StickingQuestion q;
   RangeOptions range;
@@ -50,45 +41,11 @@ struct Request {
   std::optional<std::string> out;
 };
 
-Request request_from(Options& o) {
-  if (!o.has("model")) o.set("model", "constant");
-  if (!o.has("theta")) o.set("theta", "0.5");
-  if (!o.has("v")) o.set("v", "4");
-  const bool ranged = o.has("a-range");
-  if (ranged && o.has("a")) throw InputError("a-range", "give either --a or --a-range, not both");
-  if (!ranged && !o.has("a")) throw InputError("a", "is required (or --a-range A0:A1)");
+Request request_from(const Options& o) {
+  CertifyStickingRequest science = certify_sticking_request(o);
   Request r;
-  std::optional<std::pair<mpq_class, mpq_class>> range;
-  Options parse = o;
-  if (ranged) {
-    range = parse_a_range(o.get("a-range"));
-    parse.set("a", o.get("a-range").substr(0, o.get("a-range").find(':')));
-  }
-  r.q.model = model_from(parse);
-  if (r.q.model.law != Law::constant) throw InputError("model", "certify-sticking needs --model constant (its certified collapse test is the constant-restitution threshold; velocity-dependent collapse, which does occur: bouncer orbit --model veldep --veldep-collapse on)");
-  const std::vector<InitialCondition> ic = initial_conditions_from(parse, r.q.model);
-  if (ic.size() != 1) throw InputError("theta", "takes one initial condition");
-  r.q.start = ic[0];
-  r.q.a_range = range;
-  r.q.max_steps = integer_from(o, "max-steps", 1, 1000000000LL, 100000);
-  r.q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 4096);
-  // "double" (the default): interval:double first, then MPFI from 64 bits; BITS: MPFI only.
-  const std::string start = o.get_or("start-bits", "double");
-  r.q.schedule.double_first = start == "double";
-  if (!r.q.schedule.double_first && (start.empty() || start.find_first_not_of("0123456789") != std::string::npos))
-    throw InputError("start-bits", "'" + start + "' (allowed: double, or BITS with " + std::to_string(kMinBits) +
-                                       " <= BITS <= " + std::to_string(kMaxBits) + ")");
-  r.q.schedule.start_bits = r.q.schedule.double_first ? 64 : integer_from(o, "start-bits", kMinBits, kMaxBits, 64);
-  if (r.q.schedule.start_bits > r.q.schedule.max_bits)
-    throw InputError("start-bits", "must be <= --max-bits (" + std::to_string(r.q.schedule.max_bits) + ")");
-  r.q.method = parse_enclosure_method("method", o.get_or("method", "lohner"));
-  const std::string pa = o.get_or("prove-attractor", "on");
-  if (pa != "on" && pa != "off") throw InputError("prove-attractor", "must be on or off (got '" + pa + "')");
-  r.q.prove_attractor = pa == "on";
-  r.range.max_depth = static_cast<int>(integer_from(o, "max-depth", 0, 40, 10));
-  r.range.max_pieces = static_cast<int>(integer_from(o, "max-pieces", 1, 100000, 400));
-  if (!ranged && (o.has("max-depth") || o.has("max-pieces")))
-    throw InputError(o.has("max-depth") ? "max-depth" : "max-pieces", "is only used with --a-range");
+  r.q = std::move(science.question);
+  r.range = science.range;
   r.json = o.get_or("json", "false") == "true";
   if (o.has("out")) r.out = o.get("out");
   return r;
@@ -184,6 +141,7 @@ Command add_certify_sticking(CLI::App& app) {
   auto run = [opts, scene, as_json](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "certify-sticking", certify_keys()), opts->collected());
     if (*as_json) o.set("json", "true");
+    certify_sticking_defaults(o);  // the provenance records them
     const Request r = request_from(o);
     OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
     if (r.out) outputs.reserve("out", *r.out);

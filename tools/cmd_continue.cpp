@@ -10,9 +10,9 @@
 #include <tuple>
 
 #include "analysis_common.hpp"
-#include "bouncer/analysis/continuation.hpp"
+#include "bouncer/io/requests/continue.hpp"
+#include "bouncer/verify/branch_end.hpp"
 #include "commands.hpp"
-#include "continue_certify.hpp"
 #include "picture_common.hpp"
 
 namespace bouncer::cli {
@@ -32,72 +32,20 @@ const std::set<std::string>& continue_keys() {
   return keys;
 }
 
-struct ContinueRequest {
-  ModelSpec model;
-  Parameter vary = Parameter::a;
-  std::string vary_name;
-  Decimal lo, hi;
-  long period = 0;
-  InitialCondition guess;
-  Precision precision;
-  ContinuationOptions opt;
+// The science inputs are the library's request (io/requests/continue.hpp); the picture's
+// options and --out are the command's.
+struct Request {
+  ContinueRequest science;
   std::string show = "v";
   std::optional<std::string> out;
-  bool certify = false;
   Presentation picture;  // --format, --size, --dpi, --palette
 };
 
-ContinueRequest continue_request(const Options& given) {
-  ContinueRequest r;
-  r.vary_name = given.get_or("vary", "a");
-  if (r.vary_name != "a" && r.vary_name != "eps" && r.vary_name != "c")
-    throw InputError("vary", "must be a, eps or c (got '" + r.vary_name + "')");
-  r.vary = r.vary_name == "a" ? Parameter::a : r.vary_name == "eps" ? Parameter::eps : Parameter::c;
-  if (!given.has("range")) throw InputError("range", "is required (LO:HI, the interval of " + r.vary_name + ")");
-  if (!given.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
-  if (!given.has("guess")) throw InputError("guess", "is required (theta,v of a point near the period-q orbit)");
-  // The varied parameter must belong to the model (checked before the model is built, so
-  // that the message names --vary rather than the parameter filled in below).
-  const Law law = parse_law("model", given.get("model"));
-  if (r.vary == Parameter::eps && law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
-  if (r.vary == Parameter::c && law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
-  Options o = given;
-  // The varied parameter starts at the range's low end unless given.
-  default_to_range_start(o, r.vary_name);
-  r.model = model_from(o);
-  std::tie(r.lo, r.hi) = parse_range("range", o.get("range"));
-  validate_range_ends(r.model, r.vary, "range", r.lo, r.hi);
-  const Decimal& start = r.vary == Parameter::a ? r.model.a : r.vary == Parameter::eps ? r.model.eps : r.model.c;
-  if (start < r.lo || r.hi < start)
-    throw InputError(r.vary_name, "the start value " + start.text() + " must lie in the range [" + r.lo.text() + ", " +
-                                      r.hi.text() + "]");
-  r.period = integer_from(o, "period", 1, 100, 0);
-  const auto& g = o.values.at("guess");
-  if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
-  r.guess = InitialCondition{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
-  validate(r.model, r.guess, "guess", "guess");
-  r.precision = analysis_precision(o, "continue");
-  if (o.has("step")) {
-    const Decimal s = parse_decimal("step", o.get("step"));
-    const double range = r.hi.approx() - r.lo.approx();
-    if (!(s.approx() > 0) || s.approx() > range)
-      throw InputError("step", "must be a decimal in (0, HI - LO] = (0, " + std::to_string(range) + "] (got " + s.text() + ")");
-    r.opt.step = s.approx();
-  }
-  r.opt.max_points = integer_from(o, "max-points", 2, 100000, 2000);
-  r.opt.newton.max_iter = integer_from(o, "max-iter", 1, 10000, 30);
-  if (o.has("beyond")) {
-    const Decimal b = parse_decimal("beyond", o.get("beyond"));
-    if (!(b.approx() > 0) || b.approx() > 0.1)
-      throw InputError("beyond", "must be a decimal in (0, 0.1] (relative distance past a*; got " + b.text() + ")");
-    r.opt.beyond = b.approx();
-  }
-  r.opt.classify = classify_options_from(o);
+Request request_from(const Options& o) {
+  Request r;
+  r.science = continue_request(o);
   r.show = o.get_or("show", "v");
   if (r.show != "theta" && r.show != "v") throw InputError("show", "must be theta or v (got '" + r.show + "')");
-  const std::string certify = o.get_or("certify", "false");
-  if (certify != "true" && certify != "false") throw InputError("certify", "must be true or false");
-  r.certify = certify == "true";
   if (o.has("out")) {
     r.out = o.get("out");
     check_prefix("out", *r.out, ".json");
@@ -201,13 +149,14 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, const std::string& par,
 }
 
 template <class T>
-int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json, OutputSet& outputs) {
+int run_typed(const Request& req, const Provenance& prov, bool print_json, OutputSet& outputs) {
   using Tr = ScalarTraits<T>;
+  const ContinueRequest& r = req.science;
   const long bits = r.precision.bits;
   const Model<T> m = make_model<T>(r.model, bits);
   const T lo = Tr::from_decimal(r.lo.text(), bits), hi = Tr::from_decimal(r.hi.text(), bits);
   const Branch<T> b = continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), lo, hi, r.opt);
-  const std::string& par = r.vary_name;
+  const std::string par = name(r.vary);
   if (!b.started) throw InputError("guess", b.note);
 
   // CSV: one row per branch point.
@@ -256,29 +205,34 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json,
   json low = end_json(b, b.low, par, m.wall), high = end_json(b, b.high, par, m.wall);
   if (r.certify) {
     // Krawczyk over an interval of width 1e-6 max(1, |a*|) on the branch side of each border
-    // end: a certified run of it proves the branch reaches at least its inner end.
+    // end (verify/branch_end.hpp): a certified run of it proves the branch reaches at least
+    // its inner end.
     for (const auto& [ej, e, high] : {std::tuple<json*, const BranchEnd<T>*, bool>{&low, &b.low, false},
                                       std::tuple<json*, const BranchEnd<T>*, bool>{&high, &b.high, true}}) {
       if (e->reason != EndReason::border) continue;
-      const T& g = high ? e->bracket_lo : e->bracket_hi;
-      const T w = Tr::from_decimal(num(std::max(1.0, std::fabs(Tr::to_double(g))) * 1e-6), bits);
-      const T far = high ? T(g - w) : T(g + w);
-      EndToCertify c;
+      BranchEndQuestion c;
       c.model = r.model;
       c.vary = r.vary;
       c.period = r.period;
-      c.theta = Tr::to_string(e->last_point.theta);
-      c.v = Tr::to_string(e->last_point.v);
-      c.lo = Tr::to_string(high ? far : g);
-      c.hi = Tr::to_string(high ? g : far);
+      c.last_point = {parse_decimal("certify", Tr::to_string(e->last_point.theta)),
+                      parse_decimal("certify", Tr::to_string(e->last_point.v))};
+      const auto [lo_text, hi_text] = branch_end_interval(e->bracket_lo, e->bracket_hi, high, bits);
+      c.lo = parse_decimal("certify", lo_text);
+      c.hi = parse_decimal("certify", hi_text);
       c.high_end = high;
-      json cj = certify_end(c);
-      const bool ok = !cj["certified_to"].is_null();
-      cj["statement"] = ok ? "certified (Krawczyk): the period-" + std::to_string(r.period) + " orbit exists for every " + par +
-                                 " in [" + cj["certified_range"][0].get<std::string>() + ", " +
-                                 cj["certified_range"][1].get<std::string>() + "], so " + par + "* " + (high ? ">= " : "<= ") +
-                                 cj["certified_to"].get<std::string>() + "; the other side of the bracket is numerical only"
-                           : "nothing certified next to " + par + "*";
+      const BranchEndCertificate ce = certify_branch_end(c);
+      json cj;
+      cj["range"] = {lo_text, hi_text};
+      cj["certified_range"] = ce.certified ? json{exact_decimal(ce.from), exact_decimal(ce.to)} : json(nullptr);
+      cj["certified_to"] = ce.certified ? json(exact_decimal(ce.bound)) : json(nullptr);
+      if (ce.certified) cj["events"] = ce.events;
+      cj["theorem"] = ce.theorem;
+      cj["pieces"] = ce.pieces;
+      cj["statement"] = ce.certified ? "certified (Krawczyk): the period-" + std::to_string(r.period) + " orbit exists for every " +
+                                           par + " in [" + exact_decimal(ce.from) + ", " + exact_decimal(ce.to) + "], so " + par +
+                                           "* " + (high ? ">= " : "<= ") + exact_decimal(ce.bound) +
+                                           "; the other side of the bracket is numerical only"
+                                     : "nothing certified next to " + par + "*";
       (*ej)["certified"] = cj;
     }
   }
@@ -310,10 +264,10 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json,
   for (const Bifurcation<T>& x : b.bifurcations)
     text << name(x.kind) << " at " << par << "* = " << Tr::to_string(x.param) << "\n";
 
-  if (r.out) {
+  if (req.out) {
     // Branch diagram: the shown coordinate of every orbit point against the parameter.
     Figure fig;
-    const bool show_theta = r.show == "theta";
+    const bool show_theta = req.show == "theta";
     Series st{"stable", {}, {}, Rgb{33, 102, 172}, false, true, 2};
     Series un{"unstable", {}, {}, Rgb{230, 97, 1}, false, true, 2};
     Series mg{"marginal", {}, {}, Rgb{150, 150, 150}, false, true, 1};
@@ -406,12 +360,12 @@ int run_typed(const ContinueRequest& r, const Provenance& prov, bool print_json,
     fig.xlabel = r.vary == Parameter::eps ? "ε" : par;
     fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
     fig.metadata = png_metadata(prov, fig.title);
-    std::vector<OutputFile> files{{*r.out + ".csv", [&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); }}};
-    for (OutputFile& pic : picture_files(*r.out, r.picture, [&](std::ostream& out, ImageFormat fmt) {
-           write_figure(out, fig, fmt, r.picture.render);
+    std::vector<OutputFile> files{{*req.out + ".csv", [&](std::ostream& f) { f << prov.as_comment_lines() << csv.str(); }}};
+    for (OutputFile& pic : picture_files(*req.out, req.picture, [&](std::ostream& out, ImageFormat fmt) {
+           write_figure(out, fig, fmt, req.picture.render);
          }))
       files.push_back(std::move(pic));
-    files.push_back({*r.out + ".json", [&](std::ostream& f) { f << doc.dump(2) << "\n"; }});
+    files.push_back({*req.out + ".json", [&](std::ostream& f) { f << doc.dump(2) << "\n"; }});
     write_output_set(files, &outputs);
   }
   if (print_json) command_out() << doc.dump(2) << "\n";
@@ -452,12 +406,12 @@ Command add_continue(CLI::App& app) {
   // add_continue has returned.
   auto run = [opts, scene, json_flag, quiet](const std::string& argv_text) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "continue", continue_keys()), opts->collected());
-    const ContinueRequest req = continue_request(o);
-    const Provenance prov = provenance_for("continue", o, req.precision, argv_text);
+    const Request req = request_from(o);
+    const Provenance prov = provenance_for("continue", o, req.science.precision, argv_text);
     OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
     if (req.out)
       for (const std::string& path : output_paths(*req.out, req.picture)) outputs.reserve("out", path);
-    return with_point_scalar(req.precision, [&](auto tag) {
+    return with_point_scalar(req.science.precision, [&](auto tag) {
       return run_typed<typename decltype(tag)::type>(req, prov, *json_flag, outputs);
     });
   };

@@ -5,6 +5,7 @@
 
 #include "analysis_common.hpp"
 #include "bouncer/analysis/periodic.hpp"
+#include "bouncer/io/requests/guess.hpp"
 #include "commands.hpp"
 
 namespace bouncer::cli {
@@ -76,14 +77,7 @@ Command add_periodic(CLI::App& app) {
     const ModelSpec spec = model_from(o);
     const long q = periodic_period_from(o);
     const NewtonOptions no = periodic_newton_from(o);
-    std::optional<InitialCondition> guess;
-    if (o.has("guess")) {
-      const auto& g = o.values.at("guess");
-      if (g.size() != 2) throw InputError("guess", "takes two values theta,v (got " + std::to_string(g.size()) + ")");
-      InitialCondition ic{parse_decimal("guess", g[0]), parse_decimal("guess", g[1])};
-      validate(spec, ic, "guess", "guess");
-      guess = ic;
-    }
+    const std::optional<InitialCondition> guess = guess_from(o, spec);
     const Precision prec = analysis_precision(o, "periodic");
     const Provenance p = provenance_for("periodic", o, prec, argv_text);
     const nlohmann::ordered_json body = with_point_scalar(

@@ -2,11 +2,9 @@
 #include "bouncer/base/output.hpp"
 
 #include <iomanip>
-#include <optional>
 #include <ostream>
 #include <sstream>
 
-#include "bouncer/base/cancel.hpp"
 #include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {
@@ -228,11 +226,21 @@ std::vector<std::string> step_row(long long n, const StepResult<T>& r, const Mod
   return row;
 }
 
-// Interval runs with --method lohner follow Lohner's set c + B r (OrbitEnclosure): each
-// row's state is the box around the set, which grows at the rate of the linearized dynamics
-// instead of compounding the wrapping of a box. The event columns (tau, periods, sticking,
-// ...) are those of the interval step over the box before the step, which the Lohner step
-// computes anyway (EnclosedStep::event): enclosures for every state in the set.
+// The text sink of the orbit driver (run/orbit.hpp): each row as the writer's cells.
+template <class T>
+class TextSink final : public OrbitSink<T> {
+ public:
+  TextSink(RowWriter& w, const Model<T>& m, size_t orbit) : w_(w), m_(m), orbit_(orbit) {}
+  void start(const State<T>& s) override { w_.row(start_row(s, orbit_)); }
+  void row(long long n, const StepResult<T>& r) override { w_.row(step_row(n, r, m_, orbit_)); }
+  void check() override { w_.check(); }
+
+ private:
+  RowWriter& w_;
+  const Model<T>& m_;
+  size_t orbit_;
+};
+
 template <class T>
 std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std::ostream& out) {
   const long bits = req.precision.bits;
@@ -246,42 +254,8 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
   std::vector<OrbitOutcome> outcomes;
   for (size_t i = 0; i < req.initial.size(); ++i) {
     w.begin_orbit(i);
-    OrbitOutcome o;
-    State<T> s = starts[i];
-    w.row(start_row(s, i));
-    std::optional<OrbitEnclosureOf<std::conditional_t<ScalarTraits<T>::is_interval, T, Mpfi>>> lohner;
-    if constexpr (ScalarTraits<T>::is_interval) {
-      if (req.method == EnclosureMethod::lohner) {
-        lohner.emplace(map.model(), s, EnclosureMethod::lohner);
-        o.fallbacks = 0;
-      }
-    }
-    auto step = [&](const State<T>& from) -> StepResult<T> {
-      if constexpr (ScalarTraits<T>::is_interval) {
-        if (lohner) {
-          auto e = lohner->step();
-          o.fallbacks = lohner->fallbacks();
-          e.event.next = std::move(e.next);  // the Lohner box, tighter than the box image
-          return std::move(e.event);
-        }
-      }
-      return map.step(from);
-    };
-    for (long long n = 1; n <= req.steps; ++n) {
-      throw_if_cancelled(n);
-      try {
-        StepResult<T> r = step(s);
-        s = r.next;
-        o.steps_done = n;
-        if (o.phase_lost_at < 0 && r.phase_bits_lost >= ScalarTraits<T>::bits(s.theta)) o.phase_lost_at = n;
-        if (n % req.every == 0 || n == req.steps) w.row(step_row(n, r, map.model(), i));
-        if ((n & 4095) == 0) w.check();
-      } catch (const Undecided& u) {
-        o.undecided = true;
-        o.reason = u.what();
-        break;
-      }
-    }
+    TextSink<T> sink(w, map.model(), i);
+    const OrbitOutcome o = follow_orbit(map, starts[i], orbit_steps(req), sink);
     w.end_orbit(i, o, bits);
     outcomes.push_back(o);
   }

@@ -1,6 +1,7 @@
 // `bouncer orbit`: iterate the impact map from one or more initial conditions and stream
 // the states with what happened at each step, as CSV, JSON or an aligned table.
-// Memory is constant in the number of steps.
+// Memory is constant in the number of steps. The loop is the orbit driver's
+// (run/orbit.hpp follow_orbit); this file is its request and its text sink.
 #pragma once
 
 #include <iosfwd>
@@ -10,7 +11,7 @@
 
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
-#include "bouncer/verify/enclosure.hpp"
+#include "bouncer/run/orbit.hpp"
 
 namespace bouncer {
 
@@ -33,13 +34,8 @@ const std::set<std::string>& orbit_keys();
 // All validation of an orbit scene; throws InputError naming the option.
 OrbitRequest orbit_request(const Options& o);
 
-struct OrbitOutcome {
-  long long steps_done = 0;      // steps completed (rows n = 1..steps_done exist)
-  bool undecided = false;        // stopped early at step steps_done + 1
-  std::string reason;            // why, when undecided
-  long long phase_lost_at = -1;  // first step after which theta had no correct bit, or -1
-  long long fallbacks = -1;      // lohner: steps that used the naive box image; -1 otherwise
-};
+// The driver's settings of the request (run/orbit.hpp).
+inline OrbitSteps orbit_steps(const OrbitRequest& r) { return {r.steps, r.every, r.method}; }
 
 // Writes the provenance header, the rows and a final line per orbit.
 std::vector<OrbitOutcome> write_orbits(const OrbitRequest& r, const Provenance& p, std::ostream& out);

@@ -3,6 +3,8 @@
 // scalar type. The paper's explicit map (eqs. 3-4) is used only as a cross-check in tests.
 #pragma once
 
+#include <vector>
+
 #include "bouncer/model/model.hpp"
 #include "bouncer/scalar/scalar_set.hpp"
 
@@ -45,11 +47,32 @@ class ImpactMap {
   // One step. Throws Undecided when a branch cannot be decided (intervals, NaN).
   StepResult<T> step(const State<T>& s) const;
 
+  // The collision law (paper eq. 2) in the wall's frame: the relative speed after a
+  // collision of relative speed `speed` (constant: eps speed; veldep: exp(-(speed/c)^(3/5))
+  // speed; elastic: speed). Each bounce of a chatter is one such collision.
+  T rebound(const T& speed) const;
+
+  // A collapse on the wall (README "Sticking"): a chatter of relative launch speed w that
+  // begins `offset` after the collision that stuck.
+  struct Collapse {
+    T offset;
+    T w;
+  };
+  // The rest of a sticking step r of step() after its collision that stuck (r.stick_segment,
+  // r.stuck_theta, r.stuck_v), walked as step() walks it: the ride on the wall to the release
+  // (or to an upward-turn collision that launches the particle). Appends the collapse at the
+  // stuck collision (offset 0, w = stuck_v - u_j) and one for every upward-turn collision
+  // that sticks again (--downward-sticking impact); returns the walk's duration, so that the
+  // stuck collision was r.tau minus it after the step's start.
+  T after_sticking(const StepResult<T>& r, std::vector<Collapse>& collapses) const;
+
  private:
   Model<T> m_;
   T zero_;  // 0 at the model's precision, built once
-  void collide(StepResult<T>& r, int j, T theta, const T& speed, int knot = -1) const;
-  void ride(StepResult<T>& r, int j, const T& from) const;
+  // `collapses`: where after_sticking records the collapses of the walk (step(): none).
+  void collide(StepResult<T>& r, int j, T theta, const T& speed, int knot = -1,
+               std::vector<Collapse>* collapses = nullptr) const;
+  void ride(StepResult<T>& r, int j, const T& from, std::vector<Collapse>* collapses = nullptr) const;
   bool veldep_collapse_certain(const T& out, const T& time_left) const;
   Truth left_zone(const State<T>& s, int j0, const T& u, const T& q) const;
 };

@@ -240,17 +240,26 @@ Truth ImpactMap<T>::left_zone(const State<T>& s, int j0, const T& u, const T& q)
   return detail::both(Tr::lt(2 * f0, s.v * s.v), falling);
 }
 
-// The collision law (paper eq. 2) with relative impact speed `speed` = |v^- - fdot| on
-// segment j, then the sticking test of the constant-restitution model.
+// The collision law (paper eq. 2) in the wall's frame, written once: the map's collisions
+// and the trajectory's chatter bounces (analysis/trajectory.cpp) both use it.
 template <class T>
-void ImpactMap<T>::collide(StepResult<T>& r, int j, T theta, const T& speed, int knot) const {
+T ImpactMap<T>::rebound(const T& speed) const {
   using Tr = ScalarTraits<T>;
   using std::exp;
-  const Wall<T>& wall = m_.wall;
-  // Relative speed after the impact: eps * speed.
   T out = speed;
   if (m_.law == Law::constant) out *= m_.eps;
   if (m_.law == Law::veldep) out *= exp(-Tr::pow_3_5(speed / m_.c));
+  return out;
+}
+
+// A collision of relative impact speed `speed` = |v^- - fdot| on segment j: the collision
+// law, then the sticking test of the constant-restitution model.
+template <class T>
+void ImpactMap<T>::collide(StepResult<T>& r, int j, T theta, const T& speed, int knot,
+                           std::vector<Collapse>* collapses) const {
+  using Tr = ScalarTraits<T>;
+  const Wall<T>& wall = m_.wall;
+  const T out = rebound(speed);  // relative speed after the impact
   r.segment = j;
   r.next.v = wall.velocity[j] + out;
   // Sticking (paper sec. II.B.3, generalized to any segment): in the wall's frame each
@@ -269,7 +278,8 @@ void ImpactMap<T>::collide(StepResult<T>& r, int j, T theta, const T& speed, int
       r.stuck_theta = theta;
       r.stuck_v = r.next.v;
     }
-    ride(r, j, theta);
+    if (collapses) collapses->push_back({r.tau, out});
+    ride(r, j, theta, collapses);
     return;
   }
   r.next.theta = std::move(theta);
@@ -299,7 +309,7 @@ bool ImpactMap<T>::veldep_collapse_certain(const T& out, const T& time_left) con
 // it is released with the old wall velocity; at an upward turn the downward-sticking
 // convention decides (paper: keep riding; impact: the turn is a collision).
 template <class T>
-void ImpactMap<T>::ride(StepResult<T>& r, int j, const T& from) const {
+void ImpactMap<T>::ride(StepResult<T>& r, int j, const T& from, std::vector<Collapse>* collapses) const {
   const Wall<T>& wall = m_.wall;
   const T* pos = &from;
   for (;;) {
@@ -322,12 +332,25 @@ void ImpactMap<T>::ride(StepResult<T>& r, int j, const T& from) const {
             (m_.law == Law::constant || (m_.law == Law::veldep && m_.veldep_collapse)))
           break;
         r.corner = true;
-        collide(r, k, wall.start[k], wall.velocity[k] - wall.velocity[j], k);
+        collide(r, k, wall.start[k], wall.velocity[k] - wall.velocity[j], k, collapses);
         return;
     }
     j = k;
     pos = &wall.start[k];
   }
+}
+
+// The walk of ride() again from the stuck collision, with its own tau from zero, recording
+// the collapses (collide() appends one where a corner collision sticks again).
+template <class T>
+T ImpactMap<T>::after_sticking(const StepResult<T>& st, std::vector<Collapse>& collapses) const {
+  StepResult<T> r;  // the walk's own account: tau from the stuck collision
+  r.tau = zero_;
+  r.kind = EventKind::sticking;
+  const int j = st.stick_segment;
+  collapses.push_back({zero_, T(st.stuck_v - m_.wall.velocity[j])});
+  ride(r, j, st.stuck_theta, &collapses);
+  return r.tau;
 }
 
 }  // namespace bouncer

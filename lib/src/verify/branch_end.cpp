@@ -1,19 +1,19 @@
-// bouncer continue --certify (see continue_certify.hpp).
-#include "continue_certify.hpp"
+#include "bouncer/verify/branch_end.hpp"
+
+#include <optional>
+#include <utility>
 
 #include "bouncer/verify/periodic_certify.hpp"
-#include "bouncer/verify/sticking.hpp"
 
-namespace bouncer::cli {
+namespace bouncer {
 
-nlohmann::ordered_json certify_end(const EndToCertify& e) {
-  const Decimal lo = parse_decimal("certify", e.lo), hi = parse_decimal("certify", e.hi);
+BranchEndCertificate certify_branch_end(const BranchEndQuestion& e) {
   PeriodicQuestion q;
-  q.model = with_parameter(e.model, e.vary, lo);  // as certify-periodic: the model at the range's start
+  q.model = with_parameter(e.model, e.vary, e.lo);  // as certify-periodic: the model at the range's start
   q.period = e.period;
-  q.guess = InitialCondition{parse_decimal("certify", e.theta), parse_decimal("certify", e.v)};
+  q.guess = e.last_point;
   q.vary = e.vary;
-  q.range = std::make_pair(lo.value(), hi.value());
+  q.range = std::make_pair(e.lo.value(), e.hi.value());
   q.family = FamilyMode::isolated;
   // Pieces next to a* cannot be certified (the orbit's box straddles the border): a short
   // schedule keeps their cost bounded. The bisection goes depth first from the range's
@@ -37,22 +37,18 @@ nlohmann::ordered_json certify_end(const EndToCertify& e) {
       from = it->lo;
     }
   }
-  nlohmann::ordered_json j;
-  j["range"] = {e.lo, e.hi};
+  BranchEndCertificate c;
   if (from && to) {
-    j["certified_range"] = {exact_decimal(*from), exact_decimal(*to)};
-    j["certified_to"] = exact_decimal(e.high_end ? *to : *from);
-    std::string events;
+    c.certified = true;
+    c.from = *from;
+    c.to = *to;
+    c.bound = e.high_end ? *to : *from;
     for (const std::string& s : rep.pieces[e.high_end ? 0 : rep.pieces.size() - 1].cert.events)
-      events += (events.empty() ? "" : " ") + s;
-    j["events"] = events;
-  } else {
-    j["certified_range"] = nullptr;
-    j["certified_to"] = nullptr;
+      c.events += (c.events.empty() ? "" : " ") + s;
   }
-  j["theorem"] = rep.theorem;
-  j["pieces"] = rep.pieces.size();
-  return j;
+  c.theorem = rep.theorem;
+  c.pieces = rep.pieces.size();
+  return c;
 }
 
-}  // namespace bouncer::cli
+}  // namespace bouncer

@@ -4,14 +4,15 @@
 //    parsers and validation: io/scene.cpp model_from, parse_precision), and its methods call
 //    the library's functions on it: ImpactMap<T>::step, the orbit driver (run/orbit.hpp)
 //    with a sink that fills numpy arrays straight from the StepResult<T> fields (no text in
-//    between for double), classify,
-//    find_periodic / search_periodic, lyapunov, continue_branch, certify_sticking and
-//    certify_periodic. The analyses return plain dicts that the Python layer
-//    (python/bouncer/__init__.py) turns into dataclasses.
+//    between for double), classify, find_periodic / search_periodic, lyapunov,
+//    continue_branch, certify_sticking, certify_periodic, and the grids (run/: basin, scan,
+//    bifurcation, portrait, exponent curves, read by the CLI's own request readers,
+//    io/requests/). The analyses return plain dicts that the Python layer
+//    (python/bouncer/_model.py) turns into dataclasses.
 //  * run(words): a bouncer command line run in this process (tools/run_command.hpp: the
 //    same parsing, validation and code as the command-line tool), which returns what the
-//    command printed. The CLI-parity path, and the way to the commands whose science is
-//    still in tools/ (basin, scan, bifurcation, exponent curves, ...).
+//    command printed. The CLI-parity path, and the way to the commands with no typed call
+//    yet (trajectory, tongues, ...).
 //
 // No science here: the collision law, the analyses and the certificates are the library's.
 // What this file does is conversion (Python values <-> option texts and scalars), the GIL and
@@ -49,11 +50,14 @@
 
 #include "analysis_common.hpp"
 #include "bouncer/io/options.hpp"
+#include "bouncer/io/curve_figures.hpp"
+#include "bouncer/io/requests/exponent_curve.hpp"
 #include "bouncer/io/requests/grids.hpp"
 #include "bouncer/io/requests/certify_periodic.hpp"
 #include "bouncer/io/requests/certify_sticking.hpp"
 #include "bouncer/io/requests/continue.hpp"
 #include "bouncer/io/requests/guess.hpp"
+#include "bouncer/io/requests/portrait.hpp"
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/analysis/lyapunov.hpp"
@@ -1009,6 +1013,101 @@ class ModelCore {
     return d;
   }
 
+  // bouncer portrait (run/portrait.hpp): one row per point, as the CSV (orbit, n, theta, v,
+  // event); the picture's options (--polar, windows) change no point and are not taken.
+  py::dict portrait(const Texts& texts) const {
+    const Options o = with_model(texts);
+    const PortraitOptions p = portrait_options(o);
+    const GridOptions run = grid_run_options(o);
+    const PortraitResult r = interruptible([&] { return bouncer::portrait(p.request, run); });
+    size_t rows = 0;
+    for (const PortraitOrbit& q : r.orbits) rows += q.points.size();
+    const auto n_rows = static_cast<py::ssize_t>(rows);
+    py::array_t<std::int64_t> orbit(n_rows), n(n_rows);
+    py::array_t<double> theta(n_rows), v(n_rows);
+    py::array_t<std::int8_t> event(n_rows);
+    py::list theta_text, v_text, undecided, starts;
+    const bool texts_too = p.request.precision.kind != Precision::Kind::double_;
+    py::ssize_t at = 0;
+    for (size_t k = 0; k < r.orbits.size(); ++k) {
+      const PortraitOrbit& q = r.orbits[k];
+      for (const PortraitPoint& pt : q.points) {
+        orbit.mutable_at(at) = static_cast<std::int64_t>(k);
+        n.mutable_at(at) = pt.n;
+        theta.mutable_at(at) = pt.theta.value;
+        v.mutable_at(at) = pt.v.value;
+        event.mutable_at(at) = pt.event ? event_code(*pt.event) : kStartEvent;
+        if (texts_too) {
+          theta_text.append(pt.theta.digits);
+          v_text.append(pt.v.digits);
+        }
+        ++at;
+      }
+      if (q.undecided_step) undecided.append(py::make_tuple(k, *q.undecided_step, q.undecided_reason));
+    }
+    for (const InitialCondition& ic : r.request.starts) starts.append(py::make_tuple(ic.theta.text(), ic.v.text()));
+    py::dict d;
+    d["orbit"] = orbit;
+    d["n"] = n;
+    d["theta"] = theta;
+    d["v"] = v;
+    d["event"] = event;
+    d["theta_text"] = texts_too ? py::object(theta_text) : py::object(py::none());
+    d["v_text"] = texts_too ? py::object(v_text) : py::object(py::none());
+    d["starts"] = starts;
+    d["undecided"] = undecided;
+    d["steps"] = r.request.steps;
+    d["transient"] = r.request.transient;
+    return d;
+  }
+
+  // bouncer lyapunov --vary (run/exponent_curve.hpp): (values, starts) arrays.
+  py::dict lyapunov_curve(const Texts& texts) const {
+    const Options o = with_model(texts);
+    if (!o.has("vary")) throw InputError("vary", "is needed: a, eps or c");
+    const ExponentCurveRequest req = exponent_curve_request(o);
+    const GridOptions run = grid_run_options(o);
+    const ExponentCurveResult r = interruptible([&] { return bouncer::exponent_curve(req, run); });
+    const auto K = static_cast<py::ssize_t>(r.columns.size()), N = static_cast<py::ssize_t>(r.starts.size());
+    py::array_t<double> value(K), max_lambda(K), mean_lambda(K), lambda({K, N}), stderr_({K, N});
+    py::array_t<std::int64_t> period({K, N});
+    std::vector<const ExponentRow*> cells;
+    py::list values, starts;
+    auto l = lambda.mutable_unchecked<2>();
+    auto e = stderr_.mutable_unchecked<2>();
+    auto q = period.mutable_unchecked<2>();
+    for (py::ssize_t k = 0; k < K; ++k) {
+      const ExponentColumn& c = r.columns[static_cast<size_t>(k)];
+      value.mutable_at(k) = c.value.value;
+      values.append(c.value.digits);
+      max_lambda.mutable_at(k) = c.max_lambda();
+      mean_lambda.mutable_at(k) = c.mean_lambda();
+      for (py::ssize_t j = 0; j < N; ++j) {
+        const ExponentRow& row = c.rows[static_cast<size_t>(j)];
+        l(k, j) = row.lambda;
+        e(k, j) = row.stderr_;
+        q(k, j) = row.period;
+        cells.push_back(&row);
+      }
+    }
+    std::vector<std::string> names;
+    for (const InitialCondition& ic : r.starts) starts.append(py::make_tuple(ic.theta.text(), ic.v.text()));
+    py::dict d;
+    d["vary"] = name(req.vary);
+    d["value"] = value;
+    d["values"] = values;
+    d["starts"] = starts;
+    d["lambda_"] = lambda;
+    d["stderr"] = stderr_;
+    d["class_"] = codes_of(cells, [](const ExponentRow* row) { return std::string(name(row->cls)); }, names);
+    d["class_names"] = names;
+    d["period"] = period;
+    d["max_lambda"] = max_lambda;
+    d["mean_lambda"] = mean_lambda;
+    d["shape"] = py::make_tuple(K, N);
+    return d;
+  }
+
   // What the model was built from, for repr and provenance: the option texts.
   py::dict options() const {
     py::dict d;
@@ -1242,6 +1341,8 @@ PYBIND11_MODULE(_core, mod) {
       .def("_basin", &ModelCore::basin, py::arg("options"))
       .def("_scan", &ModelCore::scan, py::arg("options"))
       .def("_bifurcation", &ModelCore::bifurcation, py::arg("options"))
+      .def("_portrait", &ModelCore::portrait, py::arg("options"))
+      .def("_lyapunov_curve", &ModelCore::lyapunov_curve, py::arg("options"))
       .def_property_readonly("options", &ModelCore::options, "The option texts the model was built from")
       .def_property_readonly("precision", &ModelCore::precision_text, "The precision: double, long, dd, quad, mpfr:BITS, "
                                                                       "interval:BITS or interval:double")

@@ -503,24 +503,4 @@ std::optional<std::vector<Cell>> run_cells(const std::string& command, const Opt
   return decode_cells<Cell>(*items);
 }
 
-// A grid job whose items are computed by Grid<T> (T the point type of req.precision), in
-// tiles of about items/64 (at most max_tile) items; `finish(req, items, flags, provenance)`
-// writes the outputs once every tile is done (not after a shard run).
-template <template <class> class Grid, class Request, class Finish>
-int run_point_grid(const std::string& command, const Options& o, const RunFlags& f, const Request& req,
-                   long items, long max_tile, Finish&& finish) {
-  PictureJob job;
-  job.command = command;
-  job.job = job_options(o);
-  job.plan = point_grid_plan(items, max_tile);
-  const Provenance prov = provenance_for(command, job.job, req.precision, f.invocation);
-  return with_point_scalar(req.precision, [&](auto tag) {
-    auto grid = std::make_shared<Grid<typename decltype(tag)::type>>(req);
-    job.item = [grid](long i) { return grid->item(i); };
-    const auto results = run_job(job, f);
-    if (results) finish(req, *results, f, prov);
-    return 0;
-  });
-}
-
 }  // namespace bouncer::cli

@@ -7,9 +7,10 @@ validated once; ``m.step(theta, v)`` is one step of the impact map (a Step),
 ``m.orbit(theta, v, steps)`` an orbit as numpy arrays filled in C++ (an Orbit), and
 ``m.classify``, ``m.lyapunov``, ``m.periodic``, ``m.continue_branch``,
 ``m.certify_sticking``, ``m.certify_periodic``, and the grids ``m.basin``, ``m.scan``,
-``m.bifurcation`` call the library's analyses and return dataclasses (Classification,
-Lyapunov, PeriodicOrbit, Branch, StickingCertificate, PeriodicCertificate, Basin, Scan,
-Bifurcation), with the command line's defaults. Numbers are float in double, decimal
+``m.bifurcation``, ``m.portrait``, ``m.lyapunov_curve`` call the library's analyses and
+return dataclasses (Classification, Lyapunov, PeriodicOrbit, Branch, StickingCertificate,
+PeriodicCertificate, Basin, Scan, Bifurcation, Portrait, ExponentCurve), with the command
+line's defaults. Numbers are float in double, decimal
 texts (str) in the other point precisions, Interval (exact ends ``lo``/``hi``,
 ``to_mpmath()``) in interval precisions.
 
@@ -24,8 +25,8 @@ options (``--theta-range`` is ``theta_range``); ranges are pairs (``a_range=(28,
 grids pairs (``grid=(200, 150)``), flags booleans. Tables come as numpy arrays: float64 for
 doubles (bit for bit the CLI's), str for other precisions, int64 for integer columns (-1
 where the CLI's field is empty), int8 codes into ``CLASSES`` for grid class labels. This
-layer also reaches what the library does not offer as a typed call yet: exponent curves (``lyapunov(vary=...)``), precision sweeps, parameter
-ranges of the certified commands, and the other commands through ``run``.
+layer also reaches what the library does not offer as a typed call yet: precision sweeps,
+parameter ranges of the certified commands, and the other commands through ``run``.
 
 Both layers: decimal strings and ``decimal.Decimal`` are exact (``a="28.82"``); Python floats
 are the exact decimal of their binary value (``0.1`` is 0.1000000000000000055511...). Bad
@@ -41,8 +42,8 @@ from ._cli import (
 )
 from ._cli import _words  # the CLI's words for a call (tests/python compare with the executable)
 from ._model import (
-    EVENTS, Basin, Bifurcation, Branch, BranchEnd, Classification, Interval, Lyapunov, Model, Number, Orbit,
-    PeriodicCertificate, PeriodicOrbit, Real, Scan, Step, StickingCertificate, Undecided,
+    EVENTS, Basin, Bifurcation, Branch, BranchEnd, Classification, ExponentCurve, Interval, Lyapunov, Model, Number,
+    Orbit, PeriodicCertificate, PeriodicOrbit, Portrait, Real, Scan, Step, StickingCertificate, Undecided,
 )
 
 __version__ = _core.version
@@ -50,7 +51,7 @@ __all__ = [
     # the library, typed
     "Model", "Step", "Orbit", "Interval", "Undecided", "EVENTS", "Number", "Real",
     "Classification", "Lyapunov", "PeriodicOrbit", "Branch", "BranchEnd", "StickingCertificate",
-    "PeriodicCertificate", "Basin", "Scan", "Bifurcation",
+    "PeriodicCertificate", "Basin", "Scan", "Bifurcation", "Portrait", "ExponentCurve",
     # the command line, in-process
     "Result", "CLASSES", "run", "step", "orbit", "certify_sticking", "sweep", "periodic", "certify_periodic",
     "continue_branch", "lyapunov", "classify", "basin", "scan", "bifurcation", "to_mpmath",

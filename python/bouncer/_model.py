@@ -367,6 +367,63 @@ class Bifurcation:
     certified: Optional[List[Dict[str, Any]]]
 
 
+@dataclasses.dataclass(frozen=True)
+class Portrait:
+    """The orbits of a phase portrait (``bouncer portrait``; the library's ``portrait``): one
+    row per point, in the CSV's order.
+
+    orbit (int64: the start's index), n (int64: the step, 0 for the start, which is a row
+        only without a transient), theta, v (float64), event (int8 codes into ``EVENTS``:
+        "start", "impact", "sticking", "ride"): the rows
+    theta_text, v_text: the rows' numbers as the run's precision prints them (None in
+        double, where the floats are exact)
+    starts: the (theta, v) starts as given (exact decimal texts)
+    undecided: (orbit, step, reason) of each orbit stopped by a step the precision could
+        not decide
+    steps, transient: as used
+    """
+    orbit: np.ndarray
+    n: np.ndarray
+    theta: np.ndarray
+    v: np.ndarray
+    event: np.ndarray
+    theta_text: Optional[List[str]]
+    v_text: Optional[List[str]]
+    starts: List[Tuple[str, str]]
+    undecided: List[Tuple[int, int, str]]
+    steps: int
+    transient: int
+
+
+@dataclasses.dataclass(frozen=True)
+class ExponentCurve:
+    """The leading Lyapunov exponent against a parameter (``bouncer lyapunov --vary``; the
+    library's ``exponent_curve``): K values x N starts.
+
+    vary: "a" | "eps" | "c"; value (K,) float64: the values; values: the same as the run's
+        precision prints them
+    starts: the N starts (theta, v) as exact decimal texts, the same at every value
+    lambda_ (K, N) float64: the exponent per collision (-inf: a sticking step contracted the
+        window; NaN: a step was undecided), bit for bit ``Model.lyapunov`` at that value and
+        start; stderr (K, N): its standard error
+    class_ (K, N) int8: codes into ``classes`` (bouncer.CLASSES), the class of each orbit
+        where its window ended; period (K, N) int64
+    max_lambda (K,): the largest exponent over the starts (NaN skipped); mean_lambda (K,)
+        their mean (NaN if one is NaN): the CLI's JSON values
+    """
+    vary: str
+    value: np.ndarray
+    values: List[str]
+    starts: List[Tuple[str, str]]
+    lambda_: np.ndarray
+    stderr: np.ndarray
+    class_: np.ndarray
+    period: np.ndarray
+    max_lambda: np.ndarray
+    mean_lambda: np.ndarray
+    classes: Tuple[str, ...] = CLASSES
+
+
 def _grid_text(value: Any, name: str) -> Optional[str]:
     if value is None or isinstance(value, str):
         return value
@@ -490,7 +547,7 @@ class Model(_core.Model):
                  blocks: Optional[int] = None) -> Lyapunov:
         """The leading Lyapunov exponent per collision of the orbit from (theta, v), through
         the AD tangent map (``bouncer lyapunov``; the exponent curves of ``--vary`` are
-        ``bouncer.lyapunov(vary=..., range=...)``).
+        ``lyapunov_curve``).
 
         theta, v: the start, as for orbit
         transient: steps discarded first, an integer in [0, 1e12] (default 1000)
@@ -667,3 +724,52 @@ class Model(_core.Model):
                                      transient=transient, record=record, carry="true" if carry else None,
                                      certify="true" if certify else None, max_bits=max_bits, threads=threads))
         return Bifurcation(**d)
+
+    def portrait(self, theta: Union[Number, List[Number]], v: Union[Number, List[Number]], *,
+                 steps: Optional[int] = None, transient: Optional[int] = None,
+                 threads: Optional[int] = None) -> Portrait:
+        """The orbits of several starts, as a phase portrait draws them (``bouncer portrait``,
+        the same library call, reader and defaults; the picture's options change no point).
+
+        theta, v: one start, or lists of as many phases (in [0, 1)) and velocities (at least
+            the wall's velocity at each phase), 1..1000 starts
+        steps: points per orbit, an integer in [1, 1e7] (default 1000); starts x steps <= 2e7
+        transient: steps discarded first, an integer in [0, 1e8] (default 0; with 0 the start
+            itself is the first row)
+        threads: worker threads, an integer >= 1 (default: all cores); results do not depend on it
+        """
+        thetas = list(theta) if isinstance(theta, (list, tuple)) else [theta]
+        vs = list(v) if isinstance(v, (list, tuple)) else [v]
+        d = self._portrait(_texts(theta=thetas, v=vs, steps=steps, transient=transient, threads=threads))
+        return Portrait(**d)
+
+    def lyapunov_curve(self, range: Tuple[Number, Number], *, vary: str = "a", samples: Optional[int] = None,
+                       ics: Optional[int] = None, theta: Optional[Number] = None, v: Optional[Number] = None,
+                       transient: Optional[int] = None, steps: Optional[int] = None, blocks: Optional[int] = None,
+                       max_period: Optional[int] = None, recheck_factor: Optional[int] = None,
+                       threads: Optional[int] = None) -> ExponentCurve:
+        """The leading Lyapunov exponent against a, eps or c (``bouncer lyapunov --vary``): at
+        each of K values p_k = LO + (HI - LO) k/(K - 1), the exponent of ``lyapunov`` for each
+        of the same N starts, and the class of that orbit where its window ended. This
+        model's value of the varied parameter is not used.
+
+        range: (LO, HI), LO < HI, both in the model's range; vary: "a" (default) | "eps"
+            (constant model) | "c" (veldep model)
+        samples: K in [1, 100000] (default 100)
+        ics: N in [1, 1000] (default 1): (theta, v) first (default theta = 0.1, v = the wall's
+            fastest upward velocity + 2), then an R2 low-discrepancy spread in the trapping
+            region of every value
+        transient: steps discarded first, in [0, 1e9] (default 1000); steps: steps measured,
+            in [1, 1e9] (default 10000); blocks: of the error estimate, in [1, 10000] (default 20)
+        max_period, recheck_factor: the classifier's, as classify (its transient is 0, its
+            window 500 steps)
+        threads: worker threads (default: all cores)
+        """
+        d = self._lyapunov_curve(_texts(range=_range_text(range, "range"), vary=vary, samples=samples, ics=ics,
+                                        theta=theta, v=v, transient=transient, steps=steps, blocks=blocks,
+                                        max_period=max_period, recheck_factor=recheck_factor, threads=threads))
+        shape = tuple(d["shape"])
+        return ExponentCurve(vary=d["vary"], value=d["value"], values=d["values"], starts=d["starts"],
+                             lambda_=d["lambda_"], stderr=d["stderr"],
+                             class_=_recode(d["class_"], d["class_names"], CLASSES, shape), period=d["period"],
+                             max_lambda=d["max_lambda"], mean_lambda=d["mean_lambda"])

@@ -12,16 +12,7 @@ namespace bouncer {
 namespace {
 
 void check_bifurcation(const BifurcationRequest& r) {
-  if (r.vary == Parameter::eps && r.model.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
-  if (r.vary == Parameter::c && r.model.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
-  if (!(r.lo < r.hi)) throw InputError("range", "needs LO < HI");
-  for (const Decimal& end : {r.lo, r.hi}) {
-    try {
-      validate(with_parameter(r.model, r.vary, end));
-    } catch (const InputError& e) {
-      throw InputError("range", "end " + end.text() + " is outside the model's range (" + e.what() + ")");
-    }
-  }
+  check_varied_range(r.model, r.vary, r.lo, r.hi);
   if (r.samples < 1 || r.samples > 100000) throw InputError("samples", "must be an integer in [1, 100000]");
   if (r.transient < 0 || r.transient > 100000000) throw InputError("transient", "must be an integer in [0, 100000000]");
   if (r.record < 1 || r.record > 1000000) throw InputError("record", "must be an integer in [1, 1000000]");

@@ -76,6 +76,19 @@ CertifiedCell certified_with_twin(const CertifiedPoint& c, const Classification&
   return {c.cls, c.period, c.certified_steps, c.scalar, twin.cls, twin.period, compare_with_certified(c, twin.cls, twin.period)};
 }
 
+void check_varied_range(const ModelSpec& m, Parameter vary, const Decimal& lo, const Decimal& hi) {
+  if (vary == Parameter::eps && m.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
+  if (vary == Parameter::c && m.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
+  if (!(lo < hi)) throw InputError("range", "needs LO < HI");
+  for (const Decimal& end : {lo, hi}) {
+    try {
+      validate(with_parameter(m, vary, end));
+    } catch (const InputError& e) {
+      throw InputError("range", "end " + end.text() + " is outside the model's range (" + e.what() + ")");
+    }
+  }
+}
+
 GridPlan point_grid_plan(long items, long max_tile) {
   GridPlan plan;
   plan.items = items;

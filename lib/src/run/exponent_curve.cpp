@@ -21,16 +21,7 @@ std::string integer_range(long long lo, long long hi) {
 }
 
 void check_curve(const ExponentCurveRequest& r) {
-  if (r.vary == Parameter::eps && r.model.law != Law::constant) throw InputError("vary", "eps can only vary with --model constant");
-  if (r.vary == Parameter::c && r.model.law != Law::veldep) throw InputError("vary", "c can only vary with --model veldep");
-  if (!(r.lo < r.hi)) throw InputError("range", "needs LO < HI");
-  for (const Decimal& end : {r.lo, r.hi}) {
-    try {
-      validate(with_parameter(r.model, r.vary, end));
-    } catch (const InputError& e) {
-      throw InputError("range", "end " + end.text() + " is outside the model's range (" + e.what() + ")");
-    }
-  }
+  check_varied_range(r.model, r.vary, r.lo, r.hi);
   if (r.samples < 1 || r.samples > 100000) throw InputError("samples", integer_range(1, 100000));
   if (r.ics < 1 || r.ics > 1000) throw InputError("ics", integer_range(1, 1000));
   if (r.lyapunov.transient < 0 || r.lyapunov.transient > 1000000000L) throw InputError("transient", integer_range(0, 1000000000L));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "bouncer/analysis/classify.hpp"
+#include "bouncer/model/spec.hpp"
 #include "bouncer/run/grid.hpp"
 #include "bouncer/scalar/number.hpp"
 #include "bouncer/verify/certified_point.hpp"
@@ -73,6 +74,11 @@ std::vector<Number> axis(long n, F&& at) {
   for (long k = 0; k < n; ++k) out.push_back(number_of(at(k)));
   return out;
 }
+
+// A parameter swept over [lo, hi] (bifurcation, exponent curves): eps varies only with
+// constant restitution and c only with the velocity-dependent law (InputError "vary"), lo < hi,
+// and both ends give a valid model (InputError "range").
+void check_varied_range(const ModelSpec& m, Parameter vary, const Decimal& lo, const Decimal& hi);
 
 // The tiles of a point grid of `items` cells: about items/64 each, at most max_tile.
 GridPlan point_grid_plan(long items, long max_tile);

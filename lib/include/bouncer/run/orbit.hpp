@@ -3,7 +3,7 @@
 // the loop of `bouncer orbit` (whose sink writes CSV, JSON or a table: io/orbit.cpp) and of
 // bouncer.Model.orbit (whose sink fills numpy columns: python/module.cpp), so that the two
 // follow the same steps: the same Lohner or box step, the same stop at an undecided step,
-// the same phase-loss count, and Ctrl-C (io/cancel.hpp) checked every 256 steps.
+// the same phase-loss count, and Ctrl-C (base/cancel.hpp) checked every 256 steps.
 #pragma once
 
 #include <string>

@@ -28,10 +28,6 @@ namespace fs = std::filesystem;
 using namespace bouncer;
 using namespace bouncer::test_support;
 
-auto text(const std::string& t) {
-  return [t](std::ostream& s) { s << t; };
-}
-
 // The InputError's message, or "" when none is thrown.
 template <class F>
 std::string input_error(F&& f) {

@@ -38,24 +38,6 @@ namespace fs = std::filesystem;
 using namespace bouncer;
 using namespace bouncer::test_support;
 
-auto text(const std::string& t) {
-  return [t](std::ostream& s) { s << t; };
-}
-
-// The InputError's message (checking that it names `field`), or "" when none is thrown.
-template <class F>
-std::string input_error(const std::string& field, F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.field, field) << e.what();
-    EXPECT_EQ(std::string(e.what()).rfind(field + ": ", 0), 0u) << e.what();
-    return e.what();
-  }
-  ADD_FAILURE() << "expected InputError(" << field << ")";
-  return "";
-}
-
 // The OutputError's message, or "" when none is thrown.
 template <class F>
 std::string output_error(F&& f) {
@@ -110,12 +92,12 @@ TEST(OutputTarget, EachKindOfPathIsClassifiedAsDocumented) {
 
 TEST(OutputTarget, RefusedPathsNameTheField) {
   TempDir d;
-  EXPECT_TRUE(contains(input_error("png", [&] { output_target("png", ""); }), "is empty"));
+  EXPECT_TRUE(contains(expect_input_error([&] { output_target("png", ""); }, "png"), "is empty"));
   fs::create_symlink(d / "nowhere", d / "dangling");
-  EXPECT_TRUE(contains(input_error("png", [&] { output_target("png", d / "dangling"); }), "symbolic link to nothing"));
+  EXPECT_TRUE(contains(expect_input_error([&] { output_target("png", d / "dangling"); }, "png"), "symbolic link to nothing"));
   fs::create_directory(d / "dir");
   fs::create_directory_symlink(d / "dir", d / "dirlink");
-  EXPECT_TRUE(contains(input_error("json", [&] { output_target("json", d / "dirlink"); }), "symbolic link to a directory"));
+  EXPECT_TRUE(contains(expect_input_error([&] { output_target("json", d / "dirlink"); }, "json"), "symbolic link to a directory"));
   // A socket.
   const int s = ::socket(AF_UNIX, SOCK_STREAM, 0);
   ASSERT_GE(s, 0);
@@ -125,7 +107,7 @@ TEST(OutputTarget, RefusedPathsNameTheField) {
   ASSERT_LT(sock.size(), sizeof addr.sun_path);
   std::strcpy(addr.sun_path, sock.c_str());
   ASSERT_EQ(::bind(s, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
-  EXPECT_TRUE(contains(input_error("out", [&] { output_target("out", sock); }), "is a socket"));
+  EXPECT_TRUE(contains(expect_input_error([&] { output_target("out", sock); }, "out"), "is a socket"));
   ::close(s);
   // Nothing was created beside what the test made.
   EXPECT_EQ(d.entries(), 4);
@@ -299,7 +281,7 @@ TEST(Lock, AnotherProcessHoldingThePathIsNamedAndItsDeathFreesIt) {
   char c = 0;
   ASSERT_EQ(::read(ready[0], &c, 1), 1);
   OutputSet mine;
-  const std::string m = input_error("out", [&] { mine.reserve("out", path); });
+  const std::string m = expect_input_error([&] { mine.reserve("out", path); }, "out");
   EXPECT_TRUE(contains(m, "is in use by process " + std::to_string(pid))) << m;
   EXPECT_TRUE(contains(m, "is locked")) << m;
   EXPECT_EQ(slurp(path + ".partial"), "child\n");  // the other run's work is untouched
@@ -401,7 +383,7 @@ TEST(OwnDirectory, ExistingDirectoriesAreKeptAndOtherThingsRefused) {
   make_own_directory("out", d / "p.tiles");
   EXPECT_EQ(slurp(d / "p.tiles/tile-0"), "saved\n");
   put(d / "file", "x");
-  EXPECT_TRUE(contains(input_error("out", [&] { make_own_directory("out", d / "file"); }), "exists and is not a directory"));
+  EXPECT_TRUE(contains(expect_input_error([&] { make_own_directory("out", d / "file"); }, "out"), "exists and is not a directory"));
   EXPECT_EQ(slurp(d / "file"), "x");
   // Its parent must exist: that is a failure to create, not a path to guess.
   EXPECT_FALSE(output_error([&] { make_own_directory("out", d / "missing/p.tiles"); }).empty());

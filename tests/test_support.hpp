@@ -60,6 +60,11 @@ inline std::string put(const std::string& path, const std::string& text) {
   return path;
 }
 
+// A body for the writers of base/output.hpp that writes `t`.
+inline auto text(const std::string& t) {
+  return [t](std::ostream& s) { s << t; };
+}
+
 inline bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // Runs f and expects an InputError naming `field`, whose message starts with the field's name

@@ -9,7 +9,7 @@ namespace bouncer::cli {
 
 // What audit reruns for a result file.
 struct AuditPlan {
-  std::string command;             // a computing command (computing_commands())
+  std::string command;             // a computing command (workflow/commands.hpp)
   std::vector<std::string> argv;   // argv[0] is `self`; any --out points into `dir`
   std::string compare_path;        // where the rerun's result will be, to compare with the file
   bool is_json = false;            // the file is JSON (else text/CSV with "# " provenance lines)

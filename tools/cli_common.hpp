@@ -145,24 +145,6 @@ inline void check_prefix(const std::string& field, const std::string& prefix, co
     throw InputError(field, "directory '" + parent.string() + "' does not exist");
 }
 
-// A name from a file bouncer did not write (a manifest's ids and labels, a claims.json's
-// file names) that becomes a file name: letters, digits and . _ : + - only, not starting
-// with '.' or '-', no "..", at most 100 characters. No '/', so it names nothing outside the
-// directory it is put in.
-inline bool safe_name(const std::string& s) {
-  if (s.empty() || s.size() > 100 || s.find("..") != std::string::npos || s[0] == '.' || s[0] == '-') return false;
-  return s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._:+-") == std::string::npos;
-}
-
-// The commands that compute a result: the only ones a manifest may run and audit may rerun
-// (never reproduce, audit or merge, which start processes or read prefixes of their own).
-inline const std::set<std::string>& computing_commands() {
-  static const std::set<std::string> c{"orbit",     "certify-sticking", "certify-periodic", "sweep",     "periodic",
-                                       "lyapunov",  "classify",         "bifurcation",      "portrait",  "basin",
-                                       "scan",      "continue",         "trajectory",       "tongues"};
-  return c;
-}
-
 // ---- Pictures: formats, size, resolution and palette (presentation only) -------------------
 // These options change how a picture looks, never a computed value: they are not part of a
 // grid job's key (picture_common.hpp), so re-rendering a finished or resumed job with

@@ -43,7 +43,8 @@
 #include "audit.hpp"
 #include "bouncer/base/cancel.hpp"
 #include "bouncer/base/input.hpp"
-#include "child_process.hpp"
+#include "bouncer/workflow/child_process.hpp"
+#include "bouncer/workflow/commands.hpp"
 #include "cli_common.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
@@ -479,7 +480,7 @@ AuditPlan plan_rerun(const std::string& path, const std::string& text, const std
   // a computing command with its recorded inputs as options. Never reproduce, audit or
   // merge, never an input that names where to read tiles, a scene or a manifest: no bouncer
   // result records one, so a file that does was made by hand.
-  if (!computing_commands().count(rec->command))
+  if (!is_computing_command(rec->command))
     throw InputError("file", "'" + path + "' records the command '" + one_line(rec->command, 60) +
                                  "', which audit does not rerun (it reruns the results of bouncer's computing commands; "
                                  "a reproduce directory is audited as a directory)");
@@ -620,8 +621,7 @@ int audit(const std::string& path, bool trust_manifest) {
 
 }  // namespace
 
-Command add_audit(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("audit", "Rerun a recorded result from its provenance; exit 0 if bit-identical");
+CommandRunner setup_audit(CLI::App* sub) {
   auto file = std::make_shared<std::string>();
   auto trust = std::make_shared<bool>(false);
   sub->add_option("file", *file, "A JSON or CSV/text result written by bouncer, or a bouncer reproduce directory")->required();
@@ -635,7 +635,7 @@ Command add_audit(CLI::App& app) {
       throw InputError("file", "'" + *file + "' is malformed: " + e.what());
     }
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -82,8 +82,7 @@ int run_basin(const Options& o, const RunFlags& f) {
   return 0;
 }
 
-Command add_basin(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("basin", "Basins of attraction: classify a grid of initial conditions; CSV, PNG, JSON");
+CommandRunner setup_basin(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -103,7 +102,7 @@ Command add_basin(CLI::App& app) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
     return run_basin(o, run_flags_from(o, *flags, argv_text));
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

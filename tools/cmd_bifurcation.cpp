@@ -92,8 +92,7 @@ int run_bifurcation(const Options& o, const RunFlags& f) {
   return 0;
 }
 
-Command add_bifurcation(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("bifurcation", "Bifurcation diagram: sweep a, eps or c; CSV, density PNG, JSON");
+CommandRunner setup_bifurcation(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -118,7 +117,7 @@ Command add_bifurcation(CLI::App& app) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "bifurcation", bifurcation_keys()), opts->collected());
     return run_bifurcation(o, run_flags_from(o, *flags, argv_text));
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -137,9 +137,7 @@ json inputs_json(const Request& r) {
 
 }  // namespace
 
-Command add_certify_periodic(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand(
-      "certify-periodic", "Certified period-Q orbit (Krawczyk): existence, uniqueness, multipliers, stability");
+CommandRunner setup_certify_periodic(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
@@ -225,7 +223,7 @@ Command add_certify_periodic(CLI::App& app) {
     write_result(r.out, r.json, p, body, &outputs);
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -117,9 +117,7 @@ ModelSpec with_a(ModelSpec m, const mpq_class& x) {
 
 }  // namespace
 
-Command add_certify_sticking(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand(
-      "certify-sticking", "Certified sticking period from the release state (1/2, 4), with precision escalation");
+CommandRunner setup_certify_sticking(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
@@ -192,7 +190,7 @@ Command add_certify_sticking(CLI::App& app) {
     write_result(r.out, r.json, p, body, &outputs);
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -50,8 +50,7 @@ nlohmann::ordered_json run_classify(const ModelSpec& spec, const Precision& prec
 
 }  // namespace
 
-Command add_classify(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("classify", "Classify an orbit's long-term behaviour (attractor type)");
+CommandRunner setup_classify(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
@@ -74,7 +73,7 @@ Command add_classify(CLI::App& app) {
     print_summary(p, body, *json);
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

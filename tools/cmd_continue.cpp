@@ -375,8 +375,7 @@ int run_typed(const Request& req, const Provenance& prov, bool print_json, Outpu
 
 }  // namespace
 
-Command add_continue(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("continue", "Continue a period-q orbit in a, eps or c; locate where its branch ends");
+CommandRunner setup_continue(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   auto json_flag = std::make_shared<bool>(false);
@@ -415,7 +414,7 @@ Command add_continue(CLI::App& app) {
       return run_typed<typename decltype(tag)::type>(req, prov, *json_flag, outputs);
     });
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -111,8 +111,7 @@ int run_lyapunov_curve(const Options& o, const RunFlags& f) {
   return 0;
 }
 
-Command add_lyapunov(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("lyapunov", "Leading Lyapunov exponent per collision (AD tangent map)");
+CommandRunner setup_lyapunov(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -149,7 +148,7 @@ Command add_lyapunov(CLI::App& app) {
     if (!body["note"].get<std::string>().empty()) std::cerr << "bouncer lyapunov: " << body["note"].get<std::string>() << "\n";
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

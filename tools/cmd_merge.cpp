@@ -59,8 +59,7 @@ int run_merge(const std::vector<std::string>& prefixes, Options o, const FlagSet
 
 }  // namespace
 
-Command add_merge(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("merge", "Join the tiles of shard runs (--shard i/N) into PREFIX.csv/.png/.json");
+CommandRunner setup_merge(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto prefixes = std::make_shared<std::vector<std::string>>();
   sub->add_option("prefix", *prefixes, "Output prefix(es) of the shard runs; the first names the job")->required();
@@ -74,7 +73,7 @@ Command add_merge(CLI::App& app) {
   auto run = [opts, prefixes, flags](const std::string& argv_text) {
     return run_merge(*prefixes, opts->collected(), *flags, argv_text);
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

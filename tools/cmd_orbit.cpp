@@ -8,8 +8,7 @@
 
 namespace bouncer::cli {
 
-Command add_orbit(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("orbit", "Iterate the impact map and print the orbit");
+CommandRunner setup_orbit(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -50,7 +49,7 @@ Command add_orbit(CLI::App& app) {
     }
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -58,8 +58,7 @@ nlohmann::ordered_json solve(const ModelSpec& spec, const Precision& prec, long 
 
 }  // namespace
 
-Command add_periodic(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("periodic", "Find a period-q orbit (Newton) and its stability multipliers");
+CommandRunner setup_periodic(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
@@ -87,7 +86,7 @@ Command add_periodic(CLI::App& app) {
       std::cerr << "bouncer periodic: no period-" << q << " orbit converged: " << body["note"].get<std::string>() << "\n";
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

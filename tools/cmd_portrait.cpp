@@ -61,8 +61,7 @@ int run_portrait(const Options& o, const RunFlags& f) {
   return 0;
 }
 
-Command add_portrait(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("portrait", "Phase portrait (theta, v) of several orbits; --polar for Fermi acceleration");
+CommandRunner setup_portrait(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -80,7 +79,7 @@ Command add_portrait(CLI::App& app) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "portrait", portrait_keys()), opts->collected());
     return run_portrait(o, run_flags_from(o, *flags, argv_text));
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

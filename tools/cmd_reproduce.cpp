@@ -45,7 +45,8 @@
 
 #include "bouncer/base/input.hpp"
 #include "bouncer/io/provenance.hpp"
-#include "child_process.hpp"
+#include "bouncer/workflow/child_process.hpp"
+#include "bouncer/workflow/commands.hpp"
 #include "cli_common.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
@@ -162,8 +163,10 @@ std::string command_problem(const std::vector<std::string>& argv) {
     return "";
   }
   if (argv[0] != "bouncer") return "must start with bouncer or proof_NAME, not '" + argv[0] + "'";
-  const std::set<std::string>& commands = computing_commands();
-  if (argv.size() < 2 || !commands.count(argv[1])) {
+  if (argv.size() < 2 || !is_computing_command(argv[1])) {
+    std::set<std::string> commands;  // (sorted, for the message)
+    for (const CommandInfo& c : command_table())
+      if (c.kind == CommandKind::computing) commands.emplace(c.name);
     std::string list;
     for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
     return "runs '" + (argv.size() < 2 ? std::string() : argv[1]) + "': a manifest runs only " + list;
@@ -1208,9 +1211,7 @@ int run_reproduce(const Options_& o) {
 
 }  // namespace
 
-Command add_reproduce(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand(
-      "reproduce", "Redraw every figure and recheck every claim of the paper; write DIR/report.md, report.html, claims.json");
+CommandRunner setup_reproduce(CLI::App* sub) {
   auto o = std::make_shared<Options_>();
   sub->add_flag("--quick", o->quick, "Small grids and few steps (default; under 3 minutes on 2 cores)");
   sub->add_flag("--full", o->full, "Paper resolution: 5000 transient + 500 recorded steps, 10 x 10 starts per scan point");
@@ -1225,7 +1226,7 @@ Command add_reproduce(CLI::App& app) {
                 "Validate every command of the manifest (quick and full) without running it: one line each; exit 1 if any is refused");
   sub->add_option("--manifest", o->manifest, "")->group("");  // hidden: another manifest (tests)
   auto run = [o](const std::string&) { return run_reproduce(*o); };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -78,8 +78,7 @@ int run_scan(const Options& o, const RunFlags& f) {
   return 0;
 }
 
-Command add_scan(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("scan", "Parameter scan over (a, eps) or (a, c): solution types per point; CSV, PNG, JSON");
+CommandRunner setup_scan(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -107,7 +106,7 @@ Command add_scan(CLI::App& app) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), opts->collected());
     return run_scan(o, run_flags_from(o, *flags, argv_text));
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

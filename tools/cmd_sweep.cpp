@@ -195,8 +195,7 @@ Figure divergence_figure(const SweepReport& rep, const Provenance& p, long long 
 
 }  // namespace
 
-Command add_sweep(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand("sweep", "One orbit in every precision against a certified interval reference");
+CommandRunner setup_sweep(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   auto as_json = std::make_shared<bool>(false);
@@ -239,7 +238,7 @@ Command add_sweep(CLI::App& app) {
     else command_out() << p.as_comment_lines() << text_table(rep, r.q.steps);
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -114,9 +114,7 @@ const std::set<std::string>& tongues_keys() {
 
 }  // namespace
 
-Command add_tongues(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand(
-      "tongues", "Arnold tongues (fig. arnold): eq. 5 fixed-point curves in (a, eps), solid where the proved family fills (0, 1/2)");
+CommandRunner setup_tongues(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -140,7 +138,7 @@ Command add_tongues(CLI::App& app) {
     finish(req, arnold_tongues(req), f, prov);
     return 0;
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

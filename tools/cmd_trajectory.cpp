@@ -125,9 +125,7 @@ int run_trajectory(const Options& o, const RunFlags& f) {
 
 }  // namespace
 
-Command add_trajectory(CLI::App& app) {
-  CLI::App* sub = app.add_subcommand(
-      "trajectory", "Particle and wall heights against time from a state (theta, v), impacts and sticking marked");
+CommandRunner setup_trajectory(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   auto scene = std::make_shared<std::string>();
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
@@ -142,7 +140,7 @@ Command add_trajectory(CLI::App& app) {
     const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "trajectory", trajectory_keys()), opts->collected());
     return run_trajectory(o, run_flags_from(o, *flags, argv_text));
   };
-  return {sub, run};
+  return run;
 }
 
 }  // namespace bouncer::cli

@@ -7,6 +7,7 @@
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/scene.hpp"
 #include "bouncer/model/spec.hpp"
+#include "bouncer/workflow/commands.hpp"
 #include "cli_common.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
@@ -125,15 +126,23 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
   char** argv = word_ptrs.data();
   CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)"};
   app.require_subcommand(1);
-  std::vector<Command> commands{add_orbit(app),    add_certify_sticking(app), add_certify_periodic(app), add_sweep(app),
-                                add_audit(app),    add_periodic(app),         add_lyapunov(app),         add_classify(app),
-                                add_bifurcation(app), add_portrait(app),      add_basin(app),            add_scan(app),
-                                add_merge(app),    add_continue(app),         add_trajectory(app),       add_tongues(app),
-                                add_reproduce(app)};
+  // One subcommand per row of the table of commands (workflow/commands.hpp), with the
+  // options of its setup (tools/commands.cpp).
+  struct Parsed {
+    CLI::App* app;
+    CommandRunner run;
+  };
+  std::vector<Parsed> commands;
+  for (const CommandInfo& info : command_table()) {
+    CLI::App* sub = app.add_subcommand(std::string(info.name), std::string(info.summary));
+    const CommandSetup setup = command_setup(info.name);
+    if (!setup) return failed(Kind::internal, 1, "internal error: the command '" + std::string(info.name) + "' has no setup");
+    commands.push_back({sub, setup(sub)});
+  }
 
   const std::string version = build_info().version + " (commit " + build_info().commit + ")";
   app.set_version_flag("--version", version);
-  for (const Command& c : commands) c.app->set_version_flag("--version", version);
+  for (const Parsed& c : commands) c.app->set_version_flag("--version", version);
   if (const std::string problem = check_command_line(app, argc, argv); !problem.empty()) {
     CommandOutcome o = failed(Kind::input, 2, problem);
     o.unknown_option = unknown_option_in(problem);
@@ -152,7 +161,7 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
   }
   if (standalone) install_interrupt_cleanup();  // SIGINT/SIGTERM/SIGHUP remove partial files (base/output.hpp)
   try {
-    for (const Command& c : commands)
+    for (const Parsed& c : commands)
       if (c.app->parsed()) {
         CommandOutcome o;
         o.status = c.run(invocation(argc, argv));

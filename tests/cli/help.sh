@@ -5,6 +5,9 @@
 #     wall, downward-sticking, theta, v, steps, precision, format, every, out, scene), with
 #     the allowed ranges of the numeric ones;
 #   - `bouncer --version` exits 0 and names version and commit;
+#   - every command the README documents is listed by `bouncer --help`, and its own --help
+#     exits 0 (the table of commands, lib/.../workflow/commands.hpp, and the binding of each
+#     row to its options, tools/commands.cpp, are complete);
 #   - `bouncer` without a subcommand is bad input (status 2, one line on stderr).
 # Usage: bash help.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -40,6 +43,15 @@ check_range every ">= 1"
 check_range precision "16 <= BITS <= 1048576"
 check_range model "elastic"
 check_range format "json"
+
+for cmd in orbit certify-sticking certify-periodic sweep audit periodic lyapunov classify bifurcation \
+  portrait basin scan merge continue trajectory tongues reproduce; do
+  grep -qE "^[[:space:]]+$cmd[[:space:]]" "$TMP/top" || fail "bouncer --help" "does not list $cmd"
+  rc=0
+  "$BOUNCER" "$cmd" --help >"$TMP/cmd" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] || fail "bouncer $cmd --help" "exit status $rc: $(head -c 300 "$TMP/cmd")"
+  grep -q "Usage:" "$TMP/cmd" || fail "bouncer $cmd --help" "prints no usage"
+done
 
 rc=0
 "$BOUNCER" --version >"$TMP/version" 2>&1 || rc=$?

@@ -1,7 +1,7 @@
 // libFuzzer target: audit's trust boundary (tools/audit.hpp). Input: the bytes of a file given
 // to `bouncer audit FILE`. plan_rerun reads its provenance and builds the rerun, without
 // running anything. Property: it throws InputError, or returns a plan that
-//   * runs this binary (argv[0]) with one of the computing commands (computing_commands()),
+//   * runs this binary (argv[0]) with one of the computing commands (is_computing_command, workflow/commands.hpp),
 //   * never names where to read tiles, a scene or a manifest, or a shard (--tiles-from,
 //     --scene, --manifest, --shard, --keep-tiles, as a word or --NAME=VALUE),
 //   * writes only into the directory it was given: every --out value, and the file it
@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "audit.hpp"
+#include "bouncer/workflow/commands.hpp"
 #include "fuzz_common.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
@@ -35,7 +36,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   const std::vector<std::string>& argv = plan.argv;
   if (argv.size() < 2 || argv[0] != "/self") violated("the plan does not run this binary: " + shown(argv));
-  if (!bouncer::cli::computing_commands().count(argv[1]) || plan.command != argv[1])
+  if (!bouncer::is_computing_command(argv[1]) || plan.command != argv[1])
     violated("the plan runs '" + argv[1] + "', not a computing command: " + shown(argv));
   const std::string inside = dir + "/";
   for (size_t i = 2; i < argv.size(); ++i) {

@@ -259,4 +259,9 @@ void check_toml_text(const std::string& field, const std::string& text, const st
   }
 }
 
+bool safe_name(const std::string& s) {
+  if (s.empty() || s.size() > 100 || s.find("..") != std::string::npos || s[0] == '.' || s[0] == '-') return false;
+  return s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._:+-") == std::string::npos;
+}
+
 }  // namespace bouncer

@@ -29,6 +29,12 @@ inline constexpr int kMaxTomlDepth = 32;
 // at once, not an "internal error" or an output failure after the work.
 void check_path_name(const std::string& field, const std::string& path, std::size_t suffix_room = 0);
 
+// A name from a file bouncer did not write (a manifest's ids and labels, a claims.json's
+// file names) that becomes a file name: letters, digits and . _ : + - only, not starting
+// with '.' or '-', no "..", at most 100 characters. No '/', so it names nothing outside the
+// directory it is put in.
+bool safe_name(const std::string& s);
+
 // The whole content of the regular file at `path` (a symlink to a regular file is read).
 // A missing file, a directory, a FIFO, a device or socket, a file larger than `max_bytes`
 // or an unreadable one is InputError(field, ...), never a hang: the file is opened

@@ -1,27 +1,16 @@
-// Child processes of reproduce and audit: this binary (or a proof program beside it) run on
-// a command line that bouncer built itself, with its output on descriptors bouncer owns.
-#pragma once
+#include "bouncer/workflow/child_process.hpp"
 
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <unistd.h>
 
-#include <string>
-#include <vector>
-
 extern char** environ;
 
-namespace bouncer::cli {
+namespace bouncer {
 
-// Starts argv[0] (a path: no PATH search) with stdin from /dev/null and stdout and stderr on
-// `out_fd` and `err_fd` (-1: /dev/null), in the directory `cwd` (empty: this one), with
-// `extra_env` ("NAME=VALUE") added to the environment. The child is sent SIGTERM when this
-// process ends, however it ends (PR_SET_PDEATHSIG; checked against a parent that died while
-// the child started), so that a reproduce or audit killed with SIGKILL leaves no
-// computation running. Returns the child's pid, or -1.
-inline pid_t start_child(const std::vector<std::string>& argv, int out_fd, int err_fd, const std::string& cwd = "",
-                         const std::vector<std::string>& extra_env = {}) {
+pid_t start_child(const std::vector<std::string>& argv, int out_fd, int err_fd, const std::string& cwd,
+                  const std::vector<std::string>& extra_env) {
   if (argv.empty()) return -1;
   // Everything the child needs is built before fork: between fork and exec it only makes
   // system calls (async-signal-safe), as a child of a threaded process must.
@@ -46,4 +35,4 @@ inline pid_t start_child(const std::vector<std::string>& argv, int out_fd, int e
   ::_exit(127);
 }
 
-}  // namespace bouncer::cli
+}  // namespace bouncer

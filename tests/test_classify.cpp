@@ -319,3 +319,81 @@ TEST(Classify, AcceleratorModeAndDiffusiveGrowth) {
     EXPECT_TRUE(falls) << "q = " << q;
   }
 }
+
+TEST(Classify, AcceleratorStatisticsAreThoseAfterCapture) {
+  // Elastic a = 18 from (0.1, 10), windows 20000 + 20000, at mpfr:256: the orbit wanders,
+  // then is captured by an accelerator mode of period 33 (v_{n+33} - v_n = D for every n
+  // after capture). By that definition the mean growth after capture is D/33 per step, and
+  // the phases take at most 33 values to 0.01 (branches, not a filled circle). Measured over
+  // the whole window, with the wander in it, the rate was 1.34 and the phases filled the
+  // circle (issue 23).
+  ClassifyOptions o;
+  o.transient = 20000;
+  o.steps = 20000;
+  Precision p;
+  p.kind = Precision::Kind::mpfr;
+  p.bits = 256;
+  const Classification c = classify_start(spec(Law::elastic, "18"), p, {parse_decimal("theta", "0.1"), parse_decimal("v", "10")}, o);
+  ASSERT_EQ(c.cls, OrbitClass::unbounded) << c.evidence;
+  ASSERT_EQ(c.growth_kind, "accelerator") << c.evidence;
+  EXPECT_EQ(c.accel_period, 33) << c.evidence;
+  EXPECT_NEAR(c.growth_rate, c.accel_gain / static_cast<double>(c.accel_period), 1e-3 * c.accel_gain) << c.evidence;
+  EXPECT_GT(c.branches, 0) << c.evidence;
+  EXPECT_LE(c.branches, c.accel_period) << c.evidence;
+}
+
+TEST(Classify, SameBehaviour) {
+  Classification x, y;
+  x.cls = y.cls = OrbitClass::periodic;
+  x.period = y.period = 7;
+  x.lambda = -0.1;
+  y.lambda = -0.2;  // exponents and evidence are not the behaviour
+  y.evidence = "other words";
+  EXPECT_TRUE(same_behaviour(x, y));
+  y.period = 3;
+  EXPECT_FALSE(same_behaviour(x, y));
+  y.period = 7;
+  y.cls = OrbitClass::fixed;
+  EXPECT_FALSE(same_behaviour(x, y));
+  x.cls = y.cls = OrbitClass::unbounded;
+  x.growth_kind = y.growth_kind = "accelerator";
+  x.accel_period = 33;
+  y.accel_period = 1;
+  EXPECT_FALSE(same_behaviour(x, y));
+  x.cls = y.cls = OrbitClass::transient_chaos;
+  x.settled_class = OrbitClass::periodic;
+  y.settled_class = OrbitClass::sticking;
+  EXPECT_FALSE(same_behaviour(x, y));
+}
+
+TEST(ClassifyChecked, DoublesQuasiperiodicAnswerIsAnArtefactThere) {
+  // The case of issue 23: double calls the start quasiperiodic (it is never captured in
+  // 40000 steps); mpfr:256 and mpfr:512 follow the exact orbit into the period-33
+  // accelerator mode. The check must say that double's class is the artefact.
+  ClassifyOptions o;
+  o.transient = 20000;
+  o.steps = 20000;
+  const Precision dbl = parse_precision("precision", "double");
+  const CheckedClassification r =
+      classify_checked(spec(Law::elastic, "18"), dbl, {parse_decimal("theta", "0.1"), parse_decimal("v", "10")}, o, 256);
+  EXPECT_EQ(r.result.cls, OrbitClass::quasiperiodic) << r.result.evidence;
+  ASSERT_EQ(r.checks.size(), 2u);
+  EXPECT_EQ(r.checks[0].precision.text(), "mpfr:256");
+  EXPECT_EQ(r.checks[1].precision.text(), "mpfr:512");
+  EXPECT_EQ(r.checks[0].result.accel_period, 33) << r.checks[0].result.evidence;
+  EXPECT_EQ(r.verdict, PrecisionVerdict::artefact) << r.summary;
+  EXPECT_NE(r.summary.find("artefact"), std::string::npos) << r.summary;
+  EXPECT_NE(r.summary.find("period 33"), std::string::npos) << r.summary;
+}
+
+TEST(ClassifyChecked, AStableFixedPointAgreesAtOnce) {
+  // a = 24, eps = 0.5: the eq. 5 family, fixed in every precision (Eq5FamilyIsFixed): one
+  // check, which agrees.
+  const Precision dbl = parse_precision("precision", "double");
+  const CheckedClassification r =
+      classify_checked(spec(Law::constant, "24", "0.5"), dbl, {parse_decimal("theta", "0.3"), parse_decimal("v", "11.5")}, {}, 64);
+  EXPECT_EQ(r.result.cls, OrbitClass::fixed) << r.result.evidence;
+  ASSERT_EQ(r.checks.size(), 1u);
+  EXPECT_EQ(r.checks[0].precision.text(), "mpfr:106");  // max(64, 2 x 53)
+  EXPECT_EQ(r.verdict, PrecisionVerdict::agrees) << r.summary;
+}

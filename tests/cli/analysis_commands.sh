@@ -78,6 +78,19 @@ while IFS=, read -r theta v cls period; do
 done < <(grep -v '^#' "$TMP/b.csv" | tail -n +2 | grep -E 'transient_chaos|chaotic' | head -4)
 # Accelerator mode: the exact orbit v_n = 8(n + 1), theta = 1/4 of a = 16.
 jq_is classify.accelerator '[.growth_kind, .accelerator_period, .phase_branches] | @text' '["accelerator",1,1]' "$TMP/c3.json"
+# A higher precision checks the answer: the exact orbit above agrees at once; elastic a = 18
+# from (0.1, 10) is quasiperiodic in double and the period-33 accelerator mode at mpfr:256
+# and mpfr:512 (issue 23), so double's class is named an artefact; --no-confirm skips it.
+jq_is classify.confirm_agrees '.precision_check | [.verdict, (.checks | length), .checks[0].precision] | @text' \
+  '["agrees",1,"mpfr:256"]' "$TMP/c3.json"
+"$BOUNCER" classify --model elastic --a 18 --theta 0.1 --v 10 --transient 20000 --steps 20000 --json >"$TMP/c6.json"
+jq_is classify.artefact '[.class, .precision_check.verdict, .precision_check.checks[1].precision, .precision_check.checks[0].accelerator_period] | @text' \
+  '["quasiperiodic","artefact","mpfr:512",33]' "$TMP/c6.json"
+# after capture the mode grows by gain/period per step (72/33), not by the wander's rate
+jq_is classify.after_capture '.precision_check.checks[0] | (.growth_per_step - .accelerator_gain / 33 | fabs) < 0.01' true "$TMP/c6.json"
+"$BOUNCER" classify --model elastic --a 16 --theta 0.25 --v 8 --no-confirm --json >"$TMP/c7.json"
+jq_is classify.no_confirm 'has("precision_check")' false "$TMP/c7.json"
+refused classify.confirm_bits "confirm-bits" classify --model elastic --a 16 --theta 0.25 --v 8 --confirm-bits 10
 # Scene file = command line.
 cat >"$TMP/scene.toml" <<'TOML'
 command = "classify"

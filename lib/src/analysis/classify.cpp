@@ -171,6 +171,19 @@ void describe_growth(Classification& c, const std::vector<double>& th, const std
       break;
     }
   }
+  if (c.accel_period > 0) {
+    // The mode's own statistics are those after capture: the window may begin in the wander
+    // before it (a chaotic or quasiperiodic stretch), whose phases fill the circle and whose
+    // growth is slower. Capture = the earliest step from which the recurrence holds.
+    const long q = c.accel_period;
+    long from = L / 2;
+    while (from > 0 && circle_distance(th[from - 1], th[from - 1 + q]) <= kPhaseTol && v[from - 1 + q] > v[from - 1]) --from;
+    c.captured_from = from;
+    if (L - from >= 2) {
+      c.growth_rate = (v.back() - v[from]) / static_cast<double>(L - 1 - from);
+      c.branches = phase_branches(std::vector<double>(th.begin() + from, th.end()));
+    }
+  }
   if (c.accel_period > 0 && c.alpha > 0.8) c.growth_kind = "accelerator";
   else if (c.accel_period == 0 && c.alpha > 0.3 && c.alpha < 0.7) c.growth_kind = "diffusive";
   else c.growth_kind = "irregular";
@@ -252,7 +265,8 @@ Classification classify_window(const ImpactMap<T>& map, State<T> s, const Classi
                     (c.branches ? std::to_string(c.branches) + " phase branch" + (c.branches == 1 ? "" : "es")
                                 : std::string("phases fill the circle")) +
                     (c.accel_period ? ", phases repeat every " + std::to_string(c.accel_period) + " step" +
-                                          (c.accel_period == 1 ? "" : "s") + " with gain " + fmt(c.accel_gain, 4)
+                                          (c.accel_period == 1 ? "" : "s") + " with gain " + fmt(c.accel_gain, 4) +
+                                          " (captured by step " + std::to_string(N - W + 1 + c.captured_from) + ")"
                                     : std::string(", no phase recurrence")) +
                     ": " + c.growth_kind;
       return c;
@@ -552,6 +566,78 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
   }
   c.evidence += windows;
   return c;
+}
+
+bool same_behaviour(const Classification& x, const Classification& y) {
+  if (x.cls != y.cls || x.period != y.period) return false;
+  if (x.cls == OrbitClass::transient_chaos) return x.settled_class == y.settled_class;
+  if (x.cls == OrbitClass::unbounded) return x.growth_kind == y.growth_kind && x.accel_period == y.accel_period;
+  return true;
+}
+
+const char* name(PrecisionVerdict v) {
+  switch (v) {
+    case PrecisionVerdict::agrees: return "agrees";
+    case PrecisionVerdict::artefact: return "artefact";
+    case PrecisionVerdict::precision_dependent: return "precision_dependent";
+  }
+  return "?";
+}
+
+namespace {
+
+// "periodic (period 7)", "unbounded (accelerator, period 33, gain 72)", "chaotic".
+std::string behaviour_words(const Classification& c) {
+  std::string s = name(c.cls);
+  if (c.cls == OrbitClass::fixed || c.cls == OrbitClass::periodic || c.cls == OrbitClass::sticking)
+    s += " (period " + std::to_string(c.period) + ")";
+  if (c.cls == OrbitClass::transient_chaos) s += " (settles on " + std::string(name(c.settled_class)) + ")";
+  if (c.cls == OrbitClass::unbounded)
+    s += " (" + c.growth_kind +
+         (c.accel_period ? ", period " + std::to_string(c.accel_period) + ", gain " + fmt(c.accel_gain, 4) : std::string()) + ")";
+  return s;
+}
+
+}  // namespace
+
+Classification classify_start(const ModelSpec& spec, const Precision& prec, const InitialCondition& start,
+                           const ClassifyOptions& opt) {
+  return with_point_scalar(prec, [&](auto tag) {
+    using T = typename decltype(tag)::type;
+    const ImpactMap<T> map(make_model<T>(spec, prec.bits));
+    return classify<T>(map, make_state<T>(map.model(), start), opt);
+  });
+}
+
+CheckedClassification classify_checked(const ModelSpec& spec, const Precision& precision, const InitialCondition& start,
+                                       const ClassifyOptions& opt, long check_bits) {
+  CheckedClassification out;
+  out.result = classify_start(spec, precision, start, opt);
+  Precision hi;
+  hi.kind = Precision::Kind::mpfr;
+  hi.bits = std::min(kMaxBits, std::max({check_bits, 64L, 2 * precision.bits}));
+  out.checks.push_back({hi, classify_start(spec, hi, start, opt)});
+  const std::string own = precision.text();
+  if (same_behaviour(out.result, out.checks[0].result)) {
+    out.verdict = PrecisionVerdict::agrees;
+    out.summary = "agrees at " + hi.text() + ": " + behaviour_words(out.checks[0].result);
+    return out;
+  }
+  Precision higher = hi;
+  higher.bits = std::min(kMaxBits, 2 * hi.bits);
+  out.checks.push_back({higher, classify_start(spec, higher, start, opt)});
+  const Classification& a = out.checks[0].result;
+  const Classification& b = out.checks[1].result;
+  if (same_behaviour(a, b)) {
+    out.verdict = PrecisionVerdict::artefact;
+    out.summary = own + "'s class (" + behaviour_words(out.result) + ") is an artefact here: at " + hi.text() + " and " +
+                  higher.text() + " it is " + behaviour_words(a);
+  } else {
+    out.verdict = PrecisionVerdict::precision_dependent;
+    out.summary = "the class depends on the precision: " + own + " " + behaviour_words(out.result) + ", " + hi.text() + " " +
+                  behaviour_words(a) + ", " + higher.text() + " " + behaviour_words(b) + ": not decided at these precisions";
+  }
+  return out;
 }
 
 #define BOUNCER_X(T, kind) \

@@ -5,8 +5,11 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/model/spec.hpp"
+#include "bouncer/scalar/precision.hpp"
 #include "bouncer/scalar/scalar_set.hpp"
 
 namespace bouncer {
@@ -43,10 +46,12 @@ struct Classification {
   long settled_at = 0;
 
   // unbounded only: the shape of the growth (accelerator modes vs diffusion).
+  // With an accelerator mode, growth_rate and branches are measured after its capture.
   double growth_rate = 0;         // mean dv per step over the window
   int branches = 0;               // phase clusters on the circle (spokes of the polar portrait); 0: no gap
   long accel_period = 0;          // Q: phases repeat every Q steps while v grows (0: none)
   double accel_gain = 0;          // D: mean velocity gain per Q steps
+  long captured_from = 0;         // accelerator: the window's step (0-based) from which it recurs
   std::string growth_kind;        // accelerator | diffusive | irregular
 };
 
@@ -61,6 +66,42 @@ struct ClassifyOptions {
 
 template <class T>
 Classification classify(const ImpactMap<T>& map, State<T> start, const ClassifyOptions& opt);
+
+// One start of a model point at a precision (an analysis precision: double, long, dd, quad,
+// mpfr:BITS), in the scalar type it names.
+Classification classify_start(const ModelSpec& spec, const Precision& precision, const InitialCondition& start,
+                              const ClassifyOptions& opt);
+
+// Whether two classifications describe the same behaviour: the same class and period (for
+// transient chaos also what it settles on; for unbounded orbits the same growth kind and
+// accelerator period). Exponents and evidence may differ: two precisions of a chaotic orbit
+// follow different orbits of the same attractor.
+bool same_behaviour(const Classification& x, const Classification& y);
+
+// "classify knows when double lies": the start classified at the run's precision, then again
+// at MPFR precisions that follow the exact orbit longer.
+enum class PrecisionVerdict {
+  agrees,               // the first check gives the same behaviour
+  artefact,             // the first check differs, and a second at twice its bits agrees with it
+  precision_dependent,  // the two checks differ too: not decided at these precisions
+};
+const char* name(PrecisionVerdict v);
+
+struct PrecisionCheck {
+  Precision precision;
+  Classification result;
+};
+
+struct CheckedClassification {
+  Classification result;               // at the requested precision
+  std::vector<PrecisionCheck> checks;  // at mpfr:B; if it differs, also at mpfr:2B
+  PrecisionVerdict verdict = PrecisionVerdict::agrees;
+  std::string summary;                 // one line, e.g. "double's class is an artefact here: ..."
+};
+
+// B = max(check_bits, 2 x the run's bits) (check_bits >= 64). Same windows in every run.
+CheckedClassification classify_checked(const ModelSpec& spec, const Precision& precision, const InitialCondition& start,
+                                       const ClassifyOptions& opt, long check_bits);
 
 // Instantiated in lib/src/analysis/classify.cpp for the analysis scalars (scalar/scalar_set.hpp).
 #define BOUNCER_X(T, kind) \

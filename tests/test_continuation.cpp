@@ -173,3 +173,36 @@ TEST(Continuation, TouchdownIsNotABranch) {
   EXPECT_FALSE(b.started);
   EXPECT_NE(b.note.find("touches down"), std::string::npos) << b.note;
 }
+
+TEST(Continuation, AnOrbitFoundBeyondAnEndIsNamedForWhatItIs) {
+  // The stable period-7 branch of veldep c = 1000 from a = 28 ends at a* ~ 27.7206 where
+  // impact 4 reaches the knot theta = 1/2: the wall's velocity flips there, so the image
+  // jumps and no nearby orbit continues the branch (issue 23). 1e-3 x a* beyond the end,
+  // Newton from the last orbit finds a period-7 orbit with other events: it must not be
+  // called the branch's continuation. Checked independently here: that orbit is far from
+  // every point of the branch's last orbit, and Newton from it converges as well on the
+  // branch side, to an orbit of the same events that is not the branch's.
+  const Model<double> m = make_model<double>(spec(Law::veldep, "28", "1", "1000"), 53);
+  ContinuationOptions opt;
+  opt.beyond = 1e-3;
+  const Branch<double> b =
+      continue_branch(m, Parameter::a, 7, State<double>{0.19204436106841707, 26.916257785320354}, 27.0, 29.0, opt);
+  ASSERT_EQ(b.low.reason, EndReason::border);
+  ASSERT_FALSE(b.low.beyond_orbit.empty()) << "Newton found no orbit beyond the low end";
+  EXPECT_EQ(b.low.beyond_relation, BeyondRelation::other_branch);
+  const BranchPoint<double>& last = b.points.front();
+  const Model<double> beyond = with_parameter(m, Parameter::a, b.low.beyond_param);
+  const PeriodicOrbit<double> o = find_periodic(beyond, 7, last.orbit.points[0]);
+  ASSERT_TRUE(o.converged);
+  double nearest = 1e300;
+  for (const State<double>& x : last.orbit.points)
+    nearest = std::min(nearest, std::fabs(o.points[0].theta - x.theta) + std::fabs(o.points[0].v - x.v));
+  EXPECT_GT(nearest, 1e-3);
+  const double side = b.low.param + (b.low.param - b.low.beyond_param);  // as far on the branch side
+  const PeriodicOrbit<double> before = find_periodic(with_parameter(m, Parameter::a, side), 7, o.points[0]);
+  ASSERT_TRUE(before.converged);
+  EXPECT_FALSE(same_cycle(analyse_orbit(with_parameter(m, Parameter::a, side), Parameter::a, before).events, last.events));
+  // The ends of the other examples have no orbit beyond at the default distance.
+  const Branch<double> d = continue_branch(m, Parameter::a, 7, State<double>{0.19204436106841707, 26.916257785320354}, 27.0, 29.0);
+  EXPECT_EQ(d.low.beyond_relation, BeyondRelation::none);
+}

@@ -112,7 +112,11 @@ std::string sentence(const Branch<T>& b, const BranchEnd<T>& e, const std::strin
     s += "; beyond it the orbit goes to " + class_words(e.beyond);
     if (!e.beyond_orbit.empty())
       s += "; Newton finds a period-" + std::to_string(b.period) + " orbit there with events " + e.beyond_orbit +
-           (e.beyond_orbit_period != b.period ? " (minimal period " + std::to_string(e.beyond_orbit_period) + ")" : "");
+           (e.beyond_orbit_period != b.period ? " (minimal period " + std::to_string(e.beyond_orbit_period) + ")" : "") +
+           (e.beyond_relation == BeyondRelation::continuation   ? ", the branch's continuation"
+            : e.beyond_relation == BeyondRelation::other_branch ? ", another orbit, which already exists before a* (not a continuation)"
+            : e.beyond_relation == BeyondRelation::unrelated    ? ", not the branch's continuation (away from it; not found before a*)"
+                                                                : "");
   } else if (!e.beyond_note.empty()) {
     s += "; " + e.beyond_note;
   }
@@ -139,6 +143,7 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, const std::string& par,
     by["evidence"] = e.beyond.evidence;
     by["newton_orbit_events"] = e.beyond_orbit;
     by["newton_orbit_minimal_period"] = e.beyond_orbit_period;
+    by["newton_orbit_relation"] = name(e.beyond_relation);
     j["beyond"] = by;
   } else {
     j["beyond"] = nullptr;

@@ -17,6 +17,16 @@ const char* name(Margin m) {
   return "?";
 }
 
+const char* name(BeyondRelation r) {
+  switch (r) {
+    case BeyondRelation::none: return "none";
+    case BeyondRelation::continuation: return "continuation";
+    case BeyondRelation::other_branch: return "other_branch";
+    case BeyondRelation::unrelated: return "unrelated";
+  }
+  return "?";
+}
+
 const char* name(EndReason r) {
   switch (r) {
     case EndReason::range_end: return "range_end";
@@ -437,6 +447,42 @@ struct Continuer {
     return e;
   }
 
+  // Is the period-q orbit Newton finds beyond an end the branch's continuation, or another
+  // orbit? At a knot the wall's velocity flips, so the image jumps and no nearby orbit can
+  // continue the branch (issue 23): an orbit found there is typically one that already
+  // exists on the branch side. Decided by running Newton from it at the branch side, as far
+  // from a* as the look beyond: an orbit that persists there, away from the branch's own
+  // orbit, is another branch; one far from every point of the branch orbit but not found on
+  // the branch side is not decided ("unrelated"); one that stays next to the branch's last
+  // orbit is a continuation (the events changed, the orbit did not jump).
+  BeyondRelation relation_of(const PeriodicOrbit<T>& o, const std::vector<StepEvent>& events, const BranchPoint<T>& good,
+                             int dir, double scale) const {
+    const auto distance = [](const State<T>& x, const State<T>& y) {
+      double dt = std::fabs(Tr<T>::to_double(x.theta) - Tr<T>::to_double(y.theta));
+      dt = std::min(dt - std::floor(dt), 1 - (dt - std::floor(dt)));
+      const double dv = std::fabs(Tr<T>::to_double(x.v) - Tr<T>::to_double(y.v)) / std::max(1.0, std::fabs(Tr<T>::to_double(y.v)));
+      return std::max(dt, dv);
+    };
+    // The nearest point of the branch's orbit to the orbit found (the rotation may differ).
+    const auto nearest = [&](const State<T>& y) {
+      double d = std::numeric_limits<double>::infinity();
+      for (const State<T>& x : good.orbit.points) d = std::min(d, distance(y, x));
+      return d;
+    };
+    constexpr double kJump = 1e-4;  // the ends are located to ~1e-12; a continuation moves ~ beyond
+    if (nearest(o.points[0]) <= kJump) return BeyondRelation::continuation;
+    // On the branch side: the same orbit (its events) away from the branch's own orbit.
+    const T back = good.param - from_double<T>(dir * opt.beyond * scale, bits);
+    try {
+      const Model<T> m = at(back);
+      const PeriodicOrbit<T> before = find_periodic(m, q, o.points[0], opt.newton);
+      if (before.converged && nearest(before.points[0]) > kJump && same_cycle(analyse_orbit(m, par, before).events, events))
+        return BeyondRelation::other_branch;
+    } catch (const Undecided&) {
+    }
+    return BeyondRelation::unrelated;
+  }
+
   void look_beyond(BranchEnd<T>& e, const BranchPoint<T>& good, int dir) {
     if (!opt.classify_beyond) return;
     const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(e.param)));
@@ -450,8 +496,10 @@ struct Continuer {
     try {
       const PeriodicOrbit<T> o = find_periodic(m, q, good.orbit.points[0], opt.newton);
       if (o.converged) {
-        e.beyond_orbit = event_text(analyse_orbit(m, par, o).events);
+        const std::vector<StepEvent> events = analyse_orbit(m, par, o).events;
+        e.beyond_orbit = event_text(events);
         e.beyond_orbit_period = o.minimal_period;
+        e.beyond_relation = relation_of(o, events, good, dir, scale);
       }
     } catch (const Undecided&) {
     }

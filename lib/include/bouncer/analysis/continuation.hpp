@@ -96,6 +96,15 @@ enum class EndReason {
 };
 const char* name(EndReason);
 
+// What the period-q orbit Newton finds just beyond an end is to the branch.
+enum class BeyondRelation {
+  none,          // no period-q orbit found beyond
+  continuation,  // next to the branch's last orbit: the branch goes on with other events
+  other_branch,  // another orbit, which already exists on the branch side of a*
+  unrelated,     // away from the branch, and not found on the branch side: not decided
+};
+const char* name(BeyondRelation);
+
 template <class T>
 struct BranchEnd {
   EndReason reason = EndReason::range_end;
@@ -112,6 +121,7 @@ struct BranchEnd {
   T beyond_param;
   std::string beyond_orbit;  // event sequence of the period-q orbit found beyond, or ""
   long beyond_orbit_period = 0;
+  BeyondRelation beyond_relation = BeyondRelation::none;
   Classification beyond;
   std::string beyond_note;
 };

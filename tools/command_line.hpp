@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "bouncer/base/input.hpp"
+
 namespace bouncer::cli {
 
 // Edit distance (Levenshtein), for suggestions.
@@ -45,25 +47,8 @@ inline std::optional<std::string> closest(const std::string& word, const std::ve
   return best;
 }
 
-// One printable line: control characters escaped, at most `limit` characters (an echoed
-// 100,000-character value becomes its start and end).
-inline std::string one_line(const std::string& s, size_t limit = 400) {
-  std::string out;
-  for (unsigned char c : s) {
-    if (c == '\n') out += "\\n";
-    else if (c == '\t') out += "\\t";
-    else if (c < 0x20 || c == 0x7f) {
-      const char* hex = "0123456789abcdef";
-      out += "\\x";
-      out += hex[c >> 4];
-      out += hex[c & 15];
-    } else {
-      out += static_cast<char>(c);
-    }
-  }
-  if (out.size() > limit) out = out.substr(0, limit - 60) + " ... [" + std::to_string(out.size() - limit + 40) + " characters cut] ... " + out.substr(out.size() - 20);
-  return out;
-}
+// One printable line (base/input.hpp): control characters escaped, at most `limit` characters.
+using bouncer::one_line;
 
 // Checks argv against the registered commands and their options; returns the message of
 // the first problem ("" if none). Runs before CLI11, whose messages for these cases name

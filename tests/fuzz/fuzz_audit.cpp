@@ -1,4 +1,4 @@
-// libFuzzer target: audit's trust boundary (tools/audit.hpp). Input: the bytes of a file given
+// libFuzzer target: audit's trust boundary (workflow/audit.hpp). Input: the bytes of a file given
 // to `bouncer audit FILE`. plan_rerun reads its provenance and builds the rerun, without
 // running anything. Property: it throws InputError, or returns a plan that
 //   * runs this binary (argv[0]) with one of the computing commands (is_computing_command, workflow/commands.hpp),
@@ -12,7 +12,7 @@
 // as soon as it has built it: no part of it is reachable without starting a process.)
 #include <cstdint>
 
-#include "audit.hpp"
+#include "bouncer/workflow/audit.hpp"
 #include "bouncer/workflow/commands.hpp"
 #include "fuzz_common.hpp"
 
@@ -25,9 +25,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace bouncer::fuzz;
   const std::string text(reinterpret_cast<const char*>(data), size);
   const std::string dir = (private_dir() / "rerun").string();  // never created: nothing is written there
-  bouncer::cli::AuditPlan plan;
+  bouncer::AuditPlan plan;
   try {
-    plan = bouncer::cli::plan_rerun("f", text, dir, "/self");
+    plan = bouncer::plan_rerun("f", text, dir, "/self");
   } catch (const bouncer::InputError& e) {
     if (std::string(e.what()).find('\n') != std::string::npos) violated(std::string("plan_rerun: a message of several lines: ") + e.what());
     return 0;

@@ -264,4 +264,22 @@ bool safe_name(const std::string& s) {
   return s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._:+-") == std::string::npos;
 }
 
+std::string one_line(const std::string& s, std::size_t limit) {
+  std::string out;
+  for (unsigned char c : s) {
+    if (c == '\n') out += "\\n";
+    else if (c == '\t') out += "\\t";
+    else if (c < 0x20 || c == 0x7f) {
+      const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  if (out.size() > limit) out = out.substr(0, limit - 60) + " ... [" + std::to_string(out.size() - limit + 40) + " characters cut] ... " + out.substr(out.size() - 20);
+  return out;
+}
+
 }  // namespace bouncer

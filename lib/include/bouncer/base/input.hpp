@@ -35,6 +35,11 @@ void check_path_name(const std::string& field, const std::string& path, std::siz
 // directory it is put in.
 bool safe_name(const std::string& s);
 
+// A value from such a file (or from a command line) echoed in a one-line message: control
+// characters escaped (\n, \t, \xNN), at most `limit` characters (a 100,000-character value
+// becomes its start and end).
+std::string one_line(const std::string& s, std::size_t limit = 400);
+
 // The whole content of the regular file at `path` (a symlink to a regular file is read).
 // A missing file, a directory, a FIFO, a device or socket, a file larger than `max_bytes`
 // or an unreadable one is InputError(field, ...), never a hang: the file is opened

@@ -1,0 +1,106 @@
+// Certified border collisions, both sides (issue 23): an enclosure [a*_lo, a*_hi] of the
+// parameter value a* at which a branch of period-Q orbits ends because one of its margins
+// (analysis/continuation.hpp: knot distance, clearance, impact speed, sticking margin)
+// reaches 0, proved by the Krawczyk operator on the augmented system
+//
+//     unknowns u = (theta_0, v_0, p)          (the orbit's first point and the parameter)
+//     G(u)      = ( P_E^Q(theta_0, v_0; p) - (theta_0, v_0),
+//                   m_E(theta_0, v_0; p) )     (periodicity, and "the margin is zero"),
+//
+// or, for an orbit through a sticking step (whose points are the release state R's orbit,
+// exact for every p), u = p and G(p) = m_E(R; p).
+//
+// The map is piecewise smooth: at a* two of its pieces meet. P_E is the piece of the BRANCH
+// SIDE, identified by the step's own event sequence E on the branch side (for each step: the
+// segment of departure, the segment and wall period of the impact, whether it sticks), and
+// written in closed form: the impact is the larger root of the flight's gap to the line of
+// the impact segment (the same root the walk of model/impact_map_impl.hpp finds, without
+// deciding which segment it lies on). That formula is analytic across the border, so P_E
+// extended beyond a* is what the augmented zero solves, and the margins are analytic
+// functions of (theta, v, p) along it. Interval evaluation of P_E and m_E (MPFI) and of
+// their derivatives (the interval duals of verify/interval_dual.hpp) never decides a
+// branch; which piece is the true map is decided separately, by the signs of the margins.
+//
+// What certify_border_collision proves, for a box Y (the orbit) and a parameter interval
+// Z = [z_lo, z_hi] around a* (high end; the low end mirrored):
+//   1. (Krawczyk, unknowns (theta, v), free p) for every p in Z exactly one x(p) in Y with
+//      P_E^Q(x(p); p) = x(p);
+//   2. (Krawczyk on G over Y x Z) exactly one (x*, p*) in Y x Z with G = 0, and
+//      p* in [a*_lo, a*_hi] (Y x Z tightened by K(B) n B);
+//   3. (intervals) the border margin m(x(p), p) is > 0 at the branch-side end of Z and < 0 at
+//      the other, so by 1, 2 and continuity it is > 0 for p on the branch side of p* and < 0
+//      beyond: exactly one zero in Z, a*, and a sign change there;
+//   4. (intervals) every other margin of every step (departure speed, clearance at every knot
+//      the flights pass, impact speed, both knot distances of every impact, the sticking
+//      test) keeps its branch-side sign over Y x [z_lo, a*_lo]: there the piece E is the
+//      true map, so x(p) is a period-Q orbit of the map with event sequence E;
+//   5. (the step itself) at a branch-side parameter next to a*_lo the interval step
+//      ImpactMap<Mpfi> (every branch decided by outward-rounded intervals, as the existing
+//      certifiers decide them) takes the event sequence E on the enclosed orbit.
+// Theorem: for every p in [z_lo, a*_lo] the period-Q orbit with events E exists (unique in
+// Y); at exactly one a* in [a*_lo, a*_hi] its margin reaches 0; for p in (a*, z_hi] the piece
+// E's orbit violates the margin, so no orbit with events E lies in Y. Orbits through a
+// sticking step: the same with Y empty (their points are exact) and 3-4 by direct interval
+// evaluation over the parameter intervals.
+//
+// Grazing (clearance) and sticking ends are the same construction with another margin. A
+// touchdown (impact speed 0) is not: the map has a square root singularity there and the
+// Krawczyk operator fails (reported as not certified). Two margins vanishing at the same a*
+// (a codimension-two coincidence) can still be certified for orbits through the release
+// state; for isolated orbits step 4 then fails and nothing is claimed.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bouncer/analysis/continuation.hpp"
+#include "bouncer/verify/branch_end.hpp"
+#include "bouncer/verify/periodic_certify.hpp"
+
+namespace bouncer {
+
+struct BorderCollisionQuestion {
+  // The end as `continue` reports it (verify/branch_end.hpp): the model, the varied
+  // parameter, the period, the last orbit point on the branch side, the interval next to a*
+  // on the branch side (branch_end_interval) and which end. Its width sets the width of Z.
+  BranchEndQuestion end;
+  // The margin that vanishes (BranchEnd::margin), if known; else the margin whose zero,
+  // extrapolated from two branch-side orbits, is nearest.
+  std::optional<Margin> margin;
+  long bits = 128;  // MPFI precision of every interval evaluation
+};
+
+struct BorderCollisionCertificate {
+  bool certified = false;
+  long bits = 0;
+  // a* in [lo, hi]: exact rationals (the ends of the MPFI enclosure), and as decimal texts.
+  mpq_class lo, hi;
+  Enclosure parameter;
+  double width = 0;        // hi - lo
+  // The margin that vanishes: its kind, the step of the orbit it belongs to (0-based from
+  // the orbit's first point), the knot involved (knot, clearance), and in words.
+  Margin margin = Margin::knot;
+  int step = -1;
+  int knot = -1;
+  std::string margin_text;
+  std::string events;      // E, the branch side's event sequence (analysis/continuation.hpp event_text)
+  bool through_release = false;
+  // The parameter interval Z = [z_lo, z_hi] of the proof, as exact rationals: the orbit with
+  // events E exists for p in [z_lo, lo] (high end; [hi, z_hi] at a low end) and the border
+  // margin is < 0 (the piece is left) beyond a*, up to z_hi (down to z_lo).
+  mpq_class z_lo, z_hi;
+  mpq_class checked_at;    // where ImpactMap<Mpfi> itself decided the events E (step 5)
+  std::vector<EnclosedOrbitPoint> orbit;  // the orbit at a* (the release state's orbit: its points)
+  std::string statement;   // the theorem, or "Not certified at N bits: why"
+  std::string reason;      // why not certified
+  double seconds = 0;
+};
+
+// The two-sided certificate of the end described by q (see the header comment). Never
+// guesses: when any step of the proof fails, certified is false and the reason says which.
+BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q);
+
+}  // namespace bouncer

@@ -98,6 +98,7 @@ TEST(BorderCollision, BeyondTheEndIsNotCertified) {
   // Past a* = 32 the release state's period-1 sticking orbit does not exist.
   const BorderCollisionCertificate c = certify_border_collision(release_question({"32.001", "32.002"}, true));
   EXPECT_FALSE(c.certified) << c.statement;
+  EXPECT_FALSE(c.reason.empty());
 }
 
 // The stable period-7 orbit of the velocity-dependent model at c = 1000, continued in double.
@@ -161,6 +162,28 @@ TEST(BorderCollision, VeldepPeriod7EndsAgainstDoubleContinuation) {
   std::printf("veldep P7 high end: double bracket [%.17g, %.17g], certified [%s, %s] (%s), double off by %.3g\n",
               b.high.bracket_lo, b.high.bracket_hi, hi.parameter.lo.c_str(), hi.parameter.hi.c_str(),
               hi.margin_text.c_str(), d_hi);
+}
+
+TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
+  // The unstable period-7 orbit (README, "bouncer continue") ends going down where a flight
+  // grazes theta = 1/2; issue 23 quotes an independent high-precision implementation's
+  // a* = 24.61675675147981...
+  const Model<double> m = make_model<double>(test_support::spec(Law::veldep, "25", "1", "1000"), 53);
+  const Branch<double> b =
+      continue_branch(m, Parameter::a, 7, State<double>{0.016124178545083214, 10.063538832537404}, 22.0, 28.0);
+  ASSERT_TRUE(b.started) << b.note;
+  ASSERT_EQ(b.low.reason, EndReason::border) << b.low.detail;
+  BorderCollisionQuestion q = question_of(b.low, false);
+  q.end.model = test_support::spec(Law::veldep, "25", "1", "1000");
+  const BorderCollisionCertificate c = certify_border_collision(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.margin, Margin::clearance) << c.margin_text;
+  EXPECT_LE(c.width, 1e-30);
+  const mpq_class independent = parse_decimal("a", "24.61675675147981").value();
+  EXPECT_LT(std::fabs(mpq_class(independent - c.lo).get_d()), 1e-14) << c.parameter.lo;
+  std::printf("veldep unstable P7 low end: double bracket [%.17g, %.17g], certified [%s, %s] (%s), double off by %.3g\n",
+              b.low.bracket_lo, b.low.bracket_hi, c.parameter.lo.c_str(), c.parameter.hi.c_str(), c.margin_text.c_str(),
+              gap(b.low.bracket_lo, b.low.bracket_hi, c));
 }
 
 }  // namespace

@@ -250,8 +250,9 @@ Jet jet(const Setup& S, const Mpfi x[3]) {
     const ImpactMap<IDual> map(std::move(dm));
     std::vector<IDual> mv;
     const State<IDual> end = piece_orbit(map, s, S.pieces, &mv);
-    const IDual* rows[3] = {&end.theta, &end.v, &mv[S.border]};
-    for (int r = S.release ? 2 : 0; r < 3; ++r) {
+    // (Before the border is known, only the orbit rows: Newton for the orbit alone.)
+    const IDual* rows[3] = {&end.theta, &end.v, S.border >= 0 ? &mv[S.border] : &end.v};
+    for (int r = S.release ? 2 : 0; r < (S.border >= 0 ? 3 : 2); ++r) {
       if (!ScalarTraits<IDual>::derivatives_finite(*rows[r]))
         throw Fail("the derivative enclosure over the box is not finite (a square root at 0: a touchdown)");
       if (run == 0) {
@@ -270,9 +271,10 @@ Jet jet(const Setup& S, const Mpfi x[3]) {
     J.D[0][0] = J.D[0][0] - 1;
     J.D[1][1] = J.D[1][1] - 1;
   }
-  if (S.sign[S.border] < 0)
+  if (S.border >= 0 && S.sign[S.border] < 0) {
     for (int c = 0; c < 3; ++c) J.D[2][c] = -J.D[2][c];
-  if (S.sign[S.border] < 0) J.f[2] = -J.f[2];
+    J.f[2] = -J.f[2];
+  }
   return J;
 }
 
@@ -355,7 +357,7 @@ std::vector<Mpfi> residual(const Setup& S, const Problem& P, const std::vector<M
   Mpfi x[3];
   assemble(P, y, thin(P.zhat), x, S.bits);
   const Eval e = evaluate(S, State<Mpfi>{x[0], x[1]}, x[2]);
-  Mpfi all[3] = {e.end.theta - x[0], e.end.v - x[1], oriented(S, e.margins, S.border)};
+  Mpfi all[3] = {e.end.theta - x[0], e.end.v - x[1], S.border >= 0 ? oriented(S, e.margins, S.border) : Mpfi(0, S.bits)};
   std::vector<Mpfi> f;
   for (int r : P.rows) f.push_back(all[r]);
   return f;
@@ -469,8 +471,8 @@ std::vector<Mpfi> prove_tight(const Setup& S, const Problem& P, const std::vecto
 }
 
 // The period-Q point x(p) at one parameter value p (thin), enclosed tightly.
-std::vector<Mpfi> orbit_at(const Setup& S, const Mpfr& p, const std::vector<Mpfr>& guess) {
-  Problem P = orbit_problem(thin(p));
+std::vector<Mpfi> orbit_at(const Setup& S, const Mpfi& p, const std::vector<Mpfr>& guess) {
+  Problem P = orbit_problem(p);
   return prove_tight(S, P, newton(S, P, guess));
 }
 
@@ -521,18 +523,12 @@ Mpfi parameter_interval_of(const BranchEndQuestion&, const Decimal& p, long bits
   return x;
 }
 
-// The branch side's orbit (Newton at the Mpfr model of parameter p from `guess`) and its
-// steps, started at the release state for orbits through a sticking step.
-Reference reference(const BranchEndQuestion& e, const Decimal& p, long bits, const State<Mpfr>* guess) {
-  const Model<Mpfr> m = make_model<Mpfr>(with_parameter(e.model, e.vary, p), bits);
-  const State<Mpfr> g = guess ? *guess : make_state<Mpfr>(m, e.last_point);
-  const PeriodicOrbit<Mpfr> o = find_periodic(m, e.period, g);
-  if (!o.converged || o.points.empty())
-    throw Fail("Newton found no period-" + std::to_string(e.period) + " orbit at " + name(e.vary) + " = " + p.text() +
-               " from the last point");
+// The q steps of the step itself from x, restarted at the release state that ends the
+// sticking step if the orbit sticks (such orbits are the release state's orbit).
+Reference steps_from(const BranchEndQuestion& e, const Model<Mpfr>& m, const State<Mpfr>& x) {
   const ImpactMap<Mpfr> map(m);
   Reference ref;
-  State<Mpfr> s = o.points[0];
+  State<Mpfr> s = x;
   for (long i = 0; i < e.period; ++i) {
     ref.steps.push_back(map.step(s));
     s = ref.steps.back().next;
@@ -540,9 +536,8 @@ Reference reference(const BranchEndQuestion& e, const Decimal& p, long bits, con
   long last_stick = -1;
   for (long i = 0; i < e.period; ++i)
     if (ref.steps[i].kind != EventKind::impact) last_stick = i;
-  ref.start = o.points[0];
+  ref.start = x;
   if (last_stick >= 0) {
-    // Start at the release state that ends the sticking step.
     ref.start = ref.steps[last_stick].next;
     ref.steps.clear();
     s = ref.start;
@@ -556,6 +551,15 @@ Reference reference(const BranchEndQuestion& e, const Decimal& p, long bits, con
     if (s.knot != ref.start.knot) throw Fail("the release state's orbit does not return to it");
   }
   return ref;
+}
+
+// The branch side's orbit by the step's own Newton (find_periodic at Mpfr) at p from the last
+// point; nothing when Newton does not converge there.
+std::optional<Reference> newton_reference(const BranchEndQuestion& e, const Decimal& p, long bits) {
+  const Model<Mpfr> m = make_model<Mpfr>(with_parameter(e.model, e.vary, p), bits);
+  const PeriodicOrbit<Mpfr> o = find_periodic(m, e.period, make_state<Mpfr>(m, e.last_point));
+  if (!o.converged || o.points.empty()) return std::nullopt;
+  return steps_from(e, m, o.points[0]);
 }
 
 // The ImpactMap's own interval steps from x at parameter p: true when every branch is
@@ -601,8 +605,17 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   // period-7 end), where the branch's orbit no longer exists.
   const Decimal& pb = e.high_end ? e.hi : e.lo;  // the end next to a*
   const Decimal& pf = e.high_end ? e.lo : e.hi;  // the far end, on the branch side
-  const Reference ref = reference(e, pf, bits, nullptr);
+  // The events: from the step's Newton orbit at pf, or, where that Newton fails (an
+  // unstable orbit moves fast with the parameter: the last point is far from the orbit at
+  // pf), from the steps of the last point itself at pb, confirmed below at pf.
+  std::optional<Reference> found = newton_reference(e, pf, bits);
+  const bool via_piece = !found;
   const Model<Mpfr> mref = make_model<Mpfr>(with_parameter(e.model, e.vary, pf), bits);
+  if (via_piece) {
+    const Model<Mpfr> mb = make_model<Mpfr>(with_parameter(e.model, e.vary, pb), bits);
+    found = steps_from(e, mb, make_state<Mpfr>(mb, e.last_point));
+  }
+  Reference ref = *found;
   {
     State<Mpfr> s = ref.start;
     for (const StepResult<Mpfr>& r : ref.steps) {
@@ -618,6 +631,20 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     const int k = ref.start.knot;
     if (k < 0) throw Fail("the release state is not at a wall knot");
     S.R = State<Mpfi>{w.start[k], w.velocity[S.pieces.back().release_segment], k};
+  }
+  if (via_piece) {
+    // Newton on the piece at pf, then the step itself from its solution: the same events.
+    State<Mpfr> x = ref.start;
+    if (!S.release) {
+      const std::vector<Mpfr> y = newton(S, orbit_problem(parameter_of(S.base, S.par)), {ref.start.theta, ref.start.v});
+      x = State<Mpfr>{y[0], y[1]};
+    }
+    const Reference at_pf = steps_from(e, mref, x);
+    for (size_t i = 0; i < at_pf.steps.size(); ++i)
+      if (!event_of(at_pf.steps[i]).same_piece(S.events[i]))
+        throw Fail("the branch side's events at " + std::string(name(e.vary)) + " = " + pf.text() +
+                   " differ from those of the last point at " + pb.text());
+    ref = at_pf;
   }
   c.events = event_text(S.events);
   c.through_release = S.release;
@@ -636,19 +663,19 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     const State<Mpfr>& want = ref.steps.back().next;
     const double d = std::max(std::fabs(Mpfr(end.theta.mid() - want.theta).to_double()),
                               std::fabs(Mpfr(end.v.mid() - want.v).to_double()) / std::max(1.0, std::fabs(want.v.to_double())));
-    if (!(d < 1e-15)) throw Fail("the closed-form piece does not reproduce the step's orbit (off by " + std::to_string(d) + ")");
+    if (!(d < std::ldexp(1.0, -static_cast<int>(bits) / 2))) throw Fail("the closed-form piece does not reproduce the step's orbit (off by " + std::to_string(d) + ")");
   }
   for (const Mpfi& x : mf) S.sign.push_back(x.mid().to_double() >= 0 ? 1 : -1);
   {
     const mpq_class p2 = pf.value() + (pf.value() - pb.value());
     const Decimal d2 = *Decimal::parse(exact_decimal(p2));
     std::vector<Mpfi> m2;
+    const Mpfi P2 = parameter_interval_of(e, d2, bits);
     if (S.release) {
-      m2 = evaluate(S, S.R, parameter_interval_of(e, d2, bits)).margins;
+      m2 = evaluate(S, S.R, P2).margins;
     } else {
-      const Reference r2 = reference(e, d2, bits, &ref.start);
-      if (r2.steps.size() != ref.steps.size()) throw Fail("the branch side's orbit changes between its two references");
-      m2 = evaluate(S, State<Mpfi>{thin(r2.start.theta), thin(r2.start.v)}, parameter_interval_of(e, d2, bits)).margins;
+      const std::vector<Mpfr> y2 = newton(S, orbit_problem(P2), {ref.start.theta, ref.start.v});
+      m2 = evaluate(S, State<Mpfi>{thin(y2[0]), thin(y2[1])}, P2).margins;
     }
     const double dp = mpq_class(pf.value() - pb.value()).get_d();
     double best = std::numeric_limits<double>::infinity();
@@ -711,7 +738,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
         pr.pstar = B[0];
       } else {
         const std::vector<Mpfr> xg = {u[0], u[1]};
-        const std::vector<Mpfi> ylo = orbit_at(S, zlo, xg), yhi = orbit_at(S, zhi, xg);
+        const std::vector<Mpfi> ylo = orbit_at(S, thin(zlo), xg), yhi = orbit_at(S, thin(zhi), xg);
         // Y: the hull of the two ends' orbits and the centre, inflated until both proofs hold.
         std::vector<Mpfi> Y(2);
         Mpfr rad[2], mid[2];
@@ -776,7 +803,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   // over a whole side would straddle 0 next to a*).
   auto border_sign = [&](const Mpfr& p) {
     std::vector<Mpfi> x;
-    if (!S.release) x = orbit_at(S, p, {u[0], u[1]});
+    if (!S.release) x = orbit_at(S, thin(p), {u[0], u[1]});
     const Eval ev = evaluate(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, thin(p));
     return oriented(S, ev.margins, S.border);
   };
@@ -811,25 +838,32 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
                    " is not certainly of its branch-side sign over the proof's box (a second margin near 0 at a*?)");
     }
   }
-  // 5. The step's own events at a branch-side point next to a*.
-  std::optional<Mpfr> checked;
+  // 5. The step's own events at a branch-side point next to a*: a short decimal, enclosed
+  // (the check covers its enclosure, so the decimal printed is a point checked).
+  std::optional<std::string> checked;
   {
     const Mpfr width = Mpfr(ahi - alo);
     for (int k : {0, 8, 16, 32, 48, 64, 80, 96}) {
       Mpfr d(bits);
       mpfr_mul_2si(d.get(), width.get(), k, MPFR_RNDN);
       const Mpfr pc = S.high ? Mpfr(alo - d) : Mpfr(ahi + d);
-      if (!side.contains(pc)) break;
+      // The decimal rounded away from a*, so that it stays on the branch side.
+      const std::string dec = S.high ? Tr::lower_string(thin(pc)) : Tr::upper_string(thin(pc));
+      Mpfi Pc(bits);
+      Pc.set_decimal(dec);
+      if (!side.contains(Pc)) break;
       std::vector<Mpfi> x;
       if (!S.release) {
         try {
-          x = orbit_at(S, pc, {u[0], u[1]});
+          x = orbit_at(S, Pc, {u[0], u[1]});
         } catch (const Fail&) {
+          continue;
+        } catch (const Undecided&) {
           continue;
         }
       }
-      if (step_confirms(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, thin(pc))) {
-        checked = pc;
+      if (step_confirms(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, Pc)) {
+        checked = dec;
         break;
       }
     }
@@ -844,7 +878,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   c.width = Mpfr(ahi - alo).to_double();
   c.z_lo = to_q(zlo);
   c.z_hi = to_q(zhi);
-  c.checked_at = to_q(*checked);
+  c.checked_at = Decimal::parse(*checked)->value();
   {
     const ImpactMap<Mpfi> map(at(S, pr.pstar));
     std::vector<State<Mpfi>> pts;
@@ -855,14 +889,17 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   for (const State<Mpfi>& x : orbit_out) c.orbit.push_back({enclosure(x.theta), enclosure(x.v)});
   const std::string p = name(S.par);
   std::ostringstream s;
-  const std::string side_lo = exact_decimal(S.high ? c.z_lo : c.hi), side_hi = exact_decimal(S.high ? c.lo : c.z_hi);
-  s << "For every " << p << " in [" << side_lo << ", " << side_hi << "] the map has a period-" << e.period << " "
+  // Short decimals, rounded so that each claim stays true: the branch side's interval
+  // inwards, a*'s enclosure outwards, the far end of "beyond" towards a*.
+  const std::string up_zlo = Tr::upper_string(thin(zlo)), down_zhi = Tr::lower_string(thin(zhi));
+  const std::string side_text = S.high ? "[" + up_zlo + ", " + c.parameter.lo + ")" : "(" + c.parameter.hi + ", " + down_zhi + "]";
+  const std::string beyond_text = S.high ? "(a*, " + down_zhi + "]" : "[" + up_zlo + ", a*)";
+  s << "For every " << p << " in " << side_text << " the map has a period-" << e.period << " "
     << (S.release ? "orbit through the release state" : "orbit (unique in its box)") << " with events " << c.events
     << " (every margin of every step certainly of its branch-side sign; the interval step itself takes these events at "
-    << p << " = " << exact_decimal(c.checked_at) << "); at exactly one a* in [" << c.parameter.lo << ", " << c.parameter.hi
-    << "] (width " << c.width << ") " << c.margin_text << " reaches 0, and beyond it, for " << p << " in ("
-    << "a*, " << exact_decimal(S.high ? c.z_hi : c.z_lo) << (S.high ? "]" : "] (downwards)")
-    << ", that margin is < 0 on the branch's piece: no period-" << e.period << " orbit with events " << c.events
+    << p << " = " << *checked << "); at exactly one a* in [" << c.parameter.lo << ", " << c.parameter.hi
+    << "] (width " << c.width << ") " << c.margin_text << " reaches 0 (> 0 on the branch side); for " << p << " in "
+    << beyond_text << " that margin is < 0 on the branch's piece: no period-" << e.period << " orbit with events " << c.events
     << (S.release ? " through the release state" : " in the box")
     << ". Proved by the Krawczyk operator on the augmented system (the orbit equations of the branch side's piece, "
        "extended analytically across the border, and the margin = 0) at "

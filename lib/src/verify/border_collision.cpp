@@ -410,10 +410,13 @@ std::vector<Mpfr> newton(const Setup& S, Problem P, std::vector<Mpfr> y) {
     std::vector<Mpfi> Y;
     for (const Mpfr& v : y) Y.push_back(thin(v));
     const std::vector<Mpfi> K = krawczyk(S, P, y, residual(S, P, y), Y);
+    // Converged when every component moved by at most a few ulps (the last bits may cycle).
     bool same = true;
     for (size_t i = 0; i < y.size(); ++i) {
       const Mpfr nx = K[i].mid();
-      if (!(nx == y[i])) same = false;
+      Mpfr tol = abs(y[i]) + 1;
+      mpfr_mul_2si(tol.get(), tol.get(), -(S.bits - 6), MPFR_RNDN);
+      if (abs(Mpfr(nx - y[i])) > tol) same = false;
       y[i] = nx;
     }
     if (same) break;

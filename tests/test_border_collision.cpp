@@ -149,6 +149,14 @@ TEST(BorderCollision, VeldepPeriod7EndsAgainstDoubleContinuation) {
   // not contain a* (issue 23: off by 1.8e-11 there).
   const double d_lo = gap(b.low.bracket_lo, b.low.bracket_hi, lo);
   EXPECT_LT(d_lo, 1e-9);
+  // More bits: an enclosure inside the first (each is a theorem about the same a*).
+  BorderCollisionQuestion q256 = question_of(b.low, false);
+  q256.bits = 256;
+  const BorderCollisionCertificate lo256 = certify_border_collision(q256);
+  ASSERT_TRUE(lo256.certified) << lo256.statement;
+  EXPECT_LE(lo.lo, lo256.lo);
+  EXPECT_LE(lo256.hi, lo.hi);
+  EXPECT_LE(lo256.width, 1e-70);
 
   const BorderCollisionCertificate hi = certify_border_collision(question_of(b.high, true));
   ASSERT_TRUE(hi.certified) << hi.statement;

@@ -89,6 +89,8 @@ int main(int argc, char** argv) {
       }
       std::printf("%-44s %5ld %10.4f %12.3g %12.3g  %s\n", k.name, bits, best, c.width,
                   distance(end.bracket_lo, end.bracket_hi, c), c.margin_text.c_str());
+      std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
+                  c.parameter.hi.c_str(), end.bracket_lo, end.bracket_hi);
     }
   }
   return 0;

@@ -649,6 +649,15 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
                    " differ from those of the last point at " + pb.text());
     ref = at_pf;
   }
+  // Each step departs from the segment the previous impact landed on (or from the release
+  // knot): the margins of step i's impact then place step i+1's start on its segment.
+  for (size_t i = 0; i < S.pieces.size(); ++i) {
+    const Piece& prev = S.pieces[(i + S.pieces.size() - 1) % S.pieces.size()];
+    const int landed = prev.sticks ? prev.release_knot : prev.segment;
+    if (S.pieces[i].from_segment != landed)
+      throw Fail("the orbit's steps do not chain: step " + std::to_string(i) + " departs from segment " +
+                 std::to_string(S.pieces[i].from_segment) + ", the impact before it is on segment " + std::to_string(landed));
+  }
   c.events = event_text(S.events);
   c.through_release = S.release;
 
@@ -681,17 +690,24 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
       m2 = evaluate(S, State<Mpfi>{thin(y2[0]), thin(y2[1])}, P2).margins;
     }
     const double dp = mpq_class(pf.value() - pb.value()).get_d();
+    std::vector<double> dist(mf.size(), std::numeric_limits<double>::infinity());
     double best = std::numeric_limits<double>::infinity();
     for (size_t i = 0; i < mf.size(); ++i) {
       if (S.ids[i].kind == kDeparture) continue;
       if (q.margin && S.ids[i].kind != static_cast<int>(*q.margin)) continue;
       const double vf = std::fabs(mf[i].mid().to_double()), v2 = std::fabs(m2[i].mid().to_double());
       if (!(vf < v2)) continue;  // not moving towards 0 at the end
-      const double dist = vf * std::fabs(dp) / (v2 - vf);  // linear extrapolation to its zero
-      if (dist < best) {
-        best = dist;
+      dist[i] = vf * std::fabs(dp) / (v2 - vf);  // linear extrapolation to its zero
+      best = std::min(best, dist[i]);
+    }
+    // Margins that vanish together (an impact at a knot and a flight's clearance at that
+    // knot): the knot distance is the border, the clearance follows by an identity
+    // (coincident_clearance).
+    for (size_t i = 0; i < mf.size(); ++i) {
+      if (!(dist[i] <= best * (1 + 1e-3))) continue;
+      if (S.border < 0 || (S.ids[i].kind == static_cast<int>(Margin::knot) &&
+                           S.ids[S.border].kind != static_cast<int>(Margin::knot)))
         S.border = static_cast<int>(i);
-      }
     }
     if (S.border < 0) throw Fail("no margin of the branch side's orbit decreases towards 0 at this end");
   }
@@ -804,9 +820,15 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   // 3. The border margin's sign at both ends of Z, at thin parameters (with the uniqueness
   // of 1-2 and continuity it then has one sign on each side of a*: an interval evaluation
   // over a whole side would straddle 0 next to a*).
+  // x(p) enclosed at one p: its box must lie in Y, where x(p) is the unique orbit.
+  auto orbit_in_Y = [&](const Mpfi& p) {
+    const std::vector<Mpfi> x = orbit_at(S, p, {u[0], u[1]});
+    if (!pr.Y[0].contains(x[0]) || !pr.Y[1].contains(x[1])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
+    return x;
+  };
   auto border_sign = [&](const Mpfr& p) {
     std::vector<Mpfi> x;
-    if (!S.release) x = orbit_at(S, thin(p), {u[0], u[1]});
+    if (!S.release) x = orbit_in_Y(thin(p));
     const Eval ev = evaluate(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, thin(p));
     return oriented(S, ev.margins, S.border);
   };
@@ -858,7 +880,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
       std::vector<Mpfi> x;
       if (!S.release) {
         try {
-          x = orbit_at(S, Pc, {u[0], u[1]});
+          x = orbit_in_Y(Pc);
         } catch (const Fail&) {
           continue;
         } catch (const Undecided&) {

@@ -123,12 +123,13 @@ BorderCollisionQuestion question_of(const BranchEnd<double>& end, bool high) {
 }
 
 // Distance of the double bracket [blo, bhi] to the certified enclosure (0: they overlap).
-double gap(double blo, double bhi, const BorderCollisionCertificate& c) {
+double gap(double blo, double bhi, const mpq_class& clo, const mpq_class& chi) {
   const mpq_class lo(blo), hi(bhi);
-  if (hi < c.lo) return mpq_class(c.lo - hi).get_d();
-  if (c.hi < lo) return mpq_class(lo - c.hi).get_d();
+  if (hi < clo) return mpq_class(clo - hi).get_d();
+  if (chi < lo) return mpq_class(lo - chi).get_d();
   return 0;
 }
+double gap(double blo, double bhi, const BorderCollisionCertificate& c) { return gap(blo, bhi, c.lo, c.hi); }
 
 TEST(BorderCollision, VeldepPeriod7EndsAgainstDoubleContinuation) {
   const Branch<double> b = veldep_p7();
@@ -192,6 +193,56 @@ TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
   std::printf("veldep unstable P7 low end: double bracket [%.17g, %.17g], certified [%s, %s] (%s), double off by %.3g\n",
               b.low.bracket_lo, b.low.bracket_hi, c.parameter.lo.c_str(), c.parameter.hi.c_str(), c.margin_text.c_str(),
               gap(b.low.bracket_lo, b.low.bracket_hi, c));
+}
+
+// Period doubling on the eps = 0.9 period-2 branch (test_continuation.cpp): no closed form
+// for a*, but truth independent of the certifier: the constant-eps map contracts area by
+// eps^2 per impact, so det DP^2 = eps^4 and at a multiplier -1 the other is exactly
+// -eps^4 = -0.6561 (the certifier computes det DP^2 by interval duals and never uses this).
+TEST(PeriodDoubling, Eps09Period2AgainstTheAreaIdentity) {
+  const Model<double> m = make_model<double>(test_support::spec(Law::constant, "19", "0.9"), 53);
+  const Branch<double> b =
+      continue_branch(m, Parameter::a, 2, State<double>{0.1678819228862684, 14.143149884133248}, 12.0, 21.0);
+  ASSERT_EQ(b.bifurcations.size(), 1u);
+  const Bifurcation<double>& pd = b.bifurcations[0];
+  ASSERT_EQ(pd.kind, SmoothKind::period_doubling);
+  const BranchPoint<double>* near = &b.points[0];
+  for (const BranchPoint<double>& p : b.points)
+    if (std::fabs(p.param - pd.param) < std::fabs(near->param - pd.param)) near = &p;
+  PeriodDoublingQuestion q;
+  q.model = test_support::spec(Law::constant, "19", "0.9");
+  q.period = 2;
+  q.point = {parse_decimal("theta", ScalarTraits<double>::to_string(near->orbit.points[0].theta)),
+             parse_decimal("v", ScalarTraits<double>::to_string(near->orbit.points[0].v))};
+  q.lo = parse_decimal("lo", ScalarTraits<double>::to_string(pd.bracket_lo));
+  q.hi = parse_decimal("hi", ScalarTraits<double>::to_string(pd.bracket_hi));
+  const PeriodDoublingCertificate c = certify_period_doubling(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_LE(c.width, 1e-30);
+  // -eps^4 = -0.6561 exactly: inside the enclosure of the other multiplier, and det = eps^4.
+  const mpq_class e4 = parse_decimal("e", "0.6561").value();
+  EXPECT_LE(parse_decimal("lo", c.det.lo).value(), e4) << c.det.lo;
+  EXPECT_GE(parse_decimal("hi", c.det.hi).value(), e4) << c.det.hi;
+  EXPECT_LE(parse_decimal("lo", c.other.lo).value(), mpq_class(-e4));
+  EXPECT_GE(parse_decimal("hi", c.other.hi).value(), mpq_class(-e4));
+  // Double's located a* within its tolerance of the enclosure.
+  EXPECT_LT(gap(pd.bracket_lo, pd.bracket_hi, c.lo, c.hi), 1e-8);
+  std::printf("eps 0.9 P2 period doubling: double bracket [%.17g, %.17g], certified [%s, %s], other multiplier [%s, %s], %.3f s\n",
+              pd.bracket_lo, pd.bracket_hi, c.parameter.lo.c_str(), c.parameter.hi.c_str(), c.other.lo.c_str(),
+              c.other.hi.c_str(), c.seconds);
+}
+
+TEST(PeriodDoubling, NoMultiplierMinusOneIsNotCertified) {
+  // At a = 19 the period-2 orbit's multipliers are far from -1 (the doubling is near 16.6).
+  PeriodDoublingQuestion q;
+  q.model = test_support::spec(Law::constant, "19", "0.9");
+  q.period = 2;
+  q.point = {parse_decimal("theta", "0.1678819228862684"), parse_decimal("v", "14.143149884133248")};
+  q.lo = parse_decimal("lo", "19");
+  q.hi = parse_decimal("hi", "19.00001");
+  const PeriodDoublingCertificate c = certify_period_doubling(q);
+  EXPECT_FALSE(c.certified) << c.statement;
+  EXPECT_FALSE(c.reason.empty());
 }
 
 }  // namespace

@@ -2,13 +2,16 @@
 #include "bouncer/verify/border_collision.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "bouncer/verify/enclosure.hpp"
+#include "bouncer/model/impact_map_impl.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 
 namespace bouncer {
@@ -148,6 +151,8 @@ State<T> piece_orbit(const ImpactMap<T>& map, State<T> s, const std::vector<Piec
   return s;
 }
 
+struct Jet;
+
 // Everything fixed by the branch side.
 struct Setup {
   Parameter par = Parameter::a;
@@ -161,6 +166,10 @@ struct Setup {
   int border = -1;             // index of the margin that vanishes
   bool release = false;        // an orbit through a sticking step: the start R is exact
   State<Mpfi> R;
+  // Another system on the same unknowns (period doubling): its values at a thin point and
+  // its Jacobian over a box; unset for the border collision.
+  std::function<std::array<Mpfi, 3>(const Mpfi*)> value_fn;
+  std::function<Jet(const Mpfi*)> jet_fn;
 };
 
 Model<Mpfi> at(const Setup& S, const Mpfi& p) { return with_parameter(S.base, S.par, p); }
@@ -356,8 +365,13 @@ std::vector<Mpfi> residual(const Setup& S, const Problem& P, const std::vector<M
   for (const Mpfr& v : yhat) y.push_back(thin(v));
   Mpfi x[3];
   assemble(P, y, thin(P.zhat), x, S.bits);
-  const Eval e = evaluate(S, State<Mpfi>{x[0], x[1]}, x[2]);
-  Mpfi all[3] = {e.end.theta - x[0], e.end.v - x[1], S.border >= 0 ? oriented(S, e.margins, S.border) : Mpfi(0, S.bits)};
+  std::array<Mpfi, 3> all;
+  if (S.value_fn) {
+    all = S.value_fn(x);
+  } else {
+    const Eval e = evaluate(S, State<Mpfi>{x[0], x[1]}, x[2]);
+    all = {e.end.theta - x[0], e.end.v - x[1], S.border >= 0 ? oriented(S, e.margins, S.border) : Mpfi(0, S.bits)};
+  }
   std::vector<Mpfi> f;
   for (int r : P.rows) f.push_back(all[r]);
   return f;
@@ -375,7 +389,7 @@ std::vector<Mpfi> krawczyk(const Setup& S, const Problem& P, const std::vector<M
   for (size_t c = 0; c < n; ++c) H.push_back(hull(Y[c], thin(yhat[c])));
   Mpfi x[3];
   assemble(P, H, P.Z, x, S.bits);
-  const Jet J = jet(S, x);
+  const Jet J = S.jet_fn ? S.jet_fn(x) : jet(S, x);
   std::vector<std::vector<Mpfi>> A(n, std::vector<Mpfi>(n));
   std::vector<Mpfi> Fz(n, Mpfi(0, S.bits));
   for (size_t r = 0; r < n; ++r) {
@@ -932,6 +946,215 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   c.statement = s.str();
 }
 
+
+// ---- Period doubling ----------------------------------------------------------------
+
+// Second derivatives: Dual<IDual>, the outer derivative along one variable e of (theta, v,
+// p), the inner ones along (theta, v). Dual's shortcut for constant operands (outer
+// derivative enclosed by [0, 0]) is exact here because every box is wide in all three
+// variables: a first derivative that is 0 on the whole open box has zero derivatives there.
+using IDual2 = Dual<IDual>;
+
+State<IDual> orbit_dual(const Model<Mpfi>& base, Parameter par, const Mpfi x[3], long q, std::vector<StepEvent>* events) {
+  Model<IDual> dm = convert_model<IDual>(base, [](const Mpfi& y) { return IDual(y); });
+  dm = with_parameter(dm, par, IDual(x[2]));
+  const ImpactMap<IDual> map(std::move(dm));
+  State<IDual> s{IDual::variable(x[0], 0), IDual::variable(x[1], 1)};
+  for (long i = 0; i < q; ++i) {
+    StepResult<IDual> r;
+    try {
+      r = map.step(s);
+    } catch (const Undecided& u) {
+      throw Fail("step " + std::to_string(i) + " of the period is undecided over the box: " + u.what());
+    }
+    if (r.kind != EventKind::impact) throw Fail("the orbit sticks: no multiplier -1 (superstable)");
+    if (events) {
+      StepEvent e;
+      e.kind = r.kind;
+      e.segment = r.segment;
+      e.corner = r.corner;
+      e.indirect = r.indirect == Truth::yes;
+      events->push_back(e);
+    }
+    s = r.next;
+  }
+  return s;
+}
+
+// (P^Q(x) - x, det(DP^Q(x) + I)) at a point, in intervals.
+std::array<Mpfi, 3> pd_value(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x) {
+  const State<IDual> e = orbit_dual(base, par, x, q, nullptr);
+  const Mpfi J00 = e.theta.d[0] + 1, J01 = e.theta.d[1], J10 = e.v.d[0], J11 = e.v.d[1] + 1;
+  return {e.theta.v - x[0], e.v.v - x[1], J00 * J11 - J01 * J10};
+}
+
+Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x) {
+  Jet J;
+  const long bits = x[0].bits();
+  for (int var = 0; var < 3; ++var) {
+    auto lift = [&](const Mpfi& y) { return IDual2(IDual(y)); };
+    Model<IDual2> dm = convert_model<IDual2>(base, lift);
+    const IDual one(Mpfi(1, bits)), zero(Mpfi(0, bits));
+    dm = with_parameter(dm, par, IDual2(IDual(x[2]), var == 2 ? one : zero, zero));
+    const ImpactMap<IDual2> map(std::move(dm));
+    State<IDual2> s{IDual2(IDual::variable(x[0], 0), var == 0 ? one : zero, zero),
+                    IDual2(IDual::variable(x[1], 1), var == 1 ? one : zero, zero)};
+    for (long i = 0; i < q; ++i) {
+      try {
+        s = map.step(s).next;
+      } catch (const Undecided& u) {
+        throw Fail("step " + std::to_string(i) + " of the period is undecided over the box: " + u.what());
+      }
+    }
+    const IDual2* rows[2] = {&s.theta, &s.v};
+    Mpfi Jm[2][2], dJ[2][2];
+    for (int r = 0; r < 2; ++r) {
+      const IDual2& y = *rows[r];
+      if (!ScalarTraits<IDual>::derivatives_finite(y.v) || !ScalarTraits<IDual>::is_finite(y.d[0]) ||
+          !ScalarTraits<IDual>::derivatives_finite(y.d[0]))
+        throw Fail("the second-derivative enclosure over the box is not finite");
+      J.f[r] = y.v.v - x[r];
+      J.D[r][var] = var == r ? Mpfi(y.d[0].v - 1) : y.d[0].v;
+      for (int k = 0; k < 2; ++k) {
+        Jm[r][k] = y.v.d[k];
+        dJ[r][k] = y.d[0].d[k];
+      }
+    }
+    Jm[0][0] += Mpfi(1, bits);
+    Jm[1][1] += Mpfi(1, bits);
+    J.f[2] = Jm[0][0] * Jm[1][1] - Jm[0][1] * Jm[1][0];
+    J.D[2][var] = dJ[0][0] * Jm[1][1] + Jm[0][0] * dJ[1][1] - dJ[0][1] * Jm[1][0] - Jm[0][1] * dJ[1][0];
+  }
+  return J;
+}
+
+void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
+  const long bits = q.bits;
+  if (!(q.lo.value() < q.hi.value())) throw Fail("the interval holding a* is empty");
+  Setup S;
+  S.par = q.vary;
+  S.bits = bits;
+  S.base = interval_model(with_parameter(q.model, q.vary, q.lo), bits);
+  S.value_fn = [&S, &q](const Mpfi* x) { return pd_value(S.base, S.par, q.period, x); };
+  S.jet_fn = [&S, &q](const Mpfi* x) { return pd_jet(S.base, S.par, q.period, x); };
+  const mpq_class mid = (q.lo.value() + q.hi.value()) / 2;
+  Mpfr pm(bits);
+  mpfr_set_q(pm.get(), mid.get_mpq_t(), MPFR_RNDN);
+  // The orbit at the middle (Newton on the map), then Newton on the augmented system.
+  const Model<Mpfr> mm = make_model<Mpfr>(with_parameter(q.model, q.vary, *Decimal::parse(exact_decimal(mid))), bits);
+  const PeriodicOrbit<Mpfr> o = find_periodic(mm, q.period, make_state<Mpfr>(mm, q.point));
+  if (!o.converged || o.points.empty()) throw Fail("Newton found no period-" + std::to_string(q.period) + " orbit in the interval");
+  Problem A;
+  A.rows = {0, 1, 2};
+  A.yi = {0, 1, 2};
+  std::vector<Mpfr> u = newton(S, A, {o.points[0].theta, o.points[0].v, pm});
+  const Mpfr phat = u[2];
+  Mpfr w0(bits);
+  {
+    const double width = std::max(mpq_class(q.hi.value() - q.lo.value()).get_d(), 1e-6 * std::max(1.0, std::fabs(phat.to_double())));
+    mpfr_set_d(w0.get(), width, MPFR_RNDN);
+    if (std::fabs(Mpfr(phat - pm).to_double()) > 100 * width)
+      throw Fail("Newton on the augmented system goes to " + std::string(name(q.vary)) + " = " + text(phat) +
+                 ", far from the interval given (no multiplier -1 next to it)");
+  }
+  std::optional<std::vector<Mpfi>> B;
+  Mpfi Z, Y[2];
+  std::string why;
+  for (int k = 0; k < 6 && !B; ++k) {
+    Mpfr w(bits);
+    mpfr_div_2si(w.get(), w0.get(), 4 * k, MPFR_RNDN);
+    const Mpfr zlo = phat - w, zhi = phat + w;
+    Z = Mpfi(zlo, zhi);
+    try {
+      const std::vector<Mpfr> xg = {u[0], u[1]};
+      const std::vector<Mpfi> ylo = orbit_at(S, thin(zlo), xg), yhi = orbit_at(S, thin(zhi), xg);
+      Mpfr rad[2], mid2[2];
+      for (int i = 0; i < 2; ++i) {
+        const Mpfi h = hull(hull(ylo[i], yhi[i]), thin(u[i]));
+        mid2[i] = h.mid();
+        Mpfi ulps = abs(thin(mid2[i])) + 1;
+        mpfi_mul_2si(ulps.get(), ulps.get(), -(bits - 16));
+        rad[i] = Mpfr(h.width() + ulps.upper());
+      }
+      bool ok = false;
+      for (int t = 0; t < 6 && !ok; ++t) {
+        for (int i = 0; i < 2; ++i) Y[i] = Mpfi(Mpfr(mid2[i] - rad[i]), Mpfr(mid2[i] + rad[i]));
+        Problem O = orbit_problem(Z);
+        O.zhat = phat;
+        const std::vector<Mpfi> KO = krawczyk(S, O, xg, residual(S, O, xg), {Y[0], Y[1]});
+        const std::vector<Mpfi> box = {Y[0], Y[1], Z};
+        const std::vector<Mpfi> KA = krawczyk(S, A, u, residual(S, A, u), box);
+        ok = all_inside(KO, {Y[0], Y[1]}) && all_inside(KA, box);
+        if (!ok)
+          for (int i = 0; i < 2; ++i) rad[i] = rad[i] * 4;
+      }
+      if (!ok) throw Fail("the Krawczyk operators did not map the box Y x Z into itself");
+      std::vector<Mpfi> T = {Y[0], Y[1], Z};
+      const std::vector<Mpfi> f = residual(S, A, u);
+      for (int t = 0; t < 40; ++t) {
+        const std::vector<Mpfi> K2 = krawczyk(S, A, u, f, T);
+        bool shrank = false;
+        for (int i = 0; i < 3; ++i) {
+          const Mpfi N = intersect(K2[i], T[i]);
+          if (N.has_nan()) throw Fail("K(B) n B is empty while tightening");
+          if (mpfr_less_p(N.width().get(), T[i].width().get())) shrank = true;
+          T[i] = N;
+        }
+        if (!shrank) break;
+      }
+      B = T;
+    } catch (const Fail& f) {
+      why = f.what();
+    } catch (const Undecided& un) {
+      why = std::string("undecided: ") + un.what();
+    }
+  }
+  if (!B) throw Fail("no parameter interval around a* certified (" + why + ")");
+  // The sign change of det(DP^Q + I) along x(p), at both ends of Z.
+  const Mpfi zero(0, bits);
+  Truth sides[2];
+  for (int end = 0; end < 2; ++end) {
+    const Mpfr p = end == 0 ? Z.lower() : Z.upper();
+    const std::vector<Mpfi> x = orbit_at(S, thin(p), {u[0], u[1]});
+    if (!Y[0].contains(x[0]) || !Y[1].contains(x[1])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
+    const Mpfi xs[3] = {x[0], x[1], thin(p)};
+    sides[end] = Tr::lt(zero, pd_value(S.base, S.par, q.period, xs)[2]);
+    if (sides[end] == Truth::unknown || sides[end] == Truth::invalid)
+      throw Fail("det(DP^Q + I) has no certain sign at an end of Z");
+  }
+  if (sides[0] == sides[1]) throw Fail("det(DP^Q + I) has the same sign at both ends of Z");
+  // The multipliers at p*: trace and det over the tight box.
+  std::vector<StepEvent> events;
+  const Mpfi xb[3] = {(*B)[0], (*B)[1], (*B)[2]};
+  const State<IDual> e = orbit_dual(S.base, S.par, xb, q.period, &events);
+  const Mpfi tr = e.theta.d[0] + e.v.d[1], det = e.theta.d[0] * e.v.d[1] - e.theta.d[1] * e.v.d[0];
+  // The other multiplier is det / (-1); it must not be -1 too (a simple multiplier -1).
+  if (Tr::is_zero(Mpfi(det - 1)) != Truth::no) throw Fail("the other multiplier may be -1 as well");
+  c.certified = true;
+  c.lo = to_q((*B)[2].lower());
+  c.hi = to_q((*B)[2].upper());
+  c.parameter = enclosure((*B)[2]);
+  c.width = Mpfr((*B)[2].upper() - (*B)[2].lower()).to_double();
+  c.events = event_text(events);
+  c.z_lo = to_q(Z.lower());
+  c.z_hi = to_q(Z.upper());
+  c.trace = enclosure(tr);
+  c.det = enclosure(det);
+  c.other = enclosure(Mpfi(-det));
+  c.orbit.push_back({enclosure((*B)[0]), enclosure((*B)[1])});
+  const std::string p = name(q.vary);
+  std::ostringstream st;
+  st << "For every " << p << " in [" << Tr::upper_string(thin(Z.lower())) << ", " << Tr::lower_string(thin(Z.upper()))
+     << "] the map has exactly one period-" << q.period << " point in the box [" << enclosure(Y[0]).lo << ", "
+     << enclosure(Y[0]).hi << "] x [" << enclosure(Y[1]).lo << ", " << enclosure(Y[1]).hi << "] (events " << c.events
+     << ", every branch decided); at exactly one " << p << "* in [" << c.parameter.lo << ", " << c.parameter.hi
+     << "] (width " << c.width << ") it has a multiplier exactly -1 (the other is " << c.other.lo << " .. " << c.other.hi
+     << "), and det(DP^" << q.period << " + I) changes sign there: a real multiplier crosses -1 (period doubling; "
+     << "the direction of the doubled branch is not certified). Proved by the Krawczyk operator on (P^" << q.period
+     << "(x) - x, det(DP^" << q.period << "(x) + I)) with second derivatives from nested interval duals, at " << bits
+     << " bits.";
+  c.statement = st.str();
+}
 }  // namespace
 
 BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q) {
@@ -950,6 +1173,25 @@ BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestio
   }
   if (!c.certified)
     c.statement = "Not certified at " + std::to_string(q.bits) + " bits: " + c.reason + ". Nothing is claimed about a*.";
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return c;
+}
+
+PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PeriodDoublingCertificate c;
+  c.bits = q.bits;
+  try {
+    run_pd(q, c);
+  } catch (const Fail& f) {
+    c.certified = false;
+    c.reason = f.what();
+  } catch (const Undecided& u) {
+    c.certified = false;
+    c.reason = std::string("undecided: ") + u.what();
+  }
+  if (!c.certified)
+    c.statement = "Not certified at " + std::to_string(q.bits) + " bits: " + c.reason + ". Nothing is claimed.";
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return c;
 }

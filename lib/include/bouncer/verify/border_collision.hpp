@@ -103,4 +103,39 @@ struct BorderCollisionCertificate {
 // guesses: when any step of the proof fails, certified is false and the reason says which.
 BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q);
 
+// Period doubling (the smooth end that Krawczyk handles as it does a border collision): the
+// augmented system (P^Q(x; p) - x, det(DP^Q(x; p) + I)) in the unknowns (theta_0, v_0, p),
+// its Jacobian from nested interval duals (second derivatives of P^Q) through the step
+// itself, every branch decided over the box (a period doubling is inside a piece). Proves:
+// for every p in Z exactly one period-Q point x(p) in Y (events fixed); exactly one p* in
+// [lo, hi] where det(DP^Q + I) = 0, i.e. a multiplier of x(p*) is exactly -1; that
+// determinant changes sign across p*, so a real multiplier crosses -1. Which way the doubled
+// orbit branches (the normal form's coefficient) is not certified. Folds (det(DP^Q - I) = 0)
+// are not offered: no test has a fold with a known a*.
+struct PeriodDoublingQuestion {
+  ModelSpec model;                  // any value of the varied parameter
+  Parameter vary = Parameter::a;
+  long period = 1;
+  InitialCondition point;           // an orbit point near a* (continuation: the nearest branch point)
+  Decimal lo, hi;                   // an interval holding a* (e.g. Bifurcation's bracket)
+  long bits = 128;
+};
+
+struct PeriodDoublingCertificate {
+  bool certified = false;
+  long bits = 0;
+  mpq_class lo, hi;                 // p* in [lo, hi]
+  Enclosure parameter;
+  double width = 0;
+  std::string events;
+  mpq_class z_lo, z_hi;             // Z
+  Enclosure trace, det;             // of DP^Q over the tight box at p*
+  Enclosure other;                  // the other multiplier, -det (the product is det)
+  std::vector<EnclosedOrbitPoint> orbit;  // x(p*), its first point
+  std::string statement, reason;
+  double seconds = 0;
+};
+
+PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q);
+
 }  // namespace bouncer

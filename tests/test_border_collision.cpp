@@ -18,6 +18,7 @@
 #include <cstdio>
 
 #include "bouncer/analysis/continuation.hpp"
+#include "bouncer/scalar/mpfi.hpp"
 #include "bouncer/verify/border_collision.hpp"
 #include "test_support.hpp"
 
@@ -72,6 +73,25 @@ TEST(BorderCollision, KnotAt32IsEnclosedTwoSided) {
   EXPECT_LT(c.z_lo, c.lo);
   EXPECT_LE(c.checked_at, c.lo);
   ASSERT_EQ(c.orbit.size(), 1u);  // the release state itself
+}
+
+TEST(BorderCollision, StickingThresholdInEpsIsTwoMinusSqrt3) {
+  // In eps at a = 24 the threshold is eps* = 2 - sqrt(3) (test_continuation.cpp's header):
+  // irrational, so the check is that an MPFI enclosure of 2 - sqrt(3) meets the certificate's.
+  BorderCollisionQuestion q = release_question(branch_end_interval<double>(0.2679491924 - 1e-10, 0.2679491924 + 1e-10, true, 53), true);
+  q.end.model = test_support::spec(Law::constant, "24", "0.2");
+  q.end.vary = Parameter::eps;
+  const BorderCollisionCertificate c = certify_border_collision(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.margin, Margin::sticking);
+  Mpfi truth = 2 - sqrt(Mpfi(3, 256));
+  Mpfi got(256);
+  ASSERT_TRUE(got.set_decimal(c.parameter.lo));
+  Mpfi hi(256);
+  ASSERT_TRUE(hi.set_decimal(c.parameter.hi));
+  got = hull(got, hi);
+  EXPECT_TRUE(got.contains(truth)) << c.parameter.lo << " " << c.parameter.hi;
+  EXPECT_LE(c.width, 1e-30);
 }
 
 TEST(BorderCollision, SameEndWithTheMarginGivenAndAtMoreBits) {

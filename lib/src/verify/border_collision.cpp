@@ -515,6 +515,10 @@ Piece piece_of(const Model<Mpfr>& m, const State<Mpfr>& s, const StepResult<Mpfr
   }
   pc.periods = std::lround(Mpfr(s.theta + tau - th).to_double());
   if (pc.sticks) {
+    // The ride after the collapse must end at a release (a downward turn): with the
+    // --downward-sticking impact convention it may end in a collision at an upward turn,
+    // whose outcome this closed form does not model.
+    if (r.passed_upward_turn) throw Fail("the sticking step's ride passes an upward turn: not supported");
     pc.release_knot = r.next.knot;
     pc.release_segment = r.segment;
     if (pc.release_knot < 0) throw Fail("the sticking step does not end at a wall knot");

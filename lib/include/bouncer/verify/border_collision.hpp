@@ -28,26 +28,40 @@
 //   2. (Krawczyk on G over Y x Z) exactly one (x*, p*) in Y x Z with G = 0, and
 //      p* in [a*_lo, a*_hi] (Y x Z tightened by K(B) n B);
 //   3. (intervals) the border margin m(x(p), p) is > 0 at the branch-side end of Z and < 0 at
-//      the other, so by 1, 2 and continuity it is > 0 for p on the branch side of p* and < 0
-//      beyond: exactly one zero in Z, a*, and a sign change there;
+//      the other (x enclosed there at a thin p, inside Y), so by 1, 2 and continuity it is
+//      > 0 for p on the branch side of p* and < 0 beyond: exactly one zero in Z, a*, and a
+//      sign change there;
 //   4. (intervals) every other margin of every step (departure speed, clearance at every knot
 //      the flights pass, impact speed, both knot distances of every impact, the sticking
 //      test) keeps its branch-side sign over Y x [z_lo, a*_lo]: there the piece E is the
-//      true map, so x(p) is a period-Q orbit of the map with event sequence E;
+//      true map, so x(p) is a period-Q orbit of the map with event sequence E (the steps
+//      must also chain: each departs from the segment the previous impact landed on);
 //   5. (the step itself) at a branch-side parameter next to a*_lo the interval step
 //      ImpactMap<Mpfi> (every branch decided by outward-rounded intervals, as the existing
 //      certifiers decide them) takes the event sequence E on the enclosed orbit.
-// Theorem: for every p in [z_lo, a*_lo] the period-Q orbit with events E exists (unique in
+// Theorem: for every p in [z_lo, a*_lo) the period-Q orbit with events E exists (unique in
 // Y); at exactly one a* in [a*_lo, a*_hi] its margin reaches 0; for p in (a*, z_hi] the piece
 // E's orbit violates the margin, so no orbit with events E lies in Y. Orbits through a
-// sticking step: the same with Y empty (their points are exact) and 3-4 by direct interval
-// evaluation over the parameter intervals.
+// sticking step: the same with Y empty (their points are exact).
+//
+// Margins that vanish together with the border by an identity are not a failure: an impact
+// nearing the end of its segment (knot k) makes the next flight's clearance at k equal to
+// delta (W - a delta/2), one nearing the start makes its own flight's clearance at k equal to
+// delta (q - a delta/2) (delta the knot distance, W the departure speed, q the impact speed),
+// so their sign follows from the border's where the factor is certainly > 0. For orbits
+// through the release state (p the only variable) a margin that is monotone over the side
+// and positive at both of its ends is positive on it (the knot and the grazing at a = 32).
 //
 // Grazing (clearance) and sticking ends are the same construction with another margin. A
 // touchdown (impact speed 0) is not: the map has a square root singularity there and the
-// Krawczyk operator fails (reported as not certified). Two margins vanishing at the same a*
-// (a codimension-two coincidence) can still be certified for orbits through the release
-// state; for isolated orbits step 4 then fails and nothing is claimed.
+// Krawczyk operator fails (reported as not certified). Any other margin that vanishes at a*
+// makes step 4 fail: nothing is claimed.
+//
+// The question's interval [lo, hi] (verify/branch_end.hpp branch_end_interval) lies on the
+// branch side of a double bracket, which may itself lie past a* (issue 23): the branch
+// side's orbit is found at its far end (the step's Newton; for unstable orbits, Newton on
+// the piece of the last point's events, confirmed by the step), and the parameter interval
+// Z of the proof is centred on the augmented Newton's a*, with the interval's width.
 #pragma once
 
 #include <gmpxx.h>

@@ -535,10 +535,8 @@ StepEvent event_of(const StepResult<Mpfr>& r) {
   return e;
 }
 
-std::string decimal_of(const Mpfr& x) { return text(x); }
-
 // A decimal parameter value, enclosed at `bits`.
-Mpfi parameter_interval_of(const BranchEndQuestion&, const Decimal& p, long bits) {
+Mpfi parameter_interval_of(const Decimal& p, long bits) {
   Mpfi x(bits);
   x.set_decimal(p.text());
   return x;
@@ -683,7 +681,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   // farther from a*: their orientation, and the border (the margin given, or the one whose
   // zero, extrapolated linearly, is nearest).
   const Mpfi Pf = parameter_of(S.base, S.par);
-  const Mpfi Pb = parameter_interval_of(e, pb, bits);
+  const Mpfi Pb = parameter_interval_of(pb, bits);
   const State<Mpfi> xf{thin(ref.start.theta), thin(ref.start.v)};
   std::vector<Mpfi> mf;
   {
@@ -700,7 +698,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     const mpq_class p2 = pf.value() + (pf.value() - pb.value());
     const Decimal d2 = *Decimal::parse(exact_decimal(p2));
     std::vector<Mpfi> m2;
-    const Mpfi P2 = parameter_interval_of(e, d2, bits);
+    const Mpfi P2 = parameter_interval_of(d2, bits);
     if (S.release) {
       m2 = evaluate(S, S.R, P2).margins;
     } else {
@@ -745,7 +743,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   {
     const Mpfr gap = abs(Mpfr(phat - pbr));
     if (!(mpfr_number_p(phat.get())) || gap.to_double() > 100 * w0.to_double())
-      throw Fail("Newton on the augmented system goes to " + std::string(name(S.par)) + " = " + decimal_of(phat) +
+      throw Fail("Newton on the augmented system goes to " + std::string(name(S.par)) + " = " + text(phat) +
                  ", far from the interval given (no border collision of this margin next to it)");
   }
 

@@ -134,45 +134,5 @@ int main(int argc, char** argv) {
       }
     }
   }
-  // Period doubling on the eps = 0.9 period-2 branch (the same construction, smooth end).
-  {
-    const ModelSpec ms = spec(Law::constant, "19", "0.9", "1000");
-    const Branch<double> b = continue_branch(make_model<double>(ms, 53), Parameter::a, 2,
-                                             State<double>{0.1678819228862684, 14.143149884133248}, 12.0, 21.0);
-    if (!b.bifurcations.empty()) {
-      const Bifurcation<double>& pd = b.bifurcations[0];
-      const BranchPoint<double>* near = &b.points[0];
-      for (const BranchPoint<double>& p : b.points)
-        if (std::fabs(p.param - pd.param) < std::fabs(near->param - pd.param)) near = &p;
-      PeriodDoublingQuestion q;
-      q.model = ms;
-      q.period = 2;
-      q.point = {*Decimal::parse(ScalarTraits<double>::to_string(near->orbit.points[0].theta)),
-                 *Decimal::parse(ScalarTraits<double>::to_string(near->orbit.points[0].v))};
-      q.lo = *Decimal::parse(ScalarTraits<double>::to_string(pd.bracket_lo));
-      q.hi = *Decimal::parse(ScalarTraits<double>::to_string(pd.bracket_hi));
-      for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
-        q.bits = bits;
-        double best = 1e300;
-        PeriodDoublingCertificate c;
-        for (int run = 0; run < (quick ? 1 : 3); ++run) {
-          const auto t0 = std::chrono::steady_clock::now();
-          c = certify_period_doubling(q);
-          best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        }
-        const char* name = "eps 0.9 P2 period doubling (multiplier -1)";
-        if (!c.certified) {
-          std::printf("%-44s %5ld %10.4f  NOT CERTIFIED: %s\n", name, bits, best, c.reason.c_str());
-          continue;
-        }
-        const mpq_class blo(pd.bracket_lo), bhi(pd.bracket_hi);
-        const double off = bhi < c.lo ? mpq_class(c.lo - bhi).get_d() : c.hi < blo ? mpq_class(blo - c.hi).get_d() : 0.0;
-        std::printf("%-44s %5ld %10.4f %12.3g %12.3g  other multiplier [%s, %s]\n", name, bits, best, c.width, off,
-                    c.other.lo.c_str(), c.other.hi.c_str());
-        std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
-                    c.parameter.hi.c_str(), pd.bracket_lo, pd.bracket_hi);
-      }
-    }
-  }
   return 0;
 }

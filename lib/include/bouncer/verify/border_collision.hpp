@@ -1,0 +1,155 @@
+// Certified border collisions, both sides (issue 23): an enclosure [a*_lo, a*_hi] of the
+// parameter value a* at which a branch of period-Q orbits ends because one of its margins
+// (analysis/continuation.hpp: knot distance, clearance, impact speed, sticking margin)
+// reaches 0, proved by the Krawczyk operator on the augmented system
+//
+//     unknowns u = (theta_0, v_0, p)          (the orbit's first point and the parameter)
+//     G(u)      = ( P_E^Q(theta_0, v_0; p) - (theta_0, v_0),
+//                   m_E(theta_0, v_0; p) )     (periodicity, and "the margin is zero"),
+//
+// or, for an orbit through a sticking step (whose points are the release state R's orbit,
+// exact for every p), u = p and G(p) = m_E(R; p).
+//
+// The map is piecewise smooth: at a* two of its pieces meet. P_E is the piece of the BRANCH
+// SIDE, identified by the step's own event sequence E on the branch side (for each step: the
+// segment of departure, the segment and wall period of the impact, whether it sticks), and
+// written in closed form: the impact is the larger root of the flight's gap to the line of
+// the impact segment (the same root the walk of model/impact_map_impl.hpp finds, without
+// deciding which segment it lies on). That formula is analytic across the border, so P_E
+// extended beyond a* is what the augmented zero solves, and the margins are analytic
+// functions of (theta, v, p) along it. Interval evaluation of P_E and m_E (MPFI) and of
+// their derivatives (the interval duals of verify/interval_dual.hpp) never decides a
+// branch; which piece is the true map is decided separately, by the signs of the margins.
+//
+// What certify_border_collision proves, for a box Y (the orbit) and a parameter interval
+// Z = [z_lo, z_hi] around a* (high end; the low end mirrored):
+//   1. (Krawczyk, unknowns (theta, v), free p) for every p in Z exactly one x(p) in Y with
+//      P_E^Q(x(p); p) = x(p);
+//   2. (Krawczyk on G over Y x Z) exactly one (x*, p*) in Y x Z with G = 0, and
+//      p* in [a*_lo, a*_hi] (Y x Z tightened by K(B) n B);
+//   3. (intervals) the border margin m(x(p), p) is > 0 at the branch-side end of Z and < 0 at
+//      the other (x enclosed there at a thin p, inside Y), so by 1, 2 and continuity it is
+//      > 0 for p on the branch side of p* and < 0 beyond: exactly one zero in Z, a*, and a
+//      sign change there;
+//   4. (intervals) every other margin of every step (departure speed, clearance at every knot
+//      the flights pass, impact speed, both knot distances of every impact, the sticking
+//      test) keeps its branch-side sign over Y x [z_lo, a*_lo]: there the piece E is the
+//      true map, so x(p) is a period-Q orbit of the map with event sequence E (the steps
+//      must also chain: each departs from the segment the previous impact landed on);
+//   5. (the step itself) at a branch-side parameter next to a*_lo the interval step
+//      ImpactMap<Mpfi> (every branch decided by outward-rounded intervals, as the existing
+//      certifiers decide them) takes the event sequence E on the enclosed orbit.
+// Theorem: for every p in [z_lo, a*_lo) the period-Q orbit with events E exists (unique in
+// Y); at exactly one a* in [a*_lo, a*_hi] its margin reaches 0; for p in (a*, z_hi] the piece
+// E's orbit violates the margin, so no orbit with events E lies in Y. Orbits through a
+// sticking step: the same with Y empty (their points are exact).
+//
+// Margins that vanish together with the border by an identity are not a failure: an impact
+// nearing the end of its segment (knot k) makes the next flight's clearance at k equal to
+// delta (W - a delta/2), one nearing the start makes its own flight's clearance at k equal to
+// delta (q - a delta/2) (delta the knot distance, W the departure speed, q the impact speed),
+// so their sign follows from the border's where the factor is certainly > 0. For orbits
+// through the release state (p the only variable) a margin that is monotone over the side
+// and positive at both of its ends is positive on it (the knot and the grazing at a = 32).
+//
+// Grazing (clearance) and sticking ends are the same construction with another margin. A
+// touchdown (impact speed 0) is not: the map has a square root singularity there and the
+// Krawczyk operator fails (reported as not certified). Any other margin that vanishes at a*
+// makes step 4 fail: nothing is claimed.
+//
+// The question's interval [lo, hi] (verify/branch_end.hpp branch_end_interval) lies on the
+// branch side of a double bracket, which may itself lie past a* (issue 23): the branch
+// side's orbit is found at its far end (the step's Newton; for unstable orbits, Newton on
+// the piece of the last point's events, confirmed by the step), and the parameter interval
+// Z of the proof is centred on the augmented Newton's a*, with the interval's width.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bouncer/analysis/continuation.hpp"
+#include "bouncer/verify/branch_end.hpp"
+#include "bouncer/verify/periodic_certify.hpp"
+
+namespace bouncer {
+
+struct BorderCollisionQuestion {
+  // The end as `continue` reports it (verify/branch_end.hpp): the model, the varied
+  // parameter, the period, the last orbit point on the branch side, the interval next to a*
+  // on the branch side (branch_end_interval) and which end. Its width sets the width of Z.
+  BranchEndQuestion end;
+  // The margin that vanishes (BranchEnd::margin), if known; else the margin whose zero,
+  // extrapolated from two branch-side orbits, is nearest.
+  std::optional<Margin> margin;
+  long bits = 128;  // MPFI precision of every interval evaluation
+};
+
+struct BorderCollisionCertificate {
+  bool certified = false;
+  long bits = 0;
+  // a* in [lo, hi]: exact rationals (the ends of the MPFI enclosure), and as decimal texts.
+  mpq_class lo, hi;
+  Enclosure parameter;
+  double width = 0;        // hi - lo
+  // The margin that vanishes: its kind, the step of the orbit it belongs to (0-based from
+  // the orbit's first point), the knot involved (knot, clearance), and in words.
+  Margin margin = Margin::knot;
+  int step = -1;
+  int knot = -1;
+  std::string margin_text;
+  std::string events;      // E, the branch side's event sequence (analysis/continuation.hpp event_text)
+  bool through_release = false;
+  // The parameter interval Z = [z_lo, z_hi] of the proof, as exact rationals: the orbit with
+  // events E exists for p in [z_lo, lo] (high end; [hi, z_hi] at a low end) and the border
+  // margin is < 0 (the piece is left) beyond a*, up to z_hi (down to z_lo).
+  mpq_class z_lo, z_hi;
+  mpq_class checked_at;    // where ImpactMap<Mpfi> itself decided the events E (step 5)
+  std::vector<EnclosedOrbitPoint> orbit;  // the orbit at a* (the release state's orbit: its points)
+  std::string statement;   // the theorem, or "Not certified at N bits: why"
+  std::string reason;      // why not certified
+  double seconds = 0;
+};
+
+// The two-sided certificate of the end described by q (see the header comment). Never
+// guesses: when any step of the proof fails, certified is false and the reason says which.
+BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q);
+
+// Period doubling (the smooth end that Krawczyk handles as it does a border collision): the
+// augmented system (P^Q(x; p) - x, det(DP^Q(x; p) + I)) in the unknowns (theta_0, v_0, p),
+// its Jacobian from nested interval duals (second derivatives of P^Q) through the step
+// itself, every branch decided over the box (a period doubling is inside a piece). Proves:
+// for every p in Z exactly one period-Q point x(p) in Y (events fixed); exactly one p* in
+// [lo, hi] where det(DP^Q + I) = 0, i.e. a multiplier of x(p*) is exactly -1; that
+// determinant changes sign across p*, so a real multiplier crosses -1. Which way the doubled
+// orbit branches (the normal form's coefficient) is not certified. Folds (det(DP^Q - I) = 0)
+// are not offered: no test has a fold with a known a*.
+struct PeriodDoublingQuestion {
+  ModelSpec model;                  // any value of the varied parameter
+  Parameter vary = Parameter::a;
+  long period = 1;
+  InitialCondition point;           // an orbit point near a* (continuation: the nearest branch point)
+  Decimal lo, hi;                   // an interval holding a* (e.g. Bifurcation's bracket)
+  long bits = 128;
+};
+
+struct PeriodDoublingCertificate {
+  bool certified = false;
+  long bits = 0;
+  mpq_class lo, hi;                 // p* in [lo, hi]
+  Enclosure parameter;
+  double width = 0;
+  std::string events;
+  mpq_class z_lo, z_hi;             // Z
+  Enclosure trace, det;             // of DP^Q over the tight box at p*
+  Enclosure other;                  // the other multiplier, -det (the product is det)
+  std::vector<EnclosedOrbitPoint> orbit;  // x(p*), its first point
+  std::string statement, reason;
+  double seconds = 0;
+};
+
+PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q);
+
+}  // namespace bouncer

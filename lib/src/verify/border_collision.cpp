@@ -1,0 +1,1201 @@
+// Certified border collisions, both sides (verify/border_collision.hpp).
+#include "bouncer/verify/border_collision.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <functional>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "bouncer/verify/enclosure.hpp"
+#include "bouncer/model/impact_map_impl.hpp"
+#include "bouncer/verify/interval_dual.hpp"
+
+namespace bouncer {
+
+namespace {
+
+using Tr = ScalarTraits<Mpfi>;
+
+// Why the proof stopped (caught once, in certify_border_collision).
+struct Fail : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+Mpfi thin(const Mpfr& x) { return Mpfi(x, x); }
+
+mpq_class to_q(const Mpfr& x) {
+  mpq_class r;
+  mpfr_get_q(r.get_mpq_t(), x.get());
+  return r;
+}
+
+Enclosure enclosure(const Mpfi& x) {
+  const std::string hi = Tr::upper_string(x);
+  return {Tr::lower_string(x), hi == "-0" ? "0" : hi, x.mid().to_double(), x.width().to_double()};
+}
+
+bool strictly_inside(const Mpfi& x, const Mpfi& y) { return mpfi_is_strictly_inside(x.get(), y.get()) > 0; }
+
+std::string text(const Mpfr& x) { return Tr::lower_string(thin(x)); }
+
+// One step of the branch side's piece: departure segment, impact segment and the whole wall
+// periods from the departure's period to the impact's, whether the impact sticks (then the
+// step ends at the release state of the ride: knot and velocity from the wall).
+struct Piece {
+  int from_segment = 0;
+  int segment = 0;
+  long periods = 0;
+  bool sticks = false;
+  int release_knot = -1;
+  int release_segment = -1;
+};
+
+// Margin kinds: continuation.hpp's Margin, and the departure speed v - u (> 0: the particle
+// leaves the wall), which the step decides too.
+constexpr int kDeparture = kMargins;
+
+struct MarginId {
+  int kind = 0;
+  long step = 0;
+  int knot = -1;
+  bool end = false;  // knot margins: to the end of the impact's segment (else to its start)
+};
+
+std::string margin_words(const MarginId& id) {
+  std::ostringstream s;
+  s << "step " << id.step << ": ";
+  switch (id.kind) {
+    case static_cast<int>(Margin::knot): s << "the impact's distance to the knot " << id.knot; break;
+    case static_cast<int>(Margin::clearance): s << "the flight's clearance at the knot " << id.knot; break;
+    case static_cast<int>(Margin::speed): s << "the impact speed (squared)"; break;
+    case static_cast<int>(Margin::sticking): s << "the sticking test"; break;
+    default: s << "the departure speed"; break;
+  }
+  return s.str();
+}
+
+// The branch side's piece of one step, in closed form, for any scalar T of the step (Mpfi,
+// Dual<Mpfi>): never decides a branch. Gap to the line of the impact segment j in wall
+// period K (relative to the departure's period), t the time since departure:
+//   gap(t) = g0 + W t - a t^2/2,  W = v - u_j,  g0 = f(theta) - h_j - u_j (theta - K - s_j),
+// its larger root t* = (W + q)/a = 2 g0/(q - W), q = sqrt(W^2 + 2 a g0) the relative impact
+// speed; theta' = theta + t* - K, v' = u_j + rebound(q). On the branch side this is the step
+// (the walk of impact_map_impl.hpp finds the same root of the same quadratic); across the
+// border it is that formula's analytic extension. Appends the step's margins (raw signs).
+template <class T>
+State<T> piece_step(const ImpactMap<T>& map, const State<T>& s, const Piece& pc, long step, std::vector<T>* mv,
+                    std::vector<MarginId>* ids) {
+  using TT = ScalarTraits<T>;
+  using std::sqrt;
+  const Model<T>& m = map.model();
+  const Wall<T>& w = m.wall;
+  auto push = [&](int kind, int knot, T x, bool end = false) {
+    if (mv) mv->push_back(std::move(x));
+    if (ids) ids->push_back({kind, step, knot, end});
+  };
+  const bool margins = mv || ids;
+  const int j0 = pc.from_segment, j = pc.segment;
+  const T K = TT::from_int(pc.periods, m.bits);
+  const T f0 = w.height_at(j0, s.theta);
+  if (margins) {
+    push(kDeparture, -1, T(s.v - w.velocity[j0]));
+    // Clearance at every knot passed strictly inside the flight (the gap is concave on each
+    // segment, so positive at the knots means positive in between).
+    int jj = j0;
+    long mm = 0, count = 0;
+    while (!(jj == j && mm == pc.periods)) {
+      jj = w.next(jj);
+      if (jj == 0) ++mm;
+      if (++count > 100000) throw Fail("a flight passes more than 1e5 wall knots");
+      const T tk = w.start[jj] + TT::from_int(mm, m.bits) - s.theta;
+      push(static_cast<int>(Margin::clearance), jj, T(f0 + s.v * tk - m.a * tk * tk / 2 - w.height[jj]));
+    }
+  }
+  const T& u = w.velocity[j];
+  const T g0 = f0 - w.height[j] - u * (s.theta - K - w.start[j]);
+  const T W = s.v - u;
+  const T D = W * W + 2 * m.a * g0;
+  if (margins) push(static_cast<int>(Margin::speed), -1, D);
+  const T q = sqrt(D);
+  const T t = TT::likely_negative(W) && !TT::likely_negative(g0) ? T(2 * g0 / (q - W)) : T((W + q) / m.a);
+  State<T> next;
+  next.theta = s.theta + t - K;
+  if (margins) {
+    push(static_cast<int>(Margin::knot), j, T(next.theta - w.start[j]));
+    push(static_cast<int>(Margin::knot), w.next(j), T(w.end[j] - next.theta), true);
+  }
+  const T out = map.rebound(q);
+  if (margins && m.law == Law::constant)
+    push(static_cast<int>(Margin::sticking), -1, T(out - m.collapse * (w.end[j] - next.theta)));
+  if (pc.sticks) {
+    next.theta = w.start[pc.release_knot];
+    next.v = w.velocity[pc.release_segment];
+    next.knot = pc.release_knot;
+  } else {
+    next.v = u + out;
+  }
+  return next;
+}
+
+template <class T>
+State<T> piece_orbit(const ImpactMap<T>& map, State<T> s, const std::vector<Piece>& pieces, std::vector<T>* mv,
+                     std::vector<MarginId>* ids = nullptr, std::vector<State<T>>* points = nullptr) {
+  for (size_t i = 0; i < pieces.size(); ++i) {
+    if (points) points->push_back(s);
+    s = piece_step(map, s, pieces[i], static_cast<long>(i), mv, ids);
+  }
+  return s;
+}
+
+struct Jet;
+
+// Everything fixed by the branch side.
+struct Setup {
+  Parameter par = Parameter::a;
+  long bits = 128;
+  bool high = true;            // the branch lies below a* (a high end)
+  Model<Mpfi> base;            // the model in intervals (its parameter replaced per evaluation)
+  std::vector<Piece> pieces;
+  std::vector<StepEvent> events;
+  std::vector<MarginId> ids;   // the margins, in evaluation order
+  std::vector<int> sign;       // +1: positive on the branch side
+  int border = -1;             // index of the margin that vanishes
+  bool release = false;        // an orbit through a sticking step: the start R is exact
+  State<Mpfi> R;
+  // Another system on the same unknowns (period doubling): its values at a thin point and
+  // its Jacobian over a box; unset for the border collision.
+  std::function<std::array<Mpfi, 3>(const Mpfi*)> value_fn;
+  std::function<Jet(const Mpfi*)> jet_fn;
+};
+
+Model<Mpfi> at(const Setup& S, const Mpfi& p) { return with_parameter(S.base, S.par, p); }
+
+struct Eval {
+  State<Mpfi> end;
+  std::vector<Mpfi> margins;
+};
+
+Eval evaluate(const Setup& S, const State<Mpfi>& x, const Mpfi& p) {
+  const ImpactMap<Mpfi> map(at(S, p));
+  Eval e;
+  e.end = piece_orbit(map, S.release ? S.R : x, S.pieces, &e.margins);
+  return e;
+}
+
+// Orbits through the release state: every margin with its derivative in p, over P.
+std::vector<IDual> margin_slopes(const Setup& S, const Mpfi& P) {
+  Model<IDual> dm = convert_model<IDual>(S.base, [](const Mpfi& y) { return IDual(y); });
+  dm = with_parameter(dm, S.par, IDual::variable(P, 0));
+  const ImpactMap<IDual> map(std::move(dm));
+  std::vector<IDual> mv;
+  piece_orbit(map, State<IDual>{IDual(S.R.theta), IDual(S.R.v), S.R.knot}, S.pieces, &mv);
+  return mv;
+}
+
+// A clearance that vanishes with the border's knot margin, by an identity. With delta the
+// knot margin of the impact ending step i:
+//   A. the impact nears the END of its segment (knot k): the next flight passes knot k first,
+//      after the time delta, with gap = delta (W - a delta/2), W its departure margin;
+//   B. the impact nears the START of its segment (knot k): the flight passed knot k last,
+//      delta before the impact, with gap = delta (q - a delta/2), q the impact speed sqrt(D).
+// (The wall is linear on each segment and continuous at k.) So that clearance is > 0 where
+// delta > 0 (the border margin's sign, proved separately) if the factor is > 0 over the box.
+bool coincident_clearance(const Setup& S, const std::vector<Mpfi>& mv, size_t i, const Mpfi& p) {
+  const MarginId& b = S.ids[S.border];
+  const MarginId& c = S.ids[i];
+  if (b.kind != static_cast<int>(Margin::knot) || c.kind != static_cast<int>(Margin::clearance) || c.knot != b.knot) return false;
+  const long q = static_cast<long>(S.pieces.size());
+  const bool at_end = b.end;
+  // The step's clearances, in the order the flight passes the knots.
+  auto clearances = [&](long step) {
+    std::vector<size_t> idx;
+    for (size_t k = 0; k < S.ids.size(); ++k)
+      if (S.ids[k].step == step && S.ids[k].kind == static_cast<int>(Margin::clearance)) idx.push_back(k);
+    return idx;
+  };
+  auto index_of = [&](long step, int kind) -> long {
+    for (size_t k = 0; k < S.ids.size(); ++k)
+      if (S.ids[k].step == step && S.ids[k].kind == kind) return static_cast<long>(k);
+    return -1;
+  };
+  const Mpfi a = at(S, p).a;
+  const Mpfi delta = mv[S.border];  // knot margins are positive on the branch side
+  const Mpfi zero(0, S.bits);
+  if (at_end) {
+    const long next = (b.step + 1) % q;
+    const std::vector<size_t> cl = clearances(next);
+    if (c.step != next || cl.empty() || cl.front() != i) return false;
+    const long dep = index_of(next, kDeparture);
+    return dep >= 0 && Tr::lt(zero, Mpfi(mv[dep] - a * delta / 2)) == Truth::yes;
+  }
+  const std::vector<size_t> cl = clearances(b.step);
+  if (c.step != b.step || cl.empty() || cl.back() != i) return false;
+  const long sp = index_of(b.step, static_cast<int>(Margin::speed));
+  if (sp < 0 || Tr::lt(zero, mv[sp]) != Truth::yes) return false;
+  return Tr::lt(zero, Mpfi(sqrt(mv[sp]) - a * delta / 2)) == Truth::yes;
+}
+
+// The border margin, oriented (> 0 on the branch side).
+Mpfi oriented(const Setup& S, const std::vector<Mpfi>& mv, size_t i) { return S.sign[i] > 0 ? mv[i] : Mpfi(-mv[i]); }
+
+// Variables: 0 = theta, 1 = v, 2 = p. Rows: 0, 1 = P_E^Q(x) - x, 2 = the border margin.
+struct Jet {
+  Mpfi f[3];
+  Mpfi D[3][3];
+};
+
+Jet jet(const Setup& S, const Mpfi x[3]) {
+  Jet J;
+  for (int run = S.release ? 1 : 0; run < 2; ++run) {
+    Model<IDual> dm = convert_model<IDual>(S.base, [](const Mpfi& y) { return IDual(y); });
+    dm = with_parameter(dm, S.par, run == 1 ? IDual::variable(x[2], 0) : IDual(x[2]));
+    State<IDual> s = S.release ? State<IDual>{IDual(S.R.theta), IDual(S.R.v), S.R.knot}
+                     : run == 0 ? State<IDual>{IDual::variable(x[0], 0), IDual::variable(x[1], 1)}
+                                : State<IDual>{IDual(x[0]), IDual(x[1])};
+    const ImpactMap<IDual> map(std::move(dm));
+    std::vector<IDual> mv;
+    const State<IDual> end = piece_orbit(map, s, S.pieces, &mv);
+    // (Before the border is known, only the orbit rows: Newton for the orbit alone.)
+    const IDual* rows[3] = {&end.theta, &end.v, S.border >= 0 ? &mv[S.border] : &end.v};
+    for (int r = S.release ? 2 : 0; r < (S.border >= 0 ? 3 : 2); ++r) {
+      if (!ScalarTraits<IDual>::derivatives_finite(*rows[r]))
+        throw Fail("the derivative enclosure over the box is not finite (a square root at 0: a touchdown)");
+      if (run == 0) {
+        J.f[r] = rows[r]->v;
+        J.D[r][0] = rows[r]->d[0];
+        J.D[r][1] = rows[r]->d[1];
+      } else {
+        J.f[r] = rows[r]->v;
+        J.D[r][2] = rows[r]->d[0];
+      }
+    }
+  }
+  if (!S.release) {
+    J.f[0] -= x[0];
+    J.f[1] -= x[1];
+    J.D[0][0] = J.D[0][0] - 1;
+    J.D[1][1] = J.D[1][1] - 1;
+  }
+  if (S.border >= 0 && S.sign[S.border] < 0) {
+    for (int c = 0; c < 3; ++c) J.D[2][c] = -J.D[2][c];
+    J.f[2] = -J.f[2];
+  }
+  return J;
+}
+
+// A Krawczyk problem: the unknowns yi (indices into theta, v, p), the rows, and optionally
+// the free parameter (z = p in Z: the orbit alone, for every p in Z).
+struct Problem {
+  std::vector<int> rows, yi;
+  bool free_p = false;
+  Mpfi Z;
+  Mpfr zhat;
+};
+
+Problem augmented(const Setup& S) {
+  Problem P;
+  if (S.release) {
+    P.rows = {2};
+    P.yi = {2};
+  } else {
+    P.rows = {0, 1, 2};
+    P.yi = {0, 1, 2};
+  }
+  return P;
+}
+
+Problem orbit_problem(const Mpfi& Z) {
+  Problem P;
+  P.rows = {0, 1};
+  P.yi = {0, 1};
+  P.free_p = true;
+  P.Z = Z;
+  P.zhat = Z.mid();
+  return P;
+}
+
+// The inverse of a point matrix (n <= 3), Gauss-Jordan in thin intervals, as points.
+std::vector<std::vector<Mpfi>> inverse_mid(std::vector<std::vector<Mpfi>> A, long bits) {
+  const size_t n = A.size();
+  std::vector<std::vector<Mpfi>> B(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t k = 0; k < n; ++k) A[i][k] = thin(A[i][k].mid());
+    B[i][i] = Mpfi(1, bits);
+  }
+  for (size_t c = 0; c < n; ++c) {
+    size_t piv = c;
+    for (size_t r = c + 1; r < n; ++r)
+      if (std::fabs(A[r][c].mid().to_double()) > std::fabs(A[piv][c].mid().to_double())) piv = r;
+    std::swap(A[c], A[piv]);
+    std::swap(B[c], B[piv]);
+    if (Tr::is_zero(A[c][c]) != Truth::no) throw Fail("the midpoint Jacobian of the system is singular");
+    const Mpfi d = A[c][c];
+    for (size_t k = 0; k < n; ++k) {
+      A[c][k] /= d;
+      B[c][k] /= d;
+    }
+    for (size_t r = 0; r < n; ++r) {
+      if (r == c) continue;
+      const Mpfi f = A[r][c];
+      for (size_t k = 0; k < n; ++k) {
+        A[r][k] -= f * A[c][k];
+        B[r][k] -= f * B[c][k];
+      }
+    }
+  }
+  for (auto& row : B)
+    for (Mpfi& x : row) x = thin(x.mid());
+  return B;
+}
+
+// The full variable vector (theta, v, p) from the unknowns and the free parameter.
+void assemble(const Problem& P, const std::vector<Mpfi>& y, const Mpfi& z, Mpfi x[3], long bits) {
+  x[0] = x[1] = x[2] = Mpfi(0, bits);
+  for (size_t k = 0; k < P.yi.size(); ++k) x[P.yi[k]] = y[k];
+  if (P.free_p) x[2] = z;
+}
+
+// f at the centre (thin), in intervals.
+std::vector<Mpfi> residual(const Setup& S, const Problem& P, const std::vector<Mpfr>& yhat) {
+  std::vector<Mpfi> y;
+  for (const Mpfr& v : yhat) y.push_back(thin(v));
+  Mpfi x[3];
+  assemble(P, y, thin(P.zhat), x, S.bits);
+  std::array<Mpfi, 3> all;
+  if (S.value_fn) {
+    all = S.value_fn(x);
+  } else {
+    const Eval e = evaluate(S, State<Mpfi>{x[0], x[1]}, x[2]);
+    all = {e.end.theta - x[0], e.end.v - x[1], S.border >= 0 ? oriented(S, e.margins, S.border) : Mpfi(0, S.bits)};
+  }
+  std::vector<Mpfi> f;
+  for (int r : P.rows) f.push_back(all[r]);
+  return f;
+}
+
+// K(Y) = y^ - C f(y^) - C F_z (Z - z^) + (I - C F_y(Y, Z)) (Y - y^). If K(Y) lies in the
+// interior of Y, then for every z in Z exactly one y in Y has f(y; z) = 0 (no free z: exactly
+// one zero in Y), and every such zero lies in K(Y) (periodic_certify.hpp has the argument).
+std::vector<Mpfi> krawczyk(const Setup& S, const Problem& P, const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
+                           const std::vector<Mpfi>& Y) {
+  const size_t n = P.yi.size();
+  // The derivatives over hull(Y, y^) (and Z, which holds z^): the mean value form needs them
+  // on the segments from y^ to every point of Y, also when tightening has moved Y off y^.
+  std::vector<Mpfi> H;
+  for (size_t c = 0; c < n; ++c) H.push_back(hull(Y[c], thin(yhat[c])));
+  Mpfi x[3];
+  assemble(P, H, P.Z, x, S.bits);
+  const Jet J = S.jet_fn ? S.jet_fn(x) : jet(S, x);
+  std::vector<std::vector<Mpfi>> A(n, std::vector<Mpfi>(n));
+  std::vector<Mpfi> Fz(n, Mpfi(0, S.bits));
+  for (size_t r = 0; r < n; ++r) {
+    for (size_t c = 0; c < n; ++c) A[r][c] = J.D[P.rows[r]][P.yi[c]];
+    if (P.free_p) Fz[r] = J.D[P.rows[r]][2];
+  }
+  const std::vector<std::vector<Mpfi>> C = inverse_mid(A, S.bits);
+  std::vector<Mpfi> K;
+  for (size_t r = 0; r < n; ++r) {
+    Mpfi k = thin(yhat[r]);
+    for (size_t c = 0; c < n; ++c) k -= C[r][c] * f[c];
+    if (P.free_p) {
+      Mpfi cz(0, S.bits);
+      for (size_t c = 0; c < n; ++c) cz += C[r][c] * Fz[c];
+      k -= cz * (P.Z - thin(P.zhat));
+    }
+    for (size_t c = 0; c < n; ++c) {
+      Mpfi M = Mpfi(r == c ? 1 : 0, S.bits);
+      for (size_t l = 0; l < n; ++l) M -= C[r][l] * A[l][c];
+      k += M * (Y[c] - thin(yhat[c]));
+    }
+    if (k.has_nan() || !k.bounded()) throw Fail("the Krawczyk image is not finite");
+    K.push_back(k);
+  }
+  return K;
+}
+
+// Newton: y <- y - C f(y), the Krawczyk operator on the thin centre (free p held at z^).
+std::vector<Mpfr> newton(const Setup& S, Problem P, std::vector<Mpfr> y) {
+  P.Z = thin(P.zhat);
+  for (int it = 0; it < 60; ++it) {
+    std::vector<Mpfi> Y;
+    for (const Mpfr& v : y) Y.push_back(thin(v));
+    const std::vector<Mpfi> K = krawczyk(S, P, y, residual(S, P, y), Y);
+    // Converged when every component moved by at most a few ulps (the last bits may cycle).
+    bool same = true;
+    for (size_t i = 0; i < y.size(); ++i) {
+      const Mpfr nx = K[i].mid();
+      Mpfr tol = abs(y[i]) + 1;
+      mpfr_mul_2si(tol.get(), tol.get(), -(S.bits - 6), MPFR_RNDN);
+      if (abs(Mpfr(nx - y[i])) > tol) same = false;
+      y[i] = nx;
+    }
+    if (same) break;
+  }
+  return y;
+}
+
+bool all_inside(const std::vector<Mpfi>& K, const std::vector<Mpfi>& Y) {
+  for (size_t i = 0; i < K.size(); ++i)
+    if (!strictly_inside(K[i], Y[i])) return false;
+  return true;
+}
+
+// Epsilon inflation around y^ until K(Y) lies in the interior of Y (a small box), then
+// K(Y) n Y repeatedly: the tight enclosure of the unique zero in the proof box.
+std::vector<Mpfi> prove_tight(const Setup& S, const Problem& P, const std::vector<Mpfr>& yhat) {
+  const std::vector<Mpfi> f = residual(S, P, yhat);
+  std::vector<Mpfr> r;
+  for (size_t i = 0; i < yhat.size(); ++i) {
+    Mpfi ulps = abs(thin(yhat[i])) + 1;
+    mpfi_mul_2si(ulps.get(), ulps.get(), -(S.bits - 8));
+    Mpfi s = ulps;
+    for (const Mpfi& fi : f) s += abs(fi);
+    r.push_back(s.upper());
+  }
+  for (int it = 0; it < 24; ++it) {
+    std::vector<Mpfi> Y;
+    for (size_t i = 0; i < yhat.size(); ++i) Y.push_back(Mpfi(Mpfr(yhat[i] - r[i]), Mpfr(yhat[i] + r[i])));
+    const std::vector<Mpfi> K = krawczyk(S, P, yhat, f, Y);
+    if (all_inside(K, Y)) {
+      std::vector<Mpfi> T;
+      for (size_t i = 0; i < K.size(); ++i) T.push_back(intersect(K[i], Y[i]));
+      for (int t = 0; t < 8; ++t) {
+        const std::vector<Mpfi> K2 = krawczyk(S, P, yhat, f, T);
+        bool shrank = false;
+        for (size_t i = 0; i < T.size(); ++i) {
+          const Mpfi N = intersect(K2[i], T[i]);
+          if (N.has_nan()) throw Fail("K(Y) n Y is empty while tightening (an enclosure is inconsistent)");
+          if (mpfr_less_p(N.width().get(), T[i].width().get())) shrank = true;
+          T[i] = N;
+        }
+        if (!shrank) break;
+      }
+      return T;
+    }
+    for (size_t i = 0; i < yhat.size(); ++i) {
+      Mpfr grown(S.bits);
+      grown = abs(K[i] - thin(yhat[i])).upper() * 2;
+      Mpfr doubled(S.bits);
+      doubled = r[i] * 2;
+      r[i] = mpfr_greater_p(grown.get(), doubled.get()) ? grown : doubled;
+    }
+  }
+  throw Fail("the Krawczyk operator did not map any small box around the Newton point into itself");
+}
+
+// The period-Q point x(p) at one parameter value p (thin), enclosed tightly.
+std::vector<Mpfi> orbit_at(const Setup& S, const Mpfi& p, const std::vector<Mpfr>& guess) {
+  Problem P = orbit_problem(p);
+  return prove_tight(S, P, newton(S, P, guess));
+}
+
+// The branch side's reference: events, pieces and margins from the step itself (Mpfr).
+struct Reference {
+  State<Mpfr> start;
+  std::vector<StepResult<Mpfr>> steps;
+};
+
+Piece piece_of(const Model<Mpfr>& m, const State<Mpfr>& s, const StepResult<Mpfr>& r) {
+  if (r.kind == EventKind::ride) throw Fail("a step of the orbit rides the wall (zero relative speed): not supported");
+  if (r.corner) throw Fail("an impact of the branch side's orbit is exactly at a wall corner");
+  Piece pc;
+  pc.from_segment = s.knot >= 0 ? s.knot : m.wall.segment_of(s.theta);
+  pc.sticks = r.kind == EventKind::sticking;
+  pc.segment = pc.sticks ? r.stick_segment : r.segment;
+  const Mpfr& th = pc.sticks ? r.stuck_theta : r.next.theta;
+  Mpfr tau = r.tau;
+  if (pc.sticks) {
+    Mpfr ride = r.next.theta - r.stuck_theta;
+    if (ride.to_double() < 0) ride = ride + 1;
+    tau = tau - ride;
+  }
+  pc.periods = std::lround(Mpfr(s.theta + tau - th).to_double());
+  if (pc.sticks) {
+    // The ride after the collapse must end at a release (a downward turn): with the
+    // --downward-sticking impact convention it may end in a collision at an upward turn,
+    // whose outcome this closed form does not model.
+    if (r.passed_upward_turn) throw Fail("the sticking step's ride passes an upward turn: not supported");
+    pc.release_knot = r.next.knot;
+    pc.release_segment = r.segment;
+    if (pc.release_knot < 0) throw Fail("the sticking step does not end at a wall knot");
+  }
+  return pc;
+}
+
+StepEvent event_of(const StepResult<Mpfr>& r) {
+  StepEvent e;
+  e.kind = r.kind;
+  e.segment = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
+  e.corner = r.corner;
+  e.indirect = r.indirect == Truth::yes;
+  return e;
+}
+
+// A decimal parameter value, enclosed at `bits`.
+Mpfi parameter_interval_of(const Decimal& p, long bits) {
+  Mpfi x(bits);
+  x.set_decimal(p.text());
+  return x;
+}
+
+// The q steps of the step itself from x, restarted at the release state that ends the
+// sticking step if the orbit sticks (such orbits are the release state's orbit).
+Reference steps_from(const BranchEndQuestion& e, const Model<Mpfr>& m, const State<Mpfr>& x) {
+  const ImpactMap<Mpfr> map(m);
+  Reference ref;
+  State<Mpfr> s = x;
+  for (long i = 0; i < e.period; ++i) {
+    ref.steps.push_back(map.step(s));
+    s = ref.steps.back().next;
+  }
+  long last_stick = -1;
+  for (long i = 0; i < e.period; ++i)
+    if (ref.steps[i].kind != EventKind::impact) last_stick = i;
+  ref.start = x;
+  if (last_stick >= 0) {
+    ref.start = ref.steps[last_stick].next;
+    ref.steps.clear();
+    s = ref.start;
+    for (long i = 0; i < e.period; ++i) {
+      ref.steps.push_back(map.step(s));
+      s = ref.steps.back().next;
+      if (ref.steps.back().kind != EventKind::impact && i + 1 < e.period)
+        throw Fail("the release state's orbit sticks before step " + std::to_string(e.period) +
+                   " (its minimal period is smaller)");
+    }
+    if (s.knot != ref.start.knot) throw Fail("the release state's orbit does not return to it");
+  }
+  return ref;
+}
+
+// The branch side's orbit by the step's own Newton (find_periodic at Mpfr) at p from the last
+// point; nothing when Newton does not converge there.
+std::optional<Reference> newton_reference(const BranchEndQuestion& e, const Decimal& p, long bits) {
+  const Model<Mpfr> m = make_model<Mpfr>(with_parameter(e.model, e.vary, p), bits);
+  const PeriodicOrbit<Mpfr> o = find_periodic(m, e.period, make_state<Mpfr>(m, e.last_point));
+  if (!o.converged || o.points.empty()) return std::nullopt;
+  return steps_from(e, m, o.points[0]);
+}
+
+// The ImpactMap's own interval steps from x at parameter p: true when every branch is
+// decided and the events are those of the pieces (kind, segment, corner), false when some
+// branch is undecided; throws when decided otherwise.
+bool step_confirms(const Setup& S, const State<Mpfi>& x, const Mpfi& p) {
+  const ImpactMap<Mpfi> map(at(S, p));
+  State<Mpfi> s = S.release ? S.R : x;
+  try {
+    for (size_t i = 0; i < S.pieces.size(); ++i) {
+      const StepResult<Mpfi> r = map.step(s);
+      const int seg = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
+      if (r.kind != S.events[i].kind || seg != S.events[i].segment || r.corner != S.events[i].corner)
+        throw Fail("the step's own events at the branch side's check point differ from the branch side's at step " +
+                   std::to_string(i));
+      s = r.next;
+    }
+  } catch (const Undecided&) {
+    return false;
+  }
+  return true;
+}
+
+struct Proved {
+  std::vector<Mpfi> Y;   // the orbit box (isolated)
+  Mpfi Z;                // the parameter interval
+  Mpfi pstar;            // the tight enclosure of a*
+  std::vector<Mpfi> xstar;
+};
+
+void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::vector<State<Mpfi>>& orbit_out) {
+  const BranchEndQuestion& e = q.end;
+  const long bits = q.bits;
+  if (e.model.law == Law::veldep && e.model.veldep_collapse)
+    throw Fail("--veldep-collapse decides sticking by a one-sided bound: no analytic margin");
+  if (!(e.lo.value() < e.hi.value())) throw Fail("the interval next to a* is empty");
+  Setup S;
+  S.par = e.vary;
+  S.bits = bits;
+  S.high = e.high_end;
+  // The reference orbit is taken at the interval's far end pf: the interval's end next to a*
+  // comes from a double bracket, which may lie past a* (issue 23: by 1.8e-11 at the veldep
+  // period-7 end), where the branch's orbit no longer exists.
+  const Decimal& pb = e.high_end ? e.hi : e.lo;  // the end next to a*
+  const Decimal& pf = e.high_end ? e.lo : e.hi;  // the far end, on the branch side
+  // The events: from the step's Newton orbit at pf, or, where that Newton fails (an
+  // unstable orbit moves fast with the parameter: the last point is far from the orbit at
+  // pf), from the steps of the last point itself at pb, confirmed below at pf.
+  std::optional<Reference> found = newton_reference(e, pf, bits);
+  const bool via_piece = !found;
+  const Model<Mpfr> mref = make_model<Mpfr>(with_parameter(e.model, e.vary, pf), bits);
+  if (via_piece) {
+    const Model<Mpfr> mb = make_model<Mpfr>(with_parameter(e.model, e.vary, pb), bits);
+    found = steps_from(e, mb, make_state<Mpfr>(mb, e.last_point));
+  }
+  Reference ref = *found;
+  {
+    State<Mpfr> s = ref.start;
+    for (const StepResult<Mpfr>& r : ref.steps) {
+      S.pieces.push_back(piece_of(mref, s, r));
+      S.events.push_back(event_of(r));
+      s = r.next;
+    }
+  }
+  S.release = S.pieces.back().sticks;
+  S.base = interval_model(with_parameter(e.model, e.vary, pf), bits);
+  if (S.release) {
+    const Wall<Mpfi>& w = S.base.wall;
+    const int k = ref.start.knot;
+    if (k < 0) throw Fail("the release state is not at a wall knot");
+    S.R = State<Mpfi>{w.start[k], w.velocity[S.pieces.back().release_segment], k};
+  }
+  if (via_piece) {
+    // Newton on the piece at pf, then the step itself from its solution: the same events.
+    State<Mpfr> x = ref.start;
+    if (!S.release) {
+      const std::vector<Mpfr> y = newton(S, orbit_problem(parameter_of(S.base, S.par)), {ref.start.theta, ref.start.v});
+      x = State<Mpfr>{y[0], y[1]};
+    }
+    const Reference at_pf = steps_from(e, mref, x);
+    for (size_t i = 0; i < at_pf.steps.size(); ++i)
+      if (!event_of(at_pf.steps[i]).same_piece(S.events[i]))
+        throw Fail("the branch side's events at " + std::string(name(e.vary)) + " = " + pf.text() +
+                   " differ from those of the last point at " + pb.text());
+    ref = at_pf;
+  }
+  // Each step departs from the segment the previous impact landed on (or from the release
+  // knot): the margins of step i's impact then place step i+1's start on its segment.
+  for (size_t i = 0; i < S.pieces.size(); ++i) {
+    const Piece& prev = S.pieces[(i + S.pieces.size() - 1) % S.pieces.size()];
+    const int landed = prev.sticks ? prev.release_knot : prev.segment;
+    if (S.pieces[i].from_segment != landed)
+      throw Fail("the orbit's steps do not chain: step " + std::to_string(i) + " departs from segment " +
+                 std::to_string(S.pieces[i].from_segment) + ", the impact before it is on segment " + std::to_string(landed));
+  }
+  c.events = event_text(S.events);
+  c.through_release = S.release;
+
+  // The margins at the reference and at a second branch-side value pf2 = pf + (pf - pb),
+  // farther from a*: their orientation, and the border (the margin given, or the one whose
+  // zero, extrapolated linearly, is nearest).
+  const Mpfi Pf = parameter_of(S.base, S.par);
+  const Mpfi Pb = parameter_interval_of(pb, bits);
+  const State<Mpfi> xf{thin(ref.start.theta), thin(ref.start.v)};
+  std::vector<Mpfi> mf;
+  {
+    const ImpactMap<Mpfi> map(at(S, Pf));
+    const State<Mpfi> end = piece_orbit(map, S.release ? S.R : xf, S.pieces, &mf, &S.ids);
+    // The closed-form piece against the step: the same orbit end.
+    const State<Mpfr>& want = ref.steps.back().next;
+    const double d = std::max(std::fabs(Mpfr(end.theta.mid() - want.theta).to_double()),
+                              std::fabs(Mpfr(end.v.mid() - want.v).to_double()) / std::max(1.0, std::fabs(want.v.to_double())));
+    if (!(d < std::ldexp(1.0, -static_cast<int>(bits) / 2))) throw Fail("the closed-form piece does not reproduce the step's orbit (off by " + std::to_string(d) + ")");
+  }
+  for (const Mpfi& x : mf) S.sign.push_back(x.mid().to_double() >= 0 ? 1 : -1);
+  {
+    const mpq_class p2 = pf.value() + (pf.value() - pb.value());
+    const Decimal d2 = *Decimal::parse(exact_decimal(p2));
+    std::vector<Mpfi> m2;
+    const Mpfi P2 = parameter_interval_of(d2, bits);
+    if (S.release) {
+      m2 = evaluate(S, S.R, P2).margins;
+    } else {
+      const std::vector<Mpfr> y2 = newton(S, orbit_problem(P2), {ref.start.theta, ref.start.v});
+      m2 = evaluate(S, State<Mpfi>{thin(y2[0]), thin(y2[1])}, P2).margins;
+    }
+    const double dp = mpq_class(pf.value() - pb.value()).get_d();
+    std::vector<double> dist(mf.size(), std::numeric_limits<double>::infinity());
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < mf.size(); ++i) {
+      if (S.ids[i].kind == kDeparture) continue;
+      if (q.margin && S.ids[i].kind != static_cast<int>(*q.margin)) continue;
+      const double vf = std::fabs(mf[i].mid().to_double()), v2 = std::fabs(m2[i].mid().to_double());
+      if (!(vf < v2)) continue;  // not moving towards 0 at the end
+      dist[i] = vf * std::fabs(dp) / (v2 - vf);  // linear extrapolation to its zero
+      best = std::min(best, dist[i]);
+    }
+    // Margins that vanish together (an impact at a knot and a flight's clearance at that
+    // knot): the knot distance is the border, the clearance follows by an identity
+    // (coincident_clearance).
+    for (size_t i = 0; i < mf.size(); ++i) {
+      if (!(dist[i] <= best * (1 + 1e-3))) continue;
+      if (S.border < 0 || (S.ids[i].kind == static_cast<int>(Margin::knot) &&
+                           S.ids[S.border].kind != static_cast<int>(Margin::knot)))
+        S.border = static_cast<int>(i);
+    }
+    if (S.border < 0) throw Fail("no margin of the branch side's orbit decreases towards 0 at this end");
+  }
+  const MarginId& bid = S.ids[S.border];
+  c.margin = static_cast<Margin>(bid.kind);
+  c.step = static_cast<int>(bid.step);
+  c.knot = bid.knot;
+  c.margin_text = margin_words(bid);
+
+  // Newton on the augmented system from the branch side's orbit at pf.
+  const Problem A = augmented(S);
+  const Mpfr pbr = Pb.mid(), pfr = Pf.mid();
+  std::vector<Mpfr> u = S.release ? std::vector<Mpfr>{pfr} : std::vector<Mpfr>{ref.start.theta, ref.start.v, pfr};
+  u = newton(S, A, u);
+  const Mpfr phat = u.back();
+  const Mpfr w0 = abs(Mpfr(pbr - pfr));
+  {
+    const Mpfr gap = abs(Mpfr(phat - pbr));
+    if (!(mpfr_number_p(phat.get())) || gap.to_double() > 100 * w0.to_double())
+      throw Fail("Newton on the augmented system goes to " + std::string(name(S.par)) + " = " + text(phat) +
+                 ", far from the interval given (no border collision of this margin next to it)");
+  }
+
+  // The proof over Y x Z, Z = [phat - w, phat + w], w from the interval given, shrinking.
+  std::optional<Proved> proved;
+  std::string why;
+  for (int k = 0; k < 6 && !proved; ++k) {
+    Mpfr w(bits);
+    mpfr_div_2si(w.get(), w0.get(), 4 * k, MPFR_RNDN);
+    const Mpfr zlo = phat - w, zhi = phat + w;
+    Proved pr;
+    pr.Z = Mpfi(zlo, zhi);
+    try {
+      if (S.release) {
+        std::vector<Mpfi> B = {pr.Z};
+        Problem P = A;
+        const std::vector<Mpfi> K = krawczyk(S, P, u, residual(S, P, u), B);
+        if (!all_inside(K, B)) throw Fail("K(Z) is not inside Z");
+        for (int t = 0; t < 40; ++t) {
+          const std::vector<Mpfi> K2 = krawczyk(S, P, u, residual(S, P, u), B);
+          const Mpfi N = intersect(K2[0], B[0]);
+          if (N.has_nan()) throw Fail("K(B) n B is empty while tightening");
+          const bool shrank = mpfr_less_p(N.width().get(), B[0].width().get());
+          B[0] = N;
+          if (!shrank) break;
+        }
+        pr.pstar = B[0];
+      } else {
+        const std::vector<Mpfr> xg = {u[0], u[1]};
+        const std::vector<Mpfi> ylo = orbit_at(S, thin(zlo), xg), yhi = orbit_at(S, thin(zhi), xg);
+        // Y: the hull of the two ends' orbits and the centre, inflated until both proofs hold.
+        std::vector<Mpfi> Y(2);
+        Mpfr rad[2], mid[2];
+        for (int i = 0; i < 2; ++i) {
+          const Mpfi h = hull(hull(ylo[i], yhi[i]), thin(u[i]));
+          mid[i] = h.mid();
+          rad[i] = h.width();
+          Mpfi ulps = abs(thin(mid[i])) + 1;
+          mpfi_mul_2si(ulps.get(), ulps.get(), -(bits - 16));
+          rad[i] = rad[i] + ulps.upper();
+        }
+        bool ok = false;
+        for (int t = 0; t < 6 && !ok; ++t) {
+          for (int i = 0; i < 2; ++i) Y[i] = Mpfi(Mpfr(mid[i] - rad[i]), Mpfr(mid[i] + rad[i]));
+          Problem O = orbit_problem(pr.Z);
+          O.zhat = phat;
+          const std::vector<Mpfr> yc = {u[0], u[1]};
+          const std::vector<Mpfi> KO = krawczyk(S, O, yc, residual(S, O, yc), Y);
+          std::vector<Mpfi> B = {Y[0], Y[1], pr.Z};
+          const std::vector<Mpfi> KA = krawczyk(S, A, u, residual(S, A, u), B);
+          ok = all_inside(KO, Y) && all_inside(KA, B);
+          if (!ok)
+            for (int i = 0; i < 2; ++i) rad[i] = rad[i] * 4;
+        }
+        if (!ok) throw Fail("the Krawczyk operators did not map the box Y x Z into itself");
+        pr.Y = Y;
+        std::vector<Mpfi> B = {Y[0], Y[1], pr.Z};
+        const std::vector<Mpfi> f = residual(S, A, u);
+        for (int t = 0; t < 40; ++t) {
+          const std::vector<Mpfi> K2 = krawczyk(S, A, u, f, B);
+          bool shrank = false;
+          for (int i = 0; i < 3; ++i) {
+            const Mpfi N = intersect(K2[i], B[i]);
+            if (N.has_nan()) throw Fail("K(B) n B is empty while tightening");
+            if (mpfr_less_p(N.width().get(), B[i].width().get())) shrank = true;
+            B[i] = N;
+          }
+          if (!shrank) break;
+        }
+        pr.pstar = B[2];
+        pr.xstar = {B[0], B[1]};
+      }
+      proved = pr;
+    } catch (const Fail& f) {
+      why = f.what();
+    } catch (const Undecided& un) {
+      why = std::string("undecided: ") + un.what();
+    }
+  }
+  if (!proved) throw Fail("no parameter interval around a* certified (" + why + ")");
+  const Proved& pr = *proved;
+  const Mpfr zlo = pr.Z.lower(), zhi = pr.Z.upper();
+  const Mpfr alo = pr.pstar.lower(), ahi = pr.pstar.upper();
+  // The branch side [zb, a*_lo] (high end) or [a*_hi, zb] (low end), and beyond.
+  const Mpfi side = S.high ? Mpfi(zlo, alo) : Mpfi(ahi, zhi);
+  const Mpfi beyond = S.high ? Mpfi(ahi, zhi) : Mpfi(zlo, alo);
+  const Mpfr& zb = S.high ? zlo : zhi;
+  const Mpfr& zx = S.high ? zhi : zlo;
+
+  // 3. The border margin's sign at both ends of Z, at thin parameters (with the uniqueness
+  // of 1-2 and continuity it then has one sign on each side of a*: an interval evaluation
+  // over a whole side would straddle 0 next to a*).
+  // x(p) enclosed at one p: its box must lie in Y, where x(p) is the unique orbit.
+  auto orbit_in_Y = [&](const Mpfi& p) {
+    const std::vector<Mpfi> x = orbit_at(S, p, {u[0], u[1]});
+    if (!pr.Y[0].contains(x[0]) || !pr.Y[1].contains(x[1])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
+    return x;
+  };
+  auto border_sign = [&](const Mpfr& p) {
+    std::vector<Mpfi> x;
+    if (!S.release) x = orbit_in_Y(thin(p));
+    const Eval ev = evaluate(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, thin(p));
+    return oriented(S, ev.margins, S.border);
+  };
+  const Mpfi zero(0, bits);
+  if (Tr::lt(zero, border_sign(zb)) != Truth::yes)
+    throw Fail("the border margin is not certainly > 0 at the branch side's end of Z, " + std::string(name(S.par)) + " = " + text(zb));
+  if (Tr::lt(border_sign(zx), zero) != Truth::yes)
+    throw Fail("the border margin is not certainly < 0 at the far end of Z, " + std::string(name(S.par)) + " = " + text(zx));
+  // 4. Every other margin keeps its branch-side sign over Y x side.
+  {
+    const Eval ev = evaluate(S, S.release ? S.R : State<Mpfi>{pr.Y[0], pr.Y[1]}, side);
+    std::optional<std::vector<IDual>> slopes;
+    for (size_t i = 0; i < ev.margins.size(); ++i) {
+      if (static_cast<int>(i) == S.border) continue;
+      if (Tr::lt(zero, oriented(S, ev.margins, i)) == Truth::yes) continue;
+      // Orbits through the release state (the parameter the only variable): a margin that
+      // also tends to 0 at a* (the knot at a = 32, reached as the flight grazes that corner)
+      // is positive on the side if it is monotone there (its derivative over the side has
+      // one sign) and positive at both of the side's ends.
+      bool ok = coincident_clearance(S, ev.margins, i, side);
+      if (!ok && S.release) {
+        if (!slopes) slopes = margin_slopes(S, side);
+        const Mpfi& d = (*slopes)[i].d[0];
+        const bool monotone = Tr::lt(zero, d) == Truth::yes || Tr::lt(d, zero) == Truth::yes;
+        if (monotone) {
+          const Eval e1 = evaluate(S, S.R, thin(side.lower())), e2 = evaluate(S, S.R, thin(side.upper()));
+          ok = Tr::lt(zero, oriented(S, e1.margins, i)) == Truth::yes && Tr::lt(zero, oriented(S, e2.margins, i)) == Truth::yes;
+        }
+      }
+      if (!ok)
+        throw Fail("on the branch side, " + margin_words(S.ids[i]) +
+                   " is not certainly of its branch-side sign over the proof's box (a second margin near 0 at a*?)");
+    }
+  }
+  // 5. The step's own events at a branch-side point next to a*: a short decimal, enclosed
+  // (the check covers its enclosure, so the decimal printed is a point checked).
+  std::optional<std::string> checked;
+  {
+    const Mpfr width = Mpfr(ahi - alo);
+    for (int k : {0, 8, 16, 32, 48, 64, 80, 96}) {
+      Mpfr d(bits);
+      mpfr_mul_2si(d.get(), width.get(), k, MPFR_RNDN);
+      const Mpfr pc = S.high ? Mpfr(alo - d) : Mpfr(ahi + d);
+      // The decimal rounded away from a*, so that it stays on the branch side.
+      const std::string dec = S.high ? Tr::lower_string(thin(pc)) : Tr::upper_string(thin(pc));
+      Mpfi Pc(bits);
+      Pc.set_decimal(dec);
+      if (!side.contains(Pc)) break;
+      std::vector<Mpfi> x;
+      if (!S.release) {
+        try {
+          x = orbit_in_Y(Pc);
+        } catch (const Fail&) {
+          continue;
+        } catch (const Undecided&) {
+          continue;
+        }
+      }
+      if (step_confirms(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, Pc)) {
+        checked = dec;
+        break;
+      }
+    }
+    if (!checked) throw Fail("the step's own interval evaluation did not decide the events next to a*");
+  }
+
+  // The certificate.
+  c.certified = true;
+  c.lo = to_q(alo);
+  c.hi = to_q(ahi);
+  c.parameter = enclosure(pr.pstar);
+  c.width = Mpfr(ahi - alo).to_double();
+  c.z_lo = to_q(zlo);
+  c.z_hi = to_q(zhi);
+  c.checked_at = Decimal::parse(*checked)->value();
+  {
+    const ImpactMap<Mpfi> map(at(S, pr.pstar));
+    std::vector<State<Mpfi>> pts;
+    piece_orbit(map, S.release ? S.R : State<Mpfi>{pr.xstar[0], pr.xstar[1]}, S.pieces, static_cast<std::vector<Mpfi>*>(nullptr),
+                nullptr, &pts);
+    orbit_out = pts;
+  }
+  for (const State<Mpfi>& x : orbit_out) c.orbit.push_back({enclosure(x.theta), enclosure(x.v)});
+  const std::string p = name(S.par);
+  std::ostringstream s;
+  // Short decimals, rounded so that each claim stays true: the branch side's interval
+  // inwards, a*'s enclosure outwards, the far end of "beyond" towards a*.
+  const std::string up_zlo = Tr::upper_string(thin(zlo)), down_zhi = Tr::lower_string(thin(zhi));
+  const std::string side_text = S.high ? "[" + up_zlo + ", " + c.parameter.lo + ")" : "(" + c.parameter.hi + ", " + down_zhi + "]";
+  const std::string beyond_text = S.high ? "(a*, " + down_zhi + "]" : "[" + up_zlo + ", a*)";
+  s << "For every " << p << " in " << side_text << " the map has a period-" << e.period << " "
+    << (S.release ? "orbit through the release state" : "orbit (unique in its box)") << " with events " << c.events
+    << " (every margin of every step certainly of its branch-side sign; the interval step itself takes these events at "
+    << p << " = " << *checked << "); at exactly one a* in [" << c.parameter.lo << ", " << c.parameter.hi
+    << "] (width " << c.width << ") " << c.margin_text << " reaches 0 (> 0 on the branch side); for " << p << " in "
+    << beyond_text << " that margin is < 0 on the branch's piece: no period-" << e.period << " orbit with events " << c.events
+    << (S.release ? " through the release state" : " in the box")
+    << ". Proved by the Krawczyk operator on the augmented system (the orbit equations of the branch side's piece, "
+       "extended analytically across the border, and the margin = 0) at "
+    << bits << " bits.";
+  c.statement = s.str();
+}
+
+
+// ---- Period doubling ----------------------------------------------------------------
+
+// Second derivatives: Dual<IDual>, the outer derivative along one variable e of (theta, v,
+// p), the inner ones along (theta, v). Dual's shortcut for constant operands (outer
+// derivative enclosed by [0, 0]) is exact here because every box is wide in all three
+// variables: a first derivative that is 0 on the whole open box has zero derivatives there.
+using IDual2 = Dual<IDual>;
+
+State<IDual> orbit_dual(const Model<Mpfi>& base, Parameter par, const Mpfi x[3], long q, std::vector<StepEvent>* events) {
+  Model<IDual> dm = convert_model<IDual>(base, [](const Mpfi& y) { return IDual(y); });
+  dm = with_parameter(dm, par, IDual(x[2]));
+  const ImpactMap<IDual> map(std::move(dm));
+  State<IDual> s{IDual::variable(x[0], 0), IDual::variable(x[1], 1)};
+  for (long i = 0; i < q; ++i) {
+    StepResult<IDual> r;
+    try {
+      r = map.step(s);
+    } catch (const Undecided& u) {
+      throw Fail("step " + std::to_string(i) + " of the period is undecided over the box: " + u.what());
+    }
+    if (r.kind != EventKind::impact) throw Fail("the orbit sticks: no multiplier -1 (superstable)");
+    if (events) {
+      StepEvent e;
+      e.kind = r.kind;
+      e.segment = r.segment;
+      e.corner = r.corner;
+      e.indirect = r.indirect == Truth::yes;
+      events->push_back(e);
+    }
+    s = r.next;
+  }
+  return s;
+}
+
+// (P^Q(x) - x, det(DP^Q(x) + I)) at a point, in intervals.
+std::array<Mpfi, 3> pd_value(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x) {
+  const State<IDual> e = orbit_dual(base, par, x, q, nullptr);
+  const Mpfi J00 = e.theta.d[0] + 1, J01 = e.theta.d[1], J10 = e.v.d[0], J11 = e.v.d[1] + 1;
+  return {e.theta.v - x[0], e.v.v - x[1], J00 * J11 - J01 * J10};
+}
+
+Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x) {
+  Jet J;
+  const long bits = x[0].bits();
+  for (int var = 0; var < 3; ++var) {
+    auto lift = [&](const Mpfi& y) { return IDual2(IDual(y)); };
+    Model<IDual2> dm = convert_model<IDual2>(base, lift);
+    const IDual one(Mpfi(1, bits)), zero(Mpfi(0, bits));
+    dm = with_parameter(dm, par, IDual2(IDual(x[2]), var == 2 ? one : zero, zero));
+    const ImpactMap<IDual2> map(std::move(dm));
+    State<IDual2> s{IDual2(IDual::variable(x[0], 0), var == 0 ? one : zero, zero),
+                    IDual2(IDual::variable(x[1], 1), var == 1 ? one : zero, zero)};
+    for (long i = 0; i < q; ++i) {
+      try {
+        s = map.step(s).next;
+      } catch (const Undecided& u) {
+        throw Fail("step " + std::to_string(i) + " of the period is undecided over the box: " + u.what());
+      }
+    }
+    const IDual2* rows[2] = {&s.theta, &s.v};
+    Mpfi Jm[2][2], dJ[2][2];
+    for (int r = 0; r < 2; ++r) {
+      const IDual2& y = *rows[r];
+      if (!ScalarTraits<IDual>::derivatives_finite(y.v) || !ScalarTraits<IDual>::is_finite(y.d[0]) ||
+          !ScalarTraits<IDual>::derivatives_finite(y.d[0]))
+        throw Fail("the second-derivative enclosure over the box is not finite");
+      J.f[r] = y.v.v - x[r];
+      J.D[r][var] = var == r ? Mpfi(y.d[0].v - 1) : y.d[0].v;
+      for (int k = 0; k < 2; ++k) {
+        Jm[r][k] = y.v.d[k];
+        dJ[r][k] = y.d[0].d[k];
+      }
+    }
+    Jm[0][0] += Mpfi(1, bits);
+    Jm[1][1] += Mpfi(1, bits);
+    J.f[2] = Jm[0][0] * Jm[1][1] - Jm[0][1] * Jm[1][0];
+    J.D[2][var] = dJ[0][0] * Jm[1][1] + Jm[0][0] * dJ[1][1] - dJ[0][1] * Jm[1][0] - Jm[0][1] * dJ[1][0];
+  }
+  return J;
+}
+
+void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
+  const long bits = q.bits;
+  if (!(q.lo.value() < q.hi.value())) throw Fail("the interval holding a* is empty");
+  Setup S;
+  S.par = q.vary;
+  S.bits = bits;
+  S.base = interval_model(with_parameter(q.model, q.vary, q.lo), bits);
+  S.value_fn = [&S, &q](const Mpfi* x) { return pd_value(S.base, S.par, q.period, x); };
+  S.jet_fn = [&S, &q](const Mpfi* x) { return pd_jet(S.base, S.par, q.period, x); };
+  const mpq_class mid = (q.lo.value() + q.hi.value()) / 2;
+  Mpfr pm(bits);
+  mpfr_set_q(pm.get(), mid.get_mpq_t(), MPFR_RNDN);
+  // The orbit at the middle (Newton on the map), then Newton on the augmented system.
+  const Model<Mpfr> mm = make_model<Mpfr>(with_parameter(q.model, q.vary, *Decimal::parse(exact_decimal(mid))), bits);
+  const PeriodicOrbit<Mpfr> o = find_periodic(mm, q.period, make_state<Mpfr>(mm, q.point));
+  if (!o.converged || o.points.empty()) throw Fail("Newton found no period-" + std::to_string(q.period) + " orbit in the interval");
+  Problem A;
+  A.rows = {0, 1, 2};
+  A.yi = {0, 1, 2};
+  std::vector<Mpfr> u = newton(S, A, {o.points[0].theta, o.points[0].v, pm});
+  const Mpfr phat = u[2];
+  Mpfr w0(bits);
+  {
+    const double width = std::max(mpq_class(q.hi.value() - q.lo.value()).get_d(), 1e-6 * std::max(1.0, std::fabs(phat.to_double())));
+    mpfr_set_d(w0.get(), width, MPFR_RNDN);
+    if (std::fabs(Mpfr(phat - pm).to_double()) > 100 * width)
+      throw Fail("Newton on the augmented system goes to " + std::string(name(q.vary)) + " = " + text(phat) +
+                 ", far from the interval given (no multiplier -1 next to it)");
+  }
+  std::optional<std::vector<Mpfi>> B;
+  Mpfi Z, Y[2];
+  std::string why;
+  for (int k = 0; k < 6 && !B; ++k) {
+    Mpfr w(bits);
+    mpfr_div_2si(w.get(), w0.get(), 4 * k, MPFR_RNDN);
+    const Mpfr zlo = phat - w, zhi = phat + w;
+    Z = Mpfi(zlo, zhi);
+    try {
+      const std::vector<Mpfr> xg = {u[0], u[1]};
+      const std::vector<Mpfi> ylo = orbit_at(S, thin(zlo), xg), yhi = orbit_at(S, thin(zhi), xg);
+      Mpfr rad[2], mid2[2];
+      for (int i = 0; i < 2; ++i) {
+        const Mpfi h = hull(hull(ylo[i], yhi[i]), thin(u[i]));
+        mid2[i] = h.mid();
+        Mpfi ulps = abs(thin(mid2[i])) + 1;
+        mpfi_mul_2si(ulps.get(), ulps.get(), -(bits - 16));
+        rad[i] = Mpfr(h.width() + ulps.upper());
+      }
+      bool ok = false;
+      for (int t = 0; t < 6 && !ok; ++t) {
+        for (int i = 0; i < 2; ++i) Y[i] = Mpfi(Mpfr(mid2[i] - rad[i]), Mpfr(mid2[i] + rad[i]));
+        Problem O = orbit_problem(Z);
+        O.zhat = phat;
+        const std::vector<Mpfi> KO = krawczyk(S, O, xg, residual(S, O, xg), {Y[0], Y[1]});
+        const std::vector<Mpfi> box = {Y[0], Y[1], Z};
+        const std::vector<Mpfi> KA = krawczyk(S, A, u, residual(S, A, u), box);
+        ok = all_inside(KO, {Y[0], Y[1]}) && all_inside(KA, box);
+        if (!ok)
+          for (int i = 0; i < 2; ++i) rad[i] = rad[i] * 4;
+      }
+      if (!ok) throw Fail("the Krawczyk operators did not map the box Y x Z into itself");
+      std::vector<Mpfi> T = {Y[0], Y[1], Z};
+      const std::vector<Mpfi> f = residual(S, A, u);
+      for (int t = 0; t < 40; ++t) {
+        const std::vector<Mpfi> K2 = krawczyk(S, A, u, f, T);
+        bool shrank = false;
+        for (int i = 0; i < 3; ++i) {
+          const Mpfi N = intersect(K2[i], T[i]);
+          if (N.has_nan()) throw Fail("K(B) n B is empty while tightening");
+          if (mpfr_less_p(N.width().get(), T[i].width().get())) shrank = true;
+          T[i] = N;
+        }
+        if (!shrank) break;
+      }
+      B = T;
+    } catch (const Fail& f) {
+      why = f.what();
+    } catch (const Undecided& un) {
+      why = std::string("undecided: ") + un.what();
+    }
+  }
+  if (!B) throw Fail("no parameter interval around a* certified (" + why + ")");
+  // The sign change of det(DP^Q + I) along x(p), at both ends of Z.
+  const Mpfi zero(0, bits);
+  Truth sides[2];
+  for (int end = 0; end < 2; ++end) {
+    const Mpfr p = end == 0 ? Z.lower() : Z.upper();
+    const std::vector<Mpfi> x = orbit_at(S, thin(p), {u[0], u[1]});
+    if (!Y[0].contains(x[0]) || !Y[1].contains(x[1])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
+    const Mpfi xs[3] = {x[0], x[1], thin(p)};
+    sides[end] = Tr::lt(zero, pd_value(S.base, S.par, q.period, xs)[2]);
+    if (sides[end] == Truth::unknown || sides[end] == Truth::invalid)
+      throw Fail("det(DP^Q + I) has no certain sign at an end of Z");
+  }
+  if (sides[0] == sides[1]) throw Fail("det(DP^Q + I) has the same sign at both ends of Z");
+  // The multipliers at p*: trace and det over the tight box.
+  std::vector<StepEvent> events;
+  const Mpfi xb[3] = {(*B)[0], (*B)[1], (*B)[2]};
+  const State<IDual> e = orbit_dual(S.base, S.par, xb, q.period, &events);
+  const Mpfi tr = e.theta.d[0] + e.v.d[1], det = e.theta.d[0] * e.v.d[1] - e.theta.d[1] * e.v.d[0];
+  // The other multiplier is det / (-1); it must not be -1 too (a simple multiplier -1).
+  if (Tr::is_zero(Mpfi(det - 1)) != Truth::no) throw Fail("the other multiplier may be -1 as well");
+  c.certified = true;
+  c.lo = to_q((*B)[2].lower());
+  c.hi = to_q((*B)[2].upper());
+  c.parameter = enclosure((*B)[2]);
+  c.width = Mpfr((*B)[2].upper() - (*B)[2].lower()).to_double();
+  c.events = event_text(events);
+  c.z_lo = to_q(Z.lower());
+  c.z_hi = to_q(Z.upper());
+  c.trace = enclosure(tr);
+  c.det = enclosure(det);
+  c.other = enclosure(Mpfi(-det));
+  c.orbit.push_back({enclosure((*B)[0]), enclosure((*B)[1])});
+  const std::string p = name(q.vary);
+  std::ostringstream st;
+  st << "For every " << p << " in [" << Tr::upper_string(thin(Z.lower())) << ", " << Tr::lower_string(thin(Z.upper()))
+     << "] the map has exactly one period-" << q.period << " point in the box [" << enclosure(Y[0]).lo << ", "
+     << enclosure(Y[0]).hi << "] x [" << enclosure(Y[1]).lo << ", " << enclosure(Y[1]).hi << "] (events " << c.events
+     << ", every branch decided); at exactly one " << p << "* in [" << c.parameter.lo << ", " << c.parameter.hi
+     << "] (width " << c.width << ") it has a multiplier exactly -1 (the other is " << c.other.lo << " .. " << c.other.hi
+     << "), and det(DP^" << q.period << " + I) changes sign there: a real multiplier crosses -1 (period doubling; "
+     << "the direction of the doubled branch is not certified). Proved by the Krawczyk operator on (P^" << q.period
+     << "(x) - x, det(DP^" << q.period << "(x) + I)) with second derivatives from nested interval duals, at " << bits
+     << " bits.";
+  c.statement = st.str();
+}
+}  // namespace
+
+BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q) {
+  const auto t0 = std::chrono::steady_clock::now();
+  BorderCollisionCertificate c;
+  c.bits = q.bits;
+  std::vector<State<Mpfi>> orbit;
+  try {
+    run(q, c, orbit);
+  } catch (const Fail& f) {
+    c.certified = false;
+    c.reason = f.what();
+  } catch (const Undecided& u) {
+    c.certified = false;
+    c.reason = std::string("undecided: ") + u.what();
+  }
+  if (!c.certified)
+    c.statement = "Not certified at " + std::to_string(q.bits) + " bits: " + c.reason + ". Nothing is claimed about a*.";
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return c;
+}
+
+PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q) {
+  const auto t0 = std::chrono::steady_clock::now();
+  PeriodDoublingCertificate c;
+  c.bits = q.bits;
+  try {
+    run_pd(q, c);
+  } catch (const Fail& f) {
+    c.certified = false;
+    c.reason = f.what();
+  } catch (const Undecided& u) {
+    c.certified = false;
+    c.reason = std::string("undecided: ") + u.what();
+  }
+  if (!c.certified)
+    c.statement = "Not certified at " + std::to_string(q.bits) + " bits: " + c.reason + ". Nothing is claimed.";
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return c;
+}
+
+}  // namespace bouncer

@@ -1,0 +1,138 @@
+// bench_border: the cost of a certified two-sided border collision (issue 23: < 1 s at
+// mpfr:128). For each case: the double continuation that locates the end (not timed), then
+// certify_border_collision at 128 (and 256) bits, wall-clock, best of three; a table with
+// the enclosure's width and the double bracket's distance to it. Timings are printed,
+// never checked.
+//
+// Usage: bench_border [--quick]   (--quick: one run per case, 128 bits only)
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "bouncer/analysis/continuation.hpp"
+#include "bouncer/verify/border_collision.hpp"
+
+using namespace bouncer;
+
+namespace {
+
+ModelSpec spec(Law law, const char* a, const char* eps, const char* c) {
+  ModelSpec m;
+  m.law = law;
+  m.a = *Decimal::parse(a);
+  if (law == Law::constant) m.eps = *Decimal::parse(eps);
+  m.c = *Decimal::parse(c);
+  m.wall = parse_wall("wall", "triangle");
+  return m;
+}
+
+struct Case {
+  const char* name;
+  ModelSpec model;
+  long period;
+  double theta, v, lo, hi;
+  bool high;  // which end of the continued branch
+};
+
+double distance(double blo, double bhi, const BorderCollisionCertificate& c) {
+  const mpq_class lo(blo), hi(bhi);
+  if (hi < c.lo) return mpq_class(c.lo - hi).get_d();
+  if (c.hi < lo) return mpq_class(lo - c.hi).get_d();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  const std::vector<Case> cases = {
+      {"sticking threshold 200/9 (release, eps 1/4)", spec(Law::constant, "24", "0.25", "1000"), 1, 0.5, 4, 20, 31, false},
+      {"knot theta = 0 at 32 (release, eps 1/4)", spec(Law::constant, "26", "0.25", "1000"), 1, 0.5, 4, 24, 33.5, true},
+      {"veldep c 1000 P7 low end (knot 1/2)", spec(Law::veldep, "28", "1", "1000"), 7, 0.19204436106841707, 26.916257785320354, 27, 29, false},
+      {"veldep c 1000 P7 high end (knot 0)", spec(Law::veldep, "28", "1", "1000"), 7, 0.19204436106841707, 26.916257785320354, 27, 29, true},
+      {"veldep c 1000 unstable P7 (grazing 1/2)", spec(Law::veldep, "25", "1", "1000"), 7, 0.016124178545083214, 10.063538832537404, 22, 28, false},
+  };
+  std::printf("%-44s %5s %10s %12s %12s  %s\n", "border collision", "bits", "seconds", "width", "double off", "margin");
+  for (const Case& k : cases) {
+    const Model<double> m = make_model<double>(k.model, 53);
+    const Branch<double> b = continue_branch(m, Parameter::a, k.period, State<double>{k.theta, k.v}, k.lo, k.hi);
+    const BranchEnd<double>& end = k.high ? b.high : b.low;
+    if (end.reason != EndReason::border) {
+      std::printf("%-44s  (continuation did not end by a border collision: %s)\n", k.name, end.detail.c_str());
+      continue;
+    }
+    BorderCollisionQuestion q;
+    q.end.model = k.model;
+    q.end.vary = Parameter::a;
+    q.end.period = k.period;
+    q.end.last_point = {*Decimal::parse(ScalarTraits<double>::to_string(end.last_point.theta)),
+                        *Decimal::parse(ScalarTraits<double>::to_string(end.last_point.v))};
+    const auto [lo, hi] = branch_end_interval<double>(end.bracket_lo, end.bracket_hi, k.high, 53);
+    q.end.lo = *Decimal::parse(lo);
+    q.end.hi = *Decimal::parse(hi);
+    q.end.high_end = k.high;
+    if (end.margin >= 0) q.margin = static_cast<Margin>(end.margin);
+    for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
+      q.bits = bits;
+      double best = 1e300;
+      BorderCollisionCertificate c;
+      for (int run = 0; run < (quick ? 1 : 3); ++run) {
+        const auto t0 = std::chrono::steady_clock::now();
+        c = certify_border_collision(q);
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
+      if (!c.certified) {
+        std::printf("%-44s %5ld %10.4f  NOT CERTIFIED: %s\n", k.name, bits, best, c.reason.c_str());
+        continue;
+      }
+      std::printf("%-44s %5ld %10.4f %12.3g %12.3g  %s\n", k.name, bits, best, c.width,
+                  distance(end.bracket_lo, end.bracket_hi, c), c.margin_text.c_str());
+      std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
+                  c.parameter.hi.c_str(), end.bracket_lo, end.bracket_hi);
+    }
+  }
+  // Period doubling on the eps = 0.9 period-2 branch (the same construction, smooth end).
+  {
+    const ModelSpec ms = spec(Law::constant, "19", "0.9", "1000");
+    const Branch<double> b = continue_branch(make_model<double>(ms, 53), Parameter::a, 2,
+                                             State<double>{0.1678819228862684, 14.143149884133248}, 12.0, 21.0);
+    if (!b.bifurcations.empty()) {
+      const Bifurcation<double>& pd = b.bifurcations[0];
+      const BranchPoint<double>* near = &b.points[0];
+      for (const BranchPoint<double>& p : b.points)
+        if (std::fabs(p.param - pd.param) < std::fabs(near->param - pd.param)) near = &p;
+      PeriodDoublingQuestion q;
+      q.model = ms;
+      q.period = 2;
+      q.point = {*Decimal::parse(ScalarTraits<double>::to_string(near->orbit.points[0].theta)),
+                 *Decimal::parse(ScalarTraits<double>::to_string(near->orbit.points[0].v))};
+      q.lo = *Decimal::parse(ScalarTraits<double>::to_string(pd.bracket_lo));
+      q.hi = *Decimal::parse(ScalarTraits<double>::to_string(pd.bracket_hi));
+      for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
+        q.bits = bits;
+        double best = 1e300;
+        PeriodDoublingCertificate c;
+        for (int run = 0; run < (quick ? 1 : 3); ++run) {
+          const auto t0 = std::chrono::steady_clock::now();
+          c = certify_period_doubling(q);
+          best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        }
+        const char* name = "eps 0.9 P2 period doubling (multiplier -1)";
+        if (!c.certified) {
+          std::printf("%-44s %5ld %10.4f  NOT CERTIFIED: %s\n", name, bits, best, c.reason.c_str());
+          continue;
+        }
+        const mpq_class blo(pd.bracket_lo), bhi(pd.bracket_hi);
+        const double off = bhi < c.lo ? mpq_class(c.lo - bhi).get_d() : c.hi < blo ? mpq_class(blo - c.hi).get_d() : 0.0;
+        std::printf("%-44s %5ld %10.4f %12.3g %12.3g  other multiplier [%s, %s]\n", name, bits, best, c.width, off,
+                    c.other.lo.c_str(), c.other.hi.c_str());
+        std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
+                    c.parameter.hi.c_str(), pd.bracket_lo, pd.bracket_hi);
+      }
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,33 @@
+// The outputs of `bouncer attractors` (run/attractors.hpp): the per-start CSV, the JSON
+// summary, the picture of the basins coloured by attractor, and the readable text summary.
+// The command adds the provenance and writes them (tools/cmd_attractors.cpp).
+#pragma once
+
+#include <string>
+
+#include "bouncer/io/plot.hpp"
+#include "bouncer/run/attractors.hpp"
+
+namespace bouncer {
+
+// "period 3", "fixed point", "family of fixed points", "sticking cycle, k = 4",
+// "chaotic set", "accelerator mode, Q = 3", ... (legends and summaries).
+std::string attractor_title(const FoundAttractor& a);
+
+// One row per start: theta,v,attractor,kind,period (attractor: the id, or "undecided" /
+// "outside"; theta and v as the run's scalar prints them: they read back to the same value).
+std::string attractors_csv(const AttractorsResult& r);
+
+// The summary as JSON text (an object): the request, each attractor (kind, period, points,
+// multipliers and their certificate, exponent, basin share +- its binomial standard error),
+// the undecided starts, the work done.
+std::string attractors_json(const AttractorsResult& r);
+
+// The basins: one pixel per start (grid sampling; Halton points are painted on an
+// nx x ny raster), coloured by attractor, the legend giving each one's share +- error.
+ImageFigure attractors_figure(const AttractorsResult& r, Palette palette);
+
+// A readable summary for a terminal (no provenance: the command adds it).
+std::string attractors_text(const AttractorsResult& r);
+
+}  // namespace bouncer

@@ -190,6 +190,22 @@ TEST(Attractors, StickingCycleBesideEq5FixedPoints) {
   expect_agrees_with_basin(res, basin_truth(res.request));
 }
 
+TEST(Attractors, OrbitsThroughAnotherOrbitsCellsAreStillFound) {
+  // eps = 0.96, a = 28.82: a stable period-48 orbit passes through cells of the stable
+  // period-103 orbit's neighbourhood. Starts converging to it must still be decided (once
+  // they were all left undecided), as basin's classification decides them.
+  AttractorsRequest r;
+  r.model = spec(Law::constant, "28.82", "0.96");
+  r.nx = r.ny = 16;
+  r.certify = false;
+  const AttractorsResult res = find_attractors(r, two_threads());
+  EXPECT_EQ(res.undecided, 0);
+  EXPECT_TRUE(find(res, AttractorKind::periodic, 48));
+  EXPECT_TRUE(find(res, AttractorKind::periodic, 103));
+  expect_shares_sum_to_one(res);
+  expect_agrees_with_basin(res, basin_truth(res.request));
+}
+
 TEST(Attractors, ThreadsDoNotChangeTheResult) {
   AttractorsRequest r;
   r.model = spec(Law::constant, "24", "0.5");

@@ -54,6 +54,7 @@ constexpr double kMatchTol = 1e-6;   // two periodic attractors are one: a point
 constexpr double kNearTol = 1e-8;    // a start has reached a stable periodic orbit
 constexpr double kOverlap = 0.5;     // two aperiodic sets are one: this share of cells shared
 constexpr size_t kSample = 64;       // points kept of an aperiodic set
+constexpr long kMaxPoints = 1000;    // points kept of a sticking cycle (its period may be 10^4)
 
 template <class T>
 double state_distance(const State<T>& x, const State<T>& y) {
@@ -210,7 +211,7 @@ class Mapper {
     Outcome<T> out;
     std::unordered_set<long> visited;
     visited.reserve(512);
-    long rec = 0, hits = 0, lost = 0;
+    long rec = 0, hits = 0, lost = 0, sticks = 0, skipped = 0;
     int hit_label = -1;
     try {
       for (long n = 0; n < r.max_steps; ++n) {
@@ -221,6 +222,15 @@ class Mapper {
         if (st.kind == EventKind::sticking && sticking_att >= 0) {
           out.label = sticking_att;  // the release state's future is the sticking cycle
           return out;
+        }
+        if (st.kind == EventKind::sticking && ++sticks == 2) {
+          // Stuck twice, no sticking cycle known yet: the release state's orbit, followed
+          // until the release recurs exactly, is one (however long its period) or is not.
+          Att<T> a = sticking_cycle(s, out.steps, r.max_steps);
+          if (a.kind == AttractorKind::sticking) {
+            out.candidate = std::make_unique<Att<T>>(std::move(a));
+            return out;
+          }
         }
         const long c = cell(s);
         if (c < 0) {
@@ -233,10 +243,12 @@ class Mapper {
         }
         lost = 0;
         const int k = owner[static_cast<size_t>(c)];
-        bool approaching = false;  // on a known stable orbit's cells: converging, not new
+        bool approaching = false;  // on a known periodic orbit's cells: converging, not new
         if (k >= 0) {
           const Att<T>& a = atts[static_cast<size_t>(k)];
-          if (a.periodic_like()) {
+          if (a.kind == AttractorKind::sticking) {
+            hits = 0;  // (a sticking cycle has no cells: its starts are decided by sticking)
+          } else if (a.kind == AttractorKind::periodic) {
             hits = 0;
             approaching = true;
             for (const State<T>& p : a.points)
@@ -255,8 +267,13 @@ class Mapper {
         } else {
           hits = 0;
         }
-        if (visited.insert(c).second || approaching) {
+        // A revisit on a known periodic orbit's cells neither counts nor breaks a run of
+        // recurrences (the start is likely converging to it: the `near` test decides), up to
+        // a budget, after which it counts: another orbit may pass through those cells.
+        if (visited.insert(c).second) {
           rec = 0;
+        } else if (approaching && skipped < 100 * r.consecutive_recurrences) {
+          ++skipped;
         } else if (++rec >= r.consecutive_recurrences) {
           out.candidate = std::make_unique<Att<T>>(characterize(s, out.steps, 0));
           return out;
@@ -294,9 +311,9 @@ class Mapper {
   }
 
   // The sticking cycle through the release state `release` (the state after a sticking step).
-  Att<T> sticking_cycle(const State<T>& release, long long& steps) const {
+  Att<T> sticking_cycle(const State<T>& release, long long& steps, long cap = 0) const {
     Att<T> a;
-    const long cap = std::max(20000L, 4 * r.attractor_steps);
+    if (cap <= 0) cap = std::max(20000L, 4 * r.attractor_steps);
     State<T> x = release;
     std::vector<State<T>> orbit{release};
     for (long k = 1; k <= cap; ++k) {
@@ -311,10 +328,11 @@ class Mapper {
         a.lambda = -std::numeric_limits<double>::infinity();
         a.evidence = "the release state (" + fmt(Tr::to_double(release.theta), 6) + ", " + fmt(Tr::to_double(release.v), 6) +
                      ") recurs exactly after " + std::to_string(k) + " steps, at a sticking step";
-        point_cells(a);
+        // No cells: every start that sticks is decided by the sticking step itself, and the
+        // cells of a long cycle would cover other attractors'.
         return a;
       }
-      if (static_cast<long>(orbit.size()) < 100000) orbit.push_back(x);
+      if (static_cast<long>(orbit.size()) < kMaxPoints) orbit.push_back(x);
     }
     a.kind = AttractorKind::undecided;
     a.evidence = "a sticking step, but the release state did not recur within " + std::to_string(cap) + " steps";
@@ -406,6 +424,12 @@ class Mapper {
     const Classification c = classify<T>(map, x, r.classify);
     Att<T> a;
     const long window = r.classify.transient + r.classify.steps;
+    // classify's own steps: its window, and the re-check of an aperiodic verdict.
+    const bool rechecked = c.cls == OrbitClass::chaotic || c.cls == OrbitClass::quasiperiodic ||
+                           c.cls == OrbitClass::transient_chaos;
+    steps += window + (rechecked ? r.classify.recheck_factor * std::max(r.classify.transient, r.classify.steps) +
+                                       std::max(4L, r.classify.steps)
+                                 : 0);
     switch (c.cls) {
       case OrbitClass::fixed:
       case OrbitClass::periodic:

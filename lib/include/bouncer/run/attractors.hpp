@@ -104,7 +104,7 @@ struct FoundAttractor {
   int id = 0;                  // index in AttractorsResult::attractors (largest basin first)
   AttractorKind kind = AttractorKind::undecided;
   long period = 0;             // q (periodic, family), k (sticking), Q (accelerator), else 0
-  std::vector<AttractorPoint> points;  // the orbit (periodic, sticking from the release);
+  std::vector<AttractorPoint> points;  // the orbit (periodic; sticking: from the release, at most 1000);
                                        // family: one member; aperiodic: a sample of <= 64 points
   // Periodic and family: the multipliers of the Newton orbit (Newton in the run's scalar):
   // re, im of each, larger modulus first.

@@ -7,6 +7,7 @@
 #     errors, shares summing to 1); the attractors are the eq. 5 fixed points at
 #     v* = 4(1+eps)/(1-eps) = 12 (a family) and a sticking cycle through the release state
 #     (1/2, 4), both certified, the printed points within 1e-12 of the certified enclosures;
+#   - `bouncer audit` reruns PREFIX.json and finds it identical;
 #   - without --out a readable summary names both; --help documents the options.
 # Usage: bash attractors.sh <bouncer-binary> <source-dir>
 set -uo pipefail
@@ -92,6 +93,9 @@ for a in atts:
                   f"point ({th}, {v}) is far from its certified box {box}")
 sys.exit(1 if bad else 0)
 PY
+
+# The result is reproducible from its provenance (the starts run in fixed batches).
+audited e05-audit e05.json
 
 run text attractors "${M[@]}" --starts 12x12 --no-certify
 grep -q "family of fixed points" "$TMP/text.out" || fail text "no family in: $(cat "$TMP/text.out")"

@@ -80,6 +80,8 @@ std::pair<OrbitClass, long> basin_class(const FoundAttractor& a) {
     case AttractorKind::periodic:
     case AttractorKind::family: return {a.period == 1 ? OrbitClass::fixed : OrbitClass::periodic, a.period};
     case AttractorKind::sticking: return {OrbitClass::sticking, a.period};
+    case AttractorKind::chaotic: return {OrbitClass::chaotic, 0};
+    case AttractorKind::quasiperiodic: return {OrbitClass::quasiperiodic, 0};
     default: return {OrbitClass::undecided, -1};
   }
 }
@@ -202,6 +204,27 @@ TEST(Attractors, OrbitsThroughAnotherOrbitsCellsAreStillFound) {
   EXPECT_EQ(res.undecided, 0);
   EXPECT_TRUE(find(res, AttractorKind::periodic, 48));
   EXPECT_TRUE(find(res, AttractorKind::periodic, 103));
+  expect_shares_sum_to_one(res);
+  expect_agrees_with_basin(res, basin_truth(res.request));
+}
+
+TEST(Attractors, ChaoticSetWithItsExponent) {
+  // veldep c = 1000, a = 27.2: a chaotic attractor (the README's exponent curve is positive
+  // there); basin classifies every start chaotic, and its exponent is positive.
+  AttractorsRequest r;
+  r.model = spec(Law::veldep, "27.2", "1", "1000");
+  r.nx = r.ny = 8;
+  r.lyapunov_steps = 20000;
+  const AttractorsResult res = find_attractors(r, two_threads());
+  ASSERT_EQ(res.attractors.size(), 1u);
+  const FoundAttractor& a = res.attractors[0];
+  EXPECT_EQ(a.kind, AttractorKind::chaotic);
+  EXPECT_GT(a.lambda, 0.05);
+  EXPECT_GT(a.lambda, 3 * a.lambda_stderr);
+  EXPECT_EQ(a.lyapunov_steps, 20000);
+  EXPECT_GE(a.followed_steps, a.lyapunov_steps);
+  EXPECT_FALSE(a.certificate);
+  EXPECT_GT(a.cells, 100);
   expect_shares_sum_to_one(res);
   expect_agrees_with_basin(res, basin_truth(res.request));
 }

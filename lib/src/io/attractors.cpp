@@ -284,6 +284,10 @@ std::string attractors_text(const AttractorsResult& r) {
     if (a.kind == AttractorKind::chaotic || a.kind == AttractorKind::quasiperiodic)
       o << "      Lyapunov exponent " << g(a.lambda, 4) << " ± " << g(a.lambda_stderr, 2) << " per collision over "
         << a.lyapunov_steps << " steps (followed " << a.followed_steps << " steps)\n";
+    if (a.kind == AttractorKind::accelerator)
+      o << "      velocity gain " << g(a.accel_gain, 4) << " every " << a.period << " steps\n";
+    if (a.kind != AttractorKind::periodic && a.kind != AttractorKind::family && !a.evidence.empty())
+      o << "      evidence: " << a.evidence << "\n";
     if (a.certificate) o << "      " << certificate_text(a) << "\n";
   }
   o << "  undecided (no decision in " << q.max_steps << " steps): " << r.undecided << " starts\n";

@@ -313,7 +313,7 @@ class Mapper {
   // The sticking cycle through the release state `release` (the state after a sticking step).
   Att<T> sticking_cycle(const State<T>& release, long long& steps, long cap = 0) const {
     Att<T> a;
-    if (cap <= 0) cap = std::max(20000L, 4 * r.attractor_steps);
+    if (cap <= 0) cap = r.max_steps;
     State<T> x = release;
     std::vector<State<T>> orbit{release};
     for (long k = 1; k <= cap; ++k) {

@@ -15,6 +15,7 @@
 #include <map>
 
 #include "bouncer/analysis/periodic.hpp"
+#include "bouncer/run/attractors_sweep.hpp"
 #include "bouncer/run/basin.hpp"
 #include "test_support.hpp"
 
@@ -293,6 +294,56 @@ TEST(Attractors, BadRequestsNameTheirField) {
   x = r;
   x.theta_hi = *Decimal::parse("1.5");
   expect_input_error([&] { find_attractors(x); }, "theta-range");
+}
+
+}  // namespace
+}  // namespace bouncer
+
+namespace bouncer {
+namespace {
+
+TEST(AttractorsSweep, ChainsFollowTheAttractorsAcrossValues) {
+  AttractorsSweepRequest s;
+  s.point.model = test_support::spec(Law::veldep, "23.1", "1", "1000");
+  s.point.nx = s.point.ny = 20;
+  s.point.certify = false;
+  s.vary = Parameter::a;
+  s.lo = *Decimal::parse("23.05");
+  s.hi = *Decimal::parse("23.15");
+  s.values = 3;
+  const AttractorsSweepResult r = sweep_attractors(s, two_threads());
+  ASSERT_EQ(r.values.size(), 3u);
+  EXPECT_EQ(r.values[1].text(), "23.1");
+  // Periods 3 and 7 exist at every value (each value's find_attractors is checked against
+  // basin above) and each is one chain: the orbit moves little over 0.1 in a.
+  for (long q : {3L, 7L}) {
+    int chains = 0;
+    for (const AttractorChain& c : r.chains) {
+      if (c.kind != AttractorKind::periodic || c.period != q) continue;
+      ++chains;
+      for (int i : c.index) EXPECT_GE(i, 0) << "period " << q << " is missing at a value";
+    }
+    EXPECT_EQ(chains, 1) << "period " << q;
+  }
+  // Every attractor of every value is in exactly one chain.
+  for (size_t k = 0; k < r.at.size(); ++k) {
+    std::vector<int> seen(r.at[k].attractors.size(), 0);
+    for (const AttractorChain& c : r.chains)
+      if (c.index[k] >= 0) ++seen[static_cast<size_t>(c.index[k])];
+    for (int n : seen) EXPECT_EQ(n, 1);
+  }
+}
+
+TEST(AttractorsSweep, BadRequestsNameTheirField) {
+  AttractorsSweepRequest s;
+  s.point.model = test_support::spec(Law::veldep, "23.1", "1", "1000");
+  s.lo = *Decimal::parse("23");
+  s.hi = *Decimal::parse("24");
+  s.values = 1;
+  test_support::expect_input_error([&] { sweep_attractors(s); }, "values");
+  s.values = 3;
+  s.vary = Parameter::eps;
+  test_support::expect_input_error([&] { sweep_attractors(s); }, "vary");
 }
 
 }  // namespace

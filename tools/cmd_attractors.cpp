@@ -2,7 +2,8 @@
 // basin share, its certificate (periodic orbits, sticking cycles) or exponent (aperiodic
 // sets). This file reads the options, calls find_attractors and writes the outputs of
 // io/attractors.hpp: PREFIX.json, PREFIX.csv (one row per start), PREFIX.png (the basins);
-// without --out a readable summary on stdout.
+// without --out a readable summary on stdout. With --vary: sweep_attractors
+// (run/attractors_sweep.hpp), the chains' shares per value and their stacked figure.
 #include "bouncer/io/attractors.hpp"
 #include "bouncer/io/requests/attractors.hpp"
 #include "commands.hpp"
@@ -17,7 +18,7 @@ const std::set<std::string>& attractors_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"starts", "sampling", "theta-range", "v-range", "cells", "recurrences", "attractor-steps", "hits", "lost-steps",
               "max-steps", "lyapunov-steps", "transient", "steps", "max-period", "recheck-factor", "no-certify", "max-bits",
-              "precision", "threads"});
+              "precision", "threads", "vary", "range", "values"});
     const std::set<std::string> single = single_run_keys();
     k.insert(single.begin(), single.end());
     return k;
@@ -25,7 +26,28 @@ const std::set<std::string>& attractors_keys() {
   return keys;
 }
 
+// --vary: the attractors at each value of the range, chained (run/attractors_sweep.hpp).
+int run_sweep(const Options& o, const AttractorsSweepRequest& req, const FlagSet& flags, const std::string& invocation) {
+  const RunFlags f = run_flags_from(o, flags, invocation);
+  const Provenance prov = provenance_for("attractors", job_options(o), req.point.precision, f.invocation);
+  GridOptions run;
+  run.threads = f.threads;
+  run.progress = !f.quiet && stderr_is_terminal();
+  const AttractorsSweepResult r = sweep_attractors(req, run);
+  if (!f.out && !f.json) {
+    command_out() << prov.as_comment_lines() << attractors_sweep_text(r);
+    return 0;
+  }
+  ImageFigure fig = attractors_sweep_figure(r, f.picture.palette);
+  fig.metadata = png_metadata(prov, fig.title);
+  write_outputs(f, prov, attractors_sweep_csv(r),
+                [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); },
+                nlohmann::ordered_json::parse(attractors_sweep_json(r)));
+  return 0;
+}
+
 int run_attractors(const Options& o, const FlagSet& flags, const std::string& invocation) {
+  if (const auto sweep = attractors_sweep_request(o)) return run_sweep(o, *sweep, flags, invocation);
   const AttractorsRequest req = attractors_request(o);
   const RunFlags f = run_flags_from(o, flags, invocation);
   const Provenance prov = provenance_for("attractors", job_options(o), req.precision, f.invocation);
@@ -67,6 +89,10 @@ CommandRunner setup_attractors(CLI::App* sub) {
   opts->add_flag("no-certify", "Do not prove the periodic attractors and sticking cycles (Krawczyk)");
   opts->add("max-bits", "The certificates' last MPFI precision, 64..4096 (default 1024)");
   opts->add("precision", kPointPrecisionHelp);
+  opts->add("vary", "Follow the attractors across a parameter: a | eps (constant model) | c (veldep model); "
+                    "writes the stacked basin shares against it");
+  opts->add("range", "With --vary: LO:HI (decimals, LO < HI), both ends included");
+  opts->add("values", "With --vary: values of the parameter, integer in [2, 1000] (default 11), equally spaced");
   opts->add("threads", "Worker threads, integer >= 1 (default: all cores); results do not depend on it");
   auto flags = add_single_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {

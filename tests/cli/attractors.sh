@@ -8,6 +8,8 @@
 #     v* = 4(1+eps)/(1-eps) = 12 (a family) and a sticking cycle through the release state
 #     (1/2, 4), both certified, the printed points within 1e-12 of the certified enclosures;
 #   - `bouncer audit` reruns PREFIX.json and finds it identical;
+#   - --vary: each value's shares sum to 1 in the CSV and the JSON; periods 3 and 7 persist
+#     as chains over a in 23.05..23.15 (veldep c = 1000); bad sweeps exit 2;
 #   - without --out a readable summary names both; --help documents the options.
 # Usage: bash attractors.sh <bouncer-binary> <source-dir>
 set -uo pipefail
@@ -102,8 +104,37 @@ grep -q "family of fixed points" "$TMP/text.out" || fail text "no family in: $(c
 grep -q "sticking cycle" "$TMP/text.out" || fail text "no sticking cycle in: $(cat "$TMP/text.out")"
 grep -q "^# bouncer" "$TMP/text.out" || fail text "no provenance lines"
 
+# --vary: the attractors across a parameter, chained value to value.
+V=(--model veldep --c 1000 --vary a)
+refused range-alone 'range' attractors "${M[@]}" --range 23:24 --out bad
+refused values 'values' attractors "${V[@]}" --range 23:23.2 --values 1 --out bad
+refused vary-eps 'vary' attractors "${V[@]}" --vary eps --range 0.1:0.2 --out bad
+refused vary-range 'range' attractors "${V[@]}" --out bad
+run sweep attractors "${V[@]}" --range 23.05:23.15 --values 3 --starts 16x16 --no-certify --quiet --out sw && outputs sweep sw
+python3 - <<'PY' || fail sweep-content "see above"
+import csv, json, sys
+from fractions import Fraction as F
+bad = 0
+def check(cond, what):
+    global bad
+    if not cond:
+        print("FAIL:", what, file=sys.stderr)
+        bad += 1
+s = json.load(open("sw.json"))["summary"]
+check(s["vary"] == "a" and s["values"] == ["23.05", "23.1", "23.15"], f"values {s['values']}")
+rows = list(csv.DictReader(l for l in open("sw.csv") if not l.startswith("#")))
+for k, v in enumerate(s["values"]):
+    share = [F(r["fraction"]) for r in rows if r["a"] == v]
+    check(abs(sum(share) - 1) < F(1, 10**12), f"a = {v}: shares sum to {float(sum(share))}")
+    inchains = [c["fraction"][k] for c in s["chains"] if c["fraction"][k] is not None]
+    check(abs(sum(inchains) + s["undecided_fraction"][k] - 1) < 1e-12, f"a = {v}: chain shares")
+periods = {c["period"] for c in s["chains"] if all(f is not None for f in c["fraction"])}
+check({3, 7} <= periods, f"periods 3 and 7 should persist over 23.05..23.15: {periods}")
+sys.exit(1 if bad else 0)
+PY
+
 run help attractors --help
-for opt in starts sampling cells recurrences attractor-steps hits max-steps precision out no-certify; do
+for opt in starts sampling cells recurrences attractor-steps hits max-steps precision out no-certify vary range values; do
   grep -q -- "--$opt" "$TMP/help.out" || fail help "does not document --$opt"
 done
 finish

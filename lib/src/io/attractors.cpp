@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #pragma GCC diagnostic push
@@ -25,6 +26,15 @@ std::string g(double x, int digits) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*g", digits, x);
   return buf;
+}
+
+// The shortest decimal that reads back to x (as the JSON writer prints doubles).
+std::string shortest(double x) {
+  for (int digits = 1; digits < 17; ++digits) {
+    const std::string t = g(x, digits);
+    if (std::strtod(t.c_str(), nullptr) == x) return t;
+  }
+  return g(x, 17);
 }
 
 // A share and its error as percentages with the digits the error allows.
@@ -293,6 +303,196 @@ std::string attractors_text(const AttractorsResult& r) {
   o << "  undecided (no decision in " << q.max_steps << " steps): " << r.undecided << " starts\n";
   o << "  " << r.steps << " map steps, " << r.candidates << " recurrences characterized, " << g(r.seconds, 3) << " s (+ "
     << g(r.certify_seconds, 3) << " s certificates)\n";
+  return o.str();
+}
+
+namespace {
+
+std::string chain_title(const AttractorChain& c) {
+  FoundAttractor a;
+  a.kind = c.kind;
+  a.period = c.period;
+  return attractor_title(a);
+}
+
+// Where a chain exists: "23.05..23.15" (first..last value present), or several pieces.
+std::string presence(const AttractorsSweepResult& r, const AttractorChain& c) {
+  std::string out;
+  for (size_t k = 0; k < c.index.size(); ++k) {
+    if (c.index[k] < 0 || (k > 0 && c.index[k - 1] >= 0)) continue;
+    size_t e = k;
+    while (e + 1 < c.index.size() && c.index[e + 1] >= 0) ++e;
+    out += (out.empty() ? "" : ", ") + r.values[k].text() + (e > k ? ".." + r.values[e].text() : "");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string attractors_sweep_csv(const AttractorsSweepResult& r) {
+  const std::string vary = name(r.request.vary);
+  std::string csv = vary + ",chain,kind,period,starts,fraction,fraction_stderr\n";
+  for (size_t k = 0; k < r.values.size(); ++k) {
+    const AttractorsResult& at = r.at[k];
+    for (const AttractorChain& c : r.chains) {
+      if (c.index[k] < 0) continue;
+      const FoundAttractor& a = at.attractors[static_cast<size_t>(c.index[k])];
+      csv += r.values[k].text() + ',' + std::to_string(c.id) + ',' + name(a.kind) + ',' + std::to_string(a.period) + ',' +
+             std::to_string(a.starts) + ',' + shortest(a.fraction) + ',' + shortest(a.fraction_stderr) + '\n';
+    }
+    csv += r.values[k].text() + ",undecided,undecided,0," + std::to_string(at.undecided) + ',' + shortest(at.undecided_fraction) +
+           ',' + shortest(at.undecided_stderr) + '\n';
+  }
+  return csv;
+}
+
+std::string attractors_sweep_json(const AttractorsSweepResult& r) {
+  const AttractorsRequest& q = r.request.point;
+  json s;
+  s["command"] = "attractors";
+  s["vary"] = name(r.request.vary);
+  s["range"] = {r.request.lo.text(), r.request.hi.text()};
+  json values = json::array();
+  for (const Decimal& v : r.values) values.push_back(v.text());
+  s["values"] = values;
+  s["starts"] = {q.nx, q.ny};
+  s["sampling"] = name(q.sampling);
+  s["precision"] = q.precision.text();
+  s["match_distance"] = r.request.match_distance;
+  json chains = json::array();
+  for (const AttractorChain& c : r.chains) {
+    json j;
+    j["chain"] = c.id;
+    j["kind"] = name(c.kind);
+    j["period"] = c.period;
+    j["name"] = chain_title(c);
+    j["present"] = presence(r, c);
+    json f = json::array(), e = json::array(), id = json::array(), cert = json::array();
+    for (size_t k = 0; k < c.index.size(); ++k) {
+      if (c.index[k] < 0) {
+        f.push_back(nullptr), e.push_back(nullptr), id.push_back(nullptr), cert.push_back(nullptr);
+        continue;
+      }
+      const FoundAttractor& a = r.at[k].attractors[static_cast<size_t>(c.index[k])];
+      f.push_back(a.fraction);
+      e.push_back(a.fraction_stderr);
+      id.push_back(a.id);
+      cert.push_back(a.certificate ? json(a.certificate->certified) : json(nullptr));
+    }
+    j["fraction"] = f;
+    j["fraction_stderr"] = e;
+    j["attractor_id"] = id;  // its id at each value (the per-value runs' numbering)
+    j["certified"] = cert;
+    chains.push_back(j);
+  }
+  s["chains"] = chains;
+  json und = json::array();
+  long long steps = 0;
+  double seconds = 0;
+  for (const AttractorsResult& at : r.at) {
+    und.push_back(at.undecided_fraction);
+    steps += at.steps;
+    seconds += at.seconds + at.certify_seconds;
+  }
+  s["undecided_fraction"] = und;
+  s["steps"] = steps;
+  s["seconds"] = seconds;
+  return s.dump();
+}
+
+ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette palette) {
+  const AttractorsRequest& q = r.request.point;
+  const size_t n = r.values.size();
+  std::vector<Rgb> color;
+  int periodic_rank = 0, sticking_rank = 0;
+  for (const AttractorChain& c : r.chains) {
+    FoundAttractor a;
+    a.kind = c.kind;
+    a.period = c.period;
+    a.id = 1;
+    const OrbitClass cls = orbit_class(a);
+    color.push_back(attractor_color(cls == OrbitClass::fixed ? OrbitClass::periodic : cls, periodic_rank, sticking_rank, palette));
+    if (cls == OrbitClass::periodic || cls == OrbitClass::fixed) ++periodic_rank;
+    if (cls == OrbitClass::sticking) ++sticking_rank;
+  }
+  ImageFigure fig;
+  Raster& ras = fig.raster;
+  ras.nx = static_cast<int>(n);
+  ras.ny = 400;
+  const mpq_class half = (r.request.hi.value() - r.request.lo.value()) / (2 * static_cast<long>(n - 1));
+  set_exact_window(ras, r.request.lo.value() - half, r.request.hi.value() + half, 0, 1);
+  ras.pixels.assign(n * 400, Rgb{255, 255, 255});
+  const Rgb undecided = attractor_color(OrbitClass::undecided, 0, 0, palette);
+  for (size_t k = 0; k < n; ++k) {
+    std::vector<std::pair<double, Rgb>> bands;  // cumulative top of each band, from the bottom
+    double top = 0;
+    for (size_t c = 0; c < r.chains.size(); ++c) {
+      const int i = r.chains[c].index[k];
+      if (i < 0) continue;
+      top += r.at[k].attractors[static_cast<size_t>(i)].fraction;
+      bands.emplace_back(top, color[c]);
+    }
+    bands.emplace_back(top + r.at[k].undecided_fraction, undecided);
+    for (int row = 0; row < 400; ++row) {
+      const double y = (row + 0.5) / 400;
+      for (const auto& [t, rgb] : bands)
+        if (y < t) {
+          ras.pixels[static_cast<size_t>((399 - row)) * n + k] = rgb;
+          break;
+        }
+    }
+  }
+  // The legend: the chains by their largest share (at most 12), then undecided.
+  std::vector<size_t> order(r.chains.size());
+  std::vector<double> peak(r.chains.size(), 0);
+  for (size_t c = 0; c < r.chains.size(); ++c) {
+    order[c] = c;
+    for (size_t k = 0; k < n; ++k)
+      if (r.chains[c].index[k] >= 0)
+        peak[c] = std::max(peak[c], r.at[k].attractors[static_cast<size_t>(r.chains[c].index[k])].fraction);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return peak[x] > peak[y]; });
+  const size_t shown = std::min<size_t>(order.size(), 12);
+  for (size_t i = 0; i < shown; ++i) {
+    const AttractorChain& c = r.chains[order[i]];
+    ras.legend.emplace_back(chain_title(c) + " (" + presence(r, c) + ")", color[order[i]]);
+  }
+  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " smaller", Rgb{255, 255, 255});
+  ras.legend.emplace_back("undecided", undecided);
+  const std::string vary = name(r.request.vary);
+  fig.title = "Basin shares of the attractors against " + vary + ", " + model_title(q.model.law) + " model";
+  // "a = 22.5..23.7, c = 1000": the model's parameters with the varied one's range.
+  const ModelSpec& m = q.model;
+  auto par = [&](Parameter p, const char* label, const Decimal& d) {
+    return std::string(label) + " = " + (p == r.request.vary ? r.request.lo.text() + ".." + r.request.hi.text() : d.text());
+  };
+  std::string params = par(Parameter::a, "a", m.a);
+  if (m.law == Law::constant) params += ", " + par(Parameter::eps, "ε", m.eps);
+  if (m.law == Law::veldep) params += ", " + par(Parameter::c, "c", m.c);
+  fig.subtitle = params + "; " + std::to_string(n) + " values, " + std::to_string(q.nx) + " x " + std::to_string(q.ny) +
+                 " starts each; " + q.precision.text();
+  fig.xlabel = vary == "eps" ? "ε" : vary;
+  fig.ylabel = "share of the starts (stacked)";
+  fig.width = 1300;
+  fig.height = 720;
+  return fig;
+}
+
+std::string attractors_sweep_text(const AttractorsSweepResult& r) {
+  std::ostringstream o;
+  o << r.chains.size() << " attractor chain" << (r.chains.size() == 1 ? "" : "s") << " over " << name(r.request.vary) << " in "
+    << r.request.lo.text() << ".." << r.request.hi.text() << " (" << r.values.size() << " values):\n";
+  for (const AttractorChain& c : r.chains) {
+    double lo = 1, hi = 0;
+    for (size_t k = 0; k < c.index.size(); ++k)
+      if (c.index[k] >= 0) {
+        const double f = r.at[k].attractors[static_cast<size_t>(c.index[k])].fraction;
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+    o << "  chain " << c.id << ": " << chain_title(c) << " at " << name(r.request.vary) << " = " << presence(r, c) << ", share "
+      << g(lo, 3) << ".." << g(hi, 3) << "\n";
+  }
   return o.str();
 }
 

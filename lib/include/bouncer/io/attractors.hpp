@@ -7,6 +7,7 @@
 
 #include "bouncer/io/plot.hpp"
 #include "bouncer/run/attractors.hpp"
+#include "bouncer/run/attractors_sweep.hpp"
 
 namespace bouncer {
 
@@ -29,5 +30,15 @@ ImageFigure attractors_figure(const AttractorsResult& r, Palette palette);
 
 // A readable summary for a terminal (no provenance: the command adds it).
 std::string attractors_text(const AttractorsResult& r);
+
+// `attractors --vary`: one row per value and attractor chain present there
+// (value,chain,kind,period,starts,fraction,fraction_stderr; chain "undecided" for the
+// undecided starts); the summary (per chain its kind, period and share at every value, null
+// where absent); the stacked basin shares against the parameter (one column per value, the
+// chains' shares stacked from the bottom in chain order, undecided grey on top); the text.
+std::string attractors_sweep_csv(const AttractorsSweepResult& r);
+std::string attractors_sweep_json(const AttractorsSweepResult& r);
+ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette palette);
+std::string attractors_sweep_text(const AttractorsSweepResult& r);
 
 }  // namespace bouncer

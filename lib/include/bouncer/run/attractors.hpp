@@ -159,15 +159,11 @@ AttractorsResult find_attractors(const AttractorsRequest& r, const GridOptions& 
 // The binomial standard error of a share k/n: sqrt(p (1 - p) / n) (0 for n = 0).
 double share_stderr(long k, long n);
 
-// Not yet here (issue 23, next step): global continuation, `attractors --vary a|eps|c`. It
-// builds on this call: find_attractors at each value of the parameter (the request's model
-// with_parameter), then attractors matched from value to value by the distance of their
-// point sets (FoundAttractor::points; periodic orbits by their Newton points, aperiodic sets
-// by their samples, as Attractors.jl's matching by set distance), a global id per matched
-// chain, basin fractions per value for a stacked figure, and each appearance or
-// disappearance of a periodic attractor handed to continue (analysis/continuation.hpp) from
-// the last value where it exists, whose event (border collision, fold, period doubling)
-// explains it. Seeding the next value's cells with the previous value's attractors would
-// save most recurrences.
+// Global continuation (`attractors --vary a|eps|c`) builds on this call:
+// run/attractors_sweep.hpp runs it at each value and chains the attractors by the distance
+// of their point sets. Still to do there: each appearance or disappearance of a periodic
+// attractor handed to continue (analysis/continuation.hpp) from the last value where it
+// exists, whose event (border collision, fold, period doubling) explains it; and seeding a
+// value's cells with the previous value's attractors, which would save most recurrences.
 
 }  // namespace bouncer

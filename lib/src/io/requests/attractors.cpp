@@ -37,4 +37,21 @@ AttractorsRequest attractors_request(const Options& o) {
   return r;
 }
 
+std::optional<AttractorsSweepRequest> attractors_sweep_request(const Options& o) {
+  if (!o.has("vary")) {
+    for (const char* k : {"range", "values"})
+      if (o.has(k)) throw InputError(k, "is only used with --vary a|eps|c");
+    return std::nullopt;
+  }
+  AttractorsSweepRequest s;
+  s.vary = parse_parameter("vary", o.get("vary"));
+  if (!o.has("range")) throw InputError("range", "is needed with --vary: LO:HI (decimals, LO < HI)");
+  Options m = o;
+  default_to_range_start(m, name(s.vary));
+  s.point = attractors_request(m);
+  std::tie(s.lo, s.hi) = parse_range("range", o.get("range"));
+  s.values = integer_from(o, "values", 2, 1000, 11);
+  return s;
+}
+
 }  // namespace bouncer

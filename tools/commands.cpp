@@ -6,7 +6,7 @@
 namespace bouncer::cli {
 
 CommandSetup command_setup(std::string_view name) {
-  static constexpr std::array<std::pair<std::string_view, CommandSetup>, 17> setups{{
+  static constexpr std::array<std::pair<std::string_view, CommandSetup>, 18> setups{{
       {"orbit", setup_orbit},
       {"certify-sticking", setup_certify_sticking},
       {"certify-periodic", setup_certify_periodic},
@@ -18,6 +18,7 @@ CommandSetup command_setup(std::string_view name) {
       {"bifurcation", setup_bifurcation},
       {"portrait", setup_portrait},
       {"basin", setup_basin},
+      {"attractors", setup_attractors},
       {"scan", setup_scan},
       {"merge", setup_merge},
       {"continue", setup_continue},

@@ -21,7 +21,8 @@ std::string share_text(long n, double inside) {
   return pct;
 }
 
-// Pixel of item i (column i mod nx, row i / nx from the bottom) in a raster (rows from the top).
+}  // namespace
+
 size_t pixel_of(size_t i, long nx, long ny) {
   const long col = static_cast<long>(i) % nx, row = ny - 1 - static_cast<long>(i) / nx;
   return static_cast<size_t>(row * nx + col);
@@ -33,8 +34,6 @@ std::string parameters_text(const ModelSpec& m) {
   if (m.law == Law::veldep) par += ", c = " + m.c.text();
   return par;
 }
-
-}  // namespace
 
 std::string model_title(Law law) {
   switch (law) {

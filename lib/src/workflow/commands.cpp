@@ -21,6 +21,7 @@ constexpr std::array kCommands{
     CommandInfo{"bifurcation", "Bifurcation diagram: sweep a, eps or c; CSV, density PNG, JSON", C},
     CommandInfo{"portrait", "Phase portrait (theta, v) of several orbits; --polar for Fermi acceleration", C},
     CommandInfo{"basin", "Basins of attraction: classify a grid of initial conditions; CSV, PNG, JSON", C},
+    CommandInfo{"attractors", "Every attractor at a parameter point: recurrences of many starts, basin shares, Krawczyk proofs; CSV, PNG, JSON", C},
     CommandInfo{"scan", "Parameter scan over (a, eps) or (a, c): solution types per point; CSV, PNG, JSON", C},
     CommandInfo{"merge", "Join the tiles of shard runs (--shard i/N) into PREFIX.csv/.png/.json", W},
     CommandInfo{"continue", "Continue a period-q orbit in a, eps or c; locate where its branch ends", C},

@@ -18,6 +18,10 @@ namespace bouncer {
 
 // "constant restitution", "velocity-dependent restitution", "elastic" (figure titles).
 std::string model_title(Law law);
+// "a = 23.1, c = 1000" (figure subtitles).
+std::string parameters_text(const ModelSpec& m);
+// Pixel of item i (column i mod nx, row i / nx from the bottom) in a raster (rows from the top).
+size_t pixel_of(size_t i, long nx, long ny);
 
 // The colour of an attractor type (basin, scan legends, exponent curves); `rank` orders the
 // periodic types by their share, `sub_rank` the sticking periods and the periods transient

@@ -1,0 +1,499 @@
+// The outputs of `bouncer attractors` (io/attractors.hpp).
+#include "bouncer/io/attractors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#pragma GCC diagnostic push
+#if !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <nlohmann/json.hpp>
+#pragma GCC diagnostic pop
+
+#include "bouncer/io/grid_figures.hpp"
+
+namespace bouncer {
+
+namespace {
+
+using json = nlohmann::ordered_json;
+
+std::string g(double x, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, x);
+  return buf;
+}
+
+// The shortest decimal that reads back to x (as the JSON writer prints doubles).
+std::string shortest(double x) {
+  for (int digits = 1; digits < 17; ++digits) {
+    const std::string t = g(x, digits);
+    if (std::strtod(t.c_str(), nullptr) == x) return t;
+  }
+  return g(x, 17);
+}
+
+// A share and its error as percentages with the digits the error allows.
+std::string share_pm(double p, double e) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "%.1f ± %.1f%%", 100 * p, 100 * e);
+  return buf;
+}
+
+json enclosure(const Enclosure& e) { return json::array({e.lo, e.hi}); }
+
+json certificate_json(const PeriodicCertificate& c) {
+  json j;
+  j["certified"] = c.certified;
+  j["outcome"] = name(c.outcome);
+  j["bits"] = c.bits;
+  j["minimal_period"] = c.minimal_period_certified ? json(c.minimal_period) : json(nullptr);
+  if (!c.certified) {
+    j["reason"] = c.reason;
+    return j;
+  }
+  j["stability"] = c.stability;
+  json mu;
+  mu["kind"] = c.multipliers.kind;
+  if (c.multipliers.kind == "real") {
+    mu["mu1"] = enclosure(c.multipliers.mu[0]);
+    mu["mu2"] = enclosure(c.multipliers.mu[1]);
+  } else if (c.multipliers.kind == "complex") {
+    mu["re"] = enclosure(c.multipliers.mu[0]);
+    mu["im"] = enclosure(c.multipliers.mu[1]);
+    mu["modulus"] = enclosure(c.multipliers.modulus);
+  }
+  j["multipliers"] = mu;
+  json pts = json::array();
+  for (const EnclosedOrbitPoint& p : c.points) pts.push_back({{"theta", enclosure(p.theta)}, {"v", enclosure(p.v)}});
+  j["points"] = pts;
+  j["events"] = c.events;
+  j["statement"] = c.statement;
+  return j;
+}
+
+std::string label_of(int l) {
+  if (l == AttractorsResult::kOutside) return "outside";
+  if (l == AttractorsResult::kUndecidedStart) return "undecided";
+  return std::to_string(l);
+}
+
+OrbitClass orbit_class(const FoundAttractor& a) {
+  switch (a.kind) {
+    case AttractorKind::periodic: return a.period == 1 ? OrbitClass::fixed : OrbitClass::periodic;
+    case AttractorKind::family: return a.period == 1 ? OrbitClass::fixed : OrbitClass::periodic;
+    case AttractorKind::sticking: return OrbitClass::sticking;
+    case AttractorKind::chaotic: return OrbitClass::chaotic;
+    case AttractorKind::quasiperiodic: return OrbitClass::quasiperiodic;
+    case AttractorKind::effective_sticking: return OrbitClass::effective_sticking;
+    case AttractorKind::accelerator:
+    case AttractorKind::escape: return OrbitClass::unbounded;
+    case AttractorKind::undecided: return OrbitClass::undecided;
+  }
+  return OrbitClass::undecided;
+}
+
+std::string certificate_text(const FoundAttractor& a) {
+  if (!a.certificate) return "";
+  const PeriodicCertificate& c = *a.certificate;
+  if (!c.certified) return "not certified (" + c.reason + ")";
+  std::string s = "certified (Krawczyk, " + std::to_string(c.bits) + " bits): " + name(c.outcome) + ", " + c.stability;
+  if (c.multipliers.kind == "real")
+    s += ", multipliers in [" + c.multipliers.mu[0].lo + ", " + c.multipliers.mu[0].hi + "] and [" + c.multipliers.mu[1].lo +
+         ", " + c.multipliers.mu[1].hi + "]";
+  else if (c.multipliers.kind == "complex")
+    s += ", complex multipliers of modulus in [" + c.multipliers.modulus.lo + ", " + c.multipliers.modulus.hi + "]";
+  return s;
+}
+
+}  // namespace
+
+std::string attractor_title(const FoundAttractor& a) {
+  const std::string q = std::to_string(a.period);
+  switch (a.kind) {
+    case AttractorKind::periodic: return a.period == 1 ? "fixed point" : "period " + q;
+    case AttractorKind::family: return a.period == 1 ? "family of fixed points" : "family of period-" + q + " points";
+    case AttractorKind::sticking: return "sticking cycle, k = " + q;
+    case AttractorKind::chaotic: return "chaotic set";
+    case AttractorKind::quasiperiodic: return "quasiperiodic set";
+    case AttractorKind::effective_sticking: return "effective sticking";
+    case AttractorKind::accelerator: return "accelerator mode, Q = " + q;
+    case AttractorKind::escape: return "escape";
+    case AttractorKind::undecided: return "undecided recurrence";
+  }
+  return "?";
+}
+
+std::string attractors_csv(const AttractorsResult& r) {
+  std::string csv = "theta,v,attractor,kind,period\n";
+  for (size_t i = 0; i < r.label.size(); ++i) {
+    const int l = r.label[i];
+    csv += r.theta[i].digits + ',' + r.v[i].digits + ',' + label_of(l) + ',';
+    if (l >= 0) {
+      const FoundAttractor& a = r.attractors[static_cast<size_t>(l)];
+      csv += std::string(name(a.kind)) + ',' + std::to_string(a.period);
+    } else {
+      csv += label_of(l) + ",0";
+    }
+    csv += '\n';
+  }
+  return csv;
+}
+
+std::string attractors_json(const AttractorsResult& r) {
+  const AttractorsRequest& q = r.request;
+  json s;
+  s["command"] = "attractors";
+  s["starts"] = {q.nx, q.ny};
+  s["sampling"] = name(q.sampling);
+  s["theta_range"] = {q.theta_lo.text(), q.theta_hi.text()};
+  s["v_range"] = {q.v_range->first.text(), q.v_range->second.text()};
+  s["points"] = r.label.size();
+  s["points_in_phase_space"] = r.inside;
+  s["outside"] = r.outside;
+  json m;
+  m["cells"] = {q.cells_theta, q.cells_v};
+  m["cell_size"] = {r.cell_theta, r.cell_v};
+  m["v_range"] = {r.grid_v_lo, r.grid_v_hi};
+  m["consecutive_recurrences"] = q.consecutive_recurrences;
+  m["attractor_steps"] = q.attractor_steps;
+  m["consecutive_hits"] = q.consecutive_hits;
+  m["lost_steps"] = q.lost_steps;
+  m["max_steps"] = q.max_steps;
+  m["max_period"] = q.max_period;
+  m["lyapunov_steps"] = q.lyapunov_steps;
+  s["recurrence_grid"] = m;
+  s["precision"] = q.precision.text();
+  json list = json::array();
+  for (const FoundAttractor& a : r.attractors) {
+    json j;
+    j["id"] = a.id;
+    j["kind"] = name(a.kind);
+    j["period"] = a.period;
+    j["name"] = attractor_title(a);
+    j["starts"] = a.starts;
+    j["fraction"] = a.fraction;
+    j["fraction_stderr"] = a.fraction_stderr;
+    j["stable"] = a.stable;
+    json pts = json::array();
+    for (const AttractorPoint& p : a.points) pts.push_back({p.theta.digits, p.v.digits});
+    j["points"] = pts;
+    if (!a.multipliers.empty()) {
+      json mu = json::array();
+      for (size_t i = 0; i < a.multipliers.size(); ++i)
+        mu.push_back({{"re", a.multipliers[i].first.digits}, {"im", a.multipliers[i].second.digits}, {"modulus", a.multiplier_moduli[i]}});
+      j["multipliers"] = mu;
+    }
+    j["certificate"] = a.certificate ? certificate_json(*a.certificate) : json(nullptr);
+    if (a.kind == AttractorKind::family)
+      j["family"] = {{"members_found", a.family_members}, {"theta_min", a.family_theta_min}, {"theta_max", a.family_theta_max}};
+    if (a.kind == AttractorKind::chaotic || a.kind == AttractorKind::quasiperiodic)
+      j["lyapunov"] = {{"lambda", a.lambda}, {"stderr", a.lambda_stderr}, {"steps", a.lyapunov_steps}};
+    if (a.kind == AttractorKind::accelerator) j["gain_per_period"] = a.accel_gain;
+    j["followed_steps"] = a.followed_steps;
+    j["cells"] = a.cells;
+    j["first_start"] = a.first_start;
+    j["evidence"] = a.evidence;
+    list.push_back(j);
+  }
+  s["attractors"] = list;
+  s["undecided"] = {{"starts", r.undecided}, {"fraction", r.undecided_fraction}, {"fraction_stderr", r.undecided_stderr}};
+  s["recurrences_characterized"] = r.candidates;
+  s["steps"] = r.steps;
+  s["seconds"] = r.seconds;  // (timings: keys named "seconds", which audit ignores)
+  s["certificates"] = {{"seconds", r.certify_seconds}};
+  return s.dump();
+}
+
+ImageFigure attractors_figure(const AttractorsResult& r, Palette palette) {
+  const AttractorsRequest& q = r.request;
+  std::vector<Rgb> color;
+  int periodic_rank = 0, sticking_rank = 0;
+  for (const FoundAttractor& a : r.attractors) {
+    const OrbitClass c = orbit_class(a);
+    color.push_back(attractor_color(c, periodic_rank, sticking_rank, palette));
+    if (c == OrbitClass::periodic || (c == OrbitClass::fixed && a.id > 0)) ++periodic_rank;
+    if (c == OrbitClass::sticking) ++sticking_rank;
+  }
+  const Rgb undecided = attractor_color(OrbitClass::undecided, 0, 0, palette);
+  const Rgb outside = attractor_color(OrbitClass::outside, 0, 0, palette);
+  auto rgb = [&](int l) {
+    return l >= 0 ? color[static_cast<size_t>(l)] : l == AttractorsResult::kOutside ? outside : undecided;
+  };
+  ImageFigure fig;
+  Raster& ras = fig.raster;
+  ras.nx = static_cast<int>(q.nx);
+  ras.ny = static_cast<int>(q.ny);
+  set_exact_window(ras, q.theta_lo.value(), q.theta_hi.value(), q.v_range->first.value(), q.v_range->second.value());
+  if (q.sampling == StartSampling::grid) {
+    ras.pixels.resize(r.label.size());
+    for (size_t i = 0; i < r.label.size(); ++i) ras.pixels[pixel_of(i, q.nx, q.ny)] = rgb(r.label[i]);
+  } else {
+    // Halton points painted on the raster at their nearest pixel (the rest white).
+    ras.pixels.assign(r.label.size(), Rgb{255, 255, 255});
+    const double t0 = q.theta_lo.approx(), t1 = q.theta_hi.approx(), v0 = q.v_range->first.approx(), v1 = q.v_range->second.approx();
+    for (size_t i = 0; i < r.label.size(); ++i) {
+      const long col = std::clamp(static_cast<long>((r.theta[i].value - t0) / (t1 - t0) * static_cast<double>(q.nx)), 0L, q.nx - 1);
+      const long row = std::clamp(static_cast<long>((r.v[i].value - v0) / (v1 - v0) * static_cast<double>(q.ny)), 0L, q.ny - 1);
+      ras.pixels[pixel_of(static_cast<size_t>(row * q.nx + col), q.nx, q.ny)] = rgb(r.label[i]);
+    }
+  }
+  const size_t shown = r.attractors.size() > 13 ? 12 : r.attractors.size();
+  for (size_t k = 0; k < shown; ++k) {
+    const FoundAttractor& a = r.attractors[k];
+    std::string mark = a.certificate && a.certificate->certified ? " ✓" : "";
+    ras.legend.emplace_back("#" + std::to_string(a.id) + " " + attractor_title(a) + mark + ": " +
+                                share_pm(a.fraction, a.fraction_stderr),
+                            color[k]);
+  }
+  if (shown < r.attractors.size())
+    ras.legend.emplace_back("+" + std::to_string(r.attractors.size() - shown) + " more attractors", Rgb{255, 255, 255});
+  if (r.undecided > 0) ras.legend.emplace_back("undecided: " + share_pm(r.undecided_fraction, r.undecided_stderr), undecided);
+  if (r.outside > 0) ras.legend.emplace_back("below the wall velocity (no state)", outside);
+  bool any_cert = false;
+  for (const FoundAttractor& a : r.attractors) any_cert = any_cert || (a.certificate && a.certificate->certified);
+  if (any_cert) ras.legend.emplace_back("✓ proved by Krawczyk", Rgb{255, 255, 255});
+  fig.title = "Attractors and their basins, " + model_title(q.model.law) + " model";
+  fig.subtitle = parameters_text(q.model) + "; " + std::to_string(q.nx) + " x " + std::to_string(q.ny) + " " +
+                 (q.sampling == StartSampling::grid ? "grid" : "Halton") + " starts, shares ± 1 standard error; " +
+                 q.precision.text();
+  fig.xlabel = "θ₀ (initial phase)";
+  fig.ylabel = "v₀ (initial velocity)";
+  fig.width = 1200;
+  fig.height = 700;
+  return fig;
+}
+
+std::string attractors_text(const AttractorsResult& r) {
+  const AttractorsRequest& q = r.request;
+  std::ostringstream o;
+  o << r.attractors.size() << " attractor" << (r.attractors.size() == 1 ? "" : "s") << " at " << name(q.model.law) << " "
+    << parameters_text(q.model) << " from " << r.inside << " starts (" << q.nx << " x " << q.ny << " "
+    << name(q.sampling) << " over theta " << q.theta_lo.text() << ".." << q.theta_hi.text() << ", v "
+    << q.v_range->first.text() << ".." << q.v_range->second.text() << "), " << q.precision.text() << ":\n";
+  for (const FoundAttractor& a : r.attractors) {
+    o << "  #" << a.id << " " << attractor_title(a) << ": basin share " << g(a.fraction, 4) << " ± " << g(a.fraction_stderr, 2)
+      << " (" << a.starts << " starts)";
+    if (!a.multiplier_moduli.empty())
+      o << ", " << (a.stable ? "stable" : "not stable") << ", |multipliers| " << g(a.multiplier_moduli[0], 6) << ", "
+        << g(a.multiplier_moduli[1], 6);
+    o << "\n";
+    if (a.kind == AttractorKind::family)
+      o << "      members reached: " << a.family_members << ", theta in [" << g(a.family_theta_min, 6) << ", "
+        << g(a.family_theta_max, 6) << "], v = " << a.points[0].v.digits << "\n";
+    else if (a.kind == AttractorKind::periodic || a.kind == AttractorKind::sticking) {
+      o << "      points:";
+      for (size_t i = 0; i < a.points.size() && i < 8; ++i) o << " (" << a.points[i].theta.digits << ", " << a.points[i].v.digits << ")";
+      if (a.points.size() > 8) o << " ...";
+      o << "\n";
+    }
+    if (a.kind == AttractorKind::chaotic || a.kind == AttractorKind::quasiperiodic)
+      o << "      Lyapunov exponent " << g(a.lambda, 4) << " ± " << g(a.lambda_stderr, 2) << " per collision over "
+        << a.lyapunov_steps << " steps (followed " << a.followed_steps << " steps)\n";
+    if (a.kind == AttractorKind::accelerator)
+      o << "      velocity gain " << g(a.accel_gain, 4) << " every " << a.period << " steps\n";
+    if (a.kind != AttractorKind::periodic && a.kind != AttractorKind::family && !a.evidence.empty())
+      o << "      evidence: " << a.evidence << "\n";
+    if (a.certificate) o << "      " << certificate_text(a) << "\n";
+  }
+  o << "  undecided (no decision in " << q.max_steps << " steps): " << r.undecided << " starts\n";
+  o << "  " << r.steps << " map steps, " << r.candidates << " recurrences characterized, " << g(r.seconds, 3) << " s (+ "
+    << g(r.certify_seconds, 3) << " s certificates)\n";
+  return o.str();
+}
+
+namespace {
+
+std::string chain_title(const AttractorChain& c) {
+  FoundAttractor a;
+  a.kind = c.kind;
+  a.period = c.period;
+  return attractor_title(a);
+}
+
+// Where a chain exists: "23.05..23.15" (first..last value present), or several pieces.
+std::string presence(const AttractorsSweepResult& r, const AttractorChain& c) {
+  std::string out;
+  for (size_t k = 0; k < c.index.size(); ++k) {
+    if (c.index[k] < 0 || (k > 0 && c.index[k - 1] >= 0)) continue;
+    size_t e = k;
+    while (e + 1 < c.index.size() && c.index[e + 1] >= 0) ++e;
+    out += (out.empty() ? "" : ", ") + r.values[k].text() + (e > k ? ".." + r.values[e].text() : "");
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string attractors_sweep_csv(const AttractorsSweepResult& r) {
+  const std::string vary = name(r.request.vary);
+  std::string csv = vary + ",chain,kind,period,starts,fraction,fraction_stderr\n";
+  for (size_t k = 0; k < r.values.size(); ++k) {
+    const AttractorsResult& at = r.at[k];
+    for (const AttractorChain& c : r.chains) {
+      if (c.index[k] < 0) continue;
+      const FoundAttractor& a = at.attractors[static_cast<size_t>(c.index[k])];
+      csv += r.values[k].text() + ',' + std::to_string(c.id) + ',' + name(a.kind) + ',' + std::to_string(a.period) + ',' +
+             std::to_string(a.starts) + ',' + shortest(a.fraction) + ',' + shortest(a.fraction_stderr) + '\n';
+    }
+    csv += r.values[k].text() + ",undecided,undecided,0," + std::to_string(at.undecided) + ',' + shortest(at.undecided_fraction) +
+           ',' + shortest(at.undecided_stderr) + '\n';
+  }
+  return csv;
+}
+
+std::string attractors_sweep_json(const AttractorsSweepResult& r) {
+  const AttractorsRequest& q = r.request.point;
+  json s;
+  s["command"] = "attractors";
+  s["vary"] = name(r.request.vary);
+  s["range"] = {r.request.lo.text(), r.request.hi.text()};
+  json values = json::array();
+  for (const Decimal& v : r.values) values.push_back(v.text());
+  s["values"] = values;
+  s["starts"] = {q.nx, q.ny};
+  s["sampling"] = name(q.sampling);
+  s["precision"] = q.precision.text();
+  s["match_distance"] = r.request.match_distance;
+  json chains = json::array();
+  for (const AttractorChain& c : r.chains) {
+    json j;
+    j["chain"] = c.id;
+    j["kind"] = name(c.kind);
+    j["period"] = c.period;
+    j["name"] = chain_title(c);
+    j["present"] = presence(r, c);
+    json f = json::array(), e = json::array(), id = json::array(), cert = json::array();
+    for (size_t k = 0; k < c.index.size(); ++k) {
+      if (c.index[k] < 0) {
+        f.push_back(nullptr), e.push_back(nullptr), id.push_back(nullptr), cert.push_back(nullptr);
+        continue;
+      }
+      const FoundAttractor& a = r.at[k].attractors[static_cast<size_t>(c.index[k])];
+      f.push_back(a.fraction);
+      e.push_back(a.fraction_stderr);
+      id.push_back(a.id);
+      cert.push_back(a.certificate ? json(a.certificate->certified) : json(nullptr));
+    }
+    j["fraction"] = f;
+    j["fraction_stderr"] = e;
+    j["attractor_id"] = id;  // its id at each value (the per-value runs' numbering)
+    j["certified"] = cert;
+    chains.push_back(j);
+  }
+  s["chains"] = chains;
+  json und = json::array();
+  long long steps = 0;
+  double seconds = 0;
+  for (const AttractorsResult& at : r.at) {
+    und.push_back(at.undecided_fraction);
+    steps += at.steps;
+    seconds += at.seconds + at.certify_seconds;
+  }
+  s["undecided_fraction"] = und;
+  s["steps"] = steps;
+  s["seconds"] = seconds;
+  return s.dump();
+}
+
+ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette palette) {
+  const AttractorsRequest& q = r.request.point;
+  const size_t n = r.values.size();
+  std::vector<Rgb> color;
+  int periodic_rank = 0, sticking_rank = 0;
+  for (const AttractorChain& c : r.chains) {
+    FoundAttractor a;
+    a.kind = c.kind;
+    a.period = c.period;
+    a.id = 1;
+    const OrbitClass cls = orbit_class(a);
+    color.push_back(attractor_color(cls == OrbitClass::fixed ? OrbitClass::periodic : cls, periodic_rank, sticking_rank, palette));
+    if (cls == OrbitClass::periodic || cls == OrbitClass::fixed) ++periodic_rank;
+    if (cls == OrbitClass::sticking) ++sticking_rank;
+  }
+  ImageFigure fig;
+  Raster& ras = fig.raster;
+  ras.nx = static_cast<int>(n);
+  ras.ny = 400;
+  const mpq_class half = (r.request.hi.value() - r.request.lo.value()) / (2 * static_cast<long>(n - 1));
+  set_exact_window(ras, r.request.lo.value() - half, r.request.hi.value() + half, 0, 1);
+  ras.pixels.assign(n * 400, Rgb{255, 255, 255});
+  const Rgb undecided = attractor_color(OrbitClass::undecided, 0, 0, palette);
+  for (size_t k = 0; k < n; ++k) {
+    std::vector<std::pair<double, Rgb>> bands;  // cumulative top of each band, from the bottom
+    double top = 0;
+    for (size_t c = 0; c < r.chains.size(); ++c) {
+      const int i = r.chains[c].index[k];
+      if (i < 0) continue;
+      top += r.at[k].attractors[static_cast<size_t>(i)].fraction;
+      bands.emplace_back(top, color[c]);
+    }
+    bands.emplace_back(top + r.at[k].undecided_fraction, undecided);
+    for (int row = 0; row < 400; ++row) {
+      const double y = (row + 0.5) / 400;
+      for (const auto& [t, rgb] : bands)
+        if (y < t) {
+          ras.pixels[static_cast<size_t>((399 - row)) * n + k] = rgb;
+          break;
+        }
+    }
+  }
+  // The legend: the chains by their largest share (at most 12), then undecided.
+  std::vector<size_t> order(r.chains.size());
+  std::vector<double> peak(r.chains.size(), 0);
+  for (size_t c = 0; c < r.chains.size(); ++c) {
+    order[c] = c;
+    for (size_t k = 0; k < n; ++k)
+      if (r.chains[c].index[k] >= 0)
+        peak[c] = std::max(peak[c], r.at[k].attractors[static_cast<size_t>(r.chains[c].index[k])].fraction);
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return peak[x] > peak[y]; });
+  const size_t shown = std::min<size_t>(order.size(), 12);
+  for (size_t i = 0; i < shown; ++i) {
+    const AttractorChain& c = r.chains[order[i]];
+    ras.legend.emplace_back(chain_title(c) + " (" + presence(r, c) + ")", color[order[i]]);
+  }
+  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " smaller", Rgb{255, 255, 255});
+  ras.legend.emplace_back("undecided", undecided);
+  const std::string vary = name(r.request.vary);
+  fig.title = "Basin shares of the attractors against " + vary + ", " + model_title(q.model.law) + " model";
+  // "a = 22.5..23.7, c = 1000": the model's parameters with the varied one's range.
+  const ModelSpec& m = q.model;
+  auto par = [&](Parameter p, const char* label, const Decimal& d) {
+    return std::string(label) + " = " + (p == r.request.vary ? r.request.lo.text() + ".." + r.request.hi.text() : d.text());
+  };
+  std::string params = par(Parameter::a, "a", m.a);
+  if (m.law == Law::constant) params += ", " + par(Parameter::eps, "ε", m.eps);
+  if (m.law == Law::veldep) params += ", " + par(Parameter::c, "c", m.c);
+  fig.subtitle = params + "; " + std::to_string(n) + " values, " + std::to_string(q.nx) + " x " + std::to_string(q.ny) +
+                 " starts each; " + q.precision.text();
+  fig.xlabel = vary == "eps" ? "ε" : vary;
+  fig.ylabel = "share of the starts (stacked)";
+  fig.width = 1300;
+  fig.height = 720;
+  return fig;
+}
+
+std::string attractors_sweep_text(const AttractorsSweepResult& r) {
+  std::ostringstream o;
+  o << r.chains.size() << " attractor chain" << (r.chains.size() == 1 ? "" : "s") << " over " << name(r.request.vary) << " in "
+    << r.request.lo.text() << ".." << r.request.hi.text() << " (" << r.values.size() << " values):\n";
+  for (const AttractorChain& c : r.chains) {
+    double lo = 1, hi = 0;
+    for (size_t k = 0; k < c.index.size(); ++k)
+      if (c.index[k] >= 0) {
+        const double f = r.at[k].attractors[static_cast<size_t>(c.index[k])].fraction;
+        lo = std::min(lo, f);
+        hi = std::max(hi, f);
+      }
+    o << "  chain " << c.id << ": " << chain_title(c) << " at " << name(r.request.vary) << " = " << presence(r, c) << ", share "
+      << g(lo, 3) << ".." << g(hi, 3) << "\n";
+  }
+  return o.str();
+}
+
+}  // namespace bouncer

@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# End-to-end: `bouncer attractors` (every attractor at a parameter point).
+#   - bad input exits 2 with one line naming the option, and writes nothing;
+#   - at eps = 0.5, a = 24 (paper fig. basin2) PREFIX.csv/png/json are written and checked
+#     by Python, independently of bouncer: the starts are the cell centres (2i+1)/(2N) of
+#     the window; the CSV's attractor ids and the JSON agree (counts, shares, binomial
+#     errors, shares summing to 1); the attractors are the eq. 5 fixed points at
+#     v* = 4(1+eps)/(1-eps) = 12 (a family) and a sticking cycle through the release state
+#     (1/2, 4), both certified, the printed points within 1e-12 of the certified enclosures;
+#   - `bouncer audit` reruns PREFIX.json and finds it identical;
+#   - --vary: each value's shares sum to 1 in the CSV and the JSON; periods 3 and 7 persist
+#     as chains over a in 23.05..23.15 (veldep c = 1000); bad sweeps exit 2;
+#   - without --out a readable summary names both; --help documents the options.
+# Usage: bash attractors.sh <bouncer-binary> <source-dir>
+set -uo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+cd "$TMP"
+require python3
+
+M=(--model constant --eps 0.5 --a 24)
+refused starts 'starts' attractors "${M[@]}" --starts 0x5 --out bad
+refused starts-many 'starts' attractors "${M[@]}" --starts 8192x8192 --out bad
+refused cells 'cells' attractors "${M[@]}" --cells 8x8 --out bad
+refused sampling 'sampling' attractors "${M[@]}" --sampling sobol --out bad
+refused recurrences 'recurrences' attractors "${M[@]}" --recurrences 0 --out bad
+refused max-bits 'max-bits' attractors "${M[@]}" --max-bits 10 --out bad
+refused max-bits-unused 'max-bits' attractors "${M[@]}" --no-certify --max-bits 128 --out bad
+refused precision 'precision' attractors "${M[@]}" --precision interval:64 --out bad
+refused elastic 'v-range' attractors --model elastic --a 19 --out bad
+refused eps 'eps' attractors --model constant --eps 1.5 --a 24 --out bad
+absent refused-files "bad.*"
+
+run e05 attractors "${M[@]}" --starts 30x20 --threads 2 --quiet --out e05 && outputs e05 e05
+
+python3 - <<'PY' || fail e05-content "see above"
+import csv, json, math, sys
+from fractions import Fraction as F
+bad = 0
+def check(cond, what):
+    global bad
+    if not cond:
+        print("FAIL:", what, file=sys.stderr)
+        bad += 1
+
+doc = json.load(open("e05.json"))
+s = doc["summary"]
+check(doc["provenance"]["command"] == "attractors", "provenance command")
+rows = list(csv.DictReader(l for l in open("e05.csv") if not l.startswith("#")))
+check(len(rows) == 600 == s["points"], f"{len(rows)} rows, points {s['points']}")
+# The starts: cell centres of theta in [0, 1] (30) and v in the trapping window (20).
+vlo, vhi = (F(x) for x in s["v_range"])
+check(vhi == F(4 * (1 + 3 * F(1, 2)), 1 - F(1, 2)), f"v range top {vhi} is not 4(1+3eps)/(1-eps)")
+for i, r in enumerate(rows):
+    col, row = i % 30, i // 30
+    check(float(r["theta"]) == float(F(2 * col + 1, 60)), f"row {i}: theta {r['theta']}")
+    check(float(r["v"]) == float(vlo + (vhi - vlo) * F(2 * row + 1, 40)), f"row {i}: v {r['v']}")
+atts = s["attractors"]
+n = s["points_in_phase_space"]
+count = {}
+for r in rows:
+    count[r["attractor"]] = count.get(r["attractor"], 0) + 1
+total = s["undecided"]["fraction"]
+for a in atts:
+    k = count.get(str(a["id"]), 0)
+    check(k == a["starts"], f"#{a['id']}: CSV has {k} starts, JSON {a['starts']}")
+    p = k / n
+    check(abs(a["fraction"] - p) < 1e-15, f"#{a['id']}: fraction {a['fraction']} != {p}")
+    check(abs(a["fraction_stderr"] - math.sqrt(p * (1 - p) / n)) < 1e-15, f"#{a['id']}: stderr")
+    total += a["fraction"]
+check(abs(total - 1) < 1e-12, f"shares sum to {total}")
+check(count.get("undecided", 0) == s["undecided"]["starts"], "undecided count")
+kinds = sorted(a["kind"] for a in atts)
+check(kinds == ["family", "sticking"], f"kinds {kinds}")
+vstar = 4 * (1 + 0.5) / (1 - 0.5)
+for a in atts:
+    c = a["certificate"]
+    check(c is not None and c["certified"], f"#{a['id']} not certified: {c}")
+    if a["kind"] == "family":
+        check(a["period"] == 1 and c["outcome"] == "family", f"family: {a['period']}, {c['outcome']}")
+        for th, v in a["points"]:
+            check(abs(float(v) - vstar) <= 1e-12 * vstar, f"family point v = {v}, v* = {vstar}")
+            check(0 < float(th) < 0.5, f"family point theta = {th}")
+        check(abs(a["multipliers"][0]["modulus"] - 1) < 1e-9 and abs(a["multipliers"][1]["modulus"] - 0.25) < 1e-9,
+              f"family multipliers {a['multipliers']}")
+    else:
+        check(F(a["points"][0][0]) == F(1, 2) and F(a["points"][0][1]) == 4, f"sticking cycle starts at {a['points'][0]}")
+        check(c["outcome"] == "through_release" and a["period"] == len(a["points"]), f"sticking: {c['outcome']}")
+    # The printed (double) points lie within 1e-12 of the certificate's exact enclosures.
+    def off(x, lohi):
+        lo, hi = F(lohi[0]), F(lohi[1])
+        return max(lo - F(x), F(x) - hi, 0)
+    if a["kind"] != "family":
+        for (th, v), box in zip(a["points"], c["points"]):
+            check(off(th, box["theta"]) < F(1, 10**12) and off(v, box["v"]) < F(1, 10**12),
+                  f"point ({th}, {v}) is far from its certified box {box}")
+sys.exit(1 if bad else 0)
+PY
+
+# The result is reproducible from its provenance (the starts run in fixed batches).
+audited e05-audit e05.json
+
+run text attractors "${M[@]}" --starts 12x12 --no-certify
+grep -q "family of fixed points" "$TMP/text.out" || fail text "no family in: $(cat "$TMP/text.out")"
+grep -q "sticking cycle" "$TMP/text.out" || fail text "no sticking cycle in: $(cat "$TMP/text.out")"
+grep -q "^# bouncer" "$TMP/text.out" || fail text "no provenance lines"
+
+# --vary: the attractors across a parameter, chained value to value.
+V=(--model veldep --c 1000 --vary a)
+refused range-alone 'range' attractors "${M[@]}" --range 23:24 --out bad
+refused values 'values' attractors "${V[@]}" --range 23:23.2 --values 1 --out bad
+refused vary-eps 'vary' attractors "${V[@]}" --vary eps --range 0.1:0.2 --out bad
+refused vary-range 'range' attractors "${V[@]}" --out bad
+run sweep attractors "${V[@]}" --range 23.05:23.15 --values 3 --starts 16x16 --no-certify --quiet --out sw && outputs sweep sw
+python3 - <<'PY' || fail sweep-content "see above"
+import csv, json, sys
+from fractions import Fraction as F
+bad = 0
+def check(cond, what):
+    global bad
+    if not cond:
+        print("FAIL:", what, file=sys.stderr)
+        bad += 1
+s = json.load(open("sw.json"))["summary"]
+check(s["vary"] == "a" and s["values"] == ["23.05", "23.1", "23.15"], f"values {s['values']}")
+rows = list(csv.DictReader(l for l in open("sw.csv") if not l.startswith("#")))
+for k, v in enumerate(s["values"]):
+    share = [F(r["fraction"]) for r in rows if r["a"] == v]
+    check(abs(sum(share) - 1) < F(1, 10**12), f"a = {v}: shares sum to {float(sum(share))}")
+    inchains = [c["fraction"][k] for c in s["chains"] if c["fraction"][k] is not None]
+    check(abs(sum(inchains) + s["undecided_fraction"][k] - 1) < 1e-12, f"a = {v}: chain shares")
+periods = {c["period"] for c in s["chains"] if all(f is not None for f in c["fraction"])}
+check({3, 7} <= periods, f"periods 3 and 7 should persist over 23.05..23.15: {periods}")
+sys.exit(1 if bad else 0)
+PY
+
+run help attractors --help
+for opt in starts sampling cells recurrences attractor-steps hits max-steps precision out no-certify vary range values; do
+  grep -q -- "--$opt" "$TMP/help.out" || fail help "does not document --$opt"
+done
+finish

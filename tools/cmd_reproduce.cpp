@@ -7,14 +7,16 @@
 // SIGHUP) stops the run and its children, writes no report, and ends reproduce by that
 // signal after saying how to resume. `bouncer audit DIR` reruns a reproduce directory and
 // compares it item by item (tools/cmd_audit.cpp).
+#include <algorithm>
+#include <cctype>
 #include <cstring>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <sstream>
 
-#include "bouncer/base/cancel.hpp"
 #include "bouncer/workflow/report.hpp"
 #include "bouncer/workflow/reproduce.hpp"
 #include "cli_common.hpp"

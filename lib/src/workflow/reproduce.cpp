@@ -27,9 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Set (to 1) in the environment of reproduce's children by the scheduler.
-constexpr const char* kInReproduce = "BOUNCER_IN_REPRODUCE";
-
 // The bouncer binary: `executable`, or this process's.
 fs::path executable_path(const std::string& executable) {
   if (!executable.empty()) return executable;
@@ -284,7 +281,7 @@ Manifest load_manifest(const std::string& path) {
 }
 
 void refuse_nested_reproduce() {
-  if (const char* inside = std::getenv(kInReproduce); inside && *inside)
+  if (const char* inside = std::getenv(kInReproduceVariable); inside && *inside)
     throw InputError("reproduce", "runs no reproduce inside another (a manifest runs bouncer's computing commands only)");
 }
 

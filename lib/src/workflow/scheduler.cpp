@@ -15,7 +15,6 @@
 
 #include "bouncer/base/input.hpp"
 #include "bouncer/base/output.hpp"
-#include "bouncer/base/text.hpp"
 #include "bouncer/workflow/child_process.hpp"
 
 namespace bouncer {
@@ -23,10 +22,6 @@ namespace bouncer {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Set in the environment of reproduce's children: a reproduce started inside one refuses
-// (workflow/reproduce.cpp reads it).
-constexpr const char* kInReproduceEnv = "BOUNCER_IN_REPRODUCE=1";
 
 // A file of the reproduce directory ("" when absent): a regular file of at most 1 GiB, never
 // a FIFO or device planted there (InputError naming --out).
@@ -137,7 +132,7 @@ int run_jobs(std::vector<Job>& jobs, const std::string& dir, unsigned n, const J
       files->reserve("out", job.stdout_path);
       files->reserve("out", job.stderr_path);
       const pid_t pid = start_child(job.exec, files->descriptor(job.stdout_path), files->descriptor(job.stderr_path), "",
-                                    {kInReproduceEnv});
+                                    {std::string(kInReproduceVariable) + "=1"});
       if (pid < 0) {
         job.state = ItemState::failed;
         job.problem = "could not start " + job.exec[0];

@@ -45,7 +45,7 @@ void refuse_nested_reproduce();
 struct ReproduceRequest {
   ReproduceMode mode = ReproduceMode::quick;
   std::optional<Manifest> manifest;  // std::nullopt: load_manifest(manifest_path)
-  std::string manifest_path;         // "" : the built-in paper manifest
+  std::string manifest_path;         // "": the built-in paper manifest; names it in the reports
   std::string out = "reproduction";  // the directory DIR (made if missing; its parent must exist)
   // Items to run: claim ids, panel labels (also without "fig:"), picture ids (also without
   // "picture:"); std::nullopt: every item of the mode. An empty list or an unknown id is

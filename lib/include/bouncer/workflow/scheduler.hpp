@@ -50,6 +50,10 @@ struct Job {
   double seconds = 0;
 };
 
+// Set (to 1) in the environment of every child run_jobs starts: a reproduce started inside
+// one refuses (refuse_nested_reproduce, workflow/reproduce.hpp).
+inline constexpr const char* kInReproduceVariable = "BOUNCER_IN_REPRODUCE";
+
 // Called once per job as it is settled: jobs not pending first, then each as it ends.
 using JobProgress = std::function<void(const Job& job, std::size_t finished, std::size_t total)>;
 

@@ -6,7 +6,8 @@
 //   < <= > >=      numeric, for numbers and for texts that are a whole finite number ("1e-3");
 //                  anything else, or a missing path, does not hold
 //   has lacks      the value found is an array that holds (or does not hold) VALUE
-// A path that does not exist never holds (got: "missing"), whatever the operator.
+// A path that does not exist never holds (got: "missing"), whatever the operator; nor does an
+// index too long for any array (it is past the end), nor an operator not listed here.
 // The JSON crosses this API as text and VALUE as a typed scalar, so that the library's users
 // need no JSON library (nlohmann-json is private to bouncer::bouncer).
 #pragma once

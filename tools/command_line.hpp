@@ -11,24 +11,12 @@
 #include <vector>
 
 #include "bouncer/base/input.hpp"
+#include "bouncer/base/text.hpp"
 
 namespace bouncer::cli {
 
-// Edit distance (Levenshtein), for suggestions.
-inline size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diag = row[0];
-    row[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j) {
-      const size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diag = up;
-    }
-  }
-  return row[b.size()];
-}
+// Edit distance (Levenshtein), for suggestions (base/text.hpp: reproduce suggests ids with it too).
+using bouncer::edit_distance;
 
 // The closest of `names` to `word`, if it is close enough to be a typo. A name that is a
 // prefix of the word, or the word a prefix of it (--epsilon / --eps), counts as distance 1.

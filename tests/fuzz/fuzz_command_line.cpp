@@ -10,12 +10,12 @@
 #include <fstream>
 
 #include "fuzz_common.hpp"
-#include "paper_manifest.hpp"
+#include "bouncer/workflow/paper.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int* argc, char*** argv) {
   bouncer::fuzz::enter_private_dir(argc, argv);
   const auto& dir = bouncer::fuzz::private_dir();
-  for (const auto& [path, text] : bouncer::cli::paper_scenes()) {
+  for (const auto& [path, text] : bouncer::built_in_scenes()) {
     std::filesystem::create_directories((dir / path).parent_path());
     std::ofstream(dir / path) << text;
   }

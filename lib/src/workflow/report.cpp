@@ -1,0 +1,334 @@
+#include "bouncer/workflow/report.hpp"
+
+#pragma GCC diagnostic push
+#if !defined(__clang__)  // clang has no such warning (the fuzzing build, tests/fuzz/)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <nlohmann/json.hpp>
+#pragma GCC diagnostic pop
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+
+#include "bouncer/base/output.hpp"
+
+namespace bouncer {
+
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::ordered_json;
+
+std::string html_escape(const std::string& s) {
+  std::string o;
+  for (char ch : s) switch (ch) {
+      case '&': o += "&amp;"; break;
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += ch;
+    }
+  return o;
+}
+
+// The Markdown inline marks the manifest's texts use (`code`, **bold**, \| inside a table
+// cell) as HTML, everything else escaped: the HTML report shows what report.md shows.
+std::string md_inline_html(const std::string& s) {
+  std::string o;
+  bool bold = false;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '`') {
+      const size_t end = s.find('`', i + 1);
+      if (end != std::string::npos) {
+        o += "<code>" + html_escape(s.substr(i + 1, end - i - 1)) + "</code>";
+        i = end;
+        continue;
+      }
+    }
+    if (s.compare(i, 2, "**") == 0) {
+      o += bold ? "</strong>" : "<strong>";
+      bold = !bold;
+      ++i;
+      continue;
+    }
+    if (s.compare(i, 2, "\\|") == 0) {
+      o += "|";
+      ++i;
+      continue;
+    }
+    o += html_escape(std::string(1, s[i]));
+  }
+  if (bold) o += "</strong>";
+  return o;
+}
+
+std::string md_cell(std::string s) {
+  for (char& ch : s)
+    if (ch == '\n') ch = ' ';
+  return s;
+}
+
+std::string fixed(double x, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << x;
+  return s.str();
+}
+
+bool drawn(const ItemResult& it) { return it.state == ItemState::done || it.state == ItemState::cached; }
+
+// The parts of a report that depend on the mode: the title, the result line, whether the
+// paper's sections (claims, figures) are shown (not with pictures).
+struct Framing {
+  std::string title, result_text;
+  bool paper;
+  bool any_picture;
+};
+
+Framing framing(const ReproduceResult& r) {
+  const bool pictures = r.mode == ReproduceMode::pictures;
+  Framing f;
+  f.title = pictures ? "bouncer's README pictures" : "Reproduction of Langer & Miller 2014";
+  f.result_text = !r.ok     ? (pictures ? "NOT every picture was drawn" : "NOT fully reproduced")
+                  : pictures ? "every picture was drawn"
+                             : "every item ran and every claim reproduced its expected verdict";
+  f.paper = !pictures;
+  f.any_picture = std::any_of(r.items.begin(), r.items.end(), [](const ItemResult& it) { return it.kind == ItemKind::picture; });
+  return f;
+}
+
+}  // namespace
+
+std::string claims_table(const Manifest& m) {
+  std::string t = "| # | Claim (paper) | Verdict | Evidence | Rerun |\n|---|---|---|---|---|\n";
+  for (const Claim& c : m.claims)
+    t += "| " + c.row + " | " + md_cell(c.text) + " | " + md_cell(c.verdict) + " | " + md_cell(c.evidence) + " | " +
+         md_cell(c.rerun) + " |\n";
+  return t;
+}
+
+std::string claims_json(const ReproduceResult& r) {
+  const Manifest& m = r.manifest;
+  json jclaims = json::array(), jpanels = json::array(), jpictures = json::array();
+  json times = json::object();
+  for (const ItemResult& it : r.items) {
+    const std::string state = state_name(it.state);
+    times[it.id] = {{"state", state}, {"seconds", it.seconds}};
+    // (a resumed item is "done" here: whether it was rerun is a run detail, kept under times)
+    const std::string status = it.state == ItemState::skipped ? "pending" : it.state == ItemState::cached ? "done" : state;
+    if (it.kind == ItemKind::picture) {
+      const Picture& p = m.pictures[it.index];
+      json j{{"label", p.id()}, {"readme", p.readme}, {"status", it.state == ItemState::cached ? "done" : state},
+             {"command", command_text(it.argv)}};
+      if (drawn(it)) j["files"] = it.outputs;
+      if (it.state == ItemState::failed) j["problem"] = it.problem;
+      jpictures.push_back(j);
+    } else if (it.kind == ItemKind::panel) {
+      const Panel& p = m.panels[it.index];
+      json j{{"label", p.label}, {"figure", p.figure}, {"status", status}};
+      if (it.state == ItemState::skipped) j["reason"] = p.reason;
+      if (!p.twin_of.empty()) j["twin_of"] = p.twin_of;
+      if (!it.argv.empty()) j["command"] = command_text(it.argv);
+      if (drawn(it)) j["files"] = it.outputs;
+      if (it.state == ItemState::failed) j["problem"] = it.problem;
+      jpanels.push_back(j);
+    } else {
+      const Claim& c = m.claims[it.index];
+      json jchecks = json::array();
+      for (const CheckResult& k : it.checks) jchecks.push_back({{"check", k.check}, {"got", k.got}, {"held", k.held}});
+      json j{{"id", c.id}, {"row", c.row}, {"paper", c.paper}, {"groups", c.groups}, {"claim", c.text},
+             {"expected", c.expected}, {"verdict", it.verdict}, {"status", status_name(it.status)}, {"evidence", c.evidence},
+             {"command", command_text(it.argv)}, {"rerun", c.rerun}, {"checks", jchecks}};
+      if (!it.outputs.empty()) j["output"] = it.outputs[0];
+      jclaims.push_back(j);
+    }
+  }
+  json doc;
+  doc["reproduce"] = {{"paper", "Langer & Miller 2014"}, {"mode", mode_name(r.mode)}, {"build", r.build},
+                      {"manifest", r.manifest_source}, {"only", r.only}, {"result", r.ok ? "reproduced" : "not reproduced"},
+                      {"summary", r.summary}};
+  doc["claims"] = jclaims;
+  doc["panels"] = jpanels;
+  if (!jpictures.empty()) doc["pictures"] = jpictures;
+  doc["times"] = {{"seconds", r.seconds}, {"items", times}};
+  return doc.dump(2) + "\n";
+}
+
+std::string report_markdown(const ReproduceResult& r) {
+  const Manifest& m = r.manifest;
+  const Framing f = framing(r);
+  std::ostringstream md;
+  md << "# " << f.title << "\n\n";
+  md << "Mode: `" << mode_name(r.mode) << "`. Built by bouncer " << r.build << ". Manifest: " << r.manifest_source << ".\n\n";
+  md << "**Result: " << f.result_text << "** (" << r.summary << ").\n\n";
+  if (f.paper) md << "## Claims\n\n| # | Claim | Paper | Expected | This run | Evidence | Rerun |\n|---|---|---|---|---|---|---|\n";
+  for (const ItemResult& it : r.items) {
+    if (it.kind != ItemKind::claim) continue;
+    const Claim& c = m.claims[it.index];
+    md << "| " << c.row << " | " << md_cell(c.text) << " | " << md_cell(c.paper) << " | " << c.expected << " | "
+       << (it.status == ClaimStatus::reproduced ? "**" + it.verdict + "**" : md_cell(it.verdict)) << " | "
+       << md_cell(c.evidence) << " | " << md_cell(c.rerun) << " |\n";
+  }
+  if (f.paper) md << "\n## Figures\n";
+  std::string figure;
+  for (const ItemResult& it : r.items) {
+    if (it.kind != ItemKind::panel) continue;
+    const Panel& p = m.panels[it.index];
+    if (p.figure != figure) {
+      figure = p.figure;
+      md << "\n### " << figure << "\n\n> " << md_cell(p.caption) << "\n";
+    }
+    md << "\n#### " << p.label << (p.panel.empty() ? "" : " " + p.panel)
+       << (p.twin_of.empty() ? "" : " (certified twin of " + p.twin_of + ", not a panel of the paper)") << "\n\n";
+    if (drawn(it)) {
+      md << "![" << p.label << "](panels/" << p.name() << ".png)\n\n";
+      if (!p.twin_of.empty()) md << "![where double is wrong](panels/" << p.name() << "-artefacts.png)\n\n";
+      md << "[PDF](panels/" << p.name() << ".pdf) · [SVG](panels/" << p.name() << ".svg) · [CSV](panels/" << p.name()
+         << ".csv)\n\n";
+    } else if (it.state == ItemState::skipped) {
+      md << "**Pending:** " << p.reason << ".\n\n";
+    } else {
+      md << "**Failed:** " << md_cell(it.problem) << "\n\n";
+    }
+    if (!p.params.empty()) {
+      md << "Parameters:";
+      for (const auto& kv : p.params) md << " " << kv.first << " = " << kv.second << ";";
+      md << "\n\n";
+    }
+    if (!p.note.empty()) md << "Note: " << p.note << "\n\n";
+    if (!it.argv.empty())
+      md << "Provenance: `" << command_text(it.argv) << " --out panels/" << p.name() << "` (bouncer " << r.build
+         << "); outputs panels/" << p.name() << ".{png,csv,json}\n";
+  }
+  if (f.any_picture) {
+    md << "\n## The pictures (data/pictures)\n\nNot figures of the paper: the pictures the README shows, "
+          "drawn by the same build (`cp pictures/*.png` into data/pictures/ regenerates them).\n";
+    for (const ItemResult& it : r.items) {
+      if (it.kind != ItemKind::picture) continue;
+      const Picture& p = m.pictures[it.index];
+      md << "\n#### " << p.name << " (README: " << p.readme << ")\n\n" << p.about << "\n\n";
+      if (drawn(it))
+        for (const std::string& file : p.files) md << "![" << p.name << "](pictures/" << file << ")\n\n";
+      else
+        md << "**Failed:** " << md_cell(it.problem) << "\n\n";
+      md << "Provenance: `" << command_text(it.argv) << " --out pictures/" << p.name << "`\n";
+    }
+  }
+  if (f.paper) md << "\n## Claims: provenance\n\n";
+  for (const ItemResult& it : r.items) {
+    if (it.kind != ItemKind::claim) continue;
+    md << "- " << it.id << ": `" << command_text(it.argv) << "`" << (it.outputs.empty() ? "" : " → " + it.outputs[0]);
+    for (const std::string& failed : it.failed_checks) md << "; failed check: " << failed;
+    md << "\n";
+  }
+  md << "\n## Times\n\n(Volatile: the only part of this report that changes between identical runs.)\n\n";
+  md << "| item | state | seconds |\n|---|---|---|\n";
+  for (const ItemResult& it : r.items) md << "| " << it.id << " | " << state_name(it.state) << " | " << fixed(it.seconds, 2) << " |\n";
+  md << "\nTotal: " << fixed(r.seconds, 1) << " s with " << r.jobs << " jobs.\n";
+  return md.str();
+}
+
+std::string report_html(const ReproduceResult& r) {
+  const Manifest& m = r.manifest;
+  const Framing f = framing(r);
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(f.title) << "</title>\n"
+    << "<style>body{font-family:sans-serif;max-width:1100px;margin:auto}table{border-collapse:collapse}"
+       "td,th{border:1px solid #999;padding:4px;vertical-align:top}img{max-width:100%}"
+       ".ok{color:#060}.bad{color:#a00}figure{margin:1em 0}figcaption{font-style:italic}</style>\n</head>\n<body>\n";
+  h << "<h1>" << html_escape(f.title) << "</h1>\n";
+  h << "<p>Mode: <code>" << mode_name(r.mode) << "</code>. Built by bouncer " << html_escape(r.build) << ". Manifest: "
+    << html_escape(r.manifest_source) << ".</p>\n";
+  h << "<p class=\"" << (r.ok ? "ok" : "bad") << "\"><strong>Result: " << f.result_text << "</strong> ("
+    << html_escape(r.summary) << ").</p>\n";
+  if (f.paper)
+    h << "<h2>Claims</h2>\n<table>\n<tr><th>#</th><th>Claim</th><th>Paper</th><th>Expected</th><th>This run</th><th>Evidence</th><th>Rerun</th></tr>\n";
+  for (const ItemResult& it : r.items) {
+    if (it.kind != ItemKind::claim) continue;
+    const Claim& c = m.claims[it.index];
+    h << "<tr><td>" << html_escape(c.row) << "</td><td>" << md_inline_html(c.text) << "</td><td>" << html_escape(c.paper)
+      << "</td><td>" << html_escape(c.expected) << "</td><td class=\"" << (it.status == ClaimStatus::reproduced ? "ok" : "bad")
+      << "\">" << html_escape(it.verdict) << "</td><td>" << md_inline_html(c.evidence) << "</td><td>" << md_inline_html(c.rerun)
+      << "</td></tr>\n";
+  }
+  if (f.paper) h << "</table>\n<h2>Figures</h2>\n";
+  std::string figure;
+  for (const ItemResult& it : r.items) {
+    if (it.kind != ItemKind::panel) continue;
+    const Panel& p = m.panels[it.index];
+    if (p.figure != figure) {
+      figure = p.figure;
+      h << "<h3>" << html_escape(figure) << "</h3>\n";
+    }
+    h << "<figure id=\"" << html_escape(p.label) << "\">\n";
+    if (drawn(it))
+      h << "<img src=\"panels/" << html_escape(p.name()) << ".png\" alt=\"" << html_escape(p.label) << "\">\n"
+        << (p.twin_of.empty() ? std::string()
+                              : "<img src=\"panels/" + html_escape(p.name()) + "-artefacts.png\" alt=\"where double is wrong\">\n")
+        << "<p class=\"files\"><a href=\"panels/" << html_escape(p.name()) << ".pdf\">PDF</a> · <a href=\"panels/"
+        << html_escape(p.name()) << ".svg\">SVG</a> · <a href=\"panels/" << html_escape(p.name()) << ".csv\">CSV</a></p>\n";
+    else if (it.state == ItemState::skipped)
+      h << "<p><strong>Pending:</strong> " << html_escape(p.reason) << ".</p>\n";
+    else
+      h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
+    h << "<figcaption>" << html_escape(p.label) << (p.panel.empty() ? "" : " " + html_escape(p.panel))
+      << (p.twin_of.empty() ? "" : " (certified twin of " + html_escape(p.twin_of) + ", not a panel of the paper)") << ". Paper: "
+      << html_escape(p.caption) << "</figcaption>\n";
+    if (!p.params.empty()) {
+      h << "<p>Parameters:";
+      for (const auto& kv : p.params) h << " " << html_escape(kv.first) << " = " << html_escape(kv.second) << ";";
+      h << "</p>\n";
+    }
+    if (!p.note.empty()) h << "<p>Note: " << html_escape(p.note) << "</p>\n";
+    if (!it.argv.empty())
+      h << "<p>Provenance: <code>" << html_escape(command_text(it.argv)) << " --out panels/" << html_escape(p.name())
+        << "</code> (bouncer " << html_escape(r.build) << ")</p>\n";
+    h << "</figure>\n";
+  }
+  if (f.any_picture) {
+    h << "<h2>The pictures (data/pictures)</h2>\n<p>Not figures of the paper: the pictures the README shows, "
+         "drawn by the same build (<code>cp pictures/*.png</code> into data/pictures/ regenerates them).</p>\n";
+    for (const ItemResult& it : r.items) {
+      if (it.kind != ItemKind::picture) continue;
+      const Picture& p = m.pictures[it.index];
+      h << "<figure id=\"" << html_escape(p.id()) << "\">\n";
+      if (drawn(it))
+        for (const std::string& file : p.files)
+          h << "<img src=\"pictures/" << html_escape(file) << "\" alt=\"" << html_escape(p.name) << "\">\n";
+      else
+        h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
+      h << "<figcaption>" << html_escape(p.name) << " (README: " << html_escape(p.readme) << "). " << md_inline_html(p.about)
+        << "</figcaption>\n<p>Provenance: <code>" << html_escape(command_text(it.argv)) << " --out pictures/"
+        << html_escape(p.name) << "</code></p>\n</figure>\n";
+    }
+  }
+  if (f.paper) h << "<h2>Claims: provenance</h2>\n<ul>\n";
+  for (const ItemResult& it : r.items) {
+    if (it.kind != ItemKind::claim) continue;
+    h << "<li>" << html_escape(it.id) << ": <code>" << html_escape(command_text(it.argv)) << "</code>";
+    for (const std::string& failed : it.failed_checks) h << "; failed check: " << html_escape(failed);
+    h << "</li>\n";
+  }
+  if (f.paper) h << "</ul>\n";
+  h << "<section id=\"times\">\n<h2>Times</h2>\n<p>Volatile: the only part of this report that changes between identical runs.</p>\n"
+    << "<table>\n<tr><th>item</th><th>state</th><th>seconds</th></tr>\n";
+  for (const ItemResult& it : r.items)
+    h << "<tr><td>" << html_escape(it.id) << "</td><td>" << state_name(it.state) << "</td><td>" << fixed(it.seconds, 2)
+      << "</td></tr>\n";
+  h << "</table>\n<p>Total: " << fixed(r.seconds, 1) << " s with " << r.jobs << " jobs.</p>\n</section>\n</body>\n</html>\n";
+  return h.str();
+}
+
+void write_reports(const ReproduceResult& r) {
+  const fs::path dir = r.dir;
+  const std::string md = report_markdown(r), html = report_html(r), claims = claims_json(r);
+  OutputSet set;
+  const std::pair<fs::path, const std::string*> files[] = {
+      {dir / "report.md", &md}, {dir / "report.html", &html}, {dir / "claims.json", &claims}};
+  for (const auto& file : files) set.reserve("out", file.first.string());
+  for (const auto& file : files) set.write(file.first.string(), [&](std::ostream& s) { s << *file.second; });
+  set.commit();
+}
+
+}  // namespace bouncer

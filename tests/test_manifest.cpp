@@ -1,0 +1,243 @@
+// A reproduce manifest is data that may come from a stranger (`reproduce --manifest`, or the
+// manifest a reproduce directory names, which `audit DIR` reruns): parse_manifest and
+// command_problem (workflow/manifest.hpp) must refuse every manifest that would write outside
+// its directory, run anything but a computing command or a proof program, choose where a
+// command writes, read a scene that is not built in, or exhaust the parser; and each refusal
+// must name the manifest, the item and the field at fault.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bouncer/base/error.hpp"
+#include "bouncer/base/input.hpp"
+#include "bouncer/workflow/manifest.hpp"
+#include "bouncer/workflow/paper.hpp"
+#include "test_support.hpp"
+
+using namespace bouncer;
+using bouncer::test_support::contains;
+using bouncer::test_support::expect_input_error;
+
+namespace {
+
+// One ready panel, one claim checked on a proof's certificate, one README picture: the
+// smallest manifest with every kind of item. Each test changes one line of it.
+const std::string kPanel = R"toml(
+[[panel]]
+label = "fig:a"
+figure = "fig:f"
+panel = "(a)"
+caption = "A caption."
+status = "ready"
+quick = ["bouncer", "basin", "--a", "24"]
+full = ["bouncer", "basin", "--a", "24", "--grid", "400x300"]
+)toml";
+const std::string kClaim = R"toml(
+[[claim]]
+id = "c1"
+row = "1"
+groups = [2, 3]
+text = "A claim"
+paper = "eq. (1)"
+expected = "refuted"
+verdict = "**refuted**"
+evidence = "A proof."
+rerun = "`build/proofs/proof_elastic_period2`"
+run = ["proof_elastic_period2", "--json"]
+checks = [["verdict", "==", "refuted"], ["bits", ">=", 53], ["ratio", "<", 0.5], ["ok", "==", true]]
+)toml";
+const std::string kPicture = R"toml(
+[[picture]]
+name = "pic"
+readme = "Pictures"
+about = "A picture."
+command = ["bouncer", "tongues", "--p-max", "3"]
+)toml";
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return text.replace(at, from.size(), to);
+}
+
+// Expects parse_manifest to refuse `text` with InputError("manifest", ...) whose message
+// holds every one of `parts` (the source, the item, the field); returns the message.
+std::string refused(const std::string& text, const std::vector<std::string>& parts) {
+  const std::string message = expect_input_error([&] { parse_manifest(text, "m.toml"); }, "manifest");
+  EXPECT_TRUE(contains(message, "m.toml")) << message;
+  for (const std::string& p : parts) EXPECT_TRUE(contains(message, p)) << "'" << p << "' not in: " << message;
+  return message;
+}
+
+}  // namespace
+
+TEST(Manifest, ParsesEveryKindOfItem) {
+  const Manifest m = parse_manifest(kPanel + kClaim + kPicture, "m.toml");
+  ASSERT_EQ(m.panels.size(), 1u);
+  ASSERT_EQ(m.claims.size(), 1u);
+  ASSERT_EQ(m.pictures.size(), 1u);
+  const Panel& p = m.panels[0];
+  EXPECT_EQ(p.label, "fig:a");
+  EXPECT_EQ(p.name(), "a");  // the file name drops "fig:"
+  EXPECT_EQ(p.quick, (std::vector<std::string>{"bouncer", "basin", "--a", "24"}));
+  EXPECT_EQ(p.full.back(), "400x300");
+  const Claim& c = m.claims[0];
+  EXPECT_EQ(c.groups, (std::vector<long>{2, 3}));
+  EXPECT_TRUE(c.quick);  // settled in --quick unless it says otherwise
+  // A proof's full run is its run with --full, when the manifest gives none.
+  EXPECT_EQ(c.full_run, (std::vector<std::string>{"proof_elastic_period2", "--json", "--full"}));
+  // Each check's VALUE keeps its TOML type: text, integer, float, boolean.
+  ASSERT_EQ(c.checks.size(), 4u);
+  EXPECT_EQ(std::get<std::string>(c.checks[0].value), "refuted");
+  EXPECT_EQ(std::get<std::int64_t>(c.checks[1].value), 53);
+  EXPECT_EQ(std::get<double>(c.checks[2].value), 0.5);
+  EXPECT_EQ(std::get<bool>(c.checks[3].value), true);
+  EXPECT_EQ(m.pictures[0].id(), "picture:pic");
+  EXPECT_EQ(m.pictures[0].files, (std::vector<std::string>{"pic.png"}));  // default NAME.png
+}
+
+TEST(Manifest, BouncerClaimFullRunDefaultsToItsRun) {
+  const Manifest m = parse_manifest(replaced(kClaim, R"(run = ["proof_elastic_period2", "--json"])",
+                                             R"(run = ["bouncer", "classify", "--a", "18", "--json"])"),
+                                    "m.toml");
+  EXPECT_EQ(m.claims[0].full_run, m.claims[0].run);
+}
+
+TEST(Manifest, TilesFromMustNameAnEarlierPanel) {
+  const std::string second = replaced(kPanel, R"(label = "fig:a")", "label = \"fig:b\"\ntiles_from = \"fig:a\"");
+  EXPECT_EQ(parse_manifest(kPanel + second, "m.toml").panels[1].tiles_from, "fig:a");
+  // the same panel before the one it names: refused, naming the panel and the key
+  refused(second + kPanel, {"panel fig:b", "tiles_from 'fig:a'"});
+}
+
+TEST(Manifest, UnsafeNamesAreRefused) {
+  // Ids, labels and file names become file names in the reproduce directory.
+  refused(replaced(kPanel, R"(label = "fig:a")", R"(label = "../../etc/x")"), {"panel ../../etc/x", "label"});
+  refused(replaced(kPanel, R"(label = "fig:a")", R"(label = "fig/a")"), {"panel fig/a", "label"});
+  refused(replaced(kPanel, R"(label = "fig:a")", "label = \"fig:a\"\ntwin_of = \"..\""), {"panel fig:a", "label"});
+  refused(replaced(kClaim, R"(id = "c1")", R"(id = "a/b")"), {"claim a/b", "id"});
+  refused(replaced(kClaim, R"(id = "c1")", R"(id = "..")"), {"claim ..", "id"});
+  refused(replaced(kClaim, R"(id = "c1")", "id = \"" + std::string(101, 'x') + "\""), {"claim xxx", "id"});
+  refused(replaced(kPicture, R"(name = "pic")", R"(name = "/tmp/pic")"), {"picture /tmp/pic", "name"});
+  refused(replaced(kPicture, R"(about = "A picture.")", "about = \"A picture.\"\nfiles = [\"../pic.png\"]"),
+          {"picture pic", "file '../pic.png'"});
+}
+
+TEST(Manifest, MissingAndWrongFieldsAreNamed) {
+  refused(replaced(kPanel, "caption = \"A caption.\"\n", ""), {"panel fig:a", "'caption'"});
+  refused(replaced(kPanel, R"(status = "ready")", R"(status = "maybe")"), {"panel fig:a", "status"});
+  refused(replaced(kPanel, R"(status = "ready")", R"(status = "pending")"), {"panel fig:a", "reason"});
+  refused(replaced(kPanel, R"(full = ["bouncer", "basin", "--a", "24", "--grid", "400x300"])", ""),
+          {"panel fig:a", "quick and full"});
+  refused(replaced(kPanel, R"(quick = ["bouncer", "basin", "--a", "24"])", R"(quick = ["bouncer", 7])"),
+          {"panel fig:a", "'quick'"});
+  refused(replaced(kClaim, R"(expected = "refuted")", R"(expected = "probably")"), {"claim c1", "expected"});
+  refused(replaced(kClaim, "run = [\"proof_elastic_period2\", \"--json\"]\n", ""), {"claim c1", "run command"});
+  refused(replaced(kClaim, "checks = [", "unchecked = ["), {"claim c1", "check"});
+  refused(replaced(kClaim, R"(["verdict", "==", "refuted"])", R"(["verdict", "=="])"), {"claim c1", "[PATH, OP, VALUE]"});
+  refused(replaced(kClaim, R"(["verdict", "==", "refuted"])", R"(["verdict", "=~", "ref"])"),
+          {"claim c1", "operator '=~'"});
+  refused(replaced(kPicture, "command = [\"bouncer\", \"tongues\", \"--p-max\", \"3\"]\n", ""), {"picture pic", "command"});
+  refused("panel = [1, 2]\n", {"[[panel]]"});
+  refused("[[claim]]\nrow = \"1\"\n", {"claim", "'id'"});
+}
+
+TEST(Manifest, ForbiddenCommandsAreRefused) {
+  // Workflow commands (they start processes or read prefixes of their own) and non-commands.
+  for (const char* command : {"reproduce", "audit", "merge", "rm", ""})
+    EXPECT_TRUE(contains(command_problem({"bouncer", command}), "a manifest runs only")) << command;
+  EXPECT_TRUE(contains(command_problem({"bouncer"}), "a manifest runs only"));
+  EXPECT_TRUE(contains(command_problem({"sh", "-c", "rm -rf /"}), "must start with bouncer or proof_NAME"));
+  EXPECT_TRUE(contains(command_problem({"/usr/bin/bouncer", "basin"}), "must start with bouncer"));
+  // Options that choose where a command reads tiles or writes, in both spellings.
+  for (const char* option : {"--out", "--tiles-from", "--keep-tiles", "--shard", "--manifest"}) {
+    EXPECT_TRUE(contains(command_problem({"bouncer", "basin", option, "x"}), std::string("gives ") + option)) << option;
+    EXPECT_TRUE(contains(command_problem({"bouncer", "basin", std::string(option) + "=x"}), std::string("gives ") + option))
+        << option;
+  }
+  // Proof programs: a plain name, and only --full, --json, --bits N.
+  EXPECT_EQ(command_problem({"proof_elastic_period2", "--full", "--json", "--bits", "200"}), "");
+  EXPECT_TRUE(contains(command_problem({"proof_../../bin/sh"}), "not a proof program's name"));
+  EXPECT_TRUE(contains(command_problem({"proof_"}), "not a proof program's name"));
+  EXPECT_TRUE(contains(command_problem({"proof_X"}), "not a proof program's name"));  // lower case only
+  EXPECT_TRUE(contains(command_problem({"proof_a", "--out", "x"}), "got '--out'"));
+  EXPECT_TRUE(contains(command_problem({"proof_a", "--bits"}), "got '--bits'"));  // --bits without N
+  // Words a command line cannot hold, or too long to be an option.
+  EXPECT_TRUE(contains(command_problem({"bouncer", "basin", std::string("a\0b", 3)}), "NUL byte"));
+  EXPECT_TRUE(contains(command_problem({"bouncer", "basin", std::string(4097, 'x')}), "4096"));
+  EXPECT_EQ(command_problem({"bouncer", "basin", std::string(4096, 'x')}), "");
+  // Computing commands with their own options are fine; no command is no problem.
+  EXPECT_EQ(command_problem({"bouncer", "basin", "--a", "24", "--output-hint", "x"}), "");
+  EXPECT_EQ(command_problem({}), "");
+  // and parse_manifest names the item and the command at fault
+  refused(replaced(kPanel, R"(quick = ["bouncer", "basin", "--a", "24"])", R"(quick = ["bouncer", "reproduce"])"),
+          {"panel fig:a", "command runs 'reproduce'"});
+  refused(replaced(kClaim, R"(run = ["proof_elastic_period2", "--json"])", R"(run = ["bouncer", "audit", "x"])"),
+          {"claim c1", "command runs 'audit'"});
+  refused(replaced(kPicture, R"(command = ["bouncer", "tongues", "--p-max", "3"])",
+                   R"(command = ["bouncer", "tongues", "--out", "/tmp/x"])"),
+          {"picture pic", "gives --out"});
+}
+
+TEST(Manifest, SceneMustBeBuiltIn) {
+  // The scenes built in are exactly the files of data/scenes/.
+  size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(BOUNCER_SOURCE_DIR) + "/data/scenes"))
+    if (entry.path().extension() == ".toml") {
+      ++files;
+      const std::string key = "data/scenes/" + entry.path().filename().string();
+      ASSERT_TRUE(built_in_scenes().count(key)) << key;
+      EXPECT_EQ(built_in_scenes().at(key), test_support::slurp(entry.path().string())) << key;
+    }
+  EXPECT_EQ(built_in_scenes().size(), files);
+  EXPECT_EQ(command_problem({"bouncer", "orbit", "--scene", "data/scenes/default.toml"}), "");
+  EXPECT_EQ(command_problem({"bouncer", "orbit", "--scene=data/scenes/default.toml"}), "");
+  // a file of the system, a scene not built in, a relative path out, and no value at all
+  for (const std::string scene : {"/etc/passwd", "data/scenes/none.toml", "../data/scenes/default.toml"}) {
+    EXPECT_TRUE(contains(command_problem({"bouncer", "orbit", "--scene", scene}), "--scene '" + scene + "' is not a scene"))
+        << scene;
+    EXPECT_TRUE(contains(command_problem({"bouncer", "orbit", "--scene=" + scene}), "is not a scene")) << scene;
+  }
+  EXPECT_TRUE(contains(command_problem({"bouncer", "orbit", "--scene"}), "--scene '' is not a scene"));
+  refused(replaced(kPicture, R"(command = ["bouncer", "tongues", "--p-max", "3"])",
+                   R"(command = ["bouncer", "tongues", "--scene", "/etc/passwd"])"),
+          {"picture pic", "--scene '/etc/passwd'"});
+}
+
+TEST(Manifest, OversizeDeepAndBrokenTextIsRefused) {
+  // more than kMaxManifestBytes: refused before parsing, naming the size
+  const std::string big = kPanel + "# " + std::string(kMaxManifestBytes, 'x') + "\n";
+  refused(big, {"larger than"});
+  // arrays nested deeper than kMaxTomlDepth (toml++'s recursive descent would go as deep)
+  const int deep = kMaxTomlDepth + 8;
+  refused("a = " + std::string(deep, '[') + std::string(deep, ']') + "\n", {"line 1", "nested"});
+  // dotted keys count as nesting too
+  std::string dotted = "k";
+  for (int i = 0; i < kMaxTomlDepth + 8; ++i) dotted += ".k";
+  refused(kPanel + dotted + " = 1\n", {"nested"});
+  refused(kPanel + std::string("x = \"a\0b\"\n", 10), {"NUL byte"});
+  refused("[[panel]\nlabel = 1\n", {});  // not TOML: toml++'s message, after the source
+}
+
+TEST(Manifest, PaperManifestParses) {
+  const Manifest m = parse_manifest(std::string(paper_manifest_text()), kPaperManifestSource);
+  EXPECT_FALSE(m.panels.empty());
+  EXPECT_FALSE(m.claims.empty());
+  EXPECT_FALSE(m.pictures.empty());
+  for (const Claim& c : m.claims) {
+    EXPECT_NE(std::find(verdict_words().begin(), verdict_words().end(), c.expected), verdict_words().end()) << c.id;
+    EXPECT_FALSE(c.checks.empty()) << c.id;
+  }
+}
+
+TEST(Manifest, CommandText) {
+  // A proof program where the build puts it; words quoted for a POSIX shell where needed.
+  EXPECT_EQ(command_text({"proof_elastic_period2", "--json"}), "build/proofs/proof_elastic_period2 --json");
+  EXPECT_EQ(command_text({"bouncer", "basin", "--a=24", "--range", "0:1,2"}), "bouncer basin --a=24 --range 0:1,2");
+  EXPECT_EQ(command_text({"bouncer", "a b", ""}), "bouncer 'a b' ''");
+  EXPECT_EQ(command_text({"bouncer", "it's"}), "bouncer 'it'\\''s'");
+  EXPECT_EQ(command_text({"bouncer", "$(x)"}), "bouncer '$(x)'");
+}

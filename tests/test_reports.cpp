@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bouncer/io/grid_figures.hpp"
 #include "bouncer/io/reports/certify_periodic.hpp"
 #include "bouncer/io/reports/certify_sticking.hpp"
 #include "bouncer/io/reports/continue.hpp"
@@ -583,6 +584,35 @@ TEST(CertifyStickingReport, ARangeComparesEachPieceAtItsMidpoint) {
   j = json::parse(differs.str());
   EXPECT_FALSE(j["agrees"].get<bool>());
   EXPECT_FALSE(j["pieces"][1]["agrees"].get<bool>());
+}
+
+// ---- a certified map's CSV (basin --certify, scan --certify; io/grid_figures.hpp) ----------
+
+TEST(CertifiedMapCsv, OneRowPerCellAtItsCoordinates) {
+  CertifiedMap m;
+  m.x_name = "theta";
+  m.y_name = "v";
+  m.nx = 2;
+  m.ny = 2;
+  const std::vector<Number> xs{{0.25, "0.25"}, {0.75, "0.75"}}, ys{{1, "1"}, {2, "2"}};
+  std::vector<CertifiedCell> cells(4, CertifiedCell::outside());
+  cells[3] = {CertifiedClass::sticking, 7, 6, "interval:double", OrbitClass::sticking, 7, Agreement::agrees};
+  const std::vector<std::string> lines = data_lines(certified_map_csv(m, xs, ys, cells));
+  ASSERT_EQ(lines.size(), 1 + cells.size());
+  EXPECT_EQ(lines[0], "theta,v,class,period,certified_steps,scalar,double_class,double_period,agreement");
+  for (size_t i = 0; i < cells.size(); ++i) {
+    const std::vector<std::string> f = csv_fields(lines[i + 1]);
+    ASSERT_EQ(f.size(), 9u) << lines[i + 1];
+    EXPECT_EQ(f[0], xs[i % 2].digits);  // columns first, the bottom row first
+    EXPECT_EQ(f[1], ys[i / 2].digits);
+    EXPECT_EQ(f[2], name(cells[i].cls));
+    EXPECT_EQ(f[8], name(cells[i].agreement));
+  }
+  const std::vector<std::string> last = csv_fields(lines[4]);
+  EXPECT_EQ(last[3], "7");
+  EXPECT_EQ(last[4], "6");
+  EXPECT_EQ(last[5], "interval:double");
+  EXPECT_EQ(last[7], "7");
 }
 
 }  // namespace

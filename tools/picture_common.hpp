@@ -420,12 +420,10 @@ int run_lyapunov_curve(const Options& o, const RunFlags& f);
 inline void write_certified_map(const CertifiedMap& m, const std::vector<Number>& xs, const std::vector<Number>& ys,
                                 const std::vector<CertifiedCell>& cells, nlohmann::ordered_json s,
                                 const std::string& twin_precision, const RunFlags& f, const Provenance& prov) {
-  std::string csv = m.x_name + "," + m.y_name + ",class,period,certified_steps,scalar,double_class,double_period,agreement\n";
+  const std::string csv = certified_map_csv(m, xs, ys, cells);
   std::map<std::string, long> scalars;
   long outside = 0, agrees = 0, differs = 0, undecided = 0;
-  for (size_t i = 0; i < cells.size(); ++i) {
-    const CertifiedCell& c = cells[i];
-    csv += xs[i % static_cast<size_t>(m.nx)].digits + ',' + ys[i / static_cast<size_t>(m.nx)].digits + ',' + encode(c) + '\n';
+  for (const CertifiedCell& c : cells) {
     if (!c.scalar.empty()) ++scalars[c.scalar];
     outside += c.agreement == Agreement::outside;
     agrees += c.agreement == Agreement::agrees;

@@ -274,46 +274,6 @@ inline void add_classify_options(OptionSet& o) {
   add_classify_period_options(o);
 }
 
-// The text form of a certified command's result: "# " provenance lines, then one
-// "key: value" line per field (nested objects and arrays as dotted/indexed keys). Timings
-// go to "# time:" lines, which audit ignores.
-inline void print_key_values(std::ostream& out, const Provenance& p, const nlohmann::ordered_json& j) {
-  out << p.as_comment_lines();
-  std::function<void(const std::string&, const nlohmann::ordered_json&)> put = [&](const std::string& prefix,
-                                                                                  const nlohmann::ordered_json& x) {
-    for (const auto& [k, v] : x.items()) {
-      if (k == "seconds") {
-        out << "# time: " << prefix << k << " = " << v.dump() << "\n";
-      } else if (v.is_object()) {
-        put(prefix + k + ".", v);
-      } else if (v.is_array() && !v.empty() && v[0].is_object()) {
-        for (size_t i = 0; i < v.size(); ++i) put(prefix + k + "[" + std::to_string(i) + "].", v[i]);
-      } else {
-        out << prefix << k << ": " << (v.is_string() ? v.get<std::string>() : v.dump()) << "\n";
-      }
-    }
-  };
-  put("", j);
-}
-
-
-
-// A certified command's result (certify-sticking, certify-periodic): JSON with the
-// provenance first, or the key: value text; to --out (atomically) or stdout.
-inline void write_result(const std::optional<std::string>& out, bool json, const Provenance& p,
-                         const nlohmann::ordered_json& body, OutputSet* reserved = nullptr) {
-  write_atomically(out, [&](std::ostream& s) {
-    if (json) {
-      nlohmann::ordered_json doc;
-      doc["provenance"] = nlohmann::ordered_json::parse(p.as_json());
-      for (const auto& [k, v] : body.items()) doc[k] = v;
-      s << doc.dump(1) << "\n";
-    } else {
-      print_key_values(s, p, body);
-    }
-  }, reserved);
-}
-
 inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,
                                  const std::string& argv_text) {
   Provenance pr;

@@ -1,13 +1,10 @@
 // bouncer certify-sticking: the certified sticking period of the orbit from the release
 // state (or a given start), with precision escalation; over a parameter interval with
 // --a-range, a computer-assisted theorem by adaptive bisection.
-#include <nlohmann/json.hpp>
-
-#include <cstdio>
 #include <memory>
 #include <set>
-#include <sstream>
 
+#include "bouncer/io/reports/certify_sticking.hpp"
 #include "bouncer/io/requests/certify_sticking.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -15,12 +12,6 @@
 namespace bouncer::cli {
 
 namespace {
-
-using json = nlohmann::ordered_json;
-
-const char* kDecimalNote =
-    "Decimal inputs are enclosed exactly: each decimal is enclosed by an interval (DoubleInterval or MPFI) with outward rounding, so "
-    "every certified statement holds for the exact decimal values (not for their binary roundings).";
 
 const std::set<std::string>& certify_keys() {
   static const std::set<std::string> keys = [] {
@@ -49,70 +40,6 @@ Request request_from(const Options& o) {
   r.json = o.get_or("json", "false") == "true";
   if (o.has("out")) r.out = o.get("out");
   return r;
-}
-
-json null_or(const std::optional<long long>& x) { return x ? json(*x) : json(nullptr); }
-
-// Is the plain-precision answer consistent with what was certified?
-bool agrees(const StickingCertificate& c, const PlainSticking& d) {
-  switch (c.outcome) {
-    case StickingOutcome::sticks: return d.period && *d.period == *c.period;
-    case StickingOutcome::never_sticks:
-    case StickingOutcome::no_sticking_within_max_steps: return !d.period && !d.failed;
-    case StickingOutcome::undecided: return !d.period || *d.period > c.steps_checked;
-  }
-  return false;
-}
-
-json attempts_json(const std::vector<Attempt>& attempts) {
-  json a = json::array();
-  for (const Attempt& t : attempts)
-    a.push_back({{"scalar", t.scalar}, {"bits", t.bits}, {"decided", t.decided}, {"steps", t.steps}, {"reason", t.reason}, {"seconds", t.seconds}});
-  return a;
-}
-
-json certificate_json(const StickingCertificate& c, const PlainSticking& d, long long max_steps) {
-  json j;
-  j["certified"] = c.certified;
-  j["outcome"] = name(c.outcome);
-  j["period"] = null_or(c.period);
-  j["scalar"] = c.scalar.empty() ? json(nullptr) : json(c.scalar);
-  j["bits"] = c.bits;
-  j["steps_checked"] = c.steps_checked;
-  j["statement"] = describe(c, max_steps);
-  j["double_period"] = null_or(d.period);
-  j["agrees"] = agrees(c, d);
-  if (c.attractor)
-    j["attractor"] = {{"period", c.attractor->period}, {"iterate", c.attractor->iterate},
-                      {"entered_at", c.attractor->entered_at}, {"box", c.attractor->box}};
-  else
-    j["attractor"] = nullptr;
-  j["lohner_fallbacks"] = c.fallbacks;
-  j["attempts"] = attempts_json(c.attempts);
-  j["seconds"] = c.seconds;
-  return j;
-}
-
-json inputs_json(const Request& r) {
-  json in;
-  if (r.q.a_range) in["a_range"] = {exact_decimal(r.q.a_range->first), exact_decimal(r.q.a_range->second)};
-  else in["a"] = r.q.model.a.text();
-  in["eps"] = r.q.model.eps.text();
-  in["theta"] = r.q.start.theta.text();
-  in["v"] = r.q.start.v.text();
-  in["wall"] = r.q.model.wall.text;
-  in["downward_sticking"] = name(r.q.model.downward);
-  in["max_steps"] = r.q.max_steps;
-  in["max_bits"] = r.q.schedule.max_bits;
-  in["start_bits"] = r.q.schedule.double_first ? json("double") : json(r.q.schedule.start_bits);
-  in["method"] = name(r.q.method);
-  return in;
-}
-
-// The model with a replaced by the exact decimal x (for plain runs inside a range).
-ModelSpec with_a(ModelSpec m, const mpq_class& x) {
-  m.a = *Decimal::parse(exact_decimal(x));
-  return m;
 }
 
 }  // namespace
@@ -147,47 +74,20 @@ CommandRunner setup_certify_sticking(CLI::App* sub) {
     Provenance p = provenance_for("certify-sticking", o, prec, argv_text);
     p.precision = "interval, escalated " + r.q.schedule.text();  // p.bits: the bits that certified
 
-    json body;
-    body["note"] = kDecimalNote;
-    body["inputs"] = inputs_json(r);
-    body["method"] = std::string(name(r.q.method)) +
-                     (r.q.method == EnclosureMethod::lohner ? " (mean-value form with a QR frame; interval Jacobian by Dual<S> over the run's interval type)"
-                                                            : " (interval boxes)");
-    body["schedule"] = r.q.schedule.text();
+    auto write = [&](const auto&... result) {  // a certificate, or a range's report, with their double runs
+      write_atomically(r.out, [&](std::ostream& s) { write_certify_sticking(s, r.json, p, r.q, result...); }, &outputs);
+    };
     if (!r.q.a_range) {
       const StickingCertificate c = certify_sticking(r.q);
       const PlainSticking d = plain_sticking_period<double>(r.q.model, r.q.start, 53, r.q.max_steps);
       p.bits = c.bits;
-      const json cj = certificate_json(c, d, r.q.max_steps);
-      for (const auto& [k, v] : cj.items()) body[k] = v;
+      write(c, d);
     } else {
       const RangeReport rep = certify_sticking_range(r.q, r.range);
-      bool all_agree = true;
-      json pieces = json::array();
-      long max_bits_used = 0;
-      for (const RangePiece& piece : rep.pieces) {
-        const mpq_class mid = (piece.lo + piece.hi) / 2;
-        const PlainSticking d = plain_sticking_period<double>(with_a(r.q.model, mid), r.q.start, 53, r.q.max_steps);
-        json pj;
-        pj["a_lo"] = exact_decimal(piece.lo);
-        pj["a_hi"] = exact_decimal(piece.hi);
-        const json cj = certificate_json(piece.cert, d, r.q.max_steps);
-        for (const auto& [k, v] : cj.items())
-          if (k != "attempts") pj[k] = v;
-        pj["double_period_at"] = exact_decimal(mid);
-        all_agree = all_agree && pj["agrees"].get<bool>();
-        max_bits_used = std::max(max_bits_used, piece.cert.bits);
-        pieces.push_back(pj);
-      }
-      p.bits = max_bits_used;
-      body["certified"] = rep.uncertified_length == 0;
-      body["uncertified_length"] = exact_decimal(rep.uncertified_length);
-      body["theorem"] = "Theorem (computer-assisted). " + rep.theorem;
-      body["agrees"] = all_agree;
-      body["pieces"] = pieces;
-      body["seconds"] = rep.seconds;
+      const std::vector<PlainSticking> d = double_sticking_at_midpoints(r.q, rep);
+      p.bits = bits_used(rep);
+      write(rep, d);
     }
-    write_result(r.out, r.json, p, body, &outputs);
     return 0;
   };
   return run;

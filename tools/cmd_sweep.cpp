@@ -1,17 +1,10 @@
 // bouncer sweep: one orbit question in every precision (double, long double, quad, MPFR at
 // 64 ... 4096 bits) against a certified interval reference: where each leaves the
 // enclosure, what it answers, and the Lyapunov exponent the divergence steps imply.
-#include <nlohmann/json.hpp>
-
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <iomanip>
 #include <memory>
 #include <set>
-#include <sstream>
 
-#include "bouncer/io/plot.hpp"
+#include "bouncer/io/reports/sweep.hpp"
 #include "bouncer/verify/sweep.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -19,8 +12,6 @@
 namespace bouncer::cli {
 
 namespace {
-
-using json = nlohmann::ordered_json;
 
 const std::set<std::string>& sweep_keys() {
   static const std::set<std::string> keys = [] {
@@ -65,134 +56,6 @@ Request request_from(const Options& o) {
   return r;
 }
 
-// A CSV field in double quotes, inner quotes doubled (RFC 4180): answers carry commas and
-// classify's evidence.
-std::string csv_quoted(const std::string& text) {
-  std::string q = "\"";
-  for (char ch : text) {
-    if (ch == '"') q += '"';
-    q += ch;
-  }
-  q += '"';
-  return q;
-}
-
-json null_or(const std::optional<long long>& x) { return x ? json(*x) : json(nullptr); }
-
-json report_json(const Request& r, const SweepReport& rep, const Provenance& p) {
-  json j;
-  j["provenance"] = json::parse(p.as_json());
-  j["note"] = "Decimal inputs are enclosed exactly in the certified reference (MPFI, outward rounding); each plain "
-              "precision rounds them to its own format, which is part of what the sweep measures.";
-  j["inputs"] = {{"model", name(r.q.model.law)}, {"a", r.q.model.a.text()}, {"eps", r.q.model.eps.text()},
-                 {"c", r.q.model.c.text()}, {"wall", r.q.model.wall.text}, {"theta", r.q.start.theta.text()},
-                 {"v", r.q.start.v.text()}, {"steps", r.q.steps}};
-  j["tolerance"] = r.q.tolerance;
-  j["leaves_definition"] =
-      "first step whose state is farther than `tolerance` from the certified enclosure (theta on the circle), or "
-      "whose event differs from the certified event, or that fails";
-  json ref;
-  ref["method"] = name(r.q.method);
-  ref["bits"] = rep.reference_bits;
-  ref["steps"] = rep.reference_steps;
-  ref["status"] = rep.reference_status;
-  ref["answer"] = rep.reference_answer;
-  json att = json::array();
-  for (const Attempt& a : rep.reference_attempts)
-    att.push_back({{"bits", a.bits}, {"decided", a.decided}, {"steps", a.steps}, {"reason", a.reason}, {"seconds", a.seconds}});
-  ref["attempts"] = att;
-  j["reference"] = ref;
-  json rows = json::array();
-  for (const SweepRow& row : rep.rows) {
-    const std::optional<Classification>& c = row.classification;
-    rows.push_back({{"precision", row.precision}, {"bits", row.bits}, {"leaves_enclosure_at", null_or(row.leaves_at)},
-                    {"answer", row.answer}, {"why", row.why}, {"sticking_period", null_or(row.sticking_period)},
-                    {"class", c ? json(name(c->cls)) : json(nullptr)},
-                    {"class_evidence", c ? json(c->evidence) : json(nullptr)},
-                    {"lambda", c && std::isfinite(c->lambda) ? json(c->lambda) : json(nullptr)}});
-  }
-  j["rows"] = rows;
-  j["slope_steps_per_bit"] = rep.slope ? json(*rep.slope) : json(nullptr);
-  j["implied_lyapunov"] = rep.implied_lyapunov ? json(*rep.implied_lyapunov) : json(nullptr);
-  j["implied_lyapunov_note"] = "lambda = ln 2 / slope per step, slope = least-squares steps per bit of the rows that left";
-  j["seconds"] = rep.seconds;
-  return j;
-}
-
-std::string text_table(const SweepReport& rep, long long steps) {
-  std::ostringstream o;
-  o << "reference: " << rep.reference_answer << " (" << rep.reference_bits << " bits; " << rep.reference_status << ")\n";
-  o << std::left << std::setw(12) << "precision" << std::setw(7) << "bits" << std::setw(12) << "leaves_at"
-    << "answer\n";
-  for (const SweepRow& r : rep.rows) {
-    o << std::left << std::setw(12) << r.precision << std::setw(7) << r.bits << std::setw(12)
-      << (r.leaves_at ? std::to_string(*r.leaves_at) : std::string("-")) << r.answer << "\n";
-  }
-  o << "('-': stays within the enclosure for all " << std::min<long long>(steps, rep.reference_steps)
-    << " certified steps)\n";
-  if (rep.implied_lyapunov) {
-    o << "implied_lyapunov: " << *rep.implied_lyapunov << " per step (slope " << *rep.slope << " steps per bit)\n";
-  } else {
-    o << "implied_lyapunov: none (fewer than two precisions left the enclosure, or no positive slope)\n";
-  }
-  return o.str();
-}
-
-std::string csv_text(const SweepReport& rep, const Provenance& p) {
-  std::ostringstream o;
-  o << p.as_comment_lines();
-  o << "# reference: " << rep.reference_answer << " (" << rep.reference_bits << " bits; " << rep.reference_status << ")\n";
-  o << "# implied_lyapunov: " << (rep.implied_lyapunov ? std::to_string(*rep.implied_lyapunov) : "none") << "\n";
-  o << "precision,bits,leaves_enclosure_at,answer\n";
-  for (const SweepRow& r : rep.rows)
-    o << r.precision << "," << r.bits << "," << (r.leaves_at ? std::to_string(*r.leaves_at) : "") << ","
-      << csv_quoted(r.answer) << "\n";
-  return o.str();
-}
-
-Figure divergence_figure(const SweepReport& rep, const Provenance& p, long long steps) {
-  Figure f;
-  f.title = "Precision sweep: first step outside the certified enclosure";
-  f.xlabel = "significand bits";
-  f.log_x = true;  // 24 ... 4096 bits: powers of two are evenly spaced
-  f.log_x_base = 2;
-  f.ylabel = "step";
-  Series left{"leaves the enclosure", {}, {}, Rgb{213, 94, 0}, false, true, 3};
-  Series stays{"stays within all " + std::to_string(std::min<long long>(steps, rep.reference_steps)) + " steps", {}, {},
-               Rgb{0, 114, 178}, false, true, 3};
-  for (const SweepRow& r : rep.rows) {
-    if (r.leaves_at) {
-      left.x.push_back(static_cast<double>(r.bits));
-      left.y.push_back(static_cast<double>(*r.leaves_at));
-    } else {
-      stays.x.push_back(static_cast<double>(r.bits));
-      stays.y.push_back(static_cast<double>(std::min<long long>(steps, rep.reference_steps)));
-    }
-  }
-  if (!left.x.empty()) f.series.push_back(left);
-  if (!stays.x.empty()) f.series.push_back(stays);
-  if (rep.slope && left.x.size() >= 2) {
-    double mx = 0, my = 0;
-    for (size_t i = 0; i < left.x.size(); ++i) { mx += left.x[i]; my += left.y[i]; }
-    mx /= left.x.size();
-    my /= left.y.size();
-    char lambda[64];
-    std::snprintf(lambda, sizeof lambda, "%.4g", rep.implied_lyapunov.value_or(0));
-    Series fit{std::string("least-squares fit: λ = ") + lambda + " per step", {}, {}, Rgb{0, 0, 0},
-               true, false};
-    // Linear in bits, so a curve on the log2 axis: sampled finely.
-    const double xa = *std::min_element(left.x.begin(), left.x.end()), xb = *std::max_element(left.x.begin(), left.x.end());
-    for (int k = 0; k <= 64; ++k) {
-      const double x = xa * std::pow(xb / xa, k / 64.0);
-      fit.x.push_back(x);
-      fit.y.push_back(my + *rep.slope * (x - mx));
-    }
-    f.series.push_back(fit);
-  }
-  f.metadata = {{"Title", f.title}, {"provenance", p.as_json()}};
-  return f;
-}
-
 }  // namespace
 
 CommandRunner setup_sweep(CLI::App* sub) {
@@ -223,19 +86,19 @@ CommandRunner setup_sweep(CLI::App* sub) {
     p.precision = "double, long, dd, quad, mpfr:64..4096 against interval (escalated " + r.q.reference.text() + ")";
     const SweepReport rep = precision_sweep(r.q);
     p.bits = rep.reference_bits;
-    const json j = report_json(r, rep, p);
+    const std::string doc = sweep_json(rep, r.q, p);
     if (r.prefix) {
-      const Figure fig = divergence_figure(rep, p, r.q.steps);
-      std::vector<OutputFile> files{{*r.prefix + ".json", [&](std::ostream& s) { s << j.dump(1) << "\n"; }},
-                                    {*r.prefix + ".csv", [&](std::ostream& s) { s << csv_text(rep, p); }}};
+      const Figure fig = sweep_divergence_figure(rep, r.q, p);
+      std::vector<OutputFile> files{{*r.prefix + ".json", [&](std::ostream& s) { s << doc; }},
+                                    {*r.prefix + ".csv", [&](std::ostream& s) { s << sweep_csv(rep, p); }}};
       for (OutputFile& pic : picture_files(*r.prefix, r.picture, [&](std::ostream& out, ImageFormat fmt) {
              write_figure(out, fig, fmt, r.picture.render);
            }))
         files.push_back(std::move(pic));
       write_output_set(files, &outputs);
     }
-    if (r.json) command_out() << j.dump(1) << "\n";
-    else command_out() << p.as_comment_lines() << text_table(rep, r.q.steps);
+    if (r.json) command_out() << doc;
+    else command_out() << p.as_comment_lines() << sweep_table(rep, r.q);
     return 0;
   };
   return run;

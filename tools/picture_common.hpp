@@ -394,34 +394,6 @@ inline void write_outputs(const RunFlags& f, const Provenance& p, const std::str
   if (f.json) command_out() << doc.dump(2) << "\n";
 }
 
-// PNG metadata from provenance: tEXt chunks a reader finds with any PNG tool.
-inline std::vector<std::pair<std::string, std::string>> png_metadata(const Provenance& p, const std::string& title) {
-  std::string inputs;
-  for (const auto& [k, v] : p.inputs) inputs += (inputs.empty() ? "" : " ") + k + "=" + v;
-  return {{"Title", title},
-          {"Software", "bouncer " + build_info().version + " (commit " + build_info().commit + ")"},
-          {"Source", p.invocation},
-          {"bouncer:command", p.command},
-          {"bouncer:inputs", inputs},
-          {"bouncer:precision", p.precision + " (" + std::to_string(p.bits) + " bits)"},
-          {"bouncer:provenance", p.as_json()}};
-}
-
-// Zoomed axes (AxisZoom in bouncer/io/plot.hpp) place values exactly: the rational of a
-// number as a command prints it, a decimal with the digits of its precision (Mpfr: enough
-// to read back the same value), so a window 1e-20 wide at mpfr:256 keeps its detail.
-inline mpq_class exact_value(const std::string& text) {
-  const auto d = Decimal::parse(text);
-  if (!d) throw std::runtime_error("not a finite decimal: '" + text + "'");
-  return d->value();
-}
-template <class T>
-mpq_class exact_value(const T& x) {
-  return exact_value(ScalarTraits<T>::to_string(x));
-}
-
-
-
 // The registry used by `bouncer merge`: the command name -> its keys and its runner.
 struct PictureCommand {
   const std::set<std::string>& (*keys)();
@@ -448,12 +420,10 @@ int run_lyapunov_curve(const Options& o, const RunFlags& f);
 inline void write_certified_map(const CertifiedMap& m, const std::vector<Number>& xs, const std::vector<Number>& ys,
                                 const std::vector<CertifiedCell>& cells, nlohmann::ordered_json s,
                                 const std::string& twin_precision, const RunFlags& f, const Provenance& prov) {
-  std::string csv = m.x_name + "," + m.y_name + ",class,period,certified_steps,scalar,double_class,double_period,agreement\n";
+  const std::string csv = certified_map_csv(m, xs, ys, cells);
   std::map<std::string, long> scalars;
   long outside = 0, agrees = 0, differs = 0, undecided = 0;
-  for (size_t i = 0; i < cells.size(); ++i) {
-    const CertifiedCell& c = cells[i];
-    csv += xs[i % static_cast<size_t>(m.nx)].digits + ',' + ys[i / static_cast<size_t>(m.nx)].digits + ',' + encode(c) + '\n';
+  for (const CertifiedCell& c : cells) {
     if (!c.scalar.empty()) ++scalars[c.scalar];
     outside += c.agreement == Agreement::outside;
     agrees += c.agreement == Agreement::agrees;

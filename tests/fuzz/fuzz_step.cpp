@@ -5,7 +5,7 @@
 // phase or a knot; the wall's own velocity, a release-like velocity or the wall's plus a
 // decimal). Parameters and starts the library refuses (validate: InputError) are skipped.
 // Up to 8 steps of ImpactMap<double>::step are checked against the invariants of
-// tools/step_invariants.hpp, computed independently in MPFR, the same checks that
+// tests/fuzz_step/step_invariants.hpp, computed independently in MPFR, the same checks that
 // bouncer-fuzz-step makes on random draws. Undecided steps end the chain (they are allowed);
 // any other exception, and any violated invariant, aborts with the state, the parameters and
 // a `bouncer orbit` command that reproduces the step.

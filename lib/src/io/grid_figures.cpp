@@ -485,4 +485,12 @@ ImageFigure bifurcation_figure(const BifurcationResult& b, bool show_theta, long
   return fig;
 }
 
+std::string certified_map_csv(const CertifiedMap& m, const std::vector<Number>& xs, const std::vector<Number>& ys,
+                              const std::vector<CertifiedCell>& cells) {
+  std::string csv = m.x_name + "," + m.y_name + ",class,period,certified_steps,scalar,double_class,double_period,agreement\n";
+  for (size_t i = 0; i < cells.size(); ++i)
+    csv += xs[i % static_cast<size_t>(m.nx)].digits + ',' + ys[i / static_cast<size_t>(m.nx)].digits + ',' + encode(cells[i]) + '\n';
+  return csv;
+}
+
 }  // namespace bouncer

@@ -73,4 +73,16 @@ std::string Provenance::as_json() const {
   return j.dump();
 }
 
+std::vector<std::pair<std::string, std::string>> png_metadata(const Provenance& p, const std::string& title) {
+  std::string inputs;
+  for (const auto& [k, v] : p.inputs) inputs += (inputs.empty() ? "" : " ") + k + "=" + v;
+  return {{"Title", title},
+          {"Software", "bouncer " + build_info().version + " (commit " + build_info().commit + ")"},
+          {"Source", p.invocation},
+          {"bouncer:command", p.command},
+          {"bouncer:inputs", inputs},
+          {"bouncer:precision", p.precision + " (" + std::to_string(p.bits) + " bits)"},
+          {"bouncer:provenance", p.as_json()}};
+}
+
 }  // namespace bouncer

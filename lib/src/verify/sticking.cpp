@@ -420,4 +420,24 @@ RangeReport certify_sticking_range(const StickingQuestion& q, const RangeOptions
   return rep;
 }
 
+bool plain_agrees(const StickingCertificate& c, const PlainSticking& d) {
+  switch (c.outcome) {
+    case StickingOutcome::sticks: return d.period && *d.period == *c.period;
+    case StickingOutcome::never_sticks:
+    case StickingOutcome::no_sticking_within_max_steps: return !d.period && !d.failed;
+    case StickingOutcome::undecided: return !d.period || *d.period > c.steps_checked;
+  }
+  return false;
+}
+
+std::vector<PlainSticking> double_sticking_at_midpoints(const StickingQuestion& q, const RangeReport& rep) {
+  std::vector<PlainSticking> runs;
+  for (const RangePiece& piece : rep.pieces) {
+    ModelSpec at = q.model;
+    at.a = *Decimal::parse(exact_decimal((piece.lo + piece.hi) / 2));
+    runs.push_back(plain_sticking_period<double>(at, q.start, 53, q.max_steps));
+  }
+  return runs;
+}
+
 }  // namespace bouncer

@@ -70,6 +70,11 @@ std::string certified_label(CertifiedClass cls, long period, long long max_steps
 // class is refuted: PREFIX-artefacts.png).
 std::pair<ImageFigure, ImageFigure> certified_figures(const CertifiedMap& m, const std::vector<CertifiedCell>& cells,
                                                       Palette palette);
+// A certified map's CSV, without its provenance lines: the header "X,Y,class,period,
+// certified_steps,scalar,double_class,double_period,agreement" (X, Y: the map's x_name,
+// y_name), then one row per cell (cell i at xs[i mod nx], ys[i / nx]).
+std::string certified_map_csv(const CertifiedMap& m, const std::vector<Number>& xs, const std::vector<Number>& ys,
+                              const std::vector<CertifiedCell>& cells);
 
 // Scans: the share of the starts of class `show` (none: fixed + periodic, the paper's
 // "regular") at each parameter point (viridis), or the paper's black/green look; with

@@ -30,4 +30,8 @@ struct Provenance {
   std::string as_json() const;
 };
 
+// PNG metadata from provenance: tEXt chunks (Title, Software, Source, bouncer:command,
+// bouncer:inputs, bouncer:precision, bouncer:provenance) a reader finds with any PNG tool.
+std::vector<std::pair<std::string, std::string>> png_metadata(const Provenance& p, const std::string& title);
+
 }  // namespace bouncer

@@ -133,4 +133,13 @@ RangeReport certify_sticking_range(const StickingQuestion& q, const RangeOptions
 // One-line statement of a certificate ("sticks with period 7", ...).
 std::string describe(const StickingCertificate& c, long long max_steps);
 
+// Is a plain run's answer consistent with what was certified? sticks: the same period;
+// never_sticks, no_sticking_within_max_steps: no sticking and no failed step; undecided:
+// no sticking within the steps certified free of it.
+bool plain_agrees(const StickingCertificate& c, const PlainSticking& d);
+
+// The double run (plain_sticking_period<double>, 53 bits) of each piece of a range at the
+// piece's midpoint, a = (lo + hi) / 2 as an exact decimal: in the order of rep.pieces.
+std::vector<PlainSticking> double_sticking_at_midpoints(const StickingQuestion& q, const RangeReport& rep);
+
 }  // namespace bouncer

@@ -1,7 +1,7 @@
 // bouncer-fuzz-step: random states and parameters through ImpactMap<T>::step, in every
 // collision model, each step checked against invariants computed independently of the map.
 //
-// Each step is checked against the invariants of tools/step_invariants.hpp (tau > 0, theta in
+// Each step is checked against the invariants of tests/fuzz_step/step_invariants.hpp (tau > 0, theta in
 // [0, 1), v >= the wall's velocity, no penetration, impact on the wall, the collision law),
 // computed in MPFR from the exact model; the libFuzzer target tests/fuzz/fuzz_step.cpp checks
 // the same invariants on steps decoded from its bytes.

@@ -1,5 +1,5 @@
 // The invariants of one step of the impact map, computed independently of the map: shared by
-// bouncer-fuzz-step (tools/fuzz_step.cpp: random parameters and starts) and the libFuzzer
+// bouncer-fuzz-step (tests/fuzz_step/fuzz_step.cpp: random parameters and starts) and the libFuzzer
 // target tests/fuzz/fuzz_step.cpp (parameters and starts decoded from the fuzzer's bytes),
 // so both check one copy of the truth.
 //

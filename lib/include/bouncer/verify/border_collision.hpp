@@ -66,8 +66,10 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bouncer/analysis/continuation.hpp"
@@ -151,5 +153,61 @@ struct PeriodDoublingCertificate {
 };
 
 PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q);
+
+// `continue --certify` on one end of a branch: the question over branch_end_interval's
+// interval (its texts lo, hi) and its certificate.
+// The one-sided certificate (certify_branch_end) and the two-sided one
+// (certify_border_collision, at max(128, the branch's bits)), and whether the branch's own
+// bracket of a* (in its scalar) contains the certified enclosure: a double bracket can lie
+// past a* (issue 23), and this says so.
+struct CertifiedBranchEnd {
+  bool high_end = true;
+  std::string lo, hi;  // the interval certified over (round-trip texts of the branch's scalar)
+  BranchEndCertificate certificate;
+  BorderCollisionCertificate two_sided;
+  bool bracket_contains = false;  // two_sided certified and [a*_lo, a*_hi] inside the branch's bracket
+};
+// Both ends of a branch: set at each border end (EndReason::border), empty at the others.
+struct CertifiedBranchEnds {
+  std::optional<CertifiedBranchEnd> low, high;
+};
+
+// Certifies each border end of `b`: its branch side (model: the branch's, any value of the
+// varied parameter; bits: the branch's precision), and a* on both sides.
+template <class T>
+CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b, long bits) {
+  using Tr = ScalarTraits<T>;
+  auto one = [&](const BranchEnd<T>& e, bool high) -> std::optional<CertifiedBranchEnd> {
+    if (e.reason != EndReason::border) return std::nullopt;
+    BranchEndQuestion c;
+    c.model = model;
+    c.vary = vary;
+    c.period = period;
+    c.last_point = {parse_decimal("certify", Tr::to_string(e.last_point.theta)),
+                    parse_decimal("certify", Tr::to_string(e.last_point.v))};
+    CertifiedBranchEnd r;
+    r.high_end = high;
+    std::tie(r.lo, r.hi) = branch_end_interval(e.bracket_lo, e.bracket_hi, high, bits);
+    c.lo = parse_decimal("certify", r.lo);
+    c.hi = parse_decimal("certify", r.hi);
+    c.high_end = high;
+    r.certificate = certify_branch_end(c);
+    BorderCollisionQuestion bq;
+    bq.end = c;
+    if (e.margin >= 0) bq.margin = static_cast<Margin>(e.margin);
+    bq.bits = std::max<long>(bits, 128);
+    r.two_sided = certify_border_collision(bq);
+    if (r.two_sided.certified) {
+      const mpq_class lo = parse_decimal("certify", Tr::to_string(e.bracket_lo)).value();
+      const mpq_class hi = parse_decimal("certify", Tr::to_string(e.bracket_hi)).value();
+      r.bracket_contains = lo <= r.two_sided.lo && r.two_sided.hi <= hi;
+    }
+    return r;
+  };
+  CertifiedBranchEnds ends;
+  ends.low = one(b.low, false);
+  ends.high = one(b.high, true);
+  return ends;
+}
 
 }  // namespace bouncer

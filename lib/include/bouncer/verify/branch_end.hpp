@@ -58,44 +58,4 @@ std::pair<std::string, std::string> branch_end_interval(const T& bracket_lo, con
 // next to a* straddle the border and fail, and a short schedule bounds their cost).
 BranchEndCertificate certify_branch_end(const BranchEndQuestion& q);
 
-// `continue --certify` on one end of a branch: the question over branch_end_interval's
-// interval (its texts lo, hi) and its certificate.
-struct CertifiedBranchEnd {
-  bool high_end = true;
-  std::string lo, hi;  // the interval certified over (round-trip texts of the branch's scalar)
-  BranchEndCertificate certificate;
-};
-// Both ends of a branch: set at each border end (EndReason::border), empty at the others.
-struct CertifiedBranchEnds {
-  std::optional<CertifiedBranchEnd> low, high;
-};
-
-// Certifies the branch side of each border end of `b` (model: the branch's, any value of
-// the varied parameter; bits: the branch's precision).
-template <class T>
-CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b, long bits) {
-  using Tr = ScalarTraits<T>;
-  auto one = [&](const BranchEnd<T>& e, bool high) -> std::optional<CertifiedBranchEnd> {
-    if (e.reason != EndReason::border) return std::nullopt;
-    BranchEndQuestion c;
-    c.model = model;
-    c.vary = vary;
-    c.period = period;
-    c.last_point = {parse_decimal("certify", Tr::to_string(e.last_point.theta)),
-                    parse_decimal("certify", Tr::to_string(e.last_point.v))};
-    CertifiedBranchEnd r;
-    r.high_end = high;
-    std::tie(r.lo, r.hi) = branch_end_interval(e.bracket_lo, e.bracket_hi, high, bits);
-    c.lo = parse_decimal("certify", r.lo);
-    c.hi = parse_decimal("certify", r.hi);
-    c.high_end = high;
-    r.certificate = certify_branch_end(c);
-    return r;
-  };
-  CertifiedBranchEnds ends;
-  ends.low = one(b.low, false);
-  ends.high = one(b.high, true);
-  return ends;
-}
-
 }  // namespace bouncer

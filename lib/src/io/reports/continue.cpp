@@ -74,6 +74,20 @@ json certified_json(const CertifiedBranchEnd& c, long period, Parameter vary) {
   cj["theorem"] = ce.theorem;
   cj["pieces"] = ce.pieces;
   cj["statement"] = certified_end_statement(c, period, vary);
+  const BorderCollisionCertificate& bc = c.two_sided;
+  json two;
+  two["certified"] = bc.certified;
+  two["bits"] = bc.bits;
+  two["enclosure"] = bc.certified ? json{bc.parameter.lo, bc.parameter.hi} : json(nullptr);
+  two["width"] = bc.certified ? json(bc.width) : json(nullptr);
+  two["margin"] = name(bc.margin);
+  two["margin_text"] = bc.margin_text;
+  two["events"] = bc.events;
+  two["proof_interval"] = bc.certified ? json{exact_decimal(bc.z_lo), exact_decimal(bc.z_hi)} : json(nullptr);
+  two["bracket_contains"] = c.bracket_contains;
+  two["statement"] = bc.statement;
+  if (!bc.certified) two["reason"] = bc.reason;
+  cj["two_sided"] = two;
   return cj;
 }
 
@@ -147,7 +161,16 @@ std::string certified_end_statement(const CertifiedBranchEnd& c, long period, Pa
   if (!ce.certified) return "nothing certified next to " + par + "*";
   return "certified (Krawczyk): the period-" + std::to_string(period) + " orbit exists for every " + par + " in [" +
          exact_decimal(ce.from) + ", " + exact_decimal(ce.to) + "], so " + par + "* " + (c.high_end ? ">= " : "<= ") +
-         exact_decimal(ce.bound) + "; the other side of the bracket is numerical only";
+         exact_decimal(ce.bound) + (c.two_sided.certified ? "; a* itself is enclosed on both sides (the two-sided certificate)" : "; the other side of the bracket is numerical only");
+}
+
+std::string two_sided_statement(const CertifiedBranchEnd& c) {
+  const BorderCollisionCertificate& bc = c.two_sided;
+  if (!bc.certified) return bc.statement;
+  std::string s = bc.statement;
+  while (!s.empty() && (s.back() == '.' || s.back() == ' ')) s.pop_back();
+  return s + (c.bracket_contains ? "; the branch's own bracket contains it"
+                                            : "; the branch's own bracket does NOT contain it (its last digits are not right)");
 }
 
 template <class T>
@@ -234,6 +257,8 @@ std::string branch_text(const ContinueRequest& r, const Branch<T>& b, const Cert
   text << "high end: " << branch_end_sentence(b, b.high, r.vary) << "\n";
   if (certified.low) text << "low end " << certified_end_statement(*certified.low, r.period, r.vary) << "\n";
   if (certified.high) text << "high end " << certified_end_statement(*certified.high, r.period, r.vary) << "\n";
+  for (const auto* c : {&certified.low, &certified.high})
+    if (*c) text << (c == &certified.low ? "low end" : "high end") << " two-sided: " << two_sided_statement(**c) << "\n";
   for (const Bifurcation<T>& x : b.bifurcations)
     text << name(x.kind) << " at " << par << "* = " << Tr::to_string(x.param) << "\n";
   return text.str();

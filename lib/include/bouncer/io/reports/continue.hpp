@@ -11,7 +11,7 @@
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/io/requests/continue.hpp"
 #include "bouncer/model/model.hpp"
-#include "bouncer/verify/branch_end.hpp"
+#include "bouncer/verify/border_collision.hpp"
 
 namespace bouncer {
 
@@ -31,6 +31,9 @@ std::string branch_end_sentence(const Branch<T>& b, const BranchEnd<T>& e, Param
 // The statement of a --certify result on one end ("certified (Krawczyk): ..." or "nothing
 // certified next to a*").
 std::string certified_end_statement(const CertifiedBranchEnd& c, long period, Parameter vary);
+// The two-sided certificate of one end in words (its theorem, or why not certified), and
+// whether the branch's own bracket of a* contains it.
+std::string two_sided_statement(const CertifiedBranchEnd& c);
 
 // PREFIX.csv without its provenance lines: the header, then one row per branch point
 // (parameter, stability, the two multipliers, events, the least margins, the residual and

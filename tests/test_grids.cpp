@@ -61,7 +61,9 @@ TEST(Grids, BasinMarksStartsBelowTheWallOutside) {
   const int outside = (b.cells[0].cls == OrbitClass::outside) + (b.cells[1].cls == OrbitClass::outside);
   EXPECT_EQ(outside, 1);
   for (const AttractorCell& c : b.cells)
-    if (c.cls == OrbitClass::outside) EXPECT_EQ(c.period, 0);
+    if (c.cls == OrbitClass::outside) {
+      EXPECT_EQ(c.period, 0);
+    }
 }
 
 TEST(Grids, BasinDoesNotDependOnThreads) {

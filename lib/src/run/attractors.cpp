@@ -759,14 +759,7 @@ AttractorsResult run_mapper(const AttractorsRequest& req, const GridOptions& run
 
 }  // namespace
 
-std::pair<Decimal, Decimal> attractors_v_range(const AttractorsRequest& r) {
-  if (r.v_range) return *r.v_range;
-  const auto range = trapping_v_range(r.model);
-  if (!range && r.model.law == Law::constant)
-    throw InputError("v-range", "is needed when eps = 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
-  if (!range) throw InputError("v-range", "is needed for --model elastic (no trapping region: velocities grow without bound)");
-  return *range;
-}
+std::pair<Decimal, Decimal> attractors_v_range(const AttractorsRequest& r) { return starts_v_range(r.model, r.v_range); }
 
 AttractorsResult find_attractors(const AttractorsRequest& r, const GridOptions& run) {
   check_request(r);

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "bouncer/model/impact_map.hpp"
-#include "bouncer/model/trapping.hpp"
 #include "bouncer/run/cells.hpp"
 
 namespace bouncer {
@@ -85,14 +84,7 @@ struct Grid final : GridBase {
 
 }  // namespace
 
-std::pair<Decimal, Decimal> basin_v_range(const BasinRequest& r) {
-  if (r.v_range) return *r.v_range;
-  const auto range = trapping_v_range(r.model);
-  if (!range && r.model.law == Law::constant)
-    throw InputError("v-range", "is needed when eps = 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
-  if (!range) throw InputError("v-range", "is needed for --model elastic (no trapping region: velocities grow without bound)");
-  return *range;
-}
+std::pair<Decimal, Decimal> basin_v_range(const BasinRequest& r) { return starts_v_range(r.model, r.v_range); }
 
 struct BasinGrid::Impl {
   BasinRequest request;

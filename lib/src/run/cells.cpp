@@ -5,6 +5,8 @@
 #include <charconv>
 #include <stdexcept>
 
+#include "bouncer/model/trapping.hpp"
+
 namespace bouncer {
 
 namespace {
@@ -74,6 +76,15 @@ CertifiedCell decode_cell<CertifiedCell>(std::string_view text) {
 
 CertifiedCell certified_with_twin(const CertifiedPoint& c, const Classification& twin) {
   return {c.cls, c.period, c.certified_steps, c.scalar, twin.cls, twin.period, compare_with_certified(c, twin.cls, twin.period)};
+}
+
+std::pair<Decimal, Decimal> starts_v_range(const ModelSpec& m, const std::optional<std::pair<Decimal, Decimal>>& given) {
+  if (given) return *given;
+  const auto range = trapping_v_range(m);
+  if (!range && m.law == Law::constant)
+    throw InputError("v-range", "is needed when eps = 1 (the trapping region 4(1+3eps)/(1-eps) is unbounded)");
+  if (!range) throw InputError("v-range", "is needed for --model elastic (no trapping region: velocities grow without bound)");
+  return *range;
 }
 
 void check_varied_range(const ModelSpec& m, Parameter vary, const Decimal& lo, const Decimal& hi) {

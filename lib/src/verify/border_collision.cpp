@@ -417,6 +417,24 @@ std::vector<Mpfi> krawczyk(const Setup& S, const Problem& P, const std::vector<M
   return K;
 }
 
+// The box B, proved to hold the one zero of the system, tightened by B <- K(B) n B until it
+// no longer shrinks (at most `rounds` times): the zero stays in every B.
+std::vector<Mpfi> tighten(const Setup& S, const Problem& A, const std::vector<Mpfr>& u, std::vector<Mpfi> B, int rounds = 40) {
+  const std::vector<Mpfi> f = residual(S, A, u);
+  for (int t = 0; t < rounds; ++t) {
+    const std::vector<Mpfi> K = krawczyk(S, A, u, f, B);
+    bool shrank = false;
+    for (size_t i = 0; i < B.size(); ++i) {
+      const Mpfi N = intersect(K[i], B[i]);
+      if (N.has_nan()) throw Fail("K(B) n B is empty while tightening (an enclosure is inconsistent)");
+      if (mpfr_less_p(N.width().get(), B[i].width().get())) shrank = true;
+      B[i] = N;
+    }
+    if (!shrank) break;
+  }
+  return B;
+}
+
 // Newton: y <- y - C f(y), the Krawczyk operator on the thin centre (free p held at z^).
 std::vector<Mpfr> newton(const Setup& S, Problem P, std::vector<Mpfr> y) {
   P.Z = thin(P.zhat);
@@ -463,18 +481,7 @@ std::vector<Mpfi> prove_tight(const Setup& S, const Problem& P, const std::vecto
     if (all_inside(K, Y)) {
       std::vector<Mpfi> T;
       for (size_t i = 0; i < K.size(); ++i) T.push_back(intersect(K[i], Y[i]));
-      for (int t = 0; t < 8; ++t) {
-        const std::vector<Mpfi> K2 = krawczyk(S, P, yhat, f, T);
-        bool shrank = false;
-        for (size_t i = 0; i < T.size(); ++i) {
-          const Mpfi N = intersect(K2[i], T[i]);
-          if (N.has_nan()) throw Fail("K(Y) n Y is empty while tightening (an enclosure is inconsistent)");
-          if (mpfr_less_p(N.width().get(), T[i].width().get())) shrank = true;
-          T[i] = N;
-        }
-        if (!shrank) break;
-      }
-      return T;
+      return tighten(S, P, yhat, T, 8);
     }
     for (size_t i = 0; i < yhat.size(); ++i) {
       Mpfr grown(S.bits);
@@ -765,7 +772,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
         for (int t = 0; t < 40; ++t) {
           const std::vector<Mpfi> K2 = krawczyk(S, P, u, residual(S, P, u), B);
           const Mpfi N = intersect(K2[0], B[0]);
-          if (N.has_nan()) throw Fail("K(B) n B is empty while tightening");
+          if (N.has_nan()) throw Fail("K(B) n B is empty while tightening (an enclosure is inconsistent)");
           const bool shrank = mpfr_less_p(N.width().get(), B[0].width().get());
           B[0] = N;
           if (!shrank) break;
@@ -800,19 +807,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
         }
         if (!ok) throw Fail("the Krawczyk operators did not map the box Y x Z into itself");
         pr.Y = Y;
-        std::vector<Mpfi> B = {Y[0], Y[1], pr.Z};
-        const std::vector<Mpfi> f = residual(S, A, u);
-        for (int t = 0; t < 40; ++t) {
-          const std::vector<Mpfi> K2 = krawczyk(S, A, u, f, B);
-          bool shrank = false;
-          for (int i = 0; i < 3; ++i) {
-            const Mpfi N = intersect(K2[i], B[i]);
-            if (N.has_nan()) throw Fail("K(B) n B is empty while tightening");
-            if (mpfr_less_p(N.width().get(), B[i].width().get())) shrank = true;
-            B[i] = N;
-          }
-          if (!shrank) break;
-        }
+        const std::vector<Mpfi> B = tighten(S, A, u, {Y[0], Y[1], pr.Z});
         pr.pstar = B[2];
         pr.xstar = {B[0], B[1]};
       }
@@ -1091,19 +1086,7 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
           for (int i = 0; i < 2; ++i) rad[i] = rad[i] * 4;
       }
       if (!ok) throw Fail("the Krawczyk operators did not map the box Y x Z into itself");
-      std::vector<Mpfi> T = {Y[0], Y[1], Z};
-      const std::vector<Mpfi> f = residual(S, A, u);
-      for (int t = 0; t < 40; ++t) {
-        const std::vector<Mpfi> K2 = krawczyk(S, A, u, f, T);
-        bool shrank = false;
-        for (int i = 0; i < 3; ++i) {
-          const Mpfi N = intersect(K2[i], T[i]);
-          if (N.has_nan()) throw Fail("K(B) n B is empty while tightening");
-          if (mpfr_less_p(N.width().get(), T[i].width().get())) shrank = true;
-          T[i] = N;
-        }
-        if (!shrank) break;
-      }
+      const std::vector<Mpfi> T = tighten(S, A, u, {Y[0], Y[1], Z});
       B = T;
     } catch (const Fail& f) {
       why = f.what();

@@ -3,6 +3,9 @@
 // cells' tile texts.
 #pragma once
 
+#include <optional>
+#include <utility>
+
 #include <functional>
 #include <string>
 #include <string_view>
@@ -79,6 +82,10 @@ std::vector<Number> axis(long n, F&& at) {
 // constant restitution and c only with the velocity-dependent law (InputError "vary"), lo < hi,
 // and both ends give a valid model (InputError "range").
 void check_varied_range(const ModelSpec& m, Parameter vary, const Decimal& lo, const Decimal& hi);
+
+// The velocities of a grid of starts (basin, attractors): the range given, else the
+// trapping region's (model/trapping.hpp). InputError("v-range") where there is none.
+std::pair<Decimal, Decimal> starts_v_range(const ModelSpec& m, const std::optional<std::pair<Decimal, Decimal>>& given);
 
 // The tiles of a point grid of `items` cells: about items/64 each, at most max_tile.
 GridPlan point_grid_plan(long items, long max_tile);

@@ -92,8 +92,9 @@ void check_stdout();
 // shell). It also ignores SIGPIPE, so that a closed pipe is a failed write (exit status 1),
 // not a kill that leaves staging files. The handler only unlinks and writes:
 // async-signal-safe. A signal that was ignored when the process started (nohup, a background
-// job of a script) stays ignored. A front end calls it once; the library never installs
-// handlers.
+// job of a script) stays ignored. A front end calls it once; the library installs no other
+// handlers, but for reproduce's scheduler (workflow/scheduler.hpp), which catches SIGINT,
+// SIGTERM and SIGHUP while it waits for its children, and restores the previous ones.
 void install_interrupt_cleanup();
 void set_interrupt_hint(const std::string& text);
 

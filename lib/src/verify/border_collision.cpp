@@ -1142,13 +1142,17 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
 }
 }  // namespace
 
-BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q) {
+namespace {
+
+// Runs one proof: any step that fails (Fail) or cannot be decided (Undecided) leaves the
+// certificate uncertified with the reason, and nothing is claimed (`what` says about what).
+template <class Certificate, class Proof>
+Certificate attempt(long bits, const char* what, Proof&& proof) {
   const auto t0 = std::chrono::steady_clock::now();
-  BorderCollisionCertificate c;
-  c.bits = q.bits;
-  std::vector<State<Mpfi>> orbit;
+  Certificate c;
+  c.bits = bits;
   try {
-    run(q, c, orbit);
+    proof(c);
   } catch (const Fail& f) {
     c.certified = false;
     c.reason = f.what();
@@ -1157,28 +1161,22 @@ BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestio
     c.reason = std::string("undecided: ") + u.what();
   }
   if (!c.certified)
-    c.statement = "Not certified at " + std::to_string(q.bits) + " bits: " + c.reason + ". Nothing is claimed about a*.";
+    c.statement = "Not certified at " + std::to_string(bits) + " bits: " + c.reason + ". Nothing is claimed" + what + ".";
   c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return c;
 }
 
+}  // namespace
+
+BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q) {
+  return attempt<BorderCollisionCertificate>(q.bits, " about a*", [&](BorderCollisionCertificate& c) {
+    std::vector<State<Mpfi>> orbit;
+    run(q, c, orbit);
+  });
+}
+
 PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q) {
-  const auto t0 = std::chrono::steady_clock::now();
-  PeriodDoublingCertificate c;
-  c.bits = q.bits;
-  try {
-    run_pd(q, c);
-  } catch (const Fail& f) {
-    c.certified = false;
-    c.reason = f.what();
-  } catch (const Undecided& u) {
-    c.certified = false;
-    c.reason = std::string("undecided: ") + u.what();
-  }
-  if (!c.certified)
-    c.statement = "Not certified at " + std::to_string(q.bits) + " bits: " + c.reason + ". Nothing is claimed.";
-  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return c;
+  return attempt<PeriodDoublingCertificate>(q.bits, "", [&](PeriodDoublingCertificate& c) { run_pd(q, c); });
 }
 
 }  // namespace bouncer

@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,6 +48,7 @@ inline std::string check_command_line(CLI::App& app, int argc, char** argv) {
   if (first.empty() || first[0] == '-') return "";  // --help, --version
   std::vector<std::string> names;
   for (const CLI::App* sub : app.get_subcommands({})) names.push_back(sub->get_name());
+  names.push_back("help");  // bouncer help CMD (tools/run_command.cpp)
   CLI::App* sub = nullptr;
   for (CLI::App* c : app.get_subcommands({}))
     if (c->get_name() == first) sub = c;
@@ -69,6 +71,7 @@ inline std::string check_command_line(CLI::App& app, int argc, char** argv) {
     return nullptr;
   };
   std::string last_option;
+  std::vector<std::string> given;  // options with one value seen so far
   for (int i = 2; i < argc; ++i) {
     const std::string tok = argv[i];
     if (tok == "--") break;
@@ -92,6 +95,13 @@ inline std::string check_command_line(CLI::App& app, int argc, char** argv) {
              "; see bouncer " + first + " --help";
     }
     last_option = name;
+    // An option of one value given twice: which one was meant is not for bouncer to guess
+    // (a list option, --theta 0.1 --theta 0.2, collects both; a repeated flag is harmless).
+    if (opt->get_items_expected_max() != 0 && opt->get_expected_max() <= 1) {
+      if (std::find(given.begin(), given.end(), name) != given.end())
+        return name.substr(2) + ": " + name + " is given twice; give it once; see bouncer " + first + " --help";
+      given.push_back(name);
+    }
     if (opt->get_items_expected_max() == 0 || eq != std::string::npos) continue;  // a flag, or --opt=value
     // The option's value(s): the next word(s) up to the next option. A value may start
     // with '-' (a negative number) but not with "--".

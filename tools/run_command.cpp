@@ -11,6 +11,7 @@
 #include "cli_common.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "option_types.hpp"
 
 namespace bouncer::cli {
 
@@ -124,8 +125,10 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
   word_ptrs.push_back(nullptr);
   const int argc = static_cast<int>(words.size());
   char** argv = word_ptrs.data();
-  CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)"};
+  // Named, so that usage lines say "bouncer", not the path the program was started from.
+  CLI::App app{"bouncer: verified numerics for the piecewise linear bouncer (Langer & Miller 2014)", "bouncer"};
   app.require_subcommand(1);
+  app.footer("Also: bouncer help COMMAND (the same as bouncer COMMAND --help).");
   // One subcommand per row of the table of commands (workflow/commands.hpp), with the
   // options of its setup (tools/commands.cpp).
   struct Parsed {
@@ -138,11 +141,20 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
     const CommandSetup setup = command_setup(info.name);
     if (!setup) return failed(Kind::internal, 1, "internal error: the command '" + std::string(info.name) + "' has no setup");
     commands.push_back({sub, setup(sub)});
+    // --help shows what each value is (every option is read as text and parsed by the
+    // library's readers: the C++ type would say TEXT everywhere), and REQUIRED where the
+    // command needs it (on the command line or in the --scene file, so CLI11 cannot enforce it).
+    for (CLI::Option* opt : sub->get_options()) {
+      if (opt->get_positional() || opt->get_items_expected_max() == 0 || opt->get_lnames().empty()) continue;
+      std::string type = option_type_name(std::string(info.name), opt->get_lnames().front());
+      if (opt->get_description().find("(required") != std::string::npos) type += " REQUIRED";
+      opt->type_name(type);
+    }
   }
 
-  const std::string version = build_info().version + " (commit " + build_info().commit + ")";
-  app.set_version_flag("--version", version);
-  for (const Parsed& c : commands) c.app->set_version_flag("--version", version);
+  const std::string version = "bouncer " + build_info().version + " (commit " + build_info().commit + ")";
+  app.set_version_flag("-V,--version", version);
+  for (const Parsed& c : commands) c.app->set_version_flag("-V,--version", version);
   if (const std::string problem = check_command_line(app, argc, argv); !problem.empty()) {
     CommandOutcome o = failed(Kind::input, 2, problem);
     o.unknown_option = unknown_option_in(problem);
@@ -157,7 +169,11 @@ CommandOutcome run_command(std::vector<std::string> words_in, bool standalone) {
       o.kind = Kind::help;
       return o;
     }
-    return failed(Kind::input, 2, std::string(e.what()) + " (see bouncer --help)");
+    // Point at the help of the command that was given, if one was.
+    std::string help = "bouncer --help";
+    for (const Parsed& c : commands)
+      if (argc >= 2 && c.app->get_name() == argv[1]) help = "bouncer " + c.app->get_name() + " --help";
+    return failed(Kind::input, 2, std::string(e.what()) + " (see " + help + ")");
   }
   if (standalone) install_interrupt_cleanup();  // SIGINT/SIGTERM/SIGHUP remove partial files (base/output.hpp)
   try {

@@ -30,7 +30,7 @@ cp -r "$src/python/bouncer" "$src/python/README.md" "$tmp/src/python/"
 BOUNCER_BUILD_DIR=$build "$tmp/venv/bin/pip" install --no-build-isolation --no-index --no-cache-dir --disable-pip-version-check \
   --quiet "$tmp/src" >"$tmp/pip.log" 2>&1 || { cat "$tmp/pip.log" >&2; echo "FAIL: pip install" >&2; exit 1; }
 
-cli_version=$("$bouncer" --version | awk '{print $1}')
+cli_version=$("$bouncer" --version | awk '{print $2}')
 cd "$tmp"  # away from the source and build trees; no PYTHONPATH
 env -u PYTHONPATH "$tmp/venv/bin/python" - "$cli_version" "$tmp/venv" <<'PY'
 import importlib.metadata

@@ -19,7 +19,7 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 cd "$TMP"
-VERSION=$("$BOUNCER" --version | awk '{print $1}')
+VERSION=$("$BOUNCER" --version | awk '{print $2}')
 
 claim() {  # claim ID RUN-ARRAY: one [[claim]] table
   cat <<EOF

@@ -639,7 +639,7 @@ def test_typed_and_documented():
 
 def test_version_is_the_clis():
     p = subprocess.run([CLI, "--version"], capture_output=True, text=True, check=True)
-    assert bouncer.__version__ == p.stdout.split()[0]
+    assert p.stdout.split()[0] == "bouncer" and bouncer.__version__ == p.stdout.split()[1]
 
 
 def test_repr_and_properties():

@@ -7,7 +7,8 @@
 #   - setup.py's project_version(), the Python package's metadata version, run as setup.py
 #     defines it (its own function, executed here, not a copy of its regex), and setup()
 #     must take its version from that function;
-#   - pyproject.toml declares the version dynamic and states none of its own;
+#   - pyproject.toml declares the version dynamic and states none of its own (and its
+#     licence is MIT, as LICENSE);
 #   - the Python module's bouncer.__version__, when this build has the module
 #     (build/python/bouncer/_core*.so; without it that one line is reported as not checked);
 #   - CITATION.cff's `version` (and the file is CFF 1.2.0 with the keys the format
@@ -70,6 +71,8 @@ try:
         problems.append(f"pyproject.toml: states its own version {project['version']!r} (it must be dynamic)")
     if "version" not in project.get("dynamic", []):
         problems.append("pyproject.toml: version is not in [project] dynamic")
+    if project.get("license") != {"text": "MIT"}:
+        problems.append(f"pyproject.toml: license is {project.get('license')!r}, not MIT as LICENSE")
 except ModuleNotFoundError:
     print("pyproject.toml: not checked (no tomllib in this Python)")
 

@@ -21,3 +21,5 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/bouncerConfigVersio
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfigVersion.cmake
   ${CMAKE_CURRENT_SOURCE_DIR}/cmake/bouncerNumerics.cmake
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)
+# The licence, how to cite and what changed, beside the library (share/doc/bouncer).
+install(FILES LICENSE CITATION.cff CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})

@@ -10,6 +10,8 @@
 #   - `bouncer audit` reruns PREFIX.json and finds it identical;
 #   - --vary: each value's shares sum to 1 in the CSV and the JSON; periods 3 and 7 persist
 #     as chains over a in 23.05..23.15 (veldep c = 1000); bad sweeps exit 2;
+#   - elastic a = 18: the nine-branch accelerator mode (period 33, gain 9 x 8 = 72) is found,
+#     the positive control of claims row 10b's search at a = 19;
 #   - without --out a readable summary names both; --help documents the options.
 # Usage: bash attractors.sh <bouncer-binary> <source-dir>
 set -uo pipefail
@@ -131,6 +133,23 @@ for k, v in enumerate(s["values"]):
 periods = {c["period"] for c in s["chains"] if all(f is not None for f in c["fraction"])}
 check({3, 7} <= periods, f"periods 3 and 7 should persist over 23.05..23.15: {periods}")
 sys.exit(1 if bad else 0)
+PY
+
+# The elastic model (claims rows 10 and 10b): at a = 18 the search must find the nine-branch
+# accelerator mode, or its finding nothing at a = 19 says nothing. Truth from the map by hand
+# (README, Claims row 10): a long flight returns v + 2u = v + 8, so a mode whose phases cycle
+# through 9 branches gains 9 x 8 = 72 per period; its period is 33. The starts: theta =
+# 1/32, the 16 v cell centres of [5, 150] (the column theta = 1/32 of row 10b's 16 x 16 check).
+run elastic18 attractors --model elastic --a 18 --theta-range 0:0.0625 --v-range 5:150 --starts 1x16 --no-certify \
+  --max-steps 20000 --lyapunov-steps 10000 --json
+python3 - "$TMP/elastic18.out" <<'PY' || fail elastic18 "see above"
+import json, sys
+s = json.load(open(sys.argv[1]))["summary"]
+modes = [a for a in s["attractors"] if a["kind"] == "accelerator"]
+assert len(modes) == 1, [(a["kind"], a["period"]) for a in s["attractors"]]
+m = modes[0]
+assert m["period"] == 33 and abs(m["gain_per_period"] - 72) < 1e-3, (m["period"], m["gain_per_period"])
+assert "9 phase branches" in m["evidence"] and m["starts"] >= 1, m["evidence"]
 PY
 
 run help attractors --help

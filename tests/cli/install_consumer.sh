@@ -1,11 +1,16 @@
 #!/usr/bin/env bash
 # `cmake --install` the library, then build and run a separate project that uses it
-# through find_package(bouncer) (tests/consumer).
+# through find_package(bouncer) (tests/consumer); LICENSE, CITATION.cff and CHANGELOG.md are
+# installed in share/doc/bouncer.
 # Usage: bash install_consumer.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 build=$(cd "$(dirname "$BOUNCER")/.." && pwd)
 cmake --install "$build" --prefix "$TMP/prefix" >/dev/null
+# The licence, the citation and the changelog go with it, as in the source.
+for f in LICENSE CITATION.cff CHANGELOG.md; do
+  cmp -s "$SRC/$f" "$TMP/prefix/share/doc/bouncer/$f" || die "cmake --install did not install $f in share/doc/bouncer"
+done
 cmake -S "$SRC/tests/consumer" -B "$TMP/consumer" -DCMAKE_PREFIX_PATH="$TMP/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$TMP/consumer" >/dev/null
 "$TMP/consumer/consumer"  # prints the certified step; exits 1 if it is not a narrow enclosure of the fixed point

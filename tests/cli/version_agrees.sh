@@ -2,7 +2,7 @@
 # One version number in one place (issue 24): the CMake project's (CMakeLists.txt:
 # project(bouncer VERSION x.y.z)) is the source, and every other place that states a version
 # must state the same one:
-#   - `bouncer --version` (its first word; the library's build_info, compiled from
+#   - `bouncer --version` (its second word, after "bouncer"; the library's build_info, compiled from
 #     PROJECT_VERSION);
 #   - setup.py's project_version(), the Python package's metadata version, run as setup.py
 #     defines it (its own function, executed here, not a copy of its regex), and setup()
@@ -21,7 +21,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 require python3
 bouncer=$(cd "$(dirname "$BOUNCER")" && pwd)/$(basename "$BOUNCER")
 build=$(cd "$(dirname "$bouncer")/.." && pwd)
-cli_version=$("$bouncer" --version | awk '{print $1; exit}')
+cli_version=$("$bouncer" --version | awk '{print $2; exit}')
 
 module_version=""
 if compgen -G "$build/python/bouncer/_core*.so" >/dev/null; then

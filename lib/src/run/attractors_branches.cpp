@@ -62,8 +62,7 @@ void take_certificate(BranchEventInfo& i, const std::optional<CertifiedBranchEnd
 }
 
 template <class T>
-ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, size_t at_value, const FoundAttractor& a,
-                             bool certify, Branch<T>& b) {
+ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, size_t at_value, const FoundAttractor& a, Branch<T>& b) {
   using Tr = ScalarTraits<T>;
   const AttractorsSweepRequest& s = r.request;
   const long bits = s.point.precision.bits;
@@ -82,9 +81,7 @@ ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, 
   cb.low_param = text_of(b.points.front().param);
   cb.high_param = text_of(b.points.back().param);
   cb.events_text = event_text(b.points[b.start].events);
-  const CertifiedBranchEnds ends = certify ? certify_branch_ends(s.point.model, s.vary, a.period, b, bits) : CertifiedBranchEnds{};
   cb.events.push_back(end_info(b.low, false));
-  take_certificate(cb.events.back(), ends.low);
   for (const Bifurcation<T>& f : b.bifurcations) {
     BranchEventInfo i;
     i.kind = name(f.kind);
@@ -92,32 +89,48 @@ ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, 
     i.param_text = text_of(f.param);
     i.bracket_lo = text_of(f.bracket_lo);
     i.bracket_hi = text_of(f.bracket_hi);
-    if (certify && f.kind == SmoothKind::period_doubling) {
-      // The branch point nearest to it starts the proof.
-      const BranchPoint<T>* near = &b.points.front();
-      for (const BranchPoint<T>& p : b.points)
-        if (std::fabs(Tr::to_double(p.param) - i.param) < std::fabs(Tr::to_double(near->param) - i.param)) near = &p;
-      PeriodDoublingQuestion q;
-      q.model = s.point.model;
-      q.vary = s.vary;
-      q.period = a.period;
-      q.point = {parse_decimal("theta", text_of(near->orbit.points[0].theta)), parse_decimal("v", text_of(near->orbit.points[0].v))};
-      q.lo = parse_decimal("lo", i.bracket_lo);
-      q.hi = parse_decimal("hi", i.bracket_hi);
-      q.bits = std::max<long>(bits, 128);
-      const PeriodDoublingCertificate c = certify_period_doubling(q);
-      i.tried = true;
-      i.certified = c.certified;
-      if (c.certified)
-        i.enclosure = c.parameter;
-      else
-        i.reason = c.reason.empty() ? c.statement : c.reason;
-    }
     cb.events.push_back(i);
   }
   cb.events.push_back(end_info(b.high, true));
-  take_certificate(cb.events.back(), ends.high);
   return cb;
+}
+
+// Krawczyk on the events of a branch that explain a transition (needed[e]): border ends
+// (certify_branch_ends, both sides of a*) and period doublings (certify_period_doubling).
+template <class T>
+void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, ContinuedBranch& cb, const std::vector<bool>& needed) {
+  using Tr = ScalarTraits<T>;
+  const long bits = s.point.precision.bits;
+  if (!b.started) return;
+  Branch<T> ends = b;  // the ends not needed are not certified
+  if (!needed.front()) ends.low.reason = EndReason::range_end;
+  if (!needed.back()) ends.high.reason = EndReason::range_end;
+  const CertifiedBranchEnds c = certify_branch_ends(s.point.model, s.vary, cb.period, ends, bits);
+  take_certificate(cb.events.front(), c.low);
+  take_certificate(cb.events.back(), c.high);
+  for (size_t e = 1; e + 1 < cb.events.size(); ++e) {
+    BranchEventInfo& i = cb.events[e];
+    if (!needed[e] || i.kind != name(SmoothKind::period_doubling)) continue;
+    // The branch point nearest to it starts the proof.
+    const BranchPoint<T>* near = &b.points.front();
+    for (const BranchPoint<T>& p : b.points)
+      if (std::fabs(Tr::to_double(p.param) - i.param) < std::fabs(Tr::to_double(near->param) - i.param)) near = &p;
+    PeriodDoublingQuestion q;
+    q.model = s.point.model;
+    q.vary = s.vary;
+    q.period = cb.period;
+    q.point = {parse_decimal("theta", text_of(near->orbit.points[0].theta)), parse_decimal("v", text_of(near->orbit.points[0].v))};
+    q.lo = parse_decimal("lo", i.bracket_lo);
+    q.hi = parse_decimal("hi", i.bracket_hi);
+    q.bits = std::max<long>(bits, 128);
+    const PeriodDoublingCertificate pd = certify_period_doubling(q);
+    i.tried = true;
+    i.certified = pd.certified;
+    if (pd.certified)
+      i.enclosure = pd.parameter;
+    else
+      i.reason = pd.reason.empty() ? pd.statement : pd.reason;
+  }
 }
 
 // Is the chain's attractor `a` at parameter value p on branch b? Newton at p from the
@@ -155,6 +168,7 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify) {
       if (now != next) out.transitions[c].push_back({!now, k, k + 1, -1, -1});
     }
     if (ch.kind != AttractorKind::periodic && ch.kind != AttractorKind::sticking) continue;
+    if (ch.period > kMaxBranchPeriod) continue;  // as `continue --period`
     // Started at the value of the chain's largest share.
     size_t best = 0;
     double share = -1;
@@ -171,7 +185,7 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify) {
       if (out.branches[b].kind == ch.kind && on_branch(m, r.values[best].approx(), branches[b], a)) found = static_cast<int>(b);
     if (found < 0) {
       branches.emplace_back();
-      out.branches.push_back(continue_one(r, m, best, a, certify, branches.back()));
+      out.branches.push_back(continue_one(r, m, best, a, branches.back()));
       found = static_cast<int>(branches.size() - 1);
     }
     out.chain_branch[c] = found;
@@ -203,6 +217,15 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify) {
         t.event = pick;
       }
     }
+  }
+  if (certify) {
+    std::vector<std::vector<bool>> needed(out.branches.size());
+    for (size_t b = 0; b < out.branches.size(); ++b) needed[b].assign(out.branches[b].events.size(), false);
+    for (const auto& ts : out.transitions)
+      for (const ChainTransition& t : ts)
+        if (t.event >= 0) needed[static_cast<size_t>(t.branch)][static_cast<size_t>(t.event)] = true;
+    for (size_t b = 0; b < out.branches.size(); ++b)
+      if (std::find(needed[b].begin(), needed[b].end(), true) != needed[b].end()) certify_events(s, branches[b], out.branches[b], needed[b]);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -34,7 +34,8 @@ struct AttractorsSweepRequest {
   // max(1, |v|)).
   double match_distance = 0.05;
   // continue_chains after the sweep: each periodic chain's branch continued (cheap), and
-  // with certify_ends its border ends and period doublings proved (Krawczyk, ~1 s a branch).
+  // with certify_ends the ends and period doublings that explain a chain's appearance or
+  // disappearance proved (Krawczyk, about 1 s each).
   bool continue_branches = true;
   bool certify_ends = true;
 };
@@ -109,11 +110,16 @@ double attractor_distance(const FoundAttractor& x, const FoundAttractor& y);
 // With r.continue_branches, also continue_chains (r.certify_ends: certify).
 AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const GridOptions& run = {});
 
-// Each periodic or sticking chain's branch continued (in the sweep's precision) from the
+// Each periodic or sticking chain of period <= kMaxBranchPeriod (`continue`'s limit) has its
+// branch continued (in the sweep's precision) from the
 // chain's orbit at the value of its largest share, over the sweep's range; a chain whose
 // orbit at that value lies on a branch already continued (same period, Newton from the
 // branch's nearest orbit converging onto the chain's) is that branch, not continued again.
-// Each chain's appearances and disappearances inside the range are tied to the branch events.
+// Each chain's appearances and disappearances inside the range are tied to the branch events;
+// with certify, the events so tied (and only they) are proved: border ends on both sides of
+// a* (verify/border_collision.hpp certify_branch_ends), period doublings
+// (certify_period_doubling); folds and the other ends are reported, not proved.
+constexpr long kMaxBranchPeriod = 100;
 ChainBranches continue_chains(const AttractorsSweepResult& r, bool certify);
 
 }  // namespace bouncer

@@ -362,6 +362,18 @@ std::string event_sentence(const BranchEventInfo& e, const std::string& vary) {
   return s + " (" + note + ")";
 }
 
+// The chain of the same branch present on the other side of an unexplained transition (the
+// matching split one branch into two chains: its orbit moved more than the match distance
+// between the values), or -1.
+int same_branch_chain(const AttractorsSweepResult& r, size_t chain, const ChainTransition& t) {
+  const int b = r.branches->chain_branch[chain];
+  if (t.event >= 0 || b < 0) return -1;
+  const size_t other_side = t.appears ? t.before : t.after;
+  for (int c : r.branches->branches[static_cast<size_t>(b)].chains)
+    if (static_cast<size_t>(c) != chain && r.chains[static_cast<size_t>(c)].index[other_side] >= 0) return c;
+  return -1;
+}
+
 std::string transition_sentence(const AttractorsSweepResult& r, size_t chain, const ChainTransition& t) {
   const std::string vary = name(r.request.vary);
   std::string s = std::string(t.appears ? "appears" : "disappears") + " at " + vary + " in (" + r.values[t.before].text() +
@@ -374,11 +386,8 @@ std::string transition_sentence(const AttractorsSweepResult& r, size_t chain, co
     return s + (k == AttractorKind::family ? " (a family: no isolated branch)" : k == AttractorKind::periodic || k == AttractorKind::sticking ? " (not continued)" : " (no branch to continue: " + std::string(name(k)) + ")");
   }
   const ContinuedBranch& cb = r.branches->branches[static_cast<size_t>(b)];
-  // The same branch present as another chain on the other side: the matching split it.
-  const size_t other_side = t.appears ? t.before : t.after;
-  for (int c : cb.chains)
-    if (static_cast<size_t>(c) != chain && r.chains[static_cast<size_t>(c)].index[other_side] >= 0)
-      return s + " (the same branch is chain " + std::to_string(c) + " there: its orbit moved more than the match distance)";
+  if (const int c = same_branch_chain(r, chain, t); c >= 0)
+    return s + " (the same branch is chain " + std::to_string(c) + " there: its orbit moved more than the match distance)";
   if (!cb.started) return s + " (the branch did not start: " + cb.note + ")";
   return s + " (its branch spans " + vary + " in [" + cb.low_param + ", " + cb.high_param +
          "]: the basin fell below the sampling resolution, or the orbit is unstable there)";
@@ -465,6 +474,8 @@ std::string attractors_sweep_json(const AttractorsSweepResult& r) {
         tj["explained"] = t.event >= 0;
         tj["event"] = t.event >= 0 ? event_json(r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)])
                                    : json(nullptr);
+        const int same = same_branch_chain(r, ci, t);
+        tj["same_branch_chain"] = same >= 0 ? json(same) : json(nullptr);
         tj["sentence"] = transition_sentence(r, ci, t);
         ends.push_back(tj);
       }
@@ -650,17 +661,19 @@ std::string attractors_sweep_text(const AttractorsSweepResult& r) {
   }
   if (r.branches) {
     const std::string vary = name(r.request.vary);
-    long explained = 0, certified = 0, transitions = 0;
-    for (const auto& ts : r.branches->transitions)
-      for (const ChainTransition& t : ts) {
+    long explained = 0, certified = 0, transitions = 0, split = 0;
+    for (size_t c = 0; c < r.chains.size(); ++c)
+      for (const ChainTransition& t : r.branches->transitions[c]) {
         ++transitions;
+        split += same_branch_chain(r, c, t) >= 0;
         if (t.event < 0) continue;
         ++explained;
         certified += r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)].certified;
       }
     o << r.branches->branches.size() << " branch" << (r.branches->branches.size() == 1 ? "" : "es")
       << " continued from the periodic chains (" << g(r.branches->seconds, 3) << " s); " << explained << " of " << transitions
-      << " appearances and disappearances explained by a branch event, " << certified << " of them certified:\n";
+      << " appearances and disappearances explained by a branch event, " << certified << " of them certified; " << split
+      << " where the branch goes on as another chain; " << transitions - explained - split << " not explained:\n";
     for (size_t b = 0; b < r.branches->branches.size(); ++b) {
       const ContinuedBranch& cb = r.branches->branches[b];
       o << "  branch " << b << ": " << (cb.kind == AttractorKind::sticking ? "sticking cycle, k = " : "period ") << cb.period

@@ -2,9 +2,12 @@
 // continue_chains): the branch, its certified ends, and which of its events explains each
 // appearance and disappearance of the chain.
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <thread>
 
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/run/attractors_sweep.hpp"
@@ -105,7 +108,7 @@ void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, Continu
   Branch<T> ends = b;  // the ends not needed are not certified
   if (!needed.front()) ends.low.reason = EndReason::range_end;
   if (!needed.back()) ends.high.reason = EndReason::range_end;
-  const CertifiedBranchEnds c = certify_branch_ends(s.point.model, s.vary, cb.period, ends, bits);
+  const CertifiedBranchEnds c = certify_branch_ends(s.point.model, s.vary, cb.period, ends, bits, /*one_sided=*/false);
   take_certificate(cb.events.front(), c.low);
   take_certificate(cb.events.back(), c.high);
   for (size_t e = 1; e + 1 < cb.events.size(); ++e) {
@@ -152,7 +155,7 @@ bool on_branch(const Model<T>& m_at_p, double p, const Branch<T>& b, const Found
 }
 
 template <class T>
-ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify) {
+ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   const AttractorsSweepRequest& s = r.request;
   const long bits = s.point.precision.bits;
@@ -224,8 +227,30 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify) {
     for (const auto& ts : out.transitions)
       for (const ChainTransition& t : ts)
         if (t.event >= 0) needed[static_cast<size_t>(t.branch)][static_cast<size_t>(t.event)] = true;
-    for (size_t b = 0; b < out.branches.size(); ++b)
-      if (std::find(needed[b].begin(), needed[b].end(), true) != needed[b].end()) certify_events(s, branches[b], out.branches[b], needed[b]);
+    // The branches' proofs are independent: `threads` workers take them in turn (each writes
+    // only its branch, so the result does not depend on the number of threads).
+    std::atomic<size_t> next{0};
+    std::atomic<bool> failed{false};
+    std::exception_ptr error;
+    auto work = [&] {
+      for (size_t b; (b = next++) < out.branches.size() && !failed;) {
+        if (std::find(needed[b].begin(), needed[b].end(), true) == needed[b].end()) continue;
+        try {
+          certify_events(s, branches[b], out.branches[b], needed[b]);
+        } catch (...) {
+          if (!failed.exchange(true)) error = std::current_exception();
+        }
+      }
+    };
+    const unsigned k = static_cast<unsigned>(std::max(1, std::min<int>(threads, static_cast<int>(out.branches.size()))));
+    if (k <= 1) {
+      work();
+    } else {
+      std::vector<std::thread> pool;
+      for (unsigned t = 0; t < k; ++t) pool.emplace_back(work);
+      for (std::thread& t : pool) t.join();
+    }
+    if (error) std::rethrow_exception(error);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
@@ -233,8 +258,9 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify) {
 
 }  // namespace
 
-ChainBranches continue_chains(const AttractorsSweepResult& r, bool certify) {
-  return with_point_scalar(r.request.point.precision, [&](auto tag) { return continue_typed<typename decltype(tag)::type>(r, certify); });
+ChainBranches continue_chains(const AttractorsSweepResult& r, bool certify, int threads) {
+  return with_point_scalar(r.request.point.precision,
+                           [&](auto tag) { return continue_typed<typename decltype(tag)::type>(r, certify, threads); });
 }
 
 }  // namespace bouncer

@@ -120,6 +120,7 @@ AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const Gr
 // a* (verify/border_collision.hpp certify_branch_ends), period doublings
 // (certify_period_doubling); folds and the other ends are reported, not proved.
 constexpr long kMaxBranchPeriod = 100;
-ChainBranches continue_chains(const AttractorsSweepResult& r, bool certify);
+// The proofs run on `threads` workers (GridOptions::threads); the result does not depend on it.
+ChainBranches continue_chains(const AttractorsSweepResult& r, bool certify, int threads = 1);
 
 }  // namespace bouncer

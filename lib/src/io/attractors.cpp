@@ -563,20 +563,31 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
         }
     }
   }
-  // The legend: the chains by their largest share (at most 12), then undecided.
+  // The legend: the chains present at the most values, then by largest share (at most 16),
+  // then undecided.
   std::vector<size_t> order(r.chains.size());
   std::vector<double> peak(r.chains.size(), 0);
+  std::vector<long> present(r.chains.size(), 0);
   for (size_t c = 0; c < r.chains.size(); ++c) {
     order[c] = c;
     for (size_t k = 0; k < n; ++k)
-      if (r.chains[c].index[k] >= 0)
+      if (r.chains[c].index[k] >= 0) {
+        ++present[c];
         peak[c] = std::max(peak[c], r.at[k].attractors[static_cast<size_t>(r.chains[c].index[k])].fraction);
+      }
   }
-  // The explained appearances and disappearances: a dashed vertical line in the chain's
-  // colour at each a*, a dot on the frame's top and bottom; the legend entry lists them.
-  std::vector<std::string> marks(r.chains.size());
-  if (r.branches)
-    for (size_t c = 0; c < r.chains.size(); ++c) {
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+    if (present[x] != present[y]) return present[x] > present[y];
+    return peak[x] > peak[y];
+  });
+  const size_t shown = std::min<size_t>(order.size(), 16);
+  // The explained appearances and disappearances of the chains in the legend: a dashed
+  // vertical line in the chain's colour at each a*, dots on the frame's top and bottom; the
+  // legend entry lists them ("certified": every one of them enclosed by Krawczyk).
+  for (size_t i = 0; i < shown; ++i) {
+    const size_t c = order[i];
+    std::string mark;
+    if (r.branches) {
       Series line;
       line.color = color[c];
       line.lines = true;
@@ -584,7 +595,7 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
       line.dashed = true;
       Series dots;
       dots.color = color[c];
-      dots.marker_size = 3;
+      dots.marker_size = 4;
       std::vector<std::string> at;
       bool all_certified = true;
       for (const ChainTransition& t : r.branches->transitions[c]) {
@@ -595,29 +606,23 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
         line.x.insert(line.x.end(), {x, x, NAN});
         line.y.insert(line.y.end(), {0.0, 1.0, NAN});
         dots.x.insert(dots.x.end(), {x, x});
-        dots.y.insert(dots.y.end(), {0.995, 0.005});
+        dots.y.insert(dots.y.end(), {0.99, 0.01});
         at.push_back(g(e.param, 5) + (e.kind == "border" ? "" : e.kind == "period_doubling" ? " PD" : " " + e.kind));
         all_certified = all_certified && e.certified;
       }
-      if (at.empty()) continue;
-      fig.overlay.push_back(line);
-      fig.overlay.push_back(dots);
-      std::string m;
-      for (size_t i = 0; i < at.size() && i < 3; ++i) m += (i ? ", " : "") + at[i];
-      if (at.size() > 3) m += ", ...";
-      marks[c] = std::string("; ") + name(r.request.vary) + "* " + m + (all_certified ? " certified" : "");
+      if (!at.empty()) {
+        fig.overlay.push_back(line);
+        fig.overlay.push_back(dots);
+        std::string m;
+        for (size_t j = 0; j < at.size() && j < 3; ++j) m += (j ? ", " : "") + at[j];
+        if (at.size() > 3) m += ", ...";
+        mark = std::string("; ") + name(r.request.vary) + "* " + m + (all_certified ? " certified" : "");
+      }
     }
-  // Chains with marked events first (their lines need their names), then by peak share.
-  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
-    if (marks[x].empty() != marks[y].empty()) return !marks[x].empty();
-    return peak[x] > peak[y];
-  });
-  const size_t shown = std::min<size_t>(order.size(), 12);
-  for (size_t i = 0; i < shown; ++i) {
-    const AttractorChain& c = r.chains[order[i]];
-    ras.legend.emplace_back(chain_title(c) + " (" + presence(r, c) + marks[order[i]] + ")", color[order[i]]);
+    ras.legend.emplace_back(chain_title(r.chains[c]) + " (" + presence(r, r.chains[c]) + mark + ")", color[c]);
   }
-  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " smaller", Rgb{255, 255, 255});
+  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " more", Rgb{255, 255, 255});
+  ras.legend_below = r.chains.size() > 8;
   ras.legend.emplace_back("undecided", undecided);
   const std::string vary = name(r.request.vary);
   fig.title = "Basin shares of the attractors against " + vary + ", " + model_title(q.model.law) + " model";

@@ -179,6 +179,16 @@ if not ok:
     print("FAIL: enclosure", ev, file=sys.stderr)
 sys.exit(0 if ok else 1)
 PY
+# The chains, branches and ties do not depend on the number of threads.
+run ends-one attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --no-certify --threads 1 --quiet --out s1 && outputs ends-one s1
+python3 - <<'PY' || fail ends-threads "see above"
+import json, sys
+a, b = (json.load(open(f))["summary"] for f in ("st.json", "s1.json"))
+key = lambda s: [(c["kind"], c["period"], c["present"], c.get("branch"), [e["sentence"] for e in c.get("ends", [])]) for c in s["chains"]]
+if key(a) != key(b) or [x["span"] for x in a["branches"]] != [x["span"] for x in b["branches"]]:
+    print("FAIL: 2 threads", key(a), "\n1 thread", key(b), file=sys.stderr)
+    sys.exit(1)
+PY
 run ends-text attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --threads 2 --quiet
 grep -q "appears at a in (22.1, 22.25): border collision at a\* = 22.2222.* certified \[22.2222" "$TMP/ends-text.out" ||
   fail ends-text "no certified appearance in: $(cat "$TMP/ends-text.out")"

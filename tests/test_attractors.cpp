@@ -334,6 +334,82 @@ TEST(AttractorsSweep, ChainsFollowTheAttractorsAcrossValues) {
   }
 }
 
+// continue_chains: each chain's appearance or disappearance tied to its branch's end.
+// Truth independent of the code (test_continuation.cpp's header): at eps = 1/4 the period-1
+// sticking cycle through the release state (1/2, 4) exists exactly for 200/9 <= a < 32 (the
+// sticking threshold eps sqrt(8a) = a(1-eps)/2 (1 - sqrt(8/a)) at a = 200/9; the impact
+// theta = sqrt(8/a) - 1/2 reaching the knot theta = 0 at a = 32). A sweep over a value
+// below 200/9 and two above must find it absent, then present, and tie the appearance to a
+// certified low border end whose enclosure holds 200/9; over 31.9, 32, 32.1 its
+// disappearance to a high end holding 32. Neither depends on the number of threads.
+AttractorsSweepResult sticking_sweep(const char* lo, const char* hi, int threads) {
+  AttractorsSweepRequest s;
+  s.point.model = test_support::spec(Law::constant, lo, "0.25");
+  s.point.nx = s.point.ny = 12;
+  s.point.certify = false;  // the orbits' own certificates are find_attractors' (tested above)
+  s.vary = Parameter::a;
+  s.lo = *Decimal::parse(lo);
+  s.hi = *Decimal::parse(hi);
+  s.values = 3;
+  s.certify_ends = true;
+  GridOptions run;
+  run.threads = threads;
+  return sweep_attractors(s, run);
+}
+
+const AttractorChain* sticking_chain(const AttractorsSweepResult& r, long k) {
+  for (const AttractorChain& c : r.chains)
+    if (c.kind == AttractorKind::sticking && c.period == k) return &c;
+  return nullptr;
+}
+
+void expect_tied(const AttractorsSweepResult& r, bool appears, const mpq_class& a_star) {
+  ASSERT_TRUE(r.branches.has_value());
+  const AttractorChain* c = sticking_chain(r, 1);
+  ASSERT_NE(c, nullptr) << "no period-1 sticking cycle";
+  const std::vector<ChainTransition>& ts = r.branches->transitions[static_cast<size_t>(c->id)];
+  ASSERT_EQ(ts.size(), 1u);
+  const ChainTransition& t = ts[0];
+  EXPECT_EQ(t.appears, appears);
+  EXPECT_LE(r.values[t.before].value(), a_star);  // the closed form lies between the values
+  EXPECT_GE(r.values[t.after].value(), a_star);
+  ASSERT_GE(t.event, 0) << "not tied to a branch event";
+  const BranchEventInfo& e = r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)];
+  EXPECT_TRUE(e.end);
+  EXPECT_EQ(e.high, !appears);
+  EXPECT_EQ(e.kind, "border");
+  ASSERT_TRUE(e.certified) << e.reason;
+  const mpq_class lo = parse_decimal("lo", e.enclosure.lo).value(), hi = parse_decimal("hi", e.enclosure.hi).value();
+  EXPECT_LE(lo, a_star) << e.enclosure.lo;
+  EXPECT_GE(hi, a_star) << e.enclosure.hi;
+  EXPECT_LT(mpq_class(hi - lo).get_d(), 1e-25);
+}
+
+TEST(AttractorsSweep, StickingCycleAppearsAtTheCertifiedThreshold200Over9) {
+  const AttractorsSweepResult r = sticking_sweep("22.1", "22.4", 2);
+  const AttractorChain* c = sticking_chain(r, 1);
+  ASSERT_NE(c, nullptr);
+  EXPECT_EQ(c->index[0], -1);  // a = 22.1 < 200/9: the release orbit does not stick
+  EXPECT_GE(c->index[1], 0);
+  EXPECT_GE(c->index[2], 0);
+  expect_tied(r, true, mpq_class(200, 9));
+  // The same sweep on one thread: the same chains, branches and ties.
+  const AttractorsSweepResult one = sticking_sweep("22.1", "22.4", 1);
+  ASSERT_EQ(one.chains.size(), r.chains.size());
+  for (size_t i = 0; i < r.chains.size(); ++i) {
+    EXPECT_EQ(one.chains[i].index, r.chains[i].index);
+    EXPECT_EQ(one.branches->chain_branch[i], r.branches->chain_branch[i]);
+    ASSERT_EQ(one.branches->transitions[i].size(), r.branches->transitions[i].size());
+    for (size_t k = 0; k < r.branches->transitions[i].size(); ++k)
+      EXPECT_EQ(one.branches->transitions[i][k].event, r.branches->transitions[i][k].event);
+  }
+}
+
+TEST(AttractorsSweep, StickingCycleDisappearsAtTheCertifiedKnotA32) {
+  const AttractorsSweepResult r = sticking_sweep("31.9", "32.1", 2);
+  expect_tied(r, false, mpq_class(32));
+}
+
 TEST(AttractorsSweep, BadRequestsNameTheirField) {
   AttractorsSweepRequest s;
   s.point.model = test_support::spec(Law::veldep, "23.1", "1", "1000");

@@ -3,7 +3,8 @@
 // sets). This file reads the options, calls find_attractors and writes the outputs of
 // io/attractors.hpp: PREFIX.json, PREFIX.csv (one row per start), PREFIX.png (the basins);
 // without --out a readable summary on stdout. With --vary: sweep_attractors
-// (run/attractors_sweep.hpp), the chains' shares per value and their stacked figure.
+// (run/attractors_sweep.hpp), the chains' shares per value, each periodic chain's branch
+// continued and tied to its appearances and disappearances, and the stacked figure.
 #include "bouncer/io/attractors.hpp"
 #include "bouncer/io/requests/attractors.hpp"
 #include "commands.hpp"
@@ -18,7 +19,7 @@ const std::set<std::string>& attractors_keys() {
     std::set<std::string> k = model_keys();
     k.insert({"starts", "sampling", "theta-range", "v-range", "cells", "recurrences", "attractor-steps", "hits", "lost-steps",
               "max-steps", "lyapunov-steps", "transient", "steps", "max-period", "recheck-factor", "no-certify", "max-bits",
-              "precision", "threads", "vary", "range", "values"});
+              "precision", "threads", "vary", "range", "values", "no-branches"});
     const std::set<std::string> single = single_run_keys();
     k.insert(single.begin(), single.end());
     return k;
@@ -93,6 +94,8 @@ CommandRunner setup_attractors(CLI::App* sub) {
                     "writes the stacked basin shares against it");
   opts->add("range", "With --vary: LO:HI (decimals, LO < HI), both ends included");
   opts->add("values", "With --vary: values of the parameter, integer in [2, 1000] (default 11), equally spaced");
+  opts->add_flag("no-branches", "With --vary: do not continue the periodic chains' branches (by default each is continued, "
+                                 "its ends proved unless --no-certify, and tied to where the chain appears and disappears)");
   opts->add("threads", "Worker threads, integer >= 1 (default: all cores); results do not depend on it");
   auto flags = add_single_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {

@@ -12,6 +12,8 @@
 #     as chains over a in 23.05..23.15 (veldep c = 1000); bad sweeps exit 2;
 #   - elastic a = 18: the nine-branch accelerator mode (period 33, gain 9 x 8 = 72) is found,
 #     the positive control of claims row 10b's search at a = 19;
+#   - --vary's branches: the period-1 sticking cycle at eps = 1/4 appears between a = 22.1
+#     and 22.25, tied to a certified border end whose enclosure holds 200/9 (exact fractions);
 #   - without --out a readable summary names both; --help documents the options.
 # Usage: bash attractors.sh <bouncer-binary> <source-dir>
 set -uo pipefail
@@ -151,9 +153,69 @@ m = modes[0]
 assert m["period"] == 33 and abs(m["gain_per_period"] - 72) < 1e-3, (m["period"], m["gain_per_period"])
 assert "9 phase branches" in m["evidence"] and m["starts"] >= 1, m["evidence"]
 PY
+# --vary hands each periodic chain to `continue`: at eps = 1/4 the period-1 sticking cycle
+# through (1/2, 4) exists exactly for 200/9 <= a < 32 (test_continuation.cpp's header), so
+# over a = 22.1, 22.25, 22.4 it appears between the first two values, tied to its branch's
+# low border end, certified on both sides with an enclosure holding 200/9 (checked with
+# exact fractions); text, JSON and the figure agree; --no-branches leaves them out.
+refused no-branches-alone 'no-branches' attractors "${M[@]}" --no-branches --out bad
+run ends attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --no-certify --threads 2 --quiet --out st && outputs ends st
+python3 - <<'PY' || fail ends-content "see above"
+import json, sys
+from fractions import Fraction as F
+bad = 0
+def check(cond, what):
+    global bad
+    if not cond:
+        print("FAIL:", what, file=sys.stderr)
+        bad += 1
+s = json.load(open("st.json"))["summary"]
+st = [c for c in s["chains"] if c["kind"] == "sticking" and c["period"] == 1]
+check(len(st) == 1, f"one period-1 sticking chain: {[(c['kind'], c['period']) for c in s['chains']]}")
+c = st[0]
+check(c["fraction"][0] is None and c["fraction"][1] is not None, f"present at {c['fraction']}")
+check(len(c["ends"]) == 1, f"ends {c['ends']}")
+e = c["ends"][0]
+check(e["appears"] and e["between"] == ["22.1", "22.25"] and e["explained"], f"end {e}")
+ev = e["event"] or {}
+check(ev.get("kind") == "border" and ev.get("end") == "low", f"event {ev}")
+# --no-certify proves no orbit, but the ends are proved only with certify: not here.
+check(ev.get("certified") is False, f"certified without certificates: {ev}")
+check(s["branches"] and s["branches"][c["branch"]]["period"] == 1, "the chain's branch")
+sys.exit(1 if bad else 0)
+PY
+run ends-cert attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --threads 2 --quiet --out sc && outputs ends-cert sc
+python3 - <<'PY' || fail ends-cert-content "see above"
+import json, sys
+from fractions import Fraction as F
+s = json.load(open("sc.json"))["summary"]
+c = [c for c in s["chains"] if c["kind"] == "sticking" and c["period"] == 1][0]
+ev = c["ends"][0]["event"]
+lo, hi = (F(x) for x in ev["enclosure"])
+ok = ev["certified"] and lo <= F(200, 9) <= hi and hi - lo < F(1, 10**25)
+if not ok:
+    print("FAIL: enclosure", ev, file=sys.stderr)
+sys.exit(0 if ok else 1)
+PY
+# The chains, branches and ties do not depend on the number of threads.
+run ends-one attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --no-certify --threads 1 --quiet --out s1 && outputs ends-one s1
+python3 - <<'PY' || fail ends-threads "see above"
+import json, sys
+a, b = (json.load(open(f))["summary"] for f in ("st.json", "s1.json"))
+key = lambda s: [(c["kind"], c["period"], c["present"], c.get("branch"), [e["sentence"] for e in c.get("ends", [])]) for c in s["chains"]]
+if key(a) != key(b) or [x["span"] for x in a["branches"]] != [x["span"] for x in b["branches"]]:
+    print("FAIL: 2 threads", key(a), "\n1 thread", key(b), file=sys.stderr)
+    sys.exit(1)
+PY
+run ends-text attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --threads 2 --quiet
+grep -q "appears at a in (22.1, 22.25): border collision at a\* = 22.2222.* certified \[22.2222" "$TMP/ends-text.out" ||
+  fail ends-text "no certified appearance in: $(cat "$TMP/ends-text.out")"
+run no-branches attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --no-branches --quiet --out nb
+python3 -c "import json,sys; s=json.load(open('nb.json'))['summary']; sys.exit(0 if s['branches'] is None and all('ends' not in c for c in s['chains']) else 1)" ||
+  fail no-branches "branches written with --no-branches"
 
 run help attractors --help
-for opt in starts sampling cells recurrences attractor-steps hits max-steps precision out no-certify vary range values; do
+for opt in starts sampling cells recurrences attractor-steps hits max-steps precision out no-certify vary range values no-branches; do
   grep -q -- "--$opt" "$TMP/help.out" || fail help "does not document --$opt"
 done
 finish

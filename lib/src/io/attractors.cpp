@@ -15,6 +15,7 @@
 #pragma GCC diagnostic pop
 
 #include "bouncer/io/grid_figures.hpp"
+#include "bouncer/scalar/decimal.hpp"
 
 namespace bouncer {
 
@@ -327,6 +328,84 @@ std::string presence(const AttractorsSweepResult& r, const AttractorChain& c) {
   return out;
 }
 
+// An enclosure [lo, hi] rounded outward to about 16 significant digits (still an enclosure).
+std::string short_enclosure(const Enclosure& e) {
+  const mpq_class lo = parse_decimal("lo", e.lo).value(), hi = parse_decimal("hi", e.hi).value();
+  const double mag = std::max(std::fabs(lo.get_d()), 1e-300);
+  const long k = std::max<long>(0, 15 - static_cast<long>(std::floor(std::log10(mag))));
+  mpz_class scale;
+  mpz_ui_pow_ui(scale.get_mpz_t(), 10, static_cast<unsigned long>(k));
+  const mpq_class a = lo * scale, b = hi * scale;
+  mpz_class fa, cb;
+  mpz_fdiv_q(fa.get_mpz_t(), a.get_num_mpz_t(), a.get_den_mpz_t());
+  mpz_cdiv_q(cb.get_mpz_t(), b.get_num_mpz_t(), b.get_den_mpz_t());
+  return "[" + exact_decimal(mpq_class(fa, scale)) + ", " + exact_decimal(mpq_class(cb, scale)) + "]";
+}
+
+std::string event_words(const BranchEventInfo& e) {
+  if (e.kind == "border") return "border collision";
+  if (e.kind == "period_doubling") return "period doubling";
+  if (e.kind == "neimark_sacker") return "Neimark-Sacker bifurcation";
+  if (e.kind == "event_change") return "change of the event sequence";
+  if (e.kind == "period_collapse") return "collapse onto a smaller period";
+  if (e.kind == "lost") return "loss of the corrector";
+  return e.kind;  // fold
+}
+
+// "border collision at a* = 23.23 (impact 2 reaches ...; certified [lo, hi])"
+std::string event_sentence(const BranchEventInfo& e, const std::string& vary) {
+  std::string s = event_words(e) + " at " + vary + "* = " + e.param_text;
+  std::string note = e.detail;
+  if (e.certified) note += std::string(note.empty() ? "" : "; ") + "certified " + short_enclosure(e.enclosure);
+  else if (e.tried) note += std::string(note.empty() ? "" : "; ") + "not certified: " + e.reason;
+  else note += std::string(note.empty() ? "" : "; ") + "not certified";
+  return s + " (" + note + ")";
+}
+
+// The chain of the same branch present on the other side of an unexplained transition (the
+// matching split one branch into two chains: its orbit moved more than the match distance
+// between the values), or -1.
+int same_branch_chain(const AttractorsSweepResult& r, size_t chain, const ChainTransition& t) {
+  const int b = r.branches->chain_branch[chain];
+  if (t.event >= 0 || b < 0) return -1;
+  const size_t other_side = t.appears ? t.before : t.after;
+  for (int c : r.branches->branches[static_cast<size_t>(b)].chains)
+    if (static_cast<size_t>(c) != chain && r.chains[static_cast<size_t>(c)].index[other_side] >= 0) return c;
+  return -1;
+}
+
+std::string transition_sentence(const AttractorsSweepResult& r, size_t chain, const ChainTransition& t) {
+  const std::string vary = name(r.request.vary);
+  std::string s = std::string(t.appears ? "appears" : "disappears") + " at " + vary + " in (" + r.values[t.before].text() +
+                  ", " + r.values[t.after].text() + "): ";
+  if (t.event >= 0) return s + event_sentence(r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)], vary);
+  s += "not explained by a known branch end";
+  const int b = r.branches->chain_branch[chain];
+  if (b < 0) {
+    const AttractorKind k = r.chains[chain].kind;
+    return s + (k == AttractorKind::family ? " (a family: no isolated branch)" : k == AttractorKind::periodic || k == AttractorKind::sticking ? " (not continued)" : " (no branch to continue: " + std::string(name(k)) + ")");
+  }
+  const ContinuedBranch& cb = r.branches->branches[static_cast<size_t>(b)];
+  if (const int c = same_branch_chain(r, chain, t); c >= 0)
+    return s + " (the same branch is chain " + std::to_string(c) + " there: its orbit moved more than the match distance)";
+  if (!cb.started) return s + " (the branch did not start: " + cb.note + ")";
+  return s + " (its branch spans " + vary + " in [" + cb.low_param + ", " + cb.high_param +
+         "]: the basin fell below the sampling resolution, or the orbit is unstable there)";
+}
+
+nlohmann::ordered_json event_json(const BranchEventInfo& e) {
+  nlohmann::ordered_json j;
+  j["kind"] = e.kind;
+  j["end"] = e.end ? json(e.high ? "high" : "low") : json(nullptr);
+  j["param"] = e.param_text;
+  j["bracket"] = {e.bracket_lo, e.bracket_hi};
+  j["detail"] = e.detail;
+  j["certified"] = e.certified;
+  j["enclosure"] = e.certified ? json{e.enclosure.lo, e.enclosure.hi} : json(nullptr);
+  if (e.tried && !e.certified) j["reason"] = e.reason;
+  return j;
+}
+
 }  // namespace
 
 std::string attractors_sweep_csv(const AttractorsSweepResult& r) {
@@ -383,9 +462,51 @@ std::string attractors_sweep_json(const AttractorsSweepResult& r) {
     j["fraction_stderr"] = e;
     j["attractor_id"] = id;  // its id at each value (the per-value runs' numbering)
     j["certified"] = cert;
+    if (r.branches) {
+      const size_t ci = static_cast<size_t>(&c - r.chains.data());
+      const int b = r.branches->chain_branch[ci];
+      j["branch"] = b >= 0 ? json(b) : json(nullptr);
+      json ends = json::array();
+      for (const ChainTransition& t : r.branches->transitions[ci]) {
+        json tj;
+        tj["appears"] = t.appears;
+        tj["between"] = {r.values[t.before].text(), r.values[t.after].text()};
+        tj["explained"] = t.event >= 0;
+        tj["event"] = t.event >= 0 ? event_json(r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)])
+                                   : json(nullptr);
+        const int same = same_branch_chain(r, ci, t);
+        tj["same_branch_chain"] = same >= 0 ? json(same) : json(nullptr);
+        tj["sentence"] = transition_sentence(r, ci, t);
+        ends.push_back(tj);
+      }
+      j["ends"] = ends;
+    }
     chains.push_back(j);
   }
   s["chains"] = chains;
+  if (r.branches) {
+    json bs = json::array();
+    for (const ContinuedBranch& b : r.branches->branches) {
+      json bj;
+      bj["kind"] = name(b.kind);
+      bj["period"] = b.period;
+      bj["chains"] = b.chains;
+      bj["started_at"] = r.values[b.from_value].text();
+      bj["started"] = b.started;
+      if (!b.started) bj["note"] = b.note;
+      bj["span"] = b.started ? json{b.low_param, b.high_param} : json(nullptr);
+      bj["orbit_events"] = b.events_text;
+      json ev = json::array();
+      for (const BranchEventInfo& e : b.events) ev.push_back(event_json(e));
+      bj["events"] = ev;
+      bj["corrector_runs"] = b.corrector_runs;
+      bs.push_back(bj);
+    }
+    s["branches"] = bs;
+    s["branch_work"] = {{"seconds", r.branches->seconds}};  // (a timing: audit ignores "seconds")
+  } else {
+    s["branches"] = nullptr;
+  }
   json und = json::array();
   long long steps = 0;
   double seconds = 0;
@@ -442,22 +563,66 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
         }
     }
   }
-  // The legend: the chains by their largest share (at most 12), then undecided.
+  // The legend: the chains present at the most values, then by largest share (at most 16),
+  // then undecided.
   std::vector<size_t> order(r.chains.size());
   std::vector<double> peak(r.chains.size(), 0);
+  std::vector<long> present(r.chains.size(), 0);
   for (size_t c = 0; c < r.chains.size(); ++c) {
     order[c] = c;
     for (size_t k = 0; k < n; ++k)
-      if (r.chains[c].index[k] >= 0)
+      if (r.chains[c].index[k] >= 0) {
+        ++present[c];
         peak[c] = std::max(peak[c], r.at[k].attractors[static_cast<size_t>(r.chains[c].index[k])].fraction);
+      }
   }
-  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return peak[x] > peak[y]; });
-  const size_t shown = std::min<size_t>(order.size(), 12);
+  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+    if (present[x] != present[y]) return present[x] > present[y];
+    return peak[x] > peak[y];
+  });
+  const size_t shown = std::min<size_t>(order.size(), 16);
+  // The explained appearances and disappearances of the chains in the legend: a dashed
+  // vertical line in the chain's colour at each a*, dots on the frame's top and bottom; the
+  // legend entry lists them ("certified": every one of them enclosed by Krawczyk).
   for (size_t i = 0; i < shown; ++i) {
-    const AttractorChain& c = r.chains[order[i]];
-    ras.legend.emplace_back(chain_title(c) + " (" + presence(r, c) + ")", color[order[i]]);
+    const size_t c = order[i];
+    std::string mark;
+    if (r.branches) {
+      Series line;
+      line.color = color[c];
+      line.lines = true;
+      line.markers = false;
+      line.dashed = true;
+      Series dots;
+      dots.color = color[c];
+      dots.marker_size = 4;
+      std::vector<std::string> at;
+      bool all_certified = true;
+      for (const ChainTransition& t : r.branches->transitions[c]) {
+        if (t.event < 0) continue;
+        const BranchEventInfo& e = r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)];
+        const double x = ras.x_offset.active() ? NAN : e.param;
+        if (!std::isfinite(x)) continue;
+        line.x.insert(line.x.end(), {x, x, NAN});
+        line.y.insert(line.y.end(), {0.0, 1.0, NAN});
+        dots.x.insert(dots.x.end(), {x, x});
+        dots.y.insert(dots.y.end(), {0.99, 0.01});
+        at.push_back(g(e.param, 5) + (e.kind == "border" ? "" : e.kind == "period_doubling" ? " PD" : " " + e.kind));
+        all_certified = all_certified && e.certified;
+      }
+      if (!at.empty()) {
+        fig.overlay.push_back(line);
+        fig.overlay.push_back(dots);
+        std::string m;
+        for (size_t j = 0; j < at.size() && j < 3; ++j) m += (j ? ", " : "") + at[j];
+        if (at.size() > 3) m += ", ...";
+        mark = std::string("; ") + name(r.request.vary) + "* " + m + (all_certified ? " certified" : "");
+      }
+    }
+    ras.legend.emplace_back(chain_title(r.chains[c]) + " (" + presence(r, r.chains[c]) + mark + ")", color[c]);
   }
-  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " smaller", Rgb{255, 255, 255});
+  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " more", Rgb{255, 255, 255});
+  ras.legend_below = r.chains.size() > 8;
   ras.legend.emplace_back("undecided", undecided);
   const std::string vary = name(r.request.vary);
   fig.title = "Basin shares of the attractors against " + vary + ", " + model_title(q.model.law) + " model";
@@ -491,7 +656,44 @@ std::string attractors_sweep_text(const AttractorsSweepResult& r) {
         hi = std::max(hi, f);
       }
     o << "  chain " << c.id << ": " << chain_title(c) << " at " << name(r.request.vary) << " = " << presence(r, c) << ", share "
-      << g(lo, 3) << ".." << g(hi, 3) << "\n";
+      << g(lo, 3) << ".." << g(hi, 3);
+    if (r.branches && r.branches->chain_branch[static_cast<size_t>(c.id)] >= 0)
+      o << ", branch " << r.branches->chain_branch[static_cast<size_t>(c.id)];
+    o << "\n";
+    if (r.branches)
+      for (const ChainTransition& t : r.branches->transitions[static_cast<size_t>(c.id)])
+        o << "      " << transition_sentence(r, static_cast<size_t>(c.id), t) << "\n";
+  }
+  if (r.branches) {
+    const std::string vary = name(r.request.vary);
+    long explained = 0, certified = 0, transitions = 0, split = 0;
+    for (size_t c = 0; c < r.chains.size(); ++c)
+      for (const ChainTransition& t : r.branches->transitions[c]) {
+        ++transitions;
+        split += same_branch_chain(r, c, t) >= 0;
+        if (t.event < 0) continue;
+        ++explained;
+        certified += r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)].certified;
+      }
+    o << r.branches->branches.size() << " branch" << (r.branches->branches.size() == 1 ? "" : "es")
+      << " continued from the periodic chains (" << g(r.branches->seconds, 3) << " s); " << explained << " of " << transitions
+      << " appearances and disappearances explained by a branch event, " << certified << " of them certified; " << split
+      << " where the branch goes on as another chain; " << transitions - explained - split << " not explained:\n";
+    for (size_t b = 0; b < r.branches->branches.size(); ++b) {
+      const ContinuedBranch& cb = r.branches->branches[b];
+      o << "  branch " << b << ": " << (cb.kind == AttractorKind::sticking ? "sticking cycle, k = " : "period ") << cb.period
+        << " from " << vary << " = " << r.values[cb.from_value].text() << " (chain";
+      for (size_t i = 0; i < cb.chains.size(); ++i) o << (i ? ", " : " ") << cb.chains[i];
+      o << ")";
+      if (!cb.started) {
+        o << ": not started (" << cb.note << ")\n";
+        continue;
+      }
+      o << ", " << vary << " in [" << cb.low_param << ", " << cb.high_param << "], events " << cb.events_text << "\n";
+      for (const BranchEventInfo& e : cb.events)
+        if (!(e.end && (e.kind == "range_end" || e.kind == "max_points")))
+          o << "      " << (e.end ? (e.high ? "high end: " : "low end: ") : "on the way: ") << event_sentence(e, vary) << "\n";
+    }
   }
   return o.str();
 }

@@ -96,6 +96,7 @@ AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const Gr
       res.chains.push_back(std::move(c));
     }
   }
+  if (r.continue_branches) res.branches = continue_chains(res, r.certify_ends, static_cast<int>(worker_threads(run.threads)));
   return res;
 }
 

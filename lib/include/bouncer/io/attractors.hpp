@@ -36,6 +36,10 @@ std::string attractors_text(const AttractorsResult& r);
 // undecided starts); the summary (per chain its kind, period and share at every value, null
 // where absent); the stacked basin shares against the parameter (one column per value, the
 // chains' shares stacked from the bottom in chain order, undecided grey on top); the text.
+// With the branches (AttractorsSweepResult::branches): the JSON adds per chain `branch` and
+// `ends` (each appearance or disappearance, its explaining event, certified enclosure and
+// sentence) and `branches`; the text a sentence per appearance or disappearance and each
+// branch's events; the figure a dashed line at each explained a* of the chains in its legend.
 std::string attractors_sweep_csv(const AttractorsSweepResult& r);
 std::string attractors_sweep_json(const AttractorsSweepResult& r);
 ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette palette);

@@ -161,9 +161,9 @@ double share_stderr(long k, long n);
 
 // Global continuation (`attractors --vary a|eps|c`) builds on this call:
 // run/attractors_sweep.hpp runs it at each value and chains the attractors by the distance
-// of their point sets. Still to do there: each appearance or disappearance of a periodic
-// attractor handed to continue (analysis/continuation.hpp) from the last value where it
-// exists, whose event (border collision, fold, period doubling) explains it; and seeding a
-// value's cells with the previous value's attractors, which would save most recurrences.
+// of their point sets, and hands each periodic chain to continue (continue_chains there),
+// tying its appearances and disappearances to its branch's (certified) events. Still to do:
+// seeding a value's cells with the previous value's attractors, which would save most
+// recurrences.
 
 }  // namespace bouncer

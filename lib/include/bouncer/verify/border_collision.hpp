@@ -173,9 +173,12 @@ struct CertifiedBranchEnds {
 };
 
 // Certifies each border end of `b`: its branch side (model: the branch's, any value of the
-// varied parameter; bits: the branch's precision), and a* on both sides.
+// varied parameter; bits: the branch's precision), and a* on both sides. one_sided = false
+// skips the one-sided certificate (certify_branch_end bisects its interval, seconds to
+// minutes for long periods; `attractors --vary` needs only the two-sided enclosure of a*).
 template <class T>
-CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b, long bits) {
+CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b, long bits,
+                                        bool one_sided = true) {
   using Tr = ScalarTraits<T>;
   auto one = [&](const BranchEnd<T>& e, bool high) -> std::optional<CertifiedBranchEnd> {
     if (e.reason != EndReason::border) return std::nullopt;
@@ -191,7 +194,7 @@ CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, 
     c.lo = parse_decimal("certify", r.lo);
     c.hi = parse_decimal("certify", r.hi);
     c.high_end = high;
-    r.certificate = certify_branch_end(c);
+    if (one_sided) r.certificate = certify_branch_end(c);
     BorderCollisionQuestion bq;
     bq.end = c;
     if (e.margin >= 0) bq.margin = static_cast<Margin>(e.margin);

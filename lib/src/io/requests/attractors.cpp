@@ -39,7 +39,7 @@ AttractorsRequest attractors_request(const Options& o) {
 
 std::optional<AttractorsSweepRequest> attractors_sweep_request(const Options& o) {
   if (!o.has("vary")) {
-    for (const char* k : {"range", "values"})
+    for (const char* k : {"range", "values", "no-branches"})
       if (o.has(k)) throw InputError(k, "is only used with --vary a|eps|c");
     return std::nullopt;
   }
@@ -51,6 +51,8 @@ std::optional<AttractorsSweepRequest> attractors_sweep_request(const Options& o)
   s.point = attractors_request(m);
   std::tie(s.lo, s.hi) = parse_range("range", o.get("range"));
   s.values = integer_from(o, "values", 2, 1000, 11);
+  s.continue_branches = !flag_from(o, "no-branches");
+  s.certify_ends = s.point.certify;  // --no-certify: the branches' ends are not proved either
   return s;
 }
 

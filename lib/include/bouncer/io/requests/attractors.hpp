@@ -14,7 +14,8 @@ namespace bouncer {
 AttractorsRequest attractors_request(const Options& o);
 
 // With --vary a|eps|c: the sweep (--range LO:HI, --values N in [2, 1000], default 11; the
-// varied parameter's own option defaults to LO); nothing without --vary.
+// varied parameter's own option defaults to LO; --no-branches: the chains are not continued,
+// --no-certify: their branches' ends are not proved); nothing without --vary.
 std::optional<AttractorsSweepRequest> attractors_sweep_request(const Options& o);
 
 }  // namespace bouncer

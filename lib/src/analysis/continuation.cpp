@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
+
+#include "bouncer/scalar/decimal.hpp"
 
 namespace bouncer {
 
@@ -210,6 +213,7 @@ struct Continuer {
   const ContinuationOptions& opt;
   long bits;
   long runs = 0;
+  double stop_rel = 0;  // > 0: locate to this relative width instead of the working precision
 
   Model<T> at(const T& p) const { return with_parameter(base, par, p); }
 
@@ -279,6 +283,7 @@ struct Continuer {
   }
 
   double tolerance_rel() const {
+    if (stop_rel > 0) return stop_rel;
     if constexpr (std::is_same_v<T, double>) return std::ldexp(1.0, -44);
     return std::ldexp(1.0, -static_cast<int>(std::min(bits - 12, 1000L)));
   }
@@ -602,10 +607,165 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
   return br;
 }
 
+namespace {
+
+template <class T>
+mpq_class exact_of(const T& x) {
+  if constexpr (std::is_same_v<T, double>) {
+    return mpq_class(x);
+  } else {
+    const auto d = Decimal::parse(Tr<T>::to_string(x));  // round trip: within half an ulp
+    if (!d) throw std::runtime_error("not a finite decimal: " + Tr<T>::to_string(x));
+    return d->value();
+  }
+}
+
+// Re-locates one end of b (dir: +1 high, -1 low) in Mpfr and widens T's bracket
+// (analysis/end_estimate.hpp). The Mpfr corrector starts from the branch's last accepted
+// point on that side (inside the branch, far from a* compared with T's errors), which gives
+// the reference events; T's bracket is then checked at the new precision: its branch side
+// is stepped back (16x per step) until it is on the branch, its far side out until it is not,
+// and the end is bisected between them with the same corrector and tests as in T.
+template <class T>
+EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const BranchEnd<T>& e, int dir,
+                         const ContinuationOptions& opt) {
+  EndEstimate out;
+  if (e.reason == EndReason::range_end || e.reason == EndReason::max_points) {
+    out.kind = EndEstimate::Kind::given;
+    out.center = exact_of(e.param);
+    return out;
+  }
+  const long p = Tr<T>::bits(e.param), hb = p + 64;
+  out.bits = hb;
+  out.center = exact_of(e.param);
+  ContinuationOptions o = opt;
+  o.classify_beyond = false;
+  const Model<Mpfr> base = make_model<Mpfr>(spec, hb);
+  Continuer<Mpfr> c{base, b.parameter, b.period, o, hb};
+  c.stop_rel = std::ldexp(1.0, -static_cast<int>(std::min(p + 24, 1000L)));
+  const auto up = [hb](const T& x) { return Tr<Mpfr>::from_decimal(Tr<T>::to_string(x), hb); };
+  const auto up_state = [&](const State<T>& x) { return State<Mpfr>{up(x.theta), up(x.v)}; };
+  const BranchPoint<T>& edge = dir > 0 ? b.points.back() : b.points.front();
+  // The reference: the branch's last accepted orbit, at hb bits.
+  BranchPoint<Mpfr> ref;
+  try {
+    const Model<Mpfr> m = c.at(up(edge.param));
+    PeriodicOrbit<Mpfr> orbit = find_periodic(m, b.period, up_state(edge.orbit.points[0]), o.newton);
+    if (!orbit.converged || orbit.minimal_period != b.period) {
+      out.note = "at " + std::to_string(hb) + " bits Newton does not find the branch's last orbit";
+      return out;
+    }
+    ref = analyse_orbit(m, b.parameter, std::move(orbit));
+  } catch (const Undecided&) {
+    out.note = "at " + std::to_string(hb) + " bits the branch's last orbit is undecided";
+    return out;
+  }
+  if (!same_cycle(ref.events, edge.events)) {
+    out.note = "at " + std::to_string(hb) + " bits the branch's last orbit has other events";
+    return out;
+  }
+  const Mpfr near0 = up(dir > 0 ? e.bracket_lo : e.bracket_hi), far0 = up(dir > 0 ? e.bracket_hi : e.bracket_lo);
+  const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(e.param)));
+  double w = std::max(Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)), std::ldexp(scale, -static_cast<int>(p)));
+  const double span = std::fabs(Tr<Mpfr>::to_double(Mpfr(near0 - ref.param)));
+  const auto shifted = [&](const Mpfr& x, double by) { return Mpfr(x + from_double<Mpfr>(by, hb)); };
+  // The branch side: T's, or stepped back towards the reference point.
+  BranchPoint<Mpfr> good = ref;
+  std::optional<BranchPoint<Mpfr>> prev;
+  for (double back = 0;; back = back == 0 ? w : back * 16) {
+    if (back >= span) break;  // the reference itself is the branch side
+    const Mpfr at = shifted(near0, -dir * back);
+    Trial<Mpfr> t = c.correct(at, ref, c.predict(ref, nullptr, at));
+    if (t.good) {
+      prev = std::move(good);
+      good = std::move(*t.point);
+      break;
+    }
+  }
+  // The far side: T's, or stepped out until the corrector refuses it (at most 1e-6 max(1, |a*|)
+  // beyond, the distance of the look beyond).
+  std::optional<Mpfr> bad;
+  for (double out_by = 0; out_by <= 1e-6 * scale; out_by = out_by == 0 ? w : out_by * 16) {
+    const Mpfr at = shifted(far0, dir * out_by);
+    Trial<Mpfr> t = c.correct(at, good, c.predict(good, prev ? &*prev : nullptr, at));
+    if (!t.good) {
+      bad = at;
+      break;
+    }
+    prev = std::move(good);
+    good = std::move(*t.point);
+  }
+  if (!bad) {
+    out.note = "at " + std::to_string(hb) + " bits the branch goes on past the bracket";
+    return out;
+  }
+  // At a border the margin that reached 0 is smooth on the branch side and 0 at a*: secant
+  // steps on it from the branch side (a step that leaves (good, bad), or a trial that fails,
+  // is replaced by the bisection's midpoint) reach the tolerance in a few corrector runs
+  // where bisection takes ~40.
+  // locate_end then checks the width and names the cause as in T.
+  if (e.reason == EndReason::border && e.margin >= 0 && e.impact >= 0) {
+    const auto g = [&](const BranchPoint<Mpfr>& x) {
+      return static_cast<size_t>(e.impact) < x.margins.size() ? std::fabs(x.margins[e.impact].value[e.margin]) : kNaN;
+    };
+    const double tol = c.stop_rel * scale;
+    for (int it = 0; it < 60 && c.wide(good.param, *bad); ++it) {
+      Mpfr pick = good.param + (*bad - good.param) / 2;
+      if (prev) {
+        const double g1 = g(good), g0 = g(*prev), dp = Tr<Mpfr>::to_double(Mpfr(good.param - prev->param));
+        double delta = g1 * dp / (g0 - g1);
+        if (std::isfinite(delta) && delta * dir > 0) {
+          // Aim a quarter tolerance short of the estimated root (at the root itself the impact
+          // is on the knot and the trial is refused); once that is closer than half the
+          // tolerance, probe just past it.
+          delta = std::fabs(delta) < tol / 2 ? dir * 0.9 * tol : delta - dir * tol / 4;
+          const Mpfr at = good.param + from_double<Mpfr>(delta, hb);
+          if (dir > 0 ? (good.param < at && at < *bad) : (*bad < at && at < good.param)) pick = at;
+        }
+      }
+      Trial<Mpfr> t = c.correct(pick, good, c.predict(good, prev ? &*prev : nullptr, pick));
+      if (t.good) {
+        prev = std::move(good);
+        good = std::move(*t.point);
+      } else {
+        bad = pick;
+      }
+    }
+  }
+  const BranchEnd<Mpfr> r = c.locate_end(good, prev, *bad, dir, ref);
+  if (r.reason != e.reason) {
+    out.note = std::string("at ") + std::to_string(hb) + " bits the end has another cause (" + name(r.reason) + ")";
+    return out;
+  }
+  mpq_class refined;
+  mpfr_get_q(refined.get_mpq_t(), r.param.get());
+  out.refined = Tr<Mpfr>::to_string(r.param);
+  out.error = mpq_class(abs(mpq_class(refined - out.center))).get_d();
+  const double half = Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)) / 2;
+  const double refined_half = Tr<Mpfr>::to_double(Mpfr(r.bracket_hi - r.bracket_lo)) / 2;
+  // Safety factor 4 on the larger of the error and T's half bracket; the re-located
+  // bracket's own half width and one ulp of T added on top (its rounding and the texts').
+  out.radius = 4 * std::max(out.error, half) + refined_half + std::ldexp(scale, -static_cast<int>(p) + 1);
+  out.lo = out.center - mpq_class(out.radius);
+  out.hi = out.center + mpq_class(out.radius);
+  out.kind = EndEstimate::Kind::estimate;
+  return out;
+}
+
+}  // namespace
+
+template <class T>
+void estimate_end_accuracy(const ModelSpec& spec, Branch<T>& b, const ContinuationOptions& opt) {
+  if (!b.started || b.points.empty()) return;
+  b.low.estimate = estimate_one(spec, b, b.low, -1, opt);
+  b.high.estimate = estimate_one(spec, b, b.high, 1, opt);
+}
+
 #define BOUNCER_CONTINUATION_INSTANTIATE(T, kind)                                                                \
   template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
                                         const T&, const ContinuationOptions&);                            \
-  template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);
+  template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);                   \
+  template void estimate_end_accuracy<T>(const ModelSpec&, Branch<T>&, const ContinuationOptions&);
 BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_CONTINUATION_INSTANTIATE)
 #undef BOUNCER_CONTINUATION_INSTANTIATE
 

@@ -45,6 +45,21 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const W
   j["impact"] = e.impact >= 0 ? json(e.impact + 1) : json(nullptr);
   j["knot"] = e.knot >= 0 ? json(wall.knot_exact[e.knot].get_str()) : json(nullptr);
   j["detail"] = e.detail;
+  // How far `param` (the computed a*, round trip in T) can be trusted: analysis/end_estimate.hpp.
+  const EndEstimate& est = e.estimate;
+  j["accuracy"] = name(est.kind);
+  if (est.kind == EndEstimate::Kind::estimate) {
+    const BackedDigits d = backed_digits(est.center, est.radius);
+    j["a_star_backed"] = d.value;
+    j["a_star_plus_minus"] = d.plus_minus;
+    j["a_star_digits"] = d.digits;
+    j["bracket_estimate"] = {d.lo, d.hi};
+    j["error_estimate"] = json_number(est.error);
+    j["refined_param"] = est.refined;
+    j["refined_bits"] = est.bits;
+  } else if (est.kind == EndEstimate::Kind::not_estimated && !est.note.empty()) {
+    j["accuracy_note"] = est.note;
+  }
   if (e.beyond_done) {
     json by;
     by["param"] = Tr::to_string(e.beyond_param);
@@ -138,7 +153,7 @@ std::string branch_end_sentence(const Branch<T>& b, const BranchEnd<T>& e, Param
   const std::string q = "period " + std::to_string(b.period);
   if (e.reason == EndReason::range_end) return q + " reaches the range end " + par + " = " + Tr::to_string(e.param);
   if (e.reason == EndReason::max_points) return q + " stops at " + par + " = " + Tr::to_string(e.param) + " (--max-points)";
-  std::string s = q + " ends at " + par + "* = " + Tr::to_string(e.param) + " by " + cause_words(e.reason, e.margin) + " (" +
+  std::string s = q + " ends at " + par + "* = " + end_value_text(e.estimate, Tr::to_string(e.param)) + " by " + cause_words(e.reason, e.margin) + " (" +
                   e.detail + ")";
   if (e.beyond_done) {
     s += "; beyond it the orbit goes to " + class_words(e.beyond);

@@ -6,7 +6,8 @@
 //     exact rationals;
 //   * the ends the suite computes elsewhere, each with its widened double bracket checked to
 //     contain a*: the closed forms 200/9 (sticking threshold), 32 (knot) and 2 - sqrt(3)
-//     (threshold in eps, mpfr:128 run; derivations in test_continuation.cpp's header). The
+//     (threshold in eps, mpfr:128 run; derivations in test_continuation.cpp's header), and a
+//     sign change of det(J + I) at 256 bits across a period doubling's widened bracket. The
 //     velocity-dependent period-7 ends (27.72, 28.76 and the unstable orbit's 24.62), which
 //     have no closed form and where the double bracket itself misses a*, are checked in
 //     test_border_collision.cpp against the Krawczyk enclosures of a* at 128 and 256 bits
@@ -130,6 +131,37 @@ TEST(EndEstimate, ThresholdInEpsAtMpfr128) {
   expect_contains(b.high.estimate, t_hi, "2 - sqrt(3), upper");
   EXPECT_LT(b.high.estimate.radius, 1e-30);
   EXPECT_EQ(b.low.estimate.kind, EndEstimate::Kind::given);
+}
+
+TEST(EndEstimate, PeriodDoublingIsInsideTheWidenedBracket) {
+  // The period-2 branch of eps = 0.9 (test_continuation.cpp) doubles near a = 15.78. Truth
+  // without the locator: at 256 bits, the orbit's det(J + I) (0 at a multiplier -1) has
+  // opposite signs at the two ends of the widened bracket, so a* lies between them.
+  const ModelSpec s = spec(Law::constant, "19", "0.9");
+  const Model<double> m = make_model<double>(s, 53);
+  Branch<double> b = continue_branch(m, Parameter::a, 2, State<double>{0.1678819228862684, 14.143149884133248}, 12.0, 21.0);
+  ASSERT_EQ(b.bifurcations.size(), 1u);
+  estimate_end_accuracy(s, b);
+  const Bifurcation<double>& pd = b.bifurcations[0];
+  ASSERT_EQ(pd.estimate.kind, EndEstimate::Kind::estimate) << pd.estimate.note;
+  EXPECT_LT(pd.estimate.radius, 1e-9 * pd.param);
+  const State<double>& near = b.points[b.start].orbit.points[0];
+  const Model<Mpfr> m256 = make_model<Mpfr>(s, 256);
+  const auto test_pd = [&](const mpq_class& a) {
+    Mpfr x(256);
+    mpfr_set_q(x.get(), a.get_mpq_t(), MPFR_RNDN);
+    const Model<Mpfr> at = with_parameter(m256, Parameter::a, x);
+    const auto up = [](double d) {
+      Mpfr r(256);
+      mpfr_set_d(r.get(), d, MPFR_RNDN);
+      return r;
+    };
+    const State<Mpfr> guess{up(near.theta), up(near.v)};
+    const PeriodicOrbit<Mpfr> o = find_periodic(at, 2, guess);
+    EXPECT_TRUE(o.converged);
+    return analyse_orbit(at, Parameter::a, o).test_pd;
+  };
+  EXPECT_LT(test_pd(pd.estimate.lo) * test_pd(pd.estimate.hi), 0);
 }
 
 }  // namespace

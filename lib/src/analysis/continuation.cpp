@@ -620,6 +620,22 @@ mpq_class exact_of(const T& x) {
   }
 }
 
+// The widened bracket (analysis/end_estimate.hpp) around out.center, T's computed value of
+// p mantissa bits with a bracket `width` wide, from the value re-located in Mpfr (its bracket
+// `refined_width` wide): radius 4 max(error, half T's bracket), plus the re-located bracket's
+// half width and 2 ulps of T (the texts' roundings).
+void widen(EndEstimate& out, const Mpfr& refined, const Mpfr& refined_width, double width, double scale, long p) {
+  mpq_class r;
+  mpfr_get_q(r.get_mpq_t(), refined.get());
+  out.refined = Tr<Mpfr>::to_string(refined);
+  out.error = mpq_class(abs(mpq_class(r - out.center))).get_d();
+  out.radius = 4 * std::max(out.error, width / 2) + Tr<Mpfr>::to_double(refined_width) / 2 +
+               std::ldexp(scale, -static_cast<int>(p) + 1);
+  out.lo = out.center - mpq_class(out.radius);
+  out.hi = out.center + mpq_class(out.radius);
+  out.kind = EndEstimate::Kind::estimate;
+}
+
 // Re-locates one end of b (dir: +1 high, -1 low) in Mpfr and widens T's bracket
 // (analysis/end_estimate.hpp). The Mpfr corrector starts from the branch's last accepted
 // point on that side (inside the branch, far from a* compared with T's errors), which gives
@@ -737,18 +753,58 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
     out.note = std::string("at ") + std::to_string(hb) + " bits the end has another cause (" + name(r.reason) + ")";
     return out;
   }
-  mpq_class refined;
-  mpfr_get_q(refined.get_mpq_t(), r.param.get());
-  out.refined = Tr<Mpfr>::to_string(r.param);
-  out.error = mpq_class(abs(mpq_class(refined - out.center))).get_d();
-  const double half = Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)) / 2;
-  const double refined_half = Tr<Mpfr>::to_double(Mpfr(r.bracket_hi - r.bracket_lo)) / 2;
-  // Safety factor 4 on the larger of the error and T's half bracket; the re-located
-  // bracket's own half width and one ulp of T added on top (its rounding and the texts').
-  out.radius = 4 * std::max(out.error, half) + refined_half + std::ldexp(scale, -static_cast<int>(p) + 1);
-  out.lo = out.center - mpq_class(out.radius);
-  out.hi = out.center + mpq_class(out.radius);
-  out.kind = EndEstimate::Kind::estimate;
+  widen(out, r.param, Mpfr(r.bracket_hi - r.bracket_lo), Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)), scale, p);
+  return out;
+}
+
+// Re-locates a smooth bifurcation of b (fold, period doubling, Neimark-Sacker) in Mpfr as
+// estimate_one does an end: the orbits at p + 64 bits on either side of T's bracket (Newton
+// from the nearest branch point), the bracket widened 16x per step until its test function
+// changes sign between them, then regula falsi (locate_smooth) to 2^-(p + 24) relative.
+template <class T>
+EndEstimate estimate_smooth(const ModelSpec& spec, const Branch<T>& b, const Bifurcation<T>& x, const ContinuationOptions& opt) {
+  EndEstimate out;
+  const long p = Tr<T>::bits(x.param), hb = p + 64;
+  out.bits = hb;
+  out.center = exact_of(x.param);
+  const Model<Mpfr> base = make_model<Mpfr>(spec, hb);
+  Continuer<Mpfr> c{base, b.parameter, b.period, opt, hb};
+  c.stop_rel = std::ldexp(1.0, -static_cast<int>(std::min(p + 24, 1000L)));
+  const auto up = [hb](const T& v) { return Tr<Mpfr>::from_decimal(Tr<T>::to_string(v), hb); };
+  const BranchPoint<T>* near = &b.points.front();
+  for (const BranchPoint<T>& q : b.points)
+    if (std::fabs(Tr<T>::to_double(T(q.param - x.param))) < std::fabs(Tr<T>::to_double(T(near->param - x.param)))) near = &q;
+  const State<Mpfr> guess{up(near->orbit.points[0].theta), up(near->orbit.points[0].v)};
+  const auto orbit_at = [&](const Mpfr& v) -> std::optional<BranchPoint<Mpfr>> {
+    try {
+      const Model<Mpfr> m = c.at(v);
+      PeriodicOrbit<Mpfr> o = find_periodic(m, b.period, guess, opt.newton);
+      if (!o.converged || o.minimal_period != b.period) return std::nullopt;
+      BranchPoint<Mpfr> bp = analyse_orbit(m, b.parameter, std::move(o));
+      if (!same_cycle(bp.events, near->events)) return std::nullopt;
+      return bp;
+    } catch (const Undecided&) {
+      return std::nullopt;
+    }
+  };
+  const auto g = [&x](const BranchPoint<Mpfr>& bp) {
+    return x.kind == SmoothKind::fold ? bp.test_fold : x.kind == SmoothKind::period_doubling ? bp.test_pd : bp.test_ns;
+  };
+  const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(x.param)));
+  const double width = Tr<T>::to_double(T(x.bracket_hi - x.bracket_lo));
+  const Mpfr lo0 = up(x.bracket_lo), hi0 = up(x.bracket_hi);
+  for (double by = std::max(width, std::ldexp(scale, -static_cast<int>(p))); by < 1e-3 * scale; by *= 16) {
+    const auto A = orbit_at(Mpfr(lo0 - from_double<Mpfr>(by, hb))), B = orbit_at(Mpfr(hi0 + from_double<Mpfr>(by, hb)));
+    if (!A || !B) continue;
+    const double ga = g(*A), gb = g(*B);
+    if (!((ga < 0 && gb > 0) || (ga > 0 && gb < 0))) continue;
+    if (x.kind == SmoothKind::neimark_sacker && !(A->orbit.multipliers.complex && B->orbit.multipliers.complex)) continue;
+    const std::optional<Bifurcation<Mpfr>> r = c.locate_smooth(x.kind, *A, *B);
+    if (!r) break;
+    widen(out, r->param, Mpfr(r->bracket_hi - r->bracket_lo), width, scale, p);
+    return out;
+  }
+  out.note = "at " + std::to_string(hb) + " bits the test function does not change sign next to the bracket";
   return out;
 }
 
@@ -759,6 +815,7 @@ void estimate_end_accuracy(const ModelSpec& spec, Branch<T>& b, const Continuati
   if (!b.started || b.points.empty()) return;
   b.low.estimate = estimate_one(spec, b, b.low, -1, opt);
   b.high.estimate = estimate_one(spec, b, b.high, 1, opt);
+  for (Bifurcation<T>& x : b.bifurcations) x.estimate = estimate_smooth(spec, b, x, opt);
 }
 
 #define BOUNCER_CONTINUATION_INSTANTIATE(T, kind)                                                                \

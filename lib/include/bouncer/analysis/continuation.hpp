@@ -126,7 +126,7 @@ struct BranchEnd {
   Classification beyond;
   std::string beyond_note;
   // How far `param` can be trusted (estimate_end_accuracy below; not_estimated until it runs).
-  EndEstimate estimate;
+  EndEstimate estimate{};
 };
 
 enum class SmoothKind { fold, period_doubling, neimark_sacker };
@@ -137,6 +137,7 @@ struct Bifurcation {
   SmoothKind kind;
   T param, bracket_lo, bracket_hi;
   long iterations = 0;
+  EndEstimate estimate{};  // how far `param` can be trusted (estimate_end_accuracy)
 };
 
 struct ContinuationOptions {
@@ -167,11 +168,12 @@ template <class T>
 Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>& guess, const T& lo, const T& hi,
                           const ContinuationOptions& opt = {});
 
-// Fills b.low.estimate and b.high.estimate (analysis/end_estimate.hpp): `given` at a range
-// end or --max-points; at a located end, the end re-located in Mpfr at p + 64 bits (p: T's
-// mantissa bits) from next to T's bracket, with `spec` (the exact model b was computed with,
-// its varied parameter at any value) and the options b was computed with; `not_estimated`
-// with a note when the re-location fails. An estimate, not a proof.
+// Fills the `estimate` of b's two ends and of its bifurcations (analysis/end_estimate.hpp):
+// `given` at a range end or --max-points; at a located end or bifurcation, the point
+// re-located in Mpfr at p + 64 bits (p: T's mantissa bits) from next to T's bracket, with
+// `spec` (the exact model b was computed with, its varied parameter at any value) and the
+// options b was computed with; `not_estimated` with a note when the re-location fails. An
+// estimate, not a proof.
 template <class T>
 void estimate_end_accuracy(const ModelSpec& spec, Branch<T>& b, const ContinuationOptions& opt = {});
 

@@ -34,19 +34,9 @@ mpq_class exact_value(const T& x) {
   return d->value();
 }
 
-template <class T>
-json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const Wall<T>& wall) {
-  using Tr = ScalarTraits<T>;
-  json j;
-  j["reason"] = name(e.reason);
-  j["param"] = Tr::to_string(e.param);
-  j["bracket"] = {Tr::to_string(e.bracket_lo), Tr::to_string(e.bracket_hi)};
-  j["margin"] = e.margin >= 0 ? json(name(static_cast<Margin>(e.margin))) : json(nullptr);
-  j["impact"] = e.impact >= 0 ? json(e.impact + 1) : json(nullptr);
-  j["knot"] = e.knot >= 0 ? json(wall.knot_exact[e.knot].get_str()) : json(nullptr);
-  j["detail"] = e.detail;
-  // How far `param` (the computed a*, round trip in T) can be trusted: analysis/end_estimate.hpp.
-  const EndEstimate& est = e.estimate;
+// How far `param` (the computed a*, round trip in T) can be trusted (analysis/end_estimate.hpp):
+// its kind, and for an estimate the digits it backs and the widened bracket.
+void add_accuracy(json& j, const EndEstimate& est) {
   j["accuracy"] = name(est.kind);
   if (est.kind == EndEstimate::Kind::estimate) {
     const BackedDigits d = backed_digits(est.center, est.radius);
@@ -60,6 +50,20 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const W
   } else if (est.kind == EndEstimate::Kind::not_estimated && !est.note.empty()) {
     j["accuracy_note"] = est.note;
   }
+}
+
+template <class T>
+json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const Wall<T>& wall) {
+  using Tr = ScalarTraits<T>;
+  json j;
+  j["reason"] = name(e.reason);
+  j["param"] = Tr::to_string(e.param);
+  j["bracket"] = {Tr::to_string(e.bracket_lo), Tr::to_string(e.bracket_hi)};
+  j["margin"] = e.margin >= 0 ? json(name(static_cast<Margin>(e.margin))) : json(nullptr);
+  j["impact"] = e.impact >= 0 ? json(e.impact + 1) : json(nullptr);
+  j["knot"] = e.knot >= 0 ? json(wall.knot_exact[e.knot].get_str()) : json(nullptr);
+  j["detail"] = e.detail;
+  add_accuracy(j, e.estimate);
   if (e.beyond_done) {
     json by;
     by["param"] = Tr::to_string(e.beyond_param);
@@ -246,9 +250,12 @@ std::string branch_json(const ContinueRequest& r, const Model<T>& m, const Branc
   sum["low"] = low;
   sum["high"] = high;
   json bif = json::array();
-  for (const Bifurcation<T>& x : b.bifurcations)
-    bif.push_back({{"kind", name(x.kind)}, {"param", Tr::to_string(x.param)},
-                   {"bracket", {Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi)}}});
+  for (const Bifurcation<T>& x : b.bifurcations) {
+    json one{{"kind", name(x.kind)}, {"param", Tr::to_string(x.param)},
+             {"bracket", {Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi)}}};
+    add_accuracy(one, x.estimate);
+    bif.push_back(one);
+  }
   sum["bifurcations"] = bif;
   json doc;
   doc["provenance"] = json::parse(prov.as_json());
@@ -275,7 +282,7 @@ std::string branch_text(const ContinueRequest& r, const Branch<T>& b, const Cert
   for (const auto* c : {&certified.low, &certified.high})
     if (*c) text << (c == &certified.low ? "low end" : "high end") << " two-sided: " << two_sided_statement(**c) << "\n";
   for (const Bifurcation<T>& x : b.bifurcations)
-    text << name(x.kind) << " at " << par << "* = " << Tr::to_string(x.param) << "\n";
+    text << name(x.kind) << " at " << par << "* = " << end_value_text(x.estimate, Tr::to_string(x.param)) << "\n";
   return text.str();
 }
 

@@ -101,6 +101,8 @@ jq_is v7.high.estimate '.summary.high.bracket_estimate | map(tonumber) | .[0] <=
 jq_is certify.low '(.summary.low.certified.certified_to | tonumber) as $c | $c >= 200/9 and $c - 200/9 < 1e-4' true "$TMP/cert.json"
 jq_is certify.high '(.summary.high.certified.certified_to | tonumber) as $c | $c <= 32 and 32 - $c < 1e-4' true "$TMP/cert.json"
 jq_is certify.input '.provenance.inputs.certify' true "$TMP/cert.json"
+# The error estimate's widened brackets contain the two-sided certified enclosures.
+jq_is certify.estimate '[.summary.low, .summary.high] | map(.certified.two_sided.estimate_contains) | all' true "$TMP/cert.json"
 
 # --- bad input: exit 2, one line naming the option, nothing on stdout -----------------
 bad_input() {  # bad_input NAME FIELD ARGS...

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -83,7 +84,14 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const W
   return j;
 }
 
-json certified_json(const CertifiedBranchEnd& c, long period, Parameter vary) {
+// Whether the error estimate's widened bracket contains the certified enclosure of a*: the
+// estimate checked against a proof, where both exist.
+std::optional<bool> estimate_contains(const CertifiedBranchEnd& c, const EndEstimate& e) {
+  if (!c.two_sided.certified || e.kind != EndEstimate::Kind::estimate) return std::nullopt;
+  return e.lo <= c.two_sided.lo && c.two_sided.hi <= e.hi;
+}
+
+json certified_json(const CertifiedBranchEnd& c, const EndEstimate& est, long period, Parameter vary) {
   const BranchEndCertificate& ce = c.certificate;
   json cj;
   cj["range"] = {c.lo, c.hi};
@@ -104,6 +112,8 @@ json certified_json(const CertifiedBranchEnd& c, long period, Parameter vary) {
   two["events"] = bc.events;
   two["proof_interval"] = bc.certified ? json{exact_decimal(bc.z_lo), exact_decimal(bc.z_hi)} : json(nullptr);
   two["bracket_contains"] = c.bracket_contains;
+  const std::optional<bool> widened = estimate_contains(c, est);
+  two["estimate_contains"] = widened ? json(*widened) : json(nullptr);
   two["statement"] = bc.statement;
   if (!bc.certified) two["reason"] = bc.reason;
   cj["two_sided"] = two;
@@ -243,8 +253,8 @@ std::string branch_json(const ContinueRequest& r, const Model<T>& m, const Branc
   sum["param_max"] = Tr::to_string(b.points.back().param);
   sum["corrector_runs"] = b.corrector_runs;
   json low = end_json(b, b.low, r.vary, m.wall), high = end_json(b, b.high, r.vary, m.wall);
-  if (certified.low) low["certified"] = certified_json(*certified.low, r.period, r.vary);
-  if (certified.high) high["certified"] = certified_json(*certified.high, r.period, r.vary);
+  if (certified.low) low["certified"] = certified_json(*certified.low, b.low.estimate, r.period, r.vary);
+  if (certified.high) high["certified"] = certified_json(*certified.high, b.high.estimate, r.period, r.vary);
   low["events_at_end"] = event_text(b.points.front().events);
   high["events_at_end"] = event_text(b.points.back().events);
   sum["low"] = low;
@@ -279,8 +289,15 @@ std::string branch_text(const ContinueRequest& r, const Branch<T>& b, const Cert
   text << "high end: " << branch_end_sentence(b, b.high, r.vary) << "\n";
   if (certified.low) text << "low end " << certified_end_statement(*certified.low, r.period, r.vary) << "\n";
   if (certified.high) text << "high end " << certified_end_statement(*certified.high, r.period, r.vary) << "\n";
-  for (const auto* c : {&certified.low, &certified.high})
-    if (*c) text << (c == &certified.low ? "low end" : "high end") << " two-sided: " << two_sided_statement(**c) << "\n";
+  for (const auto* c : {&certified.low, &certified.high}) {
+    if (!*c) continue;
+    const bool low = c == &certified.low;
+    const std::optional<bool> widened = estimate_contains(**c, low ? b.low.estimate : b.high.estimate);
+    text << (low ? "low end" : "high end") << " two-sided: " << two_sided_statement(**c)
+         << (!widened ? "" : *widened ? "; the error estimate's widened bracket contains it"
+                                      : "; the error estimate's widened bracket does NOT contain it (the estimate failed)")
+         << "\n";
+  }
   for (const Bifurcation<T>& x : b.bifurcations)
     text << name(x.kind) << " at " << par << "* = " << end_value_text(x.estimate, Tr::to_string(x.param)) << "\n";
   return text.str();

@@ -133,6 +133,32 @@ TEST(EndEstimate, ThresholdInEpsAtMpfr128) {
   EXPECT_EQ(b.low.estimate.kind, EndEstimate::Kind::given);
 }
 
+TEST(EndEstimate, Eps09Period2KnotEndAgainstMpfr256) {
+  // The period-2 branch of eps = 0.9 (README, "bouncer continue") ends at a* ~ 22.0114 where
+  // impact 1 reaches theta = 1/2; no closed form: a* located by the same continuation at
+  // mpfr:256 (to 2^-244 relative; classification beyond off) is the truth. A regression
+  // case too: a re-location that predicted its first trial orbit as constant over the 4.6e-6
+  // to a* had Newton fail there and reported a false end 2.3e-6 early.
+  const ModelSpec s = spec(Law::constant, "19", "0.9");
+  const State<double> guess{0.1678819228862684, 14.143149884133248};
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 2, guess, 19.0, 23.0);
+  ASSERT_EQ(b.high.reason, EndReason::border) << b.high.detail;
+  estimate_end_accuracy(s, b);
+  ContinuationOptions opt;
+  opt.classify_beyond = false;
+  const auto up = [](double x) { return ScalarTraits<Mpfr>::from_decimal(ScalarTraits<double>::to_string(x), 256); };
+  // From the double branch's orbit nearest a = 22 (a short run: 256 bits are slow).
+  const BranchPoint<double>* near = &b.points.front();
+  for (const BranchPoint<double>& p : b.points)
+    if (std::fabs(p.param - 22) < std::fabs(near->param - 22)) near = &p;
+  const std::string at = ScalarTraits<double>::to_string(near->param);
+  const Branch<Mpfr> t = continue_branch(make_model<Mpfr>(spec(Law::constant, at, "0.9"), 256), Parameter::a, 2,
+                                         State<Mpfr>{up(near->orbit.points[0].theta), up(near->orbit.points[0].v)},
+                                         up(near->param), ScalarTraits<Mpfr>::from_decimal("22.1", 256), opt);
+  ASSERT_EQ(t.high.reason, EndReason::border) << t.high.detail;
+  expect_contains(b.high.estimate, q_of(t.high.param), "eps = 0.9 period-2 high end");
+}
+
 TEST(EndEstimate, PeriodDoublingIsInsideTheWidenedBracket) {
   // The period-2 branch of eps = 0.9 (test_continuation.cpp) doubles near a = 15.78. Truth
   // without the locator: at 256 bits, the orbit's det(J + I) (0 at a multiplier -1) has

@@ -662,24 +662,29 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
   const auto up = [hb](const T& x) { return Tr<Mpfr>::from_decimal(Tr<T>::to_string(x), hb); };
   const auto up_state = [&](const State<T>& x) { return State<Mpfr>{up(x.theta), up(x.v)}; };
   const BranchPoint<T>& edge = dir > 0 ? b.points.back() : b.points.front();
-  // The reference: the branch's last accepted orbit, at hb bits.
-  BranchPoint<Mpfr> ref;
-  try {
-    const Model<Mpfr> m = c.at(up(edge.param));
-    PeriodicOrbit<Mpfr> orbit = find_periodic(m, b.period, up_state(edge.orbit.points[0]), o.newton);
-    if (!orbit.converged || orbit.minimal_period != b.period) {
-      out.note = "at " + std::to_string(hb) + " bits Newton does not find the branch's last orbit";
-      return out;
+  // The references: the branch's last two accepted orbits, at hb bits (the secant through
+  // them predicts the orbit at the first trial values: a constant prediction over the
+  // distance to a* can leave Newton's basin, and a trial refused for that is a false end).
+  const auto reference = [&](const BranchPoint<T>& x) -> std::optional<BranchPoint<Mpfr>> {
+    try {
+      const Model<Mpfr> m = c.at(up(x.param));
+      PeriodicOrbit<Mpfr> orbit = find_periodic(m, b.period, up_state(x.orbit.points[0]), o.newton);
+      if (!orbit.converged || orbit.minimal_period != b.period) return std::nullopt;
+      BranchPoint<Mpfr> r = analyse_orbit(m, b.parameter, std::move(orbit));
+      if (!same_cycle(r.events, x.events)) return std::nullopt;
+      return r;
+    } catch (const Undecided&) {
+      return std::nullopt;
     }
-    ref = analyse_orbit(m, b.parameter, std::move(orbit));
-  } catch (const Undecided&) {
-    out.note = "at " + std::to_string(hb) + " bits the branch's last orbit is undecided";
+  };
+  const std::optional<BranchPoint<Mpfr>> ref0 = reference(edge);
+  if (!ref0) {
+    out.note = "at " + std::to_string(hb) + " bits Newton does not find the branch's last orbit";
     return out;
   }
-  if (!same_cycle(ref.events, edge.events)) {
-    out.note = "at " + std::to_string(hb) + " bits the branch's last orbit has other events";
-    return out;
-  }
+  const BranchPoint<Mpfr>& ref = *ref0;
+  std::optional<BranchPoint<Mpfr>> ref_prev;
+  if (b.points.size() >= 2) ref_prev = reference(dir > 0 ? b.points[b.points.size() - 2] : b.points[1]);
   const Mpfr near0 = up(dir > 0 ? e.bracket_lo : e.bracket_hi), far0 = up(dir > 0 ? e.bracket_hi : e.bracket_lo);
   const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(e.param)));
   double w = std::max(Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)), std::ldexp(scale, -static_cast<int>(p)));
@@ -687,11 +692,11 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
   const auto shifted = [&](const Mpfr& x, double by) { return Mpfr(x + from_double<Mpfr>(by, hb)); };
   // The branch side: T's, or stepped back towards the reference point.
   BranchPoint<Mpfr> good = ref;
-  std::optional<BranchPoint<Mpfr>> prev;
+  std::optional<BranchPoint<Mpfr>> prev = ref_prev;
   for (double back = 0;; back = back == 0 ? w : back * 16) {
     if (back >= span) break;  // the reference itself is the branch side
     const Mpfr at = shifted(near0, -dir * back);
-    Trial<Mpfr> t = c.correct(at, ref, c.predict(ref, nullptr, at));
+    Trial<Mpfr> t = c.correct(at, ref, c.predict(ref, ref_prev ? &*ref_prev : nullptr, at));
     if (t.good) {
       prev = std::move(good);
       good = std::move(*t.point);
@@ -748,7 +753,12 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
       }
     }
   }
-  const BranchEnd<Mpfr> r = c.locate_end(good, prev, *bad, dir, ref);
+  // The cause is named as in T: by the margins' shrinking since the branch's start point
+  // (locate_end reads only its margins and det(J - I)).
+  BranchPoint<Mpfr> first;
+  first.margins = b.points[b.start].margins;
+  first.test_fold = b.points[b.start].test_fold;
+  const BranchEnd<Mpfr> r = c.locate_end(good, prev, *bad, dir, first);
   if (r.reason != e.reason) {
     out.note = std::string("at ") + std::to_string(hb) + " bits the end has another cause (" + name(r.reason) + ")";
     return out;

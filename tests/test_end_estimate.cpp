@@ -113,6 +113,26 @@ TEST(EndEstimate, ClosedFormEndsInDouble) {
   expect_contains(r.low.estimate, mpq_class(200, 9), "200/9 (range 20:31)");
 }
 
+// The same two closed-form ends in the other fixed-width point types (64 and 106 bits).
+template <class T>
+void closed_form_ends_in(long bits) {
+  using Tr = ScalarTraits<T>;
+  const ModelSpec s = spec(Law::constant, "26", "0.25");
+  Branch<T> b = continue_branch(make_model<T>(s, bits), Parameter::a, 1, State<T>{Tr::from_decimal("0.5", bits), Tr::from_int(4, bits)},
+                                Tr::from_int(20, bits), Tr::from_decimal("33.5", bits));
+  ASSERT_EQ(b.low.reason, EndReason::border);
+  ASSERT_EQ(b.high.reason, EndReason::border);
+  estimate_end_accuracy(s, b);
+  expect_contains(b.low.estimate, mpq_class(200, 9), "200/9");
+  expect_contains(b.high.estimate, mpq_class(32), "32");
+  EXPECT_EQ(b.low.estimate.bits, Tr::bits(b.low.param) + 64);
+  EXPECT_LT(b.low.estimate.radius, 1e-14);  // more digits than double's
+}
+TEST(EndEstimate, ClosedFormEndsInLongDoubleAndDoubleDouble) {
+  closed_form_ends_in<long double>(64);
+  closed_form_ends_in<DoubleDouble>(106);
+}
+
 TEST(EndEstimate, ThresholdInEpsAtMpfr128) {
   // eps* = 2 - sqrt(3) at a = 24, located at 128 bits and re-located at 192.
   const ModelSpec s = spec(Law::constant, "24", "0.2");

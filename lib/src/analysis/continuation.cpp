@@ -641,7 +641,8 @@ void widen(EndEstimate& out, const Mpfr& refined, const Mpfr& refined_width, dou
 // point on that side (inside the branch, far from a* compared with T's errors), which gives
 // the reference events; T's bracket is then checked at the new precision: its branch side
 // is stepped back (16x per step) until it is on the branch, its far side out until it is not,
-// and the end is bisected between them with the same corrector and tests as in T.
+// and the end is narrowed between them with the same corrector and tests as in T (secant
+// steps on the vanishing margin at a border, then locate_end's bisection and cause).
 template <class T>
 EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const BranchEnd<T>& e, int dir,
                          const ContinuationOptions& opt) {
@@ -723,8 +724,7 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
   // At a border the margin that reached 0 is smooth on the branch side and 0 at a*: secant
   // steps on it from the branch side (a step that leaves (good, bad), or a trial that fails,
   // is replaced by the bisection's midpoint) reach the tolerance in a few corrector runs
-  // where bisection takes ~40.
-  // locate_end then checks the width and names the cause as in T.
+  // where bisection takes ~40; locate_end then bisects what is left and names the cause.
   if (e.reason == EndReason::border && e.margin >= 0 && e.impact >= 0) {
     const auto g = [&](const BranchPoint<Mpfr>& x) {
       return static_cast<size_t>(e.impact) < x.margins.size() ? std::fabs(x.margins[e.impact].value[e.margin]) : kNaN;

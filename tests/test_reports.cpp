@@ -442,6 +442,17 @@ TEST(ContinueReport, FigureSeparatesStableFromUnstablePoints) {
   ASSERT_EQ(f.series.size(), 4u);
   EXPECT_TRUE(contains(f.series[2].label, "grazing")) << f.series[2].label;
   EXPECT_EQ(f.series[2].x, (std::vector<double>{0.4375, 0.4375}));
+  // The label prints 8 digits at most, and no more than the error estimate backs:
+  // 0.437512345 -+ 3.5e-4 backs 0.4375 (by hand: the 1e-4 place).
+  Branch<double> b = branch();
+  b.low.param = 0.437512345;
+  b.low.estimate.center = mpq_class(b.low.param);
+  const Figure g = branch_figure(r, m, b, false, sample_provenance("continue"));
+  ASSERT_EQ(g.series.size(), 4u);
+  EXPECT_EQ(g.series[2].label.rfind("a* = 0.4375: grazing", 0), 0u) << g.series[2].label;
+  b.low.estimate = EndEstimate{};  // not estimated: short_num's 8 digits
+  const std::string plain = branch_figure(r, m, b, false, sample_provenance("continue")).series[2].label;
+  EXPECT_EQ(plain.rfind("a* = 0.4375123", 0), 0u) << plain;
 }
 
 // ---- certify-periodic and certify-sticking ----------------------------------------------

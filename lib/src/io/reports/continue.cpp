@@ -365,6 +365,15 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     s << std::setprecision(8) << Tr::to_double(x);
     return s.str();
   };
+  // A located value in a label: short_num's digits, or fewer when its error estimate backs
+  // fewer (analysis/end_estimate.hpp).
+  auto backed_short = [&](const T& x, const EndEstimate& est) {
+    if (est.kind == EndEstimate::Kind::estimate && !zx.active()) {
+      const BackedDigits d = backed_digits(est.center, est.radius);
+      if (d.digits < 8) return d.value;
+    }
+    return short_num(x);
+  };
   // Legend labels short enough for one line: the cause and the impact.
   auto end_label = [&](const BranchEnd<T>& e) {
     const std::string i = std::to_string(e.impact + 1);
@@ -378,13 +387,13 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
         case Margin::sticking: what = "sticking threshold, impact " + i; break;
       }
     }
-    return par + "* = " + short_num(e.param) + ": " + what;
+    return par + "* = " + backed_short(e.param, e.estimate) + ": " + what;
   };
   for (const BranchEnd<T>* e : {&b.low, &b.high})
     if (e->reason != EndReason::range_end && e->reason != EndReason::max_points)
       vline(e->param, end_label(*e), e->reason == EndReason::fold ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
   for (const Bifurcation<T>& x : b.bifurcations)
-    vline(x.param, par + "* = " + short_num(x.param) + ": " +
+    vline(x.param, par + "* = " + backed_short(x.param, x.estimate) + ": " +
                        (x.kind == SmoothKind::fold ? "fold (+1)" : x.kind == SmoothKind::period_doubling ? "period doubling (-1)" : "Neimark-Sacker"),
           Rgb{27, 120, 55});
   fig.x_min = zx(r.lo.value());

@@ -799,7 +799,10 @@ class ModelCore {
       const Model<T> m = make_model<T>(spec_, bits);
       const Branch<T> b = interruptible([&] {
         const T tlo = Tr::from_decimal(r.lo.text(), bits), thi = Tr::from_decimal(r.hi.text(), bits);
-        return bouncer::continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), tlo, thi, r.opt);
+        Branch<T> br = bouncer::continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), tlo, thi, r.opt);
+        // The digits of each end that an error estimate backs, as `continue` (analysis/end_estimate.hpp).
+        if (br.started) estimate_end_accuracy(spec_, br, r.opt);
+        return br;
       });
       if (!b.started) throw InputError("guess", b.note);
       return branch_dict(b, m, name(r.vary));
@@ -1185,6 +1188,27 @@ class ModelCore {
       d["beyond"] = py::none();
     }
     d["beyond_note"] = e.beyond_note;
+    d["accuracy"] = accuracy_dict(e.estimate);
+    return d;
+  }
+
+  // The error estimate of a located end or bifurcation, with the fields of `continue`'s JSON
+  // (io/reports/continue.cpp): kind, and for an estimate the backed digits and the widened bracket.
+  static py::dict accuracy_dict(const EndEstimate& est) {
+    py::dict d;
+    d["kind"] = name(est.kind);
+    if (est.kind == EndEstimate::Kind::estimate) {
+      const BackedDigits b = backed_digits(est.center, est.radius);
+      d["a_star_backed"] = b.value;
+      d["a_star_plus_minus"] = b.plus_minus;
+      d["a_star_digits"] = b.digits;
+      d["bracket_estimate"] = py::make_tuple(b.lo, b.hi);
+      d["error_estimate"] = est.error;
+      d["refined_param"] = est.refined;
+      d["refined_bits"] = est.bits;
+    } else {
+      d["note"] = est.note;
+    }
     return d;
   }
 
@@ -1234,6 +1258,7 @@ class ModelCore {
       e["kind"] = name(x.kind);
       e["param"] = scalar(x.param);
       e["bracket"] = pair_of(x.bracket_lo, x.bracket_hi);
+      e["accuracy"] = accuracy_dict(x.estimate);
       bif.append(e);
     }
     d["bifurcations"] = bif;

@@ -121,10 +121,24 @@ TEST(BorderCollision, BeyondTheEndIsNotCertified) {
   EXPECT_FALSE(c.reason.empty());
 }
 
-// The stable period-7 orbit of the velocity-dependent model at c = 1000, continued in double.
+// The stable period-7 orbit of the velocity-dependent model at c = 1000, continued in double,
+// with the error estimate of its ends (analysis/end_estimate.hpp).
 Branch<double> veldep_p7() {
-  const Model<double> m = make_model<double>(test_support::spec(Law::veldep, "28", "1", "1000"), 53);
-  return continue_branch(m, Parameter::a, 7, State<double>{0.19204436106841707, 26.916257785320354}, 27.0, 29.0);
+  const ModelSpec s = test_support::spec(Law::veldep, "28", "1", "1000");
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 7,
+                                     State<double>{0.19204436106841707, 26.916257785320354}, 27.0, 29.0);
+  estimate_end_accuracy(s, b);
+  return b;
+}
+
+// The widened bracket of an estimated end (issue 23, "honest digits") contains the
+// certified enclosure of a*, where the bracket itself need not.
+void expect_estimate_contains(const BranchEnd<double>& e, const BorderCollisionCertificate& c, const char* what) {
+  ASSERT_EQ(e.estimate.kind, EndEstimate::Kind::estimate) << what << ": " << e.estimate.note;
+  EXPECT_LE(e.estimate.lo, c.lo) << what << ": estimate [" << e.estimate.lo.get_d() << ", " << e.estimate.hi.get_d()
+                                  << "], certified " << c.parameter.lo;
+  EXPECT_GE(e.estimate.hi, c.hi) << what << ": certified " << c.parameter.hi;
+  EXPECT_LT(e.estimate.radius, 1e-9) << what;  // still ~10 of double's digits
 }
 
 BorderCollisionQuestion question_of(const BranchEnd<double>& end, bool high) {
@@ -178,6 +192,10 @@ TEST(BorderCollision, VeldepPeriod7EndsAgainstDoubleContinuation) {
   EXPECT_LE(lo.lo, lo256.lo);
   EXPECT_LE(lo256.hi, lo.hi);
   EXPECT_LE(lo256.width, 1e-70);
+  // The widened bracket contains both enclosures; the bracket itself misses a* here.
+  expect_estimate_contains(b.low, lo, "low end, 128 bits");
+  expect_estimate_contains(b.low, lo256, "low end, 256 bits");
+  EXPECT_GT(d_lo, 0);
 
   const BorderCollisionCertificate hi = certify_border_collision(question_of(b.high, true));
   ASSERT_TRUE(hi.certified) << hi.statement;
@@ -185,6 +203,13 @@ TEST(BorderCollision, VeldepPeriod7EndsAgainstDoubleContinuation) {
   EXPECT_LE(hi.width, 1e-30);
   const double d_hi = gap(b.high.bracket_lo, b.high.bracket_hi, hi);
   EXPECT_LT(d_hi, 1e-9);
+  BorderCollisionQuestion h256 = question_of(b.high, true);
+  h256.bits = 256;
+  const BorderCollisionCertificate hi256 = certify_border_collision(h256);
+  ASSERT_TRUE(hi256.certified) << hi256.statement;
+  expect_estimate_contains(b.high, hi, "high end, 128 bits");
+  expect_estimate_contains(b.high, hi256, "high end, 256 bits");
+  EXPECT_GT(d_hi, 0);
   std::printf("veldep P7 low end: double bracket [%.17g, %.17g], certified [%s, %s] (%s), double off by %.3g\n",
               b.low.bracket_lo, b.low.bracket_hi, lo.parameter.lo.c_str(), lo.parameter.hi.c_str(), lo.margin_text.c_str(),
               d_lo);
@@ -197,10 +222,12 @@ TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
   // The unstable period-7 orbit (README, "bouncer continue") ends going down where a flight
   // grazes theta = 1/2; issue 23 quotes an independent high-precision implementation's
   // a* = 24.61675675147981...
-  const Model<double> m = make_model<double>(test_support::spec(Law::veldep, "25", "1", "1000"), 53);
-  const Branch<double> b =
+  const ModelSpec s = test_support::spec(Law::veldep, "25", "1", "1000");
+  const Model<double> m = make_model<double>(s, 53);
+  Branch<double> b =
       continue_branch(m, Parameter::a, 7, State<double>{0.016124178545083214, 10.063538832537404}, 22.0, 28.0);
   ASSERT_TRUE(b.started) << b.note;
+  estimate_end_accuracy(s, b);
   ASSERT_EQ(b.low.reason, EndReason::border) << b.low.detail;
   BorderCollisionQuestion q = question_of(b.low, false);
   q.end.model = test_support::spec(Law::veldep, "25", "1", "1000");
@@ -210,6 +237,7 @@ TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
   EXPECT_LE(c.width, 1e-30);
   const mpq_class independent = parse_decimal("a", "24.61675675147981").value();
   EXPECT_LT(std::fabs(mpq_class(independent - c.lo).get_d()), 1e-14) << c.parameter.lo;
+  expect_estimate_contains(b.low, c, "unstable low end");
   std::printf("veldep unstable P7 low end: double bracket [%.17g, %.17g], certified [%s, %s] (%s), double off by %.3g\n",
               b.low.bracket_lo, b.low.bracket_hi, c.parameter.lo.c_str(), c.parameter.hi.c_str(), c.margin_text.c_str(),
               gap(b.low.bracket_lo, b.low.bracket_hi, c));

@@ -257,6 +257,15 @@ Branch<double> branch() {
   b.low.beyond_param = 0.437;
   b.low.beyond.cls = OrbitClass::periodic;
   b.low.beyond.period = 3;
+  // An error estimate (analysis/end_estimate.hpp): 0.4375 -+ 3.5e-4 backs 4 digits,
+  // 0.4375 -+ 4e-4 (by hand: the 1e-4 place, ceil(3.5) = 4 units), outward [0.4371, 0.4379].
+  b.low.estimate.kind = EndEstimate::Kind::estimate;
+  b.low.estimate.center = mpq_class(7, 16);
+  b.low.estimate.radius = 3.5e-4;
+  b.low.estimate.error = 2e-5;
+  b.low.estimate.refined = "0.43752";
+  b.low.estimate.bits = 117;
+  b.high.estimate.kind = EndEstimate::Kind::given;
   b.high.reason = EndReason::range_end;
   b.high.param = 0.6;
   b.high.bracket_lo = b.high.bracket_hi = 0.6;
@@ -296,7 +305,11 @@ TEST(ContinueReport, WordsNameEachCause) {
 TEST(ContinueReport, SentencesNameWhereAndWhyEachEndLies) {
   const Branch<double> b = branch();
   const std::string low = branch_end_sentence(b, b.low, Parameter::a);
-  EXPECT_EQ(low.rfind("period 1 ends at a* = 0.4375 by a grazing (flight 1 grazes the knot theta = 1/2)", 0), 0u) << low;
+  EXPECT_EQ(low.rfind("period 1 ends at a* = 0.4375 ± 4e-4 (estimate) by a grazing (flight 1 grazes the knot theta = 1/2)", 0), 0u)
+      << low;
+  BranchEnd<double> plain = b.low;
+  plain.estimate = EndEstimate{};  // never estimated: the computed digits, said to be unchecked
+  EXPECT_EQ(branch_end_sentence(b, plain, Parameter::a).rfind("period 1 ends at a* = 0.4375 (accuracy not estimated) by", 0), 0u);
   EXPECT_TRUE(contains(low, "beyond it the orbit goes to a periodic orbit of period 3")) << low;
   const std::string high = branch_end_sentence(b, b.high, Parameter::a);
   EXPECT_EQ(high, "period 1 reaches the range end a = 0.6");
@@ -354,12 +367,25 @@ TEST(ContinueReport, JsonHoldsTheBranchAndItsEnds) {
   EXPECT_EQ(std::stod(s["low"]["param"].get<std::string>()), 0.4375);
   EXPECT_EQ(s["low"]["beyond"]["class"], "periodic");
   EXPECT_EQ(s["low"]["sentence"], branch_end_sentence(b, b.low, Parameter::a));
+  // The computed a* (round trip) and, beside it, what the error estimate backs.
+  EXPECT_EQ(s["low"]["accuracy"], "estimate");
+  EXPECT_EQ(s["low"]["a_star_backed"], "0.4375");
+  EXPECT_EQ(s["low"]["a_star_plus_minus"], "4e-4");
+  EXPECT_EQ(s["low"]["a_star_digits"], 4);
+  EXPECT_EQ(s["low"]["bracket_estimate"], (json{"0.4371", "0.4379"}));
+  EXPECT_EQ(s["low"]["bracket"], (json{"0.4374", "0.4376"}));
+  EXPECT_EQ(s["low"]["error_estimate"].get<double>(), 2e-5);
+  EXPECT_EQ(s["low"]["refined_param"], "0.43752");
+  EXPECT_EQ(s["low"]["refined_bits"], 117);
+  EXPECT_EQ(s["high"]["accuracy"], "given");
+  EXPECT_FALSE(s["high"].contains("bracket_estimate"));
   EXPECT_FALSE(s["low"].contains("certified"));
   EXPECT_TRUE(s["high"]["beyond"].is_null());
   EXPECT_TRUE(s["high"]["margin"].is_null());
   ASSERT_EQ(s["bifurcations"].size(), 1u);
   EXPECT_EQ(s["bifurcations"][0]["kind"], name(SmoothKind::period_doubling));
   EXPECT_EQ(std::stod(s["bifurcations"][0]["param"].get<std::string>()), 0.55);
+  EXPECT_EQ(s["bifurcations"][0]["accuracy"], "not_estimated");
 }
 
 TEST(ContinueReport, ACertifiedEndStatesItsOneSidedBound) {
@@ -383,6 +409,8 @@ TEST(ContinueReport, ACertifiedEndStatesItsOneSidedBound) {
   EXPECT_EQ(j["summary"]["low"]["certified"]["certified_to"], "0.4375");
   EXPECT_EQ(j["summary"]["low"]["certified"]["pieces"], 3);
   EXPECT_EQ(j["summary"]["low"]["certified"]["statement"], s);
+  // No two-sided enclosure here: nothing to check the error estimate against.
+  EXPECT_TRUE(j["summary"]["low"]["certified"]["two_sided"]["estimate_contains"].is_null());
   EXPECT_TRUE(contains(branch_text(r, branch(), ends, sample_provenance("continue")), "low end " + s + "\n"));
   c.certificate.certified = false;
   EXPECT_EQ(certified_end_statement(c, 1, Parameter::a), "nothing certified next to a*");
@@ -396,7 +424,7 @@ TEST(ContinueReport, TextSummaryHasBothEndsAndTheBifurcations) {
   EXPECT_TRUE(contains(lines[0], "2 points"));
   EXPECT_EQ(lines[1], "low end:  " + branch_end_sentence(b, b.low, Parameter::a));
   EXPECT_EQ(lines[2], "high end: " + branch_end_sentence(b, b.high, Parameter::a));
-  EXPECT_EQ(lines[3].rfind(std::string(name(SmoothKind::period_doubling)) + " at a* = 0.55", 0), 0u);
+  EXPECT_EQ(lines[3], std::string(name(SmoothKind::period_doubling)) + " at a* = 0.55 (accuracy not estimated)");
 }
 
 TEST(ContinueReport, FigureSeparatesStableFromUnstablePoints) {
@@ -414,6 +442,17 @@ TEST(ContinueReport, FigureSeparatesStableFromUnstablePoints) {
   ASSERT_EQ(f.series.size(), 4u);
   EXPECT_TRUE(contains(f.series[2].label, "grazing")) << f.series[2].label;
   EXPECT_EQ(f.series[2].x, (std::vector<double>{0.4375, 0.4375}));
+  // The label prints 8 digits at most, and no more than the error estimate backs:
+  // 0.437512345 -+ 3.5e-4 backs 0.4375 (by hand: the 1e-4 place).
+  Branch<double> b = branch();
+  b.low.param = 0.437512345;
+  b.low.estimate.center = mpq_class(b.low.param);
+  const Figure g = branch_figure(r, m, b, false, sample_provenance("continue"));
+  ASSERT_EQ(g.series.size(), 4u);
+  EXPECT_EQ(g.series[2].label.rfind("a* = 0.4375: grazing", 0), 0u) << g.series[2].label;
+  b.low.estimate = EndEstimate{};  // not estimated: short_num's 8 digits
+  const std::string plain = branch_figure(r, m, b, false, sample_provenance("continue")).series[2].label;
+  EXPECT_EQ(plain.rfind("a* = 0.4375123", 0), 0u) << plain;
 }
 
 // ---- certify-periodic and certify-sticking ----------------------------------------------

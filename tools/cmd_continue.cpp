@@ -57,8 +57,10 @@ int run_typed(const Request& req, const Provenance& prov, bool print_json, Outpu
   const long bits = r.precision.bits;
   const Model<T> m = make_model<T>(r.model, bits);
   const T lo = Tr::from_decimal(r.lo.text(), bits), hi = Tr::from_decimal(r.hi.text(), bits);
-  const Branch<T> b = continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), lo, hi, r.opt);
+  Branch<T> b = continue_branch(m, r.vary, r.period, make_state<T>(r.guess, bits), lo, hi, r.opt);
   if (!b.started) throw InputError("guess", b.note);
+  // The digits of each located end that an error estimate backs (analysis/end_estimate.hpp).
+  estimate_end_accuracy(r.model, b, r.opt);
   // --certify: Krawczyk on the branch side of each border end (verify/branch_end.hpp).
   const CertifiedBranchEnds certified = r.certify ? certify_branch_ends(r.model, r.vary, r.period, b, bits) : CertifiedBranchEnds{};
   const std::string doc = branch_json(r, m, b, certified, prov);

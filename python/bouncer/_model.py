@@ -163,6 +163,10 @@ class BranchEnd:
     last_point: the orbit's first point on the branch side
     beyond: what the map does just past a* (param, class_, period, lambda_, evidence,
         newton_orbit_events, newton_orbit_minimal_period), or None; beyond_note
+    accuracy: how far param can be trusted (README, bouncer continue, "Printed digits"):
+        kind estimate | given | not_estimated; for an estimate a_star_backed and
+        a_star_plus_minus (the digits it backs), a_star_digits, bracket_estimate (lo, hi),
+        error_estimate, refined_param, refined_bits; otherwise note. An estimate, not a proof.
     """
     reason: str
     param: Real
@@ -174,6 +178,7 @@ class BranchEnd:
     last_point: Tuple[Real, Real]
     beyond: Optional[Dict[str, Any]]
     beyond_note: str
+    accuracy: Dict[str, Any]
 
 
 @dataclasses.dataclass(frozen=True)
@@ -187,7 +192,7 @@ class Branch:
     stability: stable | unstable | marginal per point; events: the event text per point
         ("I0 I1^ S0": impact, sticking, ride and segment; c = corner, ^ = indirect)
     start: index of the start point; low, high: the ends; bifurcations: period doubling,
-        Neimark-Sacker and folds on the way (kind, param, bracket); corrector_runs
+        Neimark-Sacker and folds on the way (kind, param, bracket, accuracy); corrector_runs
     Arrays are float64 in double, str (decimal texts) in the other precisions.
     """
     vary: str

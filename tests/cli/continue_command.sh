@@ -8,6 +8,8 @@
 #     tests/test_continuation.cpp), so continued downwards it ends there at the sticking
 #     threshold;
 #   - the JSON summary carries the documented fields; `bouncer audit PREFIX.json` reruns it;
+#   - each located end's error estimate: its widened bracket contains a* (the closed forms,
+#     and the veldep period-7 ends' a* at mpfr:128), the text prints only its digits;
 #   - a scene file gives the same result as the command line;
 #   - --certify's certified one-sided bounds are consistent with the closed form;
 #   - bad input exits 2 with one line on stderr naming the option, nothing on stdout.
@@ -40,6 +42,16 @@ jq_is json.low.astar '((.summary.low.param | tonumber) - 200/9 | fabs) < 200/9 *
 jq_is json.high.reason '.summary.high.reason' range_end "$TMP/st.json"
 jq_is json.start.events '.summary.start.events' 'S0^' "$TMP/st.json"
 grep -q '^low end:  period 1 ends at a\* = 22.22222222222' "$TMP/st.txt" || fail text "no located low end in the summary"
+# Honest digits (issue 23): the widened bracket of the error estimate contains 200/9, the
+# text prints a* with the digits it backs and "± R (estimate)", the JSON keeps the computed
+# round-trip value beside it; a range end is the given value.
+jq_is json.low.accuracy '.summary.low.accuracy' estimate "$TMP/st.json"
+jq_is json.low.estimate '.summary.low.bracket_estimate | map(tonumber) | .[0] <= 200/9 and 200/9 <= .[1]' true "$TMP/st.json"
+jq_is json.low.digits '.summary.low.a_star_digits | . >= 10 and . < 17' true "$TMP/st.json"
+jq_is json.low.param_kept '.summary.low.param | tonumber | . > 22.2 and . < 22.3' true "$TMP/st.json"
+jq_is json.high.accuracy '.summary.high.accuracy' given "$TMP/st.json"
+backed=$(jq -r '.summary.low.a_star_backed + " ± " + .summary.low.a_star_plus_minus' "$TMP/st.json")
+grep -qF "low end:  period 1 ends at a* = $backed (estimate) by" "$TMP/st.txt" || fail text.digits "the summary does not print '$backed (estimate)'"
 # The rows are in increasing a and their sticking margin has the closed form
 # sqrt(8a)(1+eps)/2 - a(1-eps)/2 (its distance to 0 is reported).
 awk -F, -v OFS=, '!/^#/ && NR > 0 && $1 != "a" {
@@ -56,6 +68,7 @@ audited audit "$TMP/st.json"
 jq_is knot.reason '.summary.high.reason' border "$TMP/k.json"
 jq_is knot.astar '((.summary.high.param | tonumber) - 32 | fabs) < 32e-10' true "$TMP/k.json"
 jq_is knot.knot '.summary.high.knot' 0 "$TMP/k.json"
+jq_is knot.estimate '.summary.high.bracket_estimate | map(tonumber) | .[0] <= 32 and 32 <= .[1]' true "$TMP/k.json"
 # --quiet is accepted (as by every picture command) and changes nothing but the invocation.
 "$BOUNCER" continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 24:33.5 --json --quiet >"$TMP/kq.json" ||
   fail quiet "exit $?"
@@ -74,6 +87,11 @@ jq_is scene.same '.summary.high.param' "$(jq -r .summary.high.param "$TMP/k.json
 # The example scene of the README runs (shortened range: the test stays fast).
 "$BOUNCER" continue --scene "$SRC/data/scenes/continue-veldep-period7.toml" --json >"$TMP/v7.json"
 jq_is scene.v7 '.summary.start.stability != null and .summary.period == 7' true "$TMP/v7.json"
+# Its ends, where the double bracket misses a* (by 1.9e-11 and 2.9e-11): the widened brackets
+# contain a* as located at mpfr:128 (README) and enclosed by Krawczyk (test_border_collision).
+jq_is v7.low.misses '.summary.low.bracket | map(tonumber) | .[1] < 27.720561305445859' true "$TMP/v7.json"
+jq_is v7.low.estimate '.summary.low.bracket_estimate | map(tonumber) | .[0] <= 27.720561305445859 and 27.720561305445859 <= .[1]' true "$TMP/v7.json"
+jq_is v7.high.estimate '.summary.high.bracket_estimate | map(tonumber) | .[0] <= 28.761251769269447 and 28.761251769269447 <= .[1]' true "$TMP/v7.json"
 
 # --- --certify: the certified one-sided bounds agree with the closed form -------------
 # Low end: the orbit is proved to exist on [c, ...], so a* <= c must hold for a* = 200/9;
@@ -83,6 +101,8 @@ jq_is scene.v7 '.summary.start.stability != null and .summary.period == 7' true 
 jq_is certify.low '(.summary.low.certified.certified_to | tonumber) as $c | $c >= 200/9 and $c - 200/9 < 1e-4' true "$TMP/cert.json"
 jq_is certify.high '(.summary.high.certified.certified_to | tonumber) as $c | $c <= 32 and 32 - $c < 1e-4' true "$TMP/cert.json"
 jq_is certify.input '.provenance.inputs.certify' true "$TMP/cert.json"
+# The error estimate's widened brackets contain the two-sided certified enclosures.
+jq_is certify.estimate '[.summary.low, .summary.high] | map(.certified.two_sided.estimate_contains) | all' true "$TMP/cert.json"
 
 # --- bad input: exit 2, one line naming the option, nothing on stdout -----------------
 bad_input() {  # bad_input NAME FIELD ARGS...

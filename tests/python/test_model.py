@@ -344,6 +344,23 @@ def test_periodic_at_256_bits_gives_texts_that_agree_with_double():
     assert [list(pt) for pt in p.points] == r["points"]
 
 
+def test_continue_branch_end_estimate_matches_the_cli():
+    # The sticking threshold a* = 200/9 at eps = 1/4 (closed form, tests/test_continuation.cpp):
+    # its error estimate's widened bracket contains it, with the CLI's digits.
+    model = dict(model="constant", a="26", eps="0.25")
+    opts = dict(period=1, guess=("0.5", "4"), range=("20", "31"))
+    low = bouncer.Model(**model).continue_branch(**opts).low
+    cli_low = bouncer.continue_branch(**model, **opts)["summary"]["low"]
+    acc = low.accuracy
+    assert acc["kind"] == "estimate" == cli_low["accuracy"]
+    lo, hi = (Fraction(x) for x in acc["bracket_estimate"])
+    assert lo <= Fraction(200, 9) <= hi
+    assert list(acc["bracket_estimate"]) == cli_low["bracket_estimate"]
+    assert (acc["a_star_backed"], acc["a_star_plus_minus"], acc["a_star_digits"]) == (
+        cli_low["a_star_backed"], cli_low["a_star_plus_minus"], cli_low["a_star_digits"])
+    assert low.param == float(cli_low["param"])  # the computed value is kept
+
+
 def test_continue_branch_matches_the_cli():
     opts = dict(period=1, guess=("0.3", "12"), vary="eps", range=("0.45", "0.55"))
     b = bouncer.Model(**CONSTANT).continue_branch(**opts)
@@ -361,6 +378,12 @@ def test_continue_branch_matches_the_cli():
         assert [float(x) for x in end.bracket] == [float(x) for x in cli_end["bracket"]]
         assert (end.margin, end.impact, end.knot, end.detail) == (cli_end["margin"], cli_end["impact"],
                                                                   cli_end["knot"], cli_end["detail"])
+        # The error estimate: the same digits and widened bracket as the CLI's.
+        assert end.accuracy["kind"] == cli_end["accuracy"]
+        for key in ("a_star_backed", "a_star_plus_minus", "a_star_digits", "refined_param", "refined_bits"):
+            assert end.accuracy.get(key) == cli_end.get(key), key
+        if "bracket_estimate" in cli_end:
+            assert list(end.accuracy["bracket_estimate"]) == cli_end["bracket_estimate"]
         if cli_end["beyond"] is None:
             assert end.beyond is None
         else:

@@ -4,6 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
+
+#include "bouncer/scalar/decimal.hpp"
 
 namespace bouncer {
 
@@ -210,6 +213,7 @@ struct Continuer {
   const ContinuationOptions& opt;
   long bits;
   long runs = 0;
+  double stop_rel = 0;  // > 0: locate to this relative width instead of the working precision
 
   Model<T> at(const T& p) const { return with_parameter(base, par, p); }
 
@@ -279,6 +283,7 @@ struct Continuer {
   }
 
   double tolerance_rel() const {
+    if (stop_rel > 0) return stop_rel;
     if constexpr (std::is_same_v<T, double>) return std::ldexp(1.0, -44);
     return std::ldexp(1.0, -static_cast<int>(std::min(bits - 12, 1000L)));
   }
@@ -602,10 +607,232 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
   return br;
 }
 
+namespace {
+
+template <class T>
+mpq_class exact_of(const T& x) {
+  if constexpr (std::is_same_v<T, double>) {
+    return mpq_class(x);
+  } else {
+    const auto d = Decimal::parse(Tr<T>::to_string(x));  // round trip: within half an ulp
+    if (!d) throw std::runtime_error("not a finite decimal: " + Tr<T>::to_string(x));
+    return d->value();
+  }
+}
+
+// The widened bracket (analysis/end_estimate.hpp) around out.center, T's computed value of
+// p mantissa bits with a bracket `width` wide, from the value re-located in Mpfr (its bracket
+// `refined_width` wide): radius 4 max(error, half T's bracket), plus the re-located bracket's
+// half width and 2 ulps of T (the texts' roundings).
+void widen(EndEstimate& out, const Mpfr& refined, const Mpfr& refined_width, double width, double scale, long p) {
+  mpq_class r;
+  mpfr_get_q(r.get_mpq_t(), refined.get());
+  out.refined = Tr<Mpfr>::to_string(refined);
+  out.error = mpq_class(abs(mpq_class(r - out.center))).get_d();
+  out.radius = 4 * std::max(out.error, width / 2) + Tr<Mpfr>::to_double(refined_width) / 2 +
+               std::ldexp(scale, -static_cast<int>(p) + 1);
+  out.lo = out.center - mpq_class(out.radius);
+  out.hi = out.center + mpq_class(out.radius);
+  out.kind = EndEstimate::Kind::estimate;
+}
+
+// Re-locates one end of b (dir: +1 high, -1 low) in Mpfr and widens T's bracket
+// (analysis/end_estimate.hpp). The Mpfr corrector starts from the branch's last accepted
+// point on that side (inside the branch, far from a* compared with T's errors), which gives
+// the reference events; T's bracket is then checked at the new precision: its branch side
+// is stepped back (16x per step) until it is on the branch, its far side out until it is not,
+// and the end is narrowed between them with the same corrector and tests as in T (secant
+// steps on the vanishing margin at a border, then locate_end's bisection and cause).
+template <class T>
+EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const BranchEnd<T>& e, int dir,
+                         const ContinuationOptions& opt) {
+  EndEstimate out;
+  if (e.reason == EndReason::range_end || e.reason == EndReason::max_points) {
+    out.kind = EndEstimate::Kind::given;
+    out.center = exact_of(e.param);
+    return out;
+  }
+  const long p = Tr<T>::bits(e.param), hb = p + 64;
+  out.bits = hb;
+  out.center = exact_of(e.param);
+  ContinuationOptions o = opt;
+  o.classify_beyond = false;
+  const Model<Mpfr> base = make_model<Mpfr>(spec, hb);
+  Continuer<Mpfr> c{base, b.parameter, b.period, o, hb};
+  c.stop_rel = std::ldexp(1.0, -static_cast<int>(std::min(p + 24, 1000L)));
+  const auto up = [hb](const T& x) { return Tr<Mpfr>::from_decimal(Tr<T>::to_string(x), hb); };
+  const auto up_state = [&](const State<T>& x) { return State<Mpfr>{up(x.theta), up(x.v)}; };
+  const BranchPoint<T>& edge = dir > 0 ? b.points.back() : b.points.front();
+  // The references: the branch's last two accepted orbits, at hb bits (the secant through
+  // them predicts the orbit at the first trial values: a constant prediction over the
+  // distance to a* can leave Newton's basin, and a trial refused for that is a false end).
+  const auto reference = [&](const BranchPoint<T>& x) -> std::optional<BranchPoint<Mpfr>> {
+    try {
+      const Model<Mpfr> m = c.at(up(x.param));
+      PeriodicOrbit<Mpfr> orbit = find_periodic(m, b.period, up_state(x.orbit.points[0]), o.newton);
+      if (!orbit.converged || orbit.minimal_period != b.period) return std::nullopt;
+      BranchPoint<Mpfr> r = analyse_orbit(m, b.parameter, std::move(orbit));
+      if (!same_cycle(r.events, x.events)) return std::nullopt;
+      return r;
+    } catch (const Undecided&) {
+      return std::nullopt;
+    }
+  };
+  const std::optional<BranchPoint<Mpfr>> ref0 = reference(edge);
+  if (!ref0) {
+    out.note = "at " + std::to_string(hb) + " bits Newton does not find the branch's last orbit";
+    return out;
+  }
+  const BranchPoint<Mpfr>& ref = *ref0;
+  std::optional<BranchPoint<Mpfr>> ref_prev;
+  if (b.points.size() >= 2) ref_prev = reference(dir > 0 ? b.points[b.points.size() - 2] : b.points[1]);
+  const Mpfr near0 = up(dir > 0 ? e.bracket_lo : e.bracket_hi), far0 = up(dir > 0 ? e.bracket_hi : e.bracket_lo);
+  const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(e.param)));
+  double w = std::max(Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)), std::ldexp(scale, -static_cast<int>(p)));
+  const double span = std::fabs(Tr<Mpfr>::to_double(Mpfr(near0 - ref.param)));
+  const auto shifted = [&](const Mpfr& x, double by) { return Mpfr(x + from_double<Mpfr>(by, hb)); };
+  // The branch side: T's, or stepped back towards the reference point.
+  BranchPoint<Mpfr> good = ref;
+  std::optional<BranchPoint<Mpfr>> prev = ref_prev;
+  for (double back = 0;; back = back == 0 ? w : back * 16) {
+    if (back >= span) break;  // the reference itself is the branch side
+    const Mpfr at = shifted(near0, -dir * back);
+    Trial<Mpfr> t = c.correct(at, ref, c.predict(ref, ref_prev ? &*ref_prev : nullptr, at));
+    if (t.good) {
+      prev = std::move(good);
+      good = std::move(*t.point);
+      break;
+    }
+  }
+  // The far side: T's, or stepped out until the corrector refuses it (at most 1e-6 max(1, |a*|)
+  // beyond, the distance of the look beyond).
+  std::optional<Mpfr> bad;
+  for (double out_by = 0; out_by <= 1e-6 * scale; out_by = out_by == 0 ? w : out_by * 16) {
+    const Mpfr at = shifted(far0, dir * out_by);
+    Trial<Mpfr> t = c.correct(at, good, c.predict(good, prev ? &*prev : nullptr, at));
+    if (!t.good) {
+      bad = at;
+      break;
+    }
+    prev = std::move(good);
+    good = std::move(*t.point);
+  }
+  if (!bad) {
+    out.note = "at " + std::to_string(hb) + " bits the branch goes on past the bracket";
+    return out;
+  }
+  // At a border the margin that reached 0 is smooth on the branch side and 0 at a*: secant
+  // steps on it from the branch side (a step that leaves (good, bad), or a trial that fails,
+  // is replaced by the bisection's midpoint) reach the tolerance in a few corrector runs
+  // where bisection takes ~40; locate_end then bisects what is left and names the cause.
+  if (e.reason == EndReason::border && e.margin >= 0 && e.impact >= 0) {
+    const auto g = [&](const BranchPoint<Mpfr>& x) {
+      return static_cast<size_t>(e.impact) < x.margins.size() ? std::fabs(x.margins[e.impact].value[e.margin]) : kNaN;
+    };
+    const double tol = c.stop_rel * scale;
+    for (int it = 0; it < 60 && c.wide(good.param, *bad); ++it) {
+      Mpfr pick = good.param + (*bad - good.param) / 2;
+      if (prev) {
+        const double g1 = g(good), g0 = g(*prev), dp = Tr<Mpfr>::to_double(Mpfr(good.param - prev->param));
+        double delta = g1 * dp / (g0 - g1);
+        if (std::isfinite(delta) && delta * dir > 0) {
+          // Aim a quarter tolerance short of the estimated root (at the root itself the impact
+          // is on the knot and the trial is refused); once that is closer than half the
+          // tolerance, probe just past it.
+          delta = std::fabs(delta) < tol / 2 ? dir * 0.9 * tol : delta - dir * tol / 4;
+          const Mpfr at = good.param + from_double<Mpfr>(delta, hb);
+          if (dir > 0 ? (good.param < at && at < *bad) : (*bad < at && at < good.param)) pick = at;
+        }
+      }
+      Trial<Mpfr> t = c.correct(pick, good, c.predict(good, prev ? &*prev : nullptr, pick));
+      if (t.good) {
+        prev = std::move(good);
+        good = std::move(*t.point);
+      } else {
+        bad = pick;
+      }
+    }
+  }
+  // The cause is named as in T: by the margins' shrinking since the branch's start point
+  // (locate_end reads only its margins and det(J - I)).
+  BranchPoint<Mpfr> first;
+  first.margins = b.points[b.start].margins;
+  first.test_fold = b.points[b.start].test_fold;
+  const BranchEnd<Mpfr> r = c.locate_end(good, prev, *bad, dir, first);
+  if (r.reason != e.reason) {
+    out.note = std::string("at ") + std::to_string(hb) + " bits the end has another cause (" + name(r.reason) + ")";
+    return out;
+  }
+  widen(out, r.param, Mpfr(r.bracket_hi - r.bracket_lo), Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)), scale, p);
+  return out;
+}
+
+// Re-locates a smooth bifurcation of b (fold, period doubling, Neimark-Sacker) in Mpfr as
+// estimate_one does an end: the orbits at p + 64 bits on either side of T's bracket (Newton
+// from the nearest branch point), the bracket widened 16x per step until its test function
+// changes sign between them, then regula falsi (locate_smooth) to 2^-(p + 24) relative.
+template <class T>
+EndEstimate estimate_smooth(const ModelSpec& spec, const Branch<T>& b, const Bifurcation<T>& x, const ContinuationOptions& opt) {
+  EndEstimate out;
+  const long p = Tr<T>::bits(x.param), hb = p + 64;
+  out.bits = hb;
+  out.center = exact_of(x.param);
+  const Model<Mpfr> base = make_model<Mpfr>(spec, hb);
+  Continuer<Mpfr> c{base, b.parameter, b.period, opt, hb};
+  c.stop_rel = std::ldexp(1.0, -static_cast<int>(std::min(p + 24, 1000L)));
+  const auto up = [hb](const T& v) { return Tr<Mpfr>::from_decimal(Tr<T>::to_string(v), hb); };
+  const BranchPoint<T>* near = &b.points.front();
+  for (const BranchPoint<T>& q : b.points)
+    if (std::fabs(Tr<T>::to_double(T(q.param - x.param))) < std::fabs(Tr<T>::to_double(T(near->param - x.param)))) near = &q;
+  const State<Mpfr> guess{up(near->orbit.points[0].theta), up(near->orbit.points[0].v)};
+  const auto orbit_at = [&](const Mpfr& v) -> std::optional<BranchPoint<Mpfr>> {
+    try {
+      const Model<Mpfr> m = c.at(v);
+      PeriodicOrbit<Mpfr> o = find_periodic(m, b.period, guess, opt.newton);
+      if (!o.converged || o.minimal_period != b.period) return std::nullopt;
+      BranchPoint<Mpfr> bp = analyse_orbit(m, b.parameter, std::move(o));
+      if (!same_cycle(bp.events, near->events)) return std::nullopt;
+      return bp;
+    } catch (const Undecided&) {
+      return std::nullopt;
+    }
+  };
+  const auto g = [&x](const BranchPoint<Mpfr>& bp) {
+    return x.kind == SmoothKind::fold ? bp.test_fold : x.kind == SmoothKind::period_doubling ? bp.test_pd : bp.test_ns;
+  };
+  const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(x.param)));
+  const double width = Tr<T>::to_double(T(x.bracket_hi - x.bracket_lo));
+  const Mpfr lo0 = up(x.bracket_lo), hi0 = up(x.bracket_hi);
+  for (double by = std::max(width, std::ldexp(scale, -static_cast<int>(p))); by < 1e-3 * scale; by *= 16) {
+    const auto A = orbit_at(Mpfr(lo0 - from_double<Mpfr>(by, hb))), B = orbit_at(Mpfr(hi0 + from_double<Mpfr>(by, hb)));
+    if (!A || !B) continue;
+    const double ga = g(*A), gb = g(*B);
+    if (!((ga < 0 && gb > 0) || (ga > 0 && gb < 0))) continue;
+    if (x.kind == SmoothKind::neimark_sacker && !(A->orbit.multipliers.complex && B->orbit.multipliers.complex)) continue;
+    const std::optional<Bifurcation<Mpfr>> r = c.locate_smooth(x.kind, *A, *B);
+    if (!r) break;
+    widen(out, r->param, Mpfr(r->bracket_hi - r->bracket_lo), width, scale, p);
+    return out;
+  }
+  out.note = "at " + std::to_string(hb) + " bits the test function does not change sign next to the bracket";
+  return out;
+}
+
+}  // namespace
+
+template <class T>
+void estimate_end_accuracy(const ModelSpec& spec, Branch<T>& b, const ContinuationOptions& opt) {
+  if (!b.started || b.points.empty()) return;
+  b.low.estimate = estimate_one(spec, b, b.low, -1, opt);
+  b.high.estimate = estimate_one(spec, b, b.high, 1, opt);
+  for (Bifurcation<T>& x : b.bifurcations) x.estimate = estimate_smooth(spec, b, x, opt);
+}
+
 #define BOUNCER_CONTINUATION_INSTANTIATE(T, kind)                                                                \
   template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
                                         const T&, const ContinuationOptions&);                            \
-  template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);
+  template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);                   \
+  template void estimate_end_accuracy<T>(const ModelSpec&, Branch<T>&, const ContinuationOptions&);
 BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_CONTINUATION_INSTANTIATE)
 #undef BOUNCER_CONTINUATION_INSTANTIATE
 

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "bouncer/analysis/classify.hpp"
+#include "bouncer/analysis/end_estimate.hpp"
 #include "bouncer/analysis/periodic.hpp"
 #include "bouncer/scalar/scalar_set.hpp"
 
@@ -124,6 +125,8 @@ struct BranchEnd {
   BeyondRelation beyond_relation = BeyondRelation::none;
   Classification beyond;
   std::string beyond_note;
+  // How far `param` can be trusted (estimate_end_accuracy below; not_estimated until it runs).
+  EndEstimate estimate{};
 };
 
 enum class SmoothKind { fold, period_doubling, neimark_sacker };
@@ -134,6 +137,7 @@ struct Bifurcation {
   SmoothKind kind;
   T param, bracket_lo, bracket_hi;
   long iterations = 0;
+  EndEstimate estimate{};  // how far `param` can be trusted (estimate_end_accuracy)
 };
 
 struct ContinuationOptions {
@@ -164,6 +168,15 @@ template <class T>
 Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>& guess, const T& lo, const T& hi,
                           const ContinuationOptions& opt = {});
 
+// Fills the `estimate` of b's two ends and of its bifurcations (analysis/end_estimate.hpp):
+// `given` at a range end or --max-points; at a located end or bifurcation, the point
+// re-located in Mpfr at p + 64 bits (p: T's mantissa bits) from next to T's bracket, with
+// `spec` (the exact model b was computed with, its varied parameter at any value) and the
+// options b was computed with; `not_estimated` with a note when the re-location fails. An
+// estimate, not a proof.
+template <class T>
+void estimate_end_accuracy(const ModelSpec& spec, Branch<T>& b, const ContinuationOptions& opt = {});
+
 // One orbit analysed: events, margins, tests (exposed for tests and the CLI).
 template <class T>
 BranchPoint<T> analyse_orbit(const Model<T>& m, Parameter p, PeriodicOrbit<T> orbit);
@@ -173,7 +186,8 @@ BranchPoint<T> analyse_orbit(const Model<T>& m, Parameter p, PeriodicOrbit<T> or
 #define BOUNCER_CONTINUATION_EXTERN(T, kind)                                                                           \
   extern template Branch<T> continue_branch<T>(const Model<T>&, Parameter, long, const State<T>&, const T&,       \
                                                const T&, const ContinuationOptions&);                            \
-  extern template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);
+  extern template BranchPoint<T> analyse_orbit<T>(const Model<T>&, Parameter, PeriodicOrbit<T>);                     \
+  extern template void estimate_end_accuracy<T>(const ModelSpec&, Branch<T>&, const ContinuationOptions&);
 BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_CONTINUATION_EXTERN)
 #undef BOUNCER_CONTINUATION_EXTERN
 

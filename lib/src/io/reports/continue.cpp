@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -34,6 +35,24 @@ mpq_class exact_value(const T& x) {
   return d->value();
 }
 
+// How far `param` (the computed a*, round trip in T) can be trusted (analysis/end_estimate.hpp):
+// its kind, and for an estimate the digits it backs and the widened bracket.
+void add_accuracy(json& j, const EndEstimate& est) {
+  j["accuracy"] = name(est.kind);
+  if (est.kind == EndEstimate::Kind::estimate) {
+    const BackedDigits d = backed_digits(est.center, est.radius);
+    j["a_star_backed"] = d.value;
+    j["a_star_plus_minus"] = d.plus_minus;
+    j["a_star_digits"] = d.digits;
+    j["bracket_estimate"] = {d.lo, d.hi};
+    j["error_estimate"] = json_number(est.error);
+    j["refined_param"] = est.refined;
+    j["refined_bits"] = est.bits;
+  } else if (est.kind == EndEstimate::Kind::not_estimated && !est.note.empty()) {
+    j["accuracy_note"] = est.note;
+  }
+}
+
 template <class T>
 json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const Wall<T>& wall) {
   using Tr = ScalarTraits<T>;
@@ -45,6 +64,7 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const W
   j["impact"] = e.impact >= 0 ? json(e.impact + 1) : json(nullptr);
   j["knot"] = e.knot >= 0 ? json(wall.knot_exact[e.knot].get_str()) : json(nullptr);
   j["detail"] = e.detail;
+  add_accuracy(j, e.estimate);
   if (e.beyond_done) {
     json by;
     by["param"] = Tr::to_string(e.beyond_param);
@@ -64,7 +84,14 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const W
   return j;
 }
 
-json certified_json(const CertifiedBranchEnd& c, long period, Parameter vary) {
+// Whether the error estimate's widened bracket contains the certified enclosure of a*: the
+// estimate checked against a proof, where both exist.
+std::optional<bool> estimate_contains(const CertifiedBranchEnd& c, const EndEstimate& e) {
+  if (!c.two_sided.certified || e.kind != EndEstimate::Kind::estimate) return std::nullopt;
+  return e.lo <= c.two_sided.lo && c.two_sided.hi <= e.hi;
+}
+
+json certified_json(const CertifiedBranchEnd& c, const EndEstimate& est, long period, Parameter vary) {
   const BranchEndCertificate& ce = c.certificate;
   json cj;
   cj["range"] = {c.lo, c.hi};
@@ -85,6 +112,8 @@ json certified_json(const CertifiedBranchEnd& c, long period, Parameter vary) {
   two["events"] = bc.events;
   two["proof_interval"] = bc.certified ? json{exact_decimal(bc.z_lo), exact_decimal(bc.z_hi)} : json(nullptr);
   two["bracket_contains"] = c.bracket_contains;
+  const std::optional<bool> widened = estimate_contains(c, est);
+  two["estimate_contains"] = widened ? json(*widened) : json(nullptr);
   two["statement"] = bc.statement;
   if (!bc.certified) two["reason"] = bc.reason;
   cj["two_sided"] = two;
@@ -138,7 +167,7 @@ std::string branch_end_sentence(const Branch<T>& b, const BranchEnd<T>& e, Param
   const std::string q = "period " + std::to_string(b.period);
   if (e.reason == EndReason::range_end) return q + " reaches the range end " + par + " = " + Tr::to_string(e.param);
   if (e.reason == EndReason::max_points) return q + " stops at " + par + " = " + Tr::to_string(e.param) + " (--max-points)";
-  std::string s = q + " ends at " + par + "* = " + Tr::to_string(e.param) + " by " + cause_words(e.reason, e.margin) + " (" +
+  std::string s = q + " ends at " + par + "* = " + end_value_text(e.estimate, Tr::to_string(e.param)) + " by " + cause_words(e.reason, e.margin) + " (" +
                   e.detail + ")";
   if (e.beyond_done) {
     s += "; beyond it the orbit goes to " + class_words(e.beyond);
@@ -224,16 +253,19 @@ std::string branch_json(const ContinueRequest& r, const Model<T>& m, const Branc
   sum["param_max"] = Tr::to_string(b.points.back().param);
   sum["corrector_runs"] = b.corrector_runs;
   json low = end_json(b, b.low, r.vary, m.wall), high = end_json(b, b.high, r.vary, m.wall);
-  if (certified.low) low["certified"] = certified_json(*certified.low, r.period, r.vary);
-  if (certified.high) high["certified"] = certified_json(*certified.high, r.period, r.vary);
+  if (certified.low) low["certified"] = certified_json(*certified.low, b.low.estimate, r.period, r.vary);
+  if (certified.high) high["certified"] = certified_json(*certified.high, b.high.estimate, r.period, r.vary);
   low["events_at_end"] = event_text(b.points.front().events);
   high["events_at_end"] = event_text(b.points.back().events);
   sum["low"] = low;
   sum["high"] = high;
   json bif = json::array();
-  for (const Bifurcation<T>& x : b.bifurcations)
-    bif.push_back({{"kind", name(x.kind)}, {"param", Tr::to_string(x.param)},
-                   {"bracket", {Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi)}}});
+  for (const Bifurcation<T>& x : b.bifurcations) {
+    json one{{"kind", name(x.kind)}, {"param", Tr::to_string(x.param)},
+             {"bracket", {Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi)}}};
+    add_accuracy(one, x.estimate);
+    bif.push_back(one);
+  }
   sum["bifurcations"] = bif;
   json doc;
   doc["provenance"] = json::parse(prov.as_json());
@@ -257,10 +289,17 @@ std::string branch_text(const ContinueRequest& r, const Branch<T>& b, const Cert
   text << "high end: " << branch_end_sentence(b, b.high, r.vary) << "\n";
   if (certified.low) text << "low end " << certified_end_statement(*certified.low, r.period, r.vary) << "\n";
   if (certified.high) text << "high end " << certified_end_statement(*certified.high, r.period, r.vary) << "\n";
-  for (const auto* c : {&certified.low, &certified.high})
-    if (*c) text << (c == &certified.low ? "low end" : "high end") << " two-sided: " << two_sided_statement(**c) << "\n";
+  for (const auto* c : {&certified.low, &certified.high}) {
+    if (!*c) continue;
+    const bool low = c == &certified.low;
+    const std::optional<bool> widened = estimate_contains(**c, low ? b.low.estimate : b.high.estimate);
+    text << (low ? "low end" : "high end") << " two-sided: " << two_sided_statement(**c)
+         << (!widened ? "" : *widened ? "; the error estimate's widened bracket contains it"
+                                      : "; the error estimate's widened bracket does NOT contain it (the estimate failed)")
+         << "\n";
+  }
   for (const Bifurcation<T>& x : b.bifurcations)
-    text << name(x.kind) << " at " << par << "* = " << Tr::to_string(x.param) << "\n";
+    text << name(x.kind) << " at " << par << "* = " << end_value_text(x.estimate, Tr::to_string(x.param)) << "\n";
   return text.str();
 }
 
@@ -326,6 +365,15 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     s << std::setprecision(8) << Tr::to_double(x);
     return s.str();
   };
+  // A located value in a label: short_num's digits, or fewer when its error estimate backs
+  // fewer (analysis/end_estimate.hpp).
+  auto backed_short = [&](const T& x, const EndEstimate& est) {
+    if (est.kind == EndEstimate::Kind::estimate && !zx.active()) {
+      const BackedDigits d = backed_digits(est.center, est.radius);
+      if (d.digits < 8) return d.value;
+    }
+    return short_num(x);
+  };
   // Legend labels short enough for one line: the cause and the impact.
   auto end_label = [&](const BranchEnd<T>& e) {
     const std::string i = std::to_string(e.impact + 1);
@@ -339,13 +387,13 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
         case Margin::sticking: what = "sticking threshold, impact " + i; break;
       }
     }
-    return par + "* = " + short_num(e.param) + ": " + what;
+    return par + "* = " + backed_short(e.param, e.estimate) + ": " + what;
   };
   for (const BranchEnd<T>* e : {&b.low, &b.high})
     if (e->reason != EndReason::range_end && e->reason != EndReason::max_points)
       vline(e->param, end_label(*e), e->reason == EndReason::fold ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
   for (const Bifurcation<T>& x : b.bifurcations)
-    vline(x.param, par + "* = " + short_num(x.param) + ": " +
+    vline(x.param, par + "* = " + backed_short(x.param, x.estimate) + ": " +
                        (x.kind == SmoothKind::fold ? "fold (+1)" : x.kind == SmoothKind::period_doubling ? "period doubling (-1)" : "Neimark-Sacker"),
           Rgb{27, 120, 55});
   fig.x_min = zx(r.lo.value());

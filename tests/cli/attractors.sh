@@ -10,7 +10,8 @@
 #   - `bouncer audit` reruns PREFIX.json and finds it identical;
 #   - --vary: each value's shares sum to 1 in the CSV and the JSON; periods 3 and 7 persist
 #     as chains over a in 23.05..23.15 (veldep c = 1000); bad sweeps exit 2;
-#   - without --out a readable summary names both; --help documents the options.
+#   - without --out a readable summary names both; --help documents the options;
+#   - starts too many for the memory available: exit 2 naming --starts (ulimit -v).
 # Usage: bash attractors.sh <bouncer-binary> <source-dir>
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
@@ -132,6 +133,18 @@ periods = {c["period"] for c in s["chains"] if all(f is not None for f in c["fra
 check({3, 7} <= periods, f"periods 3 and 7 should persist over 23.05..23.15: {periods}")
 sys.exit(1 if bad else 0)
 PY
+
+# Memory: a request whose starts would not fit in the memory available (here a 1.5 GB
+# address space, ulimit -v) is refused at once, naming --starts; not under AddressSanitizer,
+# which reserves terabytes of address space (tests/cli/output_safety.sh).
+if ! asan_build; then
+  rc=0
+  (ulimit -v 1500000; timeout 30 "$BOUNCER" attractors "${M[@]}" --starts 2000x2000 --out mem 2>mem.err) || rc=$?
+  [[ $rc -eq 2 && $(wc -l <mem.err) -eq 1 ]] &&
+    grep -q "starts: this request of 4000000 starts and 262144 cells needs about .* GB of memory, more than .*give fewer --starts" mem.err ||
+    fail memory "exit $rc: $(head -c 300 mem.err)"
+  absent memory-files "mem.*[^r]"
+fi
 
 run help attractors --help
 for opt in starts sampling cells recurrences attractor-steps hits max-steps precision out no-certify vary range values; do

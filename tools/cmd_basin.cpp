@@ -171,7 +171,9 @@ CommandRunner setup_basin(CLI::App* sub) {
                 "beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
+    Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
+    // A bare --confirm is recorded as a flag ("true"), so that provenance and audit rerun it.
+    if (o.has("confirm") && o.get("confirm").empty()) o.set("confirm", "true");
     return run_basin(o, run_flags_from(o, *flags, argv_text));
   };
   return run;

@@ -12,6 +12,7 @@
 #     parameters at every precision);
 #   - the sample: a 10 x 10 basin with --confirm-sample 4 confirms exactly the starts at
 #     columns and rows 2 and 7 (stride 5, worked out by hand), with 1 and 2 threads alike;
+#   - bouncer audit reruns a --confirm result bit for bit;
 #   - bad --confirm / --confirm-sample values exit 2 with one line naming the option.
 # Usage: bash grid_confirm.sh <bouncer-binary> <source-dir>
 set -uo pipefail
@@ -89,6 +90,9 @@ check(c["confirmed"] == len(inside) == c["agrees"] and c["artefact"] == 0 and c[
 check(c["confirmed_fraction"] == 1 and c["artefacts"] == [], f"fraction {c['confirmed_fraction']}")
 sys.exit(1 if bad else 0)
 PY
+
+# A bare --confirm is recorded so that the result reruns from its provenance.
+audited a12-audit a12.json
 
 # The scan's only point is (a, eps) = (12, 0.5), 3 x 3 starts in its trapping region.
 run s12 scan --model constant --a-range 11.5:12.5 --eps-range 0.25:0.75 --grid 1x1 --ics 3 --confirm --quiet --out s12 &&

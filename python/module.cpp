@@ -25,6 +25,7 @@
 // worker's cancel flag is set (base/cancel.hpp), the computation unwinds at its next check
 // (output files are written all or none, so none is left half written), and the exception is
 // re-raised here. Model.step holds the GIL: one step is a fraction of a microsecond in double.
+#include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -33,6 +34,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <complex>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
@@ -53,6 +55,7 @@
 #include "bouncer/io/curve_figures.hpp"
 #include "bouncer/io/requests/exponent_curve.hpp"
 #include "bouncer/io/requests/grids.hpp"
+#include "bouncer/io/requests/attractors.hpp"
 #include "bouncer/io/requests/certify_periodic.hpp"
 #include "bouncer/io/requests/certify_sticking.hpp"
 #include "bouncer/io/requests/continue.hpp"
@@ -966,6 +969,109 @@ class ModelCore {
     return d;
   }
 
+  // bouncer attractors without --vary (run/attractors.hpp find_attractors; its request:
+  // io/requests/attractors.hpp): every attractor with its points, multipliers, certificate
+  // summary and basin share, and each start's label.
+  py::dict attractors(const Texts& texts) const {
+    const Options o = with_model(texts);
+    const AttractorsRequest req = attractors_request(o);
+    const GridOptions run = grid_run_options(o);
+    const AttractorsResult r = interruptible([&] { return find_attractors(req, run); });
+    py::list list;
+    for (const FoundAttractor& a : r.attractors) {
+      py::dict d;
+      d["id"] = a.id;
+      d["kind"] = name(a.kind);
+      d["period"] = a.period;
+      py::array_t<double> th(static_cast<py::ssize_t>(a.points.size())), v(static_cast<py::ssize_t>(a.points.size()));
+      py::list th_text, v_text;
+      for (size_t k = 0; k < a.points.size(); ++k) {
+        th.mutable_at(static_cast<py::ssize_t>(k)) = a.points[k].theta.value;
+        v.mutable_at(static_cast<py::ssize_t>(k)) = a.points[k].v.value;
+        th_text.append(a.points[k].theta.digits);
+        v_text.append(a.points[k].v.digits);
+      }
+      d["theta"] = th;
+      d["v"] = v;
+      d["theta_text"] = th_text;
+      d["v_text"] = v_text;
+      py::list mu;
+      for (const auto& m : a.multipliers) mu.append(std::complex<double>(m.first.value, m.second.value));
+      d["multipliers"] = mu;
+      d["multiplier_moduli"] = a.multiplier_moduli;
+      d["stable"] = a.stable;
+      if (a.certificate) {
+        const PeriodicCertificate& c = *a.certificate;
+        py::dict k;
+        k["certified"] = c.certified;
+        k["outcome"] = name(c.outcome);
+        k["bits"] = c.bits;
+        k["minimal_period"] = c.minimal_period_certified ? py::object(py::int_(c.minimal_period)) : py::object(py::none());
+        k["stability"] = c.stability;
+        k["reason"] = c.reason;
+        py::dict m;
+        m["kind"] = c.multipliers.kind;
+        if (c.certified && c.multipliers.kind == "real") {
+          m["mu1"] = interval_of(c.multipliers.mu[0]);
+          m["mu2"] = interval_of(c.multipliers.mu[1]);
+        } else if (c.certified && c.multipliers.kind == "complex") {
+          m["re"] = interval_of(c.multipliers.mu[0]);
+          m["im"] = interval_of(c.multipliers.mu[1]);
+          m["modulus"] = interval_of(c.multipliers.modulus);
+        }
+        k["multipliers"] = m;
+        d["certificate"] = k;
+      } else {
+        d["certificate"] = py::none();
+      }
+      const bool aperiodic = a.kind == AttractorKind::chaotic || a.kind == AttractorKind::quasiperiodic;
+      d["lambda_"] = aperiodic ? py::object(py::float_(a.lambda)) : py::object(py::none());
+      d["lambda_stderr"] = aperiodic ? py::object(py::float_(a.lambda_stderr)) : py::object(py::none());
+      d["accelerator_gain"] =
+          a.kind == AttractorKind::accelerator ? py::object(py::float_(a.accel_gain)) : py::object(py::none());
+      if (a.kind == AttractorKind::family) {
+        py::dict f;
+        f["members_found"] = a.family_members;
+        f["theta_min"] = a.family_theta_min;
+        f["theta_max"] = a.family_theta_max;
+        d["family"] = f;
+      } else {
+        d["family"] = py::none();
+      }
+      d["starts"] = a.starts;
+      d["fraction"] = a.fraction;
+      d["fraction_stderr"] = a.fraction_stderr;
+      d["cells"] = a.cells;
+      d["evidence"] = a.evidence;
+      list.append(d);
+    }
+    py::dict d;
+    d["attractors"] = list;
+    const auto n = static_cast<py::ssize_t>(r.label.size());
+    py::array_t<std::int32_t> label(n);
+    py::array_t<double> theta(n), v(n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      label.mutable_at(i) = r.label[static_cast<size_t>(i)];
+      theta.mutable_at(i) = r.theta[static_cast<size_t>(i)].value;
+      v.mutable_at(i) = r.v[static_cast<size_t>(i)].value;
+    }
+    d["label"] = label;
+    d["theta"] = theta;
+    d["v"] = v;
+    d["shape"] = req.sampling == StartSampling::grid ? py::object(py::make_tuple(req.ny, req.nx)) : py::object(py::none());
+    d["sampling"] = name(req.sampling);
+    d["v_range"] = py::make_tuple(r.request.v_range->first.text(), r.request.v_range->second.text());
+    d["inside"] = r.inside;
+    d["outside"] = r.outside;
+    d["undecided"] = r.undecided;
+    d["undecided_fraction"] = r.undecided_fraction;
+    d["undecided_stderr"] = r.undecided_stderr;
+    d["steps"] = r.steps;
+    d["seconds"] = r.seconds;
+    d["certify_seconds"] = r.certify_seconds;
+    return d;
+  }
+
   // bouncer bifurcation (run/bifurcation.hpp): one row per recorded point, as the CSV.
   py::dict bifurcation(const Texts& texts) const {
     const Options o = with_model(texts);
@@ -1368,6 +1474,7 @@ PYBIND11_MODULE(_core, mod) {
       .def("_bifurcation", &ModelCore::bifurcation, py::arg("options"))
       .def("_portrait", &ModelCore::portrait, py::arg("options"))
       .def("_lyapunov_curve", &ModelCore::lyapunov_curve, py::arg("options"))
+      .def("_attractors", &ModelCore::attractors, py::arg("options"))
       .def_property_readonly("options", &ModelCore::options, "The option texts the model was built from")
       .def_property_readonly("precision", &ModelCore::precision_text, "The precision: double, long, dd, quad, mpfr:BITS, "
                                                                       "interval:BITS or interval:double")

@@ -237,6 +237,50 @@ TEST(GridCells, TileTextsReadBack) {
   EXPECT_EQ(back.certified, cc);
 }
 
+TEST(GridCells, ConfirmedCellsReadBack) {
+  AttractorCell c{OrbitClass::quasiperiodic, 0};
+  c.confirm = PrecisionVerdict::artefact;
+  c.check_cls = OrbitClass::unbounded;
+  c.check_period = 0;
+  EXPECT_EQ(encode(c), "quasiperiodic,0,artefact,unbounded,0");
+  EXPECT_EQ(decode_cell<AttractorCell>(encode(c)), c);
+  ScanCell sc;
+  sc.count[static_cast<size_t>(OrbitClass::fixed)] = 9;
+  sc.confirmed = true;
+  sc.verdicts = {6, 2, 1};
+  sc.artefacts = {3, 8};
+  EXPECT_EQ(decode_cell<ScanCell>(encode(sc)), sc);
+  ScanCell none;  // confirmed, every start outside: no verdicts
+  none.confirmed = true;
+  EXPECT_EQ(decode_cell<ScanCell>(encode(none)), none);
+  for (const char* bad : {"fixed,1,maybe,fixed,1", "fixed,1,agrees,fixed", "fixed,1,agrees,sideways,1"})
+    EXPECT_THROW(decode_cell<AttractorCell>(bad), std::runtime_error) << bad;
+  // The artefact list must hold as many starts as the artefact count.
+  EXPECT_THROW(decode_cell<ScanCell>("0,0,0,0,0,0,0,0,0,0|1,2,0|3"), std::runtime_error);
+  EXPECT_THROW(decode_cell<ScanCell>("0,0,0,0,0,0,0,0,0,0|1,2|"), std::runtime_error);
+}
+
+// The confirm sample's lattice, by hand: on a 10 x 10 grid with room for 4 starts, the stride
+// is 5 (stride 4 at offset 1 keeps 1, 5, 9: 9 starts), the starts at offset 2 of each block of
+// 5: columns and rows 2 and 7.
+TEST(GridCells, ConfirmSampleLattice) {
+  EXPECT_EQ(confirm_stride(10, 10, 1, 0), 1);    // every start
+  EXPECT_EQ(confirm_stride(10, 10, 1, 100), 1);
+  EXPECT_EQ(confirm_stride(10, 10, 1, 99), 2);   // offset 0: 0, 2, ..., 8: 25 starts
+  EXPECT_EQ(confirm_sample_units(10, 10, 2), 25);
+  EXPECT_EQ(confirm_stride(10, 10, 1, 4), 5);
+  std::vector<std::pair<long, long>> in;
+  for (long y = 0; y < 10; ++y)
+    for (long x = 0; x < 10; ++x)
+      if (in_confirm_sample(x, y, 10, 10, 5)) in.emplace_back(x, y);
+  EXPECT_EQ(in, (std::vector<std::pair<long, long>>{{2, 2}, {7, 2}, {2, 7}, {7, 7}}));
+  // A budget below one unit's starts (a scan point of 100 starts) still confirms one unit, the
+  // centre one.
+  EXPECT_EQ(confirm_stride(5, 3, 100, 10), 5);
+  EXPECT_EQ(confirm_sample_units(5, 3, 5), 1);
+  EXPECT_TRUE(in_confirm_sample(2, 1, 5, 3, 5));
+}
+
 TEST(GridCells, TextNoEncoderWroteIsRefused) {
   for (const char* bad : {"", "fixed", "fixed,", "fixed,1,2", "sideways,1", "fixed,x", "fixed,1 "})
     EXPECT_THROW(decode_cell<AttractorCell>(bad), std::runtime_error) << bad;

@@ -42,6 +42,10 @@ class OptionSet {
   void add(const std::string& name, const std::string& help) {
     app_->add_option("--" + name, single_[name], help);
   }
+  // An option whose value may be left out (--confirm or --confirm=512): "" when it is.
+  void add_optional(const std::string& name, const std::string& help) {
+    app_->add_option("--" + name, single_[name], help)->expected(0, 1);
+  }
   void add_list(const std::string& name, const std::string& help) {
     app_->add_option("--" + name, lists_[name], help)->delimiter(',');
   }
@@ -272,6 +276,15 @@ inline void add_classify_options(OptionSet& o) {
   o.add("transient", "Steps discarded before classifying, integer in [0, 1e10] (default 5000, as the paper)");
   o.add("steps", "Steps examined by the classifier, integer in [8, 1e9] (default 500, as the paper)");
   add_classify_period_options(o);
+}
+
+// --confirm[=BITS] and --confirm-sample of the grids of starts (basin, scan: run/cells.hpp GridConfirm).
+inline void add_grid_confirm_options(OptionSet& o, const std::string& unit) {
+  o.add_optional("confirm", "Classify the starts of a sample again at mpfr:B, B = max(BITS, 2 x the run's bits), and at 2B "
+                            "where they differ (as classify does): agrees / artefact / precision_dependent per start; "
+                            "BITS in [64, 1048576] (default 256)");
+  o.add("confirm-sample", "With --confirm: at most N starts, those of every s-th " + unit +
+                              " in each direction (s the smallest that fits), or all (default 1000)");
 }
 
 inline Provenance provenance_for(const std::string& command, const Options& o, const Precision& p,

@@ -27,9 +27,27 @@ const std::set<std::string>& attractors_keys() {
   return keys;
 }
 
+// Refuses (exit 2, naming --starts or --cells) a request whose starts and recurrence grid
+// would not fit in the memory available (picture_common.hpp check_memory_need, as basin's
+// grids): per start its label, its (theta, v) as numbers and its CSV row, about 400 bytes as
+// a basin's point (check_grid_memory: 3 x 96 + 112); per cell of the recurrence grid its owner
+// and its share of the attractors' cell lists, about 16 bytes.
+void check_attractors_memory(const AttractorsRequest& r, bool quiet) {
+  const double starts = static_cast<double>(r.nx) * static_cast<double>(r.ny);
+  const double cells = static_cast<double>(r.cells_theta) * static_cast<double>(r.cells_v);
+  const double need_starts = starts * (3 * 96 + 112), need_cells = cells * 16;
+  const bool by_starts = need_starts >= need_cells;
+  check_memory_need("attractors", by_starts ? "starts" : "cells",
+                    "this request of " + std::to_string(static_cast<long long>(starts)) + " starts and " +
+                        std::to_string(static_cast<long long>(cells)) + " cells",
+                    need_starts + need_cells, false, quiet,
+                    by_starts ? "give fewer --starts" : "give fewer --cells");
+}
+
 // --vary: the attractors at each value of the range, chained (run/attractors_sweep.hpp).
 int run_sweep(const Options& o, const AttractorsSweepRequest& req, const FlagSet& flags, const std::string& invocation) {
   const RunFlags f = run_flags_from(o, flags, invocation);
+  check_attractors_memory(req.point, f.quiet);
   const Provenance prov = provenance_for("attractors", job_options(o), req.point.precision, f.invocation);
   GridOptions run;
   run.threads = f.threads;
@@ -51,6 +69,7 @@ int run_attractors(const Options& o, const FlagSet& flags, const std::string& in
   if (const auto sweep = attractors_sweep_request(o)) return run_sweep(o, *sweep, flags, invocation);
   const AttractorsRequest req = attractors_request(o);
   const RunFlags f = run_flags_from(o, flags, invocation);
+  check_attractors_memory(req, f.quiet);
   const Provenance prov = provenance_for("attractors", job_options(o), req.precision, f.invocation);
   GridOptions run;
   run.threads = f.threads;

@@ -13,14 +13,76 @@ namespace bouncer::cli {
 
 namespace {
 
-void write_basin(const BasinResult& b, const RunFlags& f, const Provenance& prov) {
+// --confirm: the JSON summary's "confirm" and the artefact map (PREFIX-artefacts.png).
+nlohmann::ordered_json confirm_summary(const BasinResult& b, long stride) {
   const BasinRequest& r = b.request;
-  std::string csv = "theta,v,class,period\n";
+  const std::pair<Precision, Precision> p = check_precisions(r.precision, r.confirm.bits);
+  nlohmann::ordered_json j;
+  j["bits"] = r.confirm.bits;
+  j["precisions"] = {p.first.text(), p.second.text()};
+  j["transient"] = r.classify.transient;
+  j["steps"] = r.classify.steps;
+  j["recheck_factor"] = r.classify.recheck_factor;
+  j["sample"] = {{"requested", r.confirm.sample == 0 ? nlohmann::ordered_json("all") : nlohmann::ordered_json(r.confirm.sample)},
+                 {"stride", stride},
+                 {"rule", "the start at offset (min(s, n) - 1) / 2 of every s x s block of the grid, s = stride"},
+                 {"starts", confirm_sample_units(r.nx, r.ny, stride)}};
+  long n[3] = {0, 0, 0};
+  nlohmann::ordered_json artefacts = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < b.cells.size(); ++i) {
+    const AttractorCell& c = b.cells[i];
+    if (!c.confirm) continue;
+    ++n[static_cast<int>(*c.confirm)];
+    if (*c.confirm == PrecisionVerdict::artefact)
+      artefacts.push_back({{"theta", b.theta[i % static_cast<size_t>(r.nx)].digits},
+                           {"v", b.v[i / static_cast<size_t>(r.nx)].digits},
+                           {"class", name(c.cls)},
+                           {"period", c.period},
+                           {"check_class", name(c.check_cls)},
+                           {"check_period", c.check_period}});
+  }
+  const long confirmed = n[0] + n[1] + n[2];
+  j["confirmed"] = confirmed;  // the sample's starts inside the phase space
+  j["agrees"] = n[0];
+  j["artefact"] = n[1];
+  j["precision_dependent"] = n[2];
+  j["confirmed_fraction"] = confirmed > 0 ? nlohmann::ordered_json(static_cast<double>(n[0]) / confirmed) : nlohmann::ordered_json();
+  j["artefacts"] = artefacts;
+  return j;
+}
+
+ImageFigure confirm_figure(const BasinResult& b, Palette palette) {
+  const BasinRequest& r = b.request;
+  const std::string hi = check_precisions(r.precision, r.confirm.bits).first.text();
+  std::vector<Agreement> a;
+  a.reserve(b.cells.size());
+  for (const AttractorCell& c : b.cells)
+    a.push_back(!c.confirm                                              ? Agreement::outside
+                : *c.confirm == PrecisionVerdict::agrees                ? Agreement::agrees
+                : *c.confirm == PrecisionVerdict::artefact ? Agreement::differs
+                                                                        : Agreement::undecided);
+  const std::string own = r.precision.text();
+  return agreement_figure(basin_figure(b, palette), a, r.nx, r.ny,
+                          {"Where " + own + " is wrong: its class against " + hi + " and twice its bits",
+                           hi + " agrees", own + "'s class is an artefact", "precision dependent",
+                           "not confirmed (outside the sample or the phase space)"},
+                          palette);
+}
+
+void write_basin(const BasinResult& b, long stride, const RunFlags& f, const Provenance& prov) {
+  const BasinRequest& r = b.request;
+  const bool confirm = r.confirm.on;
+  std::string csv = confirm ? "theta,v,class,period,confirm,check_class,check_period\n" : "theta,v,class,period\n";
   long outside = 0;
   for (size_t i = 0; i < b.cells.size(); ++i) {
+    const AttractorCell& c = b.cells[i];
     csv += b.theta[i % static_cast<size_t>(r.nx)].digits + ',' + b.v[i / static_cast<size_t>(r.nx)].digits + ',' +
-           encode(b.cells[i]) + '\n';
-    outside += b.cells[i].cls == OrbitClass::outside;
+           name(c.cls) + ',' + std::to_string(c.period);
+    if (confirm)
+      csv += c.confirm ? std::string(",") + name(*c.confirm) + ',' + name(c.check_cls) + ',' + std::to_string(c.check_period)
+                       : std::string(",,,");
+    csv += '\n';
+    outside += c.cls == OrbitClass::outside;
   }
   ImageFigure fig = basin_figure(b, f.picture.palette);
   fig.metadata = png_metadata(prov, fig.title);
@@ -42,7 +104,16 @@ void write_basin(const BasinResult& b, const RunFlags& f, const Provenance& prov
   }
   s["attractors"] = types;
   s["precision"] = r.precision.text();
-  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
+  std::vector<ExtraFigure> extra;
+  ImageFigure art;
+  if (confirm) {
+    s["confirm"] = confirm_summary(b, stride);
+    art = confirm_figure(b, f.picture.palette);
+    art.metadata = png_metadata(prov, art.title);
+    extra.push_back({"artefacts", [&](std::ostream& out, ImageFormat fmt) { write_figure(out, art, fmt, f.picture.render); }});
+  }
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s,
+                extra);
 }
 
 void write_certified_basin(const CertifiedBasinResult& b, const RunFlags& f, const Provenance& prov) {
@@ -62,7 +133,7 @@ const std::set<std::string>& basin_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"grid", "theta-range", "v-range", "transient", "steps", "max-period", "recheck-factor", "precision",
-              "certify", "max-bits"});
+              "certify", "max-bits", "confirm", "confirm-sample"});
     k.insert(run_keys().begin(), run_keys().end());
     k.insert(picture_keys().begin(), picture_keys().end());
     return k;
@@ -77,7 +148,7 @@ int run_basin(const Options& o, const RunFlags& f) {
   if (b.certify) {
     if (const auto cells = run_cells<CertifiedCell>("basin", o, f, grid)) write_certified_basin(grid.certified_result(*cells), f, prov);
   } else if (const auto cells = run_cells<AttractorCell>("basin", o, f, grid)) {
-    write_basin(grid.result(*cells), f, prov);
+    write_basin(grid.result(*cells), grid.confirm_stride(), f, prov);
   }
   return 0;
 }
@@ -92,6 +163,7 @@ CommandRunner setup_basin(CLI::App* sub) {
   opts->add("v-range", "V0:V1, the initial velocities (default: the trapping region, as scan; needed for elastic; points below the wall velocity are 'outside')");
   add_classify_options(*opts);
   opts->add("precision", kPointPrecisionHelp);
+  add_grid_confirm_options(*opts, "start");
   opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
   opts->add_flag("certify",
                 "Certify every point (constant, elastic, or veldep without collapse): sticking period, trapping set, 'not_trapped' (veldep, elastic: "
@@ -99,7 +171,9 @@ CommandRunner setup_basin(CLI::App* sub) {
                 "beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
+    Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "basin", basin_keys()), opts->collected());
+    // A bare --confirm is recorded as a flag ("true"), so that provenance and audit rerun it.
+    if (o.has("confirm") && o.get("confirm").empty()) o.set("confirm", "true");
     return run_basin(o, run_flags_from(o, *flags, argv_text));
   };
   return run;

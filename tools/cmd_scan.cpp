@@ -14,16 +14,65 @@ namespace bouncer::cli {
 
 namespace {
 
-void write_scan(const ScanResult& res, const ScanOptions& so, const RunFlags& f, const Provenance& prov) {
+// --confirm: the JSON summary's "confirm" (the artefacts' starts from the grid).
+nlohmann::ordered_json confirm_summary(const ScanResult& res, const ScanGrid& grid) {
   const ScanRequest& r = res.request;
+  const long stride = grid.confirm_stride();
+  const std::pair<Precision, Precision> p = check_precisions(r.precision, r.confirm.bits);
+  nlohmann::ordered_json j;
+  j["bits"] = r.confirm.bits;
+  j["precisions"] = {p.first.text(), p.second.text()};
+  j["transient"] = r.classify.transient;
+  j["steps"] = r.classify.steps;
+  j["recheck_factor"] = r.classify.recheck_factor;
+  const long points = confirm_sample_units(r.p, r.q, stride);
+  j["sample"] = {{"requested", r.confirm.sample == 0 ? nlohmann::ordered_json("all") : nlohmann::ordered_json(r.confirm.sample)},
+                 {"stride", stride},
+                 {"rule", "every start of the parameter point at offset (min(s, n) - 1) / 2 of every s x s block of the "
+                          "grid, s = stride"},
+                 {"points", points},
+                 {"starts", points * r.k * r.k}};
+  long n[3] = {0, 0, 0};
+  const std::string y = name(res.y);
+  nlohmann::ordered_json artefacts = nlohmann::ordered_json::array();
+  for (size_t i = 0; i < res.cells.size(); ++i) {
+    const ScanCell& c = res.cells[i];
+    for (size_t k = 0; k < 3; ++k) n[k] += c.verdicts[k];
+    for (long s : c.artefacts) {
+      const std::pair<Number, Number> x = grid.start(static_cast<long>(i), s);
+      artefacts.push_back({{"a", res.a[i % static_cast<size_t>(r.p)].digits},
+                           {y, res.y_values[i / static_cast<size_t>(r.p)].digits},
+                           {"theta", x.first.digits},
+                           {"v", x.second.digits}});
+    }
+  }
+  const long confirmed = n[0] + n[1] + n[2];
+  j["confirmed"] = confirmed;  // the sample's starts inside the phase space
+  j["agrees"] = n[0];
+  j["artefact"] = n[1];
+  j["precision_dependent"] = n[2];
+  j["confirmed_fraction"] = confirmed > 0 ? nlohmann::ordered_json(static_cast<double>(n[0]) / confirmed) : nlohmann::ordered_json();
+  j["artefacts"] = artefacts;
+  return j;
+}
+
+void write_scan(const ScanResult& res, const ScanGrid& grid, const ScanOptions& so, const RunFlags& f, const Provenance& prov) {
+  const ScanRequest& r = res.request;
+  const bool confirm = r.confirm.on;
   std::string csv = std::string("a,") + name(res.y);
   for (OrbitClass c : scan_classes()) csv += std::string(",") + name(c);
-  csv += ",total\n";
+  csv += confirm ? ",total,confirm_agrees,confirm_artefact,confirm_precision_dependent\n" : ",total\n";
   std::array<long, kOrbitClassCount> totals{};
   for (size_t i = 0; i < res.cells.size(); ++i) {
     const ScanCell& c = res.cells[i];
-    csv += res.a[i % static_cast<size_t>(r.p)].digits + ',' + res.y_values[i / static_cast<size_t>(r.p)].digits + ',' +
-           encode(c) + ',' + std::to_string(c.total()) + '\n';
+    csv += res.a[i % static_cast<size_t>(r.p)].digits + ',' + res.y_values[i / static_cast<size_t>(r.p)].digits;
+    for (OrbitClass k : scan_classes()) csv += ',' + std::to_string(c[k]);
+    csv += ',' + std::to_string(c.total());
+    if (confirm)
+      csv += c.confirmed ? ',' + std::to_string(c.verdicts[0]) + ',' + std::to_string(c.verdicts[1]) + ',' +
+                               std::to_string(c.verdicts[2])
+                         : std::string(",,,");
+    csv += '\n';
     for (int k = 0; k < kOrbitClassCount; ++k) totals[static_cast<size_t>(k)] += c.count[static_cast<size_t>(k)];
   }
   ImageFigure fig = scan_figure(res, so.show, so.fixed_point_curves, f.picture.palette);
@@ -37,6 +86,7 @@ void write_scan(const ScanResult& res, const ScanOptions& so, const RunFlags& f,
   for (OrbitClass c : scan_classes()) t[name(c)] = totals[static_cast<size_t>(c)];
   s["totals"] = t;
   s["precision"] = r.precision.text();
+  if (confirm) s["confirm"] = confirm_summary(res, grid);
   write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
 }
 
@@ -58,7 +108,7 @@ const std::set<std::string>& scan_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"a-range", "eps-range", "c-range", "grid", "ics", "theta-range", "v-range", "transient", "steps",
-              "max-period", "recheck-factor", "precision", "show", "curves", "certify", "max-bits", "theta", "v"});
+              "max-period", "recheck-factor", "precision", "show", "curves", "certify", "max-bits", "theta", "v", "confirm", "confirm-sample"});
     k.insert(run_keys().begin(), run_keys().end());
     k.insert(picture_keys().begin(), picture_keys().end());
     return k;
@@ -73,7 +123,7 @@ int run_scan(const Options& o, const RunFlags& f) {
   if (so.certify) {
     if (const auto cells = run_cells<CertifiedCell>("scan", o, f, grid)) write_certified_scan(grid.certified_result(*cells), f, prov);
   } else if (const auto cells = run_cells<ScanCell>("scan", o, f, grid)) {
-    write_scan(grid.result(*cells), so, f, prov);
+    write_scan(grid.result(*cells), grid, so, f, prov);
   }
   return 0;
 }
@@ -95,6 +145,7 @@ CommandRunner setup_scan(CLI::App* sub) {
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
   opts->add("curves", "Over the picture: fixed-points (default for --model constant: the paper's eq. 5, "
                       "a = 8(1+eps)/(p(1-eps)), p = 1..10) | none");
+  add_grid_confirm_options(*opts, "parameter point (with all its starts)");
   opts->add("theta", "With --certify: the start's phase, an exact decimal (default 0.5, the release state)");
   opts->add("v", "With --certify: the start's velocity (default 4, the release state)");
   opts->add("max-bits", "With --certify: the last MPFI precision of the schedule interval:double, 64, 128, ..., 64..4096 (default 256)");
@@ -103,7 +154,9 @@ CommandRunner setup_scan(CLI::App* sub) {
                 "with double's answer beside it; also writes PREFIX-artefacts.png, the map of where double is wrong");
   auto flags = add_run_options(sub, *opts);
   auto run = [opts, scene, flags](const std::string& argv_text) {
-    const Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), opts->collected());
+    Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "scan", scan_keys()), opts->collected());
+    // A bare --confirm is recorded as a flag ("true"), so that provenance and audit rerun it.
+    if (o.has("confirm") && o.get("confirm").empty()) o.set("confirm", "true");
     return run_scan(o, run_flags_from(o, *flags, argv_text));
   };
   return run;

@@ -105,8 +105,10 @@ inline std::string check_command_line(CLI::App& app, int argc, char** argv) {
     if (opt->get_items_expected_max() == 0 || eq != std::string::npos) continue;  // a flag, or --opt=value
     // The option's value(s): the next word(s) up to the next option. A value may start
     // with '-' (a negative number) but not with "--".
-    if (i + 1 >= argc || std::string(argv[i + 1]).rfind("--", 0) == 0)
+    if (i + 1 >= argc || std::string(argv[i + 1]).rfind("--", 0) == 0) {
+      if (opt->get_expected_min() == 0) continue;  // its value may be left out (--confirm)
       return name.substr(2) + ": " + name + " needs a value; see bouncer " + first + " --help";
+    }
     ++i;
     if (opt->get_expected_max() > 1)
       while (i + 1 < argc && std::string(argv[i + 1]).rfind("--", 0) != 0) ++i;

@@ -178,24 +178,31 @@ struct PictureJob {
 // -v, a container's limit), unless --force; says how much a large one needs before it
 // starts. The estimate, 3 bytes per byte of item text and 112 per item (string and tile
 // overheads, the CSV copy, the pixel), was measured on basins: 186 bytes per point.
-inline void check_grid_memory(const PictureJob& j, const RunFlags& f) {
-  if (!f.shard.all()) return;
-  const double need = static_cast<double>(j.plan.items) * (3 * j.item_bytes + 112);
+// The test itself, for any computation that holds `need` bytes: `what` names its size ("this
+// job of 40000 items"), `field` the option that sets it, `remedy` what to do instead.
+inline void check_memory_need(const std::string& command, const std::string& field, const std::string& what, double need,
+                              bool force, bool quiet, const std::string& remedy) {
   const double have = available_memory_bytes();
   auto gb = [](double b) {
     std::ostringstream s;
     s << std::fixed << std::setprecision(1) << b / 1e9;
     return s.str();
   };
-  if (f.force || have <= 0 || need <= 0.9 * have) {
-    if (need > 2e9 && !f.quiet)
-      std::cerr << "bouncer " << j.command << ": this job of " << j.plan.items << " items needs about " << gb(need)
-                << " GB of memory (" << gb(have) << " GB available)\n";
+  if (force || have <= 0 || need <= 0.9 * have) {
+    if (need > 2e9 && !quiet)
+      std::cerr << "bouncer " << command << ": " << what << " needs about " << gb(need) << " GB of memory (" << gb(have)
+                << " GB available)\n";
     return;
   }
-  throw InputError(j.size_field, "this job of " + std::to_string(j.plan.items) + " items needs about " + gb(need) +
-                              " GB of memory, more than the " + gb(have) +
-                              " GB available to this process: make it smaller (or split it with --shard), or give --force");
+  throw InputError(field, what + " needs about " + gb(need) + " GB of memory, more than the " + gb(have) +
+                              " GB available to this process: " + remedy);
+}
+
+inline void check_grid_memory(const PictureJob& j, const RunFlags& f) {
+  if (!f.shard.all()) return;
+  const double need = static_cast<double>(j.plan.items) * (3 * j.item_bytes + 112);
+  check_memory_need(j.command, j.size_field, "this job of " + std::to_string(j.plan.items) + " items", need, f.force, f.quiet,
+                    "make it smaller (or split it with --shard), or give --force");
 }
 
 

@@ -42,7 +42,7 @@ from ._cli import (
 )
 from ._cli import _words  # the CLI's words for a call (tests/python compare with the executable)
 from ._model import (
-    EVENTS, Basin, Bifurcation, Branch, BranchEnd, Classification, ExponentCurve, Interval, Lyapunov, Model, Number,
+    EVENTS, Attractor, Attractors, Basin, Bifurcation, Branch, BranchEnd, Classification, ExponentCurve, Interval, Lyapunov, Model, Number,
     Orbit, PeriodicCertificate, PeriodicOrbit, Portrait, Real, Scan, Step, StickingCertificate, Undecided,
 )
 
@@ -51,7 +51,7 @@ __all__ = [
     # the library, typed
     "Model", "Step", "Orbit", "Interval", "Undecided", "EVENTS", "Number", "Real",
     "Classification", "Lyapunov", "PeriodicOrbit", "Branch", "BranchEnd", "StickingCertificate",
-    "PeriodicCertificate", "Basin", "Scan", "Bifurcation", "Portrait", "ExponentCurve",
+    "PeriodicCertificate", "Basin", "Scan", "Bifurcation", "Portrait", "ExponentCurve", "Attractor", "Attractors",
     # the command line, in-process
     "Result", "CLASSES", "run", "step", "orbit", "certify_sticking", "sweep", "periodic", "certify_periodic",
     "continue_branch", "lyapunov", "classify", "basin", "scan", "bifurcation", "to_mpmath",

@@ -429,6 +429,80 @@ class ExponentCurve:
     classes: Tuple[str, ...] = CLASSES
 
 
+@dataclasses.dataclass(frozen=True)
+class Attractor:
+    """One attractor found by ``Model.attractors`` (``bouncer attractors``; run/attractors.hpp).
+
+    id: its index in Attractors.attractors (largest basin first), the value of its starts' label
+    kind: periodic | family | sticking | chaotic | quasiperiodic | effective_sticking |
+        accelerator | escape | undecided
+    period: q (periodic, family), k (sticking), Q (accelerator), else 0
+    theta, v: float64 arrays of its points (periodic: the orbit; sticking: from the release;
+        family: one member; aperiodic: a sample); theta_text, v_text: as the run's precision prints them
+    multipliers: complex multipliers of the Newton orbit (periodic, family), larger modulus
+        first; multiplier_moduli; stable
+    certificate: the Krawczyk proof's summary {certified, outcome, bits, minimal_period,
+        stability, reason, multipliers: {kind, mu1, mu2 | re, im, modulus as Intervals}}, or None
+    lambda_, lambda_stderr: exponent per collision of an aperiodic set (else None);
+        accelerator_gain: mean velocity gain per Q steps (accelerator; else None)
+    family: {members_found, theta_min, theta_max} of a family, else None
+    starts: starts in its basin; fraction, fraction_stderr: their share of the starts in the
+        phase space and its binomial standard error; cells; evidence: one line
+    """
+    id: int
+    kind: str
+    period: int
+    theta: np.ndarray
+    v: np.ndarray
+    theta_text: List[str]
+    v_text: List[str]
+    multipliers: List[complex]
+    multiplier_moduli: List[float]
+    stable: bool
+    certificate: Optional[Dict[str, Any]]
+    lambda_: Optional[float]
+    lambda_stderr: Optional[float]
+    accelerator_gain: Optional[float]
+    family: Optional[Dict[str, Any]]
+    starts: int
+    fraction: float
+    fraction_stderr: float
+    cells: int
+    evidence: str
+
+
+@dataclasses.dataclass(frozen=True)
+class Attractors:
+    """Every attractor at a parameter point (``bouncer attractors``; the library's
+    ``find_attractors``).
+
+    attractors: list of Attractor, largest basin first
+    label: int32 per start: the attractor's id, UNDECIDED (-1: no decision in max_steps) or
+        OUTSIDE (-2: below the wall's velocity); shape (M, N) for sampling "grid" (row j, column
+        i: theta[j, i], v[j, i]), (N * M,) for "halton"
+    theta, v: float64 per start, the same shape as label
+    v_range: the starts' velocity window (texts; the default is the trapping region)
+    inside, outside, undecided: starts; undecided_fraction, undecided_stderr
+    steps: map steps taken; seconds, certify_seconds: wall times
+    """
+    UNDECIDED = -1
+    OUTSIDE = -2
+    attractors: List[Attractor]
+    label: np.ndarray
+    theta: np.ndarray
+    v: np.ndarray
+    sampling: str
+    v_range: Tuple[str, str]
+    inside: int
+    outside: int
+    undecided: int
+    undecided_fraction: float
+    undecided_stderr: float
+    steps: int
+    seconds: float
+    certify_seconds: float
+
+
 def _grid_text(value: Any, name: str) -> Optional[str]:
     if value is None or isinstance(value, str):
         return value
@@ -675,6 +749,42 @@ class Model(_core.Model):
                                certify="true" if certify else None, max_bits=max_bits, threads=threads))
         return Basin(theta=d["theta"], v=d["v"], theta_text=d["theta_text"], v_text=d["v_text"], classes=CLASSES,
                      v_range=tuple(d["v_range"]), certified=d["certified"], **_grid_fields(d))
+
+    def attractors(self, *, starts: Tuple[int, int] = (100, 100), sampling: Optional[str] = None,
+                   theta_range: Optional[Tuple[Number, Number]] = None, v_range: Optional[Tuple[Number, Number]] = None,
+                   cells: Optional[Tuple[int, int]] = None, recurrences: Optional[int] = None,
+                   attractor_steps: Optional[int] = None, hits: Optional[int] = None, lost_steps: Optional[int] = None,
+                   max_steps: Optional[int] = None, lyapunov_steps: Optional[int] = None,
+                   transient: Optional[int] = None, steps: Optional[int] = None, max_period: Optional[int] = None,
+                   recheck_factor: Optional[int] = None, certify: bool = True, max_bits: Optional[int] = None,
+                   threads: Optional[int] = None) -> Attractors:
+        """Every attractor at this parameter point, with its basin share (``bouncer attractors``
+        without --vary: the same library call, reader, defaults and messages).
+
+        starts: (N, M) phases by velocities, each in [1, 8192], N*M <= 4e6 (default (100, 100));
+            sampling: "grid" (default, the cell centres, as basin) | "halton"
+        theta_range, v_range: the starts' window (default theta in [0, 1], v the trapping region)
+        cells: (N, M) of the recurrence grid, each in [16, 4096] (default (512, 512))
+        recurrences, attractor_steps, hits, lost_steps, max_steps, lyapunov_steps: the mapper's
+            options, as the CLI's; transient, steps, max_period, recheck_factor: the classifier's
+        certify: prove periodic attractors and sticking cycles (Krawczyk), max_bits in [64, 4096]
+        threads: worker threads (default: all cores); results do not depend on it
+        """
+        d = self._attractors(_texts(starts=_grid_text(starts, "starts"), sampling=sampling,
+                                    theta_range=_range_text(theta_range, "theta_range"),
+                                    v_range=_range_text(v_range, "v_range"), cells=_grid_text(cells, "cells"),
+                                    recurrences=recurrences, attractor_steps=attractor_steps, hits=hits,
+                                    lost_steps=lost_steps, max_steps=max_steps, lyapunov_steps=lyapunov_steps,
+                                    transient=transient, steps=steps, max_period=max_period,
+                                    recheck_factor=recheck_factor, no_certify=None if certify else "true",
+                                    max_bits=max_bits, threads=threads))
+        shape = tuple(d["shape"]) if d["shape"] is not None else (len(d["label"]),)
+        found = [Attractor(**a) for a in d["attractors"]]
+        return Attractors(attractors=found, label=d["label"].reshape(shape), theta=d["theta"].reshape(shape),
+                          v=d["v"].reshape(shape), sampling=d["sampling"], v_range=tuple(d["v_range"]),
+                          inside=d["inside"], outside=d["outside"], undecided=d["undecided"],
+                          undecided_fraction=d["undecided_fraction"], undecided_stderr=d["undecided_stderr"],
+                          steps=d["steps"], seconds=d["seconds"], certify_seconds=d["certify_seconds"])
 
     def scan(self, *, a_range: Tuple[Number, Number], eps_range: Optional[Tuple[Number, Number]] = None,
              c_range: Optional[Tuple[Number, Number]] = None, grid: Tuple[int, int] = (20, 20),

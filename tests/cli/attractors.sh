@@ -14,7 +14,8 @@
 #     the positive control of claims row 10b's search at a = 19;
 #   - --vary's branches: the period-1 sticking cycle at eps = 1/4 appears between a = 22.1
 #     and 22.25, tied to a certified border end whose enclosure holds 200/9 (exact fractions);
-#   - without --out a readable summary names both; --help documents the options.
+#   - without --out a readable summary names both; --help documents the options;
+#   - starts too many for the memory available: exit 2 naming --starts (ulimit -v).
 # Usage: bash attractors.sh <bouncer-binary> <source-dir>
 set -uo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
@@ -213,6 +214,17 @@ grep -q "appears at a in (22.1, 22.25): border collision at a\* = 22.2222.* cert
 run no-branches attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --no-branches --quiet --out nb
 python3 -c "import json,sys; s=json.load(open('nb.json'))['summary']; sys.exit(0 if s['branches'] is None and all('ends' not in c for c in s['chains']) else 1)" ||
   fail no-branches "branches written with --no-branches"
+# Memory: a request whose starts would not fit in the memory available (here a 1.5 GB
+# address space, ulimit -v) is refused at once, naming --starts; not under AddressSanitizer,
+# which reserves terabytes of address space (tests/cli/output_safety.sh).
+if ! asan_build; then
+  rc=0
+  (ulimit -v 1500000; timeout 30 "$BOUNCER" attractors "${M[@]}" --starts 2000x2000 --out mem 2>mem.err) || rc=$?
+  [[ $rc -eq 2 && $(wc -l <mem.err) -eq 1 ]] &&
+    grep -q "starts: this request of 4000000 starts and 262144 cells needs about .* GB of memory, more than .*give fewer --starts" mem.err ||
+    fail memory "exit $rc: $(head -c 300 mem.err)"
+  absent memory-files "mem.*[^r]"
+fi
 
 run help attractors --help
 for opt in starts sampling cells recurrences attractor-steps hits max-steps precision out no-certify vary range values no-branches; do

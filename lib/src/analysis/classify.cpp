@@ -609,23 +609,30 @@ Classification classify_start(const ModelSpec& spec, const Precision& prec, cons
   });
 }
 
-CheckedClassification classify_checked(const ModelSpec& spec, const Precision& precision, const InitialCondition& start,
-                                       const ClassifyOptions& opt, long check_bits) {
-  CheckedClassification out;
-  out.result = classify_start(spec, precision, start, opt);
+std::pair<Precision, Precision> check_precisions(const Precision& run, long check_bits) {
   Precision hi;
   hi.kind = Precision::Kind::mpfr;
-  hi.bits = std::min(kMaxBits, std::max({check_bits, 64L, 2 * precision.bits}));
-  out.checks.push_back({hi, classify_start(spec, hi, start, opt)});
-  const std::string own = precision.text();
+  hi.bits = std::min(kMaxBits, std::max({check_bits, 64L, 2 * run.bits}));
+  Precision higher = hi;
+  higher.bits = std::min(kMaxBits, 2 * hi.bits);
+  return {hi, higher};
+}
+
+CheckedClassification check_precision(const Classification& result, const Precision& run, long check_bits,
+                                      const std::function<Classification(const Precision&)>& at) {
+  CheckedClassification out;
+  out.result = result;
+  const std::pair<Precision, Precision> p = check_precisions(run, check_bits);
+  const Precision& hi = p.first;
+  const Precision& higher = p.second;
+  out.checks.push_back({hi, at(hi)});
+  const std::string own = run.text();
   if (same_behaviour(out.result, out.checks[0].result)) {
     out.verdict = PrecisionVerdict::agrees;
     out.summary = "agrees at " + hi.text() + ": " + behaviour_words(out.checks[0].result);
     return out;
   }
-  Precision higher = hi;
-  higher.bits = std::min(kMaxBits, 2 * hi.bits);
-  out.checks.push_back({higher, classify_start(spec, higher, start, opt)});
+  out.checks.push_back({higher, at(higher)});
   const Classification& a = out.checks[0].result;
   const Classification& b = out.checks[1].result;
   if (same_behaviour(a, b)) {
@@ -638,6 +645,12 @@ CheckedClassification classify_checked(const ModelSpec& spec, const Precision& p
                   behaviour_words(a) + ", " + higher.text() + " " + behaviour_words(b) + ": not decided at these precisions";
   }
   return out;
+}
+
+CheckedClassification classify_checked(const ModelSpec& spec, const Precision& precision, const InitialCondition& start,
+                                       const ClassifyOptions& opt, long check_bits) {
+  return check_precision(classify_start(spec, precision, start, opt), precision, check_bits,
+                         [&](const Precision& p) { return classify_start(spec, p, start, opt); });
 }
 
 #define BOUNCER_X(T, kind) \

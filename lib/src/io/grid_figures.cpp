@@ -231,13 +231,8 @@ std::string certified_label(CertifiedClass cls, long period, long long max_steps
 
 std::pair<ImageFigure, ImageFigure> certified_figures(const CertifiedMap& m, const std::vector<CertifiedCell>& cells,
                                                       Palette palette) {
-  long outside = 0, agrees = 0, differs = 0, undecided = 0;
-  for (const CertifiedCell& c : cells) {
-    outside += c.agreement == Agreement::outside;
-    agrees += c.agreement == Agreement::agrees;
-    differs += c.agreement == Agreement::differs;
-    undecided += c.agreement == Agreement::undecided;
-  }
+  long outside = 0;
+  for (const CertifiedCell& c : cells) outside += c.agreement == Agreement::outside;
   const double inside = static_cast<double>(cells.size()) - static_cast<double>(outside);
   const std::vector<CertifiedCount> order = certified_census(cells);
   std::map<std::pair<CertifiedClass, long>, Rgb> color;
@@ -295,20 +290,40 @@ std::pair<ImageFigure, ImageFigure> certified_figures(const CertifiedMap& m, con
                                         ": in the CSV and JSON",
                                     Rgb{255, 255, 255});
   // The artefact map: where double's class differs from the certified one.
+  std::vector<Agreement> agreement;
+  agreement.reserve(cells.size());
+  for (const CertifiedCell& c : cells) agreement.push_back(c.agreement);
+  ImageFigure art = agreement_figure(make_figure(""), agreement, m.nx, m.ny,
+                                     {"Where double is wrong: double's class against the certified one", "double agrees",
+                                      "double differs: an artefact", "no certified answer", ""},
+                                     palette);
+  return {std::move(cert), std::move(art)};
+}
+
+ImageFigure agreement_figure(ImageFigure frame, const std::vector<Agreement>& cells, long nx, long ny,
+                             const AgreementWords& words, Palette palette) {
+  long counts[4] = {0, 0, 0, 0};
+  for (Agreement a : cells) ++counts[static_cast<int>(a)];
+  const double compared = static_cast<double>(cells.size()) - static_cast<double>(counts[static_cast<int>(Agreement::outside)]);
   const Rgb agree_rgb{205, 205, 205}, differ_rgb = palette == Palette::paper ? Rgb{215, 25, 28} : Rgb{213, 94, 0},
             undecided_rgb{90, 90, 90}, outside_rgb{255, 255, 255};
-  ImageFigure art = make_figure("Where double is wrong: double's class against the certified one");
+  ImageFigure art = std::move(frame);
+  art.title = words.title;
+  art.raster.legend.clear();
+  art.raster.pixels.assign(cells.size(), outside_rgb);
   for (size_t i = 0; i < cells.size(); ++i) {
-    const Agreement a = cells[i].agreement;
-    art.raster.pixels[pixel_of(i, m.nx, m.ny)] = a == Agreement::agrees      ? agree_rgb
-                                                 : a == Agreement::differs   ? differ_rgb
-                                                 : a == Agreement::undecided ? undecided_rgb
-                                                                             : outside_rgb;
+    const Agreement a = cells[i];
+    art.raster.pixels[pixel_of(i, nx, ny)] = a == Agreement::agrees      ? agree_rgb
+                                             : a == Agreement::differs   ? differ_rgb
+                                             : a == Agreement::undecided ? undecided_rgb
+                                                                         : outside_rgb;
   }
-  art.raster.legend.emplace_back("double agrees" + share_text(agrees, inside), agree_rgb);
-  art.raster.legend.emplace_back("double differs: an artefact" + share_text(differs, inside), differ_rgb);
-  art.raster.legend.emplace_back("no certified answer" + share_text(undecided, inside), undecided_rgb);
-  return {std::move(cert), std::move(art)};
+  art.raster.legend.emplace_back(words.agrees + share_text(counts[static_cast<int>(Agreement::agrees)], compared), agree_rgb);
+  art.raster.legend.emplace_back(words.differs + share_text(counts[static_cast<int>(Agreement::differs)], compared), differ_rgb);
+  art.raster.legend.emplace_back(words.undecided + share_text(counts[static_cast<int>(Agreement::undecided)], compared),
+                                 undecided_rgb);
+  if (!words.outside.empty()) art.raster.legend.emplace_back(words.outside, outside_rgb);
+  return art;
 }
 
 ImageFigure scan_figure(const ScanResult& s, std::optional<OrbitClass> show, bool fixed_point_curves, Palette palette) {

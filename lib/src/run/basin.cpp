@@ -25,6 +25,9 @@ void check_basin(const BasinRequest& r, bool certified) {
   if (!r.precision.is_analysis())
     throw InputError("precision", "interval precision is not supported here (use " +
                                       precision_names<AnalysisScalars>(" or ") + ")");
+  check_confirm(r.confirm);
+  if (certified && r.confirm.on)
+    throw InputError("confirm", "is not used with --certify (which compares double's class with the certified one)");
   if (certified) {
     require_certified_model(r.model, "basin");
     if (r.precision.kind != Precision::Kind::double_)
@@ -35,6 +38,9 @@ void check_basin(const BasinRequest& r, bool certified) {
 
 struct GridBase {
   virtual ~GridBase() = default;
+  virtual bool outside(long i) const = 0;
+  // Start i classified (whether or not it lies inside the phase space).
+  virtual Classification classification(long i) const = 0;
   virtual AttractorCell cell(long i) const = 0;
   virtual CertifiedCell certified_cell(long i) const = 0;
   virtual std::vector<Number> theta() const = 0;
@@ -59,6 +65,11 @@ struct Grid final : GridBase {
   bool outside(const T& theta, const T& v) const {
     const auto& wall = map.model().wall;
     return v < wall.velocity[wall.segment_of(theta)];
+  }
+
+  bool outside(long i) const override { return outside(theta_at(i % r.nx), v_at(i / r.nx)); }
+  Classification classification(long i) const override {
+    return classify<T>(map, State<T>{theta_at(i % r.nx), v_at(i / r.nx)}, r.classify);
   }
 
   AttractorCell cell(long i) const override {
@@ -86,18 +97,37 @@ struct Grid final : GridBase {
 
 std::pair<Decimal, Decimal> basin_v_range(const BasinRequest& r) { return starts_v_range(r.model, r.v_range); }
 
+namespace {
+std::unique_ptr<GridBase> make_grid(const BasinRequest& r) {
+  std::unique_ptr<GridBase> g;
+  with_point_scalar(r.precision, [&](auto tag) { g = std::make_unique<Grid<typename decltype(tag)::type>>(r); });
+  return g;
+}
+}  // namespace
+
 struct BasinGrid::Impl {
   BasinRequest request;
   bool certified;
   std::unique_ptr<GridBase> grid;
+  long stride = 1;  // --confirm: the sample's lattice (run/cells.hpp)
+  // --confirm: the same grid at the check's two precisions (requests first: the grids refer to them).
+  BasinRequest check_request[2];
+  std::unique_ptr<GridBase> check[2];
 };
 
 BasinGrid::BasinGrid(const BasinRequest& r, bool certified) : impl_(new Impl{r, certified, nullptr}) {
   check_basin(r, certified);
   impl_->request.v_range = basin_v_range(r);
-  with_point_scalar(r.precision, [&](auto tag) {
-    impl_->grid = std::make_unique<Grid<typename decltype(tag)::type>>(impl_->request);
-  });
+  impl_->grid = make_grid(impl_->request);
+  if (r.confirm.on) {
+    impl_->stride = bouncer::confirm_stride(r.nx, r.ny, 1, r.confirm.sample);
+    const std::pair<Precision, Precision> p = check_precisions(r.precision, r.confirm.bits);
+    for (int k = 0; k < 2; ++k) {
+      impl_->check_request[k] = impl_->request;
+      impl_->check_request[k].precision = k == 0 ? p.first : p.second;
+      impl_->check[k] = make_grid(impl_->check_request[k]);
+    }
+  }
 }
 BasinGrid::~BasinGrid() = default;
 
@@ -109,9 +139,20 @@ GridPlan BasinGrid::plan() const {
 }
 
 std::string BasinGrid::item(long i) const {
-  return impl_->certified ? encode(impl_->grid->certified_cell(i)) : encode(impl_->grid->cell(i));
+  return impl_->certified ? encode(impl_->grid->certified_cell(i)) : encode(cell(i));
 }
-AttractorCell BasinGrid::cell(long i) const { return impl_->grid->cell(i); }
+AttractorCell BasinGrid::cell(long i) const {
+  const Impl& m = *impl_;
+  const BasinRequest& r = m.request;
+  if (!r.confirm.on || !in_confirm_sample(i % r.nx, i / r.nx, r.nx, r.ny, m.stride) || m.grid->outside(i))
+    return m.grid->cell(i);
+  // The same cell centre at the check's precisions (as classify reads its decimal start at
+  // each precision); its test for "outside" is the run's.
+  return confirmed_cell(check_precision(m.grid->classification(i), r.precision, r.confirm.bits, [&](const Precision& p) {
+    return m.check[p.bits == m.check_request[0].precision.bits ? 0 : 1]->classification(i);
+  }));
+}
+long BasinGrid::confirm_stride() const { return impl_->stride; }
 CertifiedCell BasinGrid::certified_cell(long i) const { return impl_->grid->certified_cell(i); }
 
 BasinResult BasinGrid::result(std::vector<AttractorCell> cells) const {

@@ -43,13 +43,60 @@ E named(std::optional<E> e, std::string_view text) {
 
 }  // namespace
 
-std::string encode(const AttractorCell& c) { return std::string(name(c.cls)) + ',' + std::to_string(c.period); }
+std::string encode(const AttractorCell& c) {
+  std::string s = std::string(name(c.cls)) + ',' + std::to_string(c.period);
+  if (c.confirm) s += std::string(",") + name(*c.confirm) + ',' + name(c.check_cls) + ',' + std::to_string(c.check_period);
+  return s;
+}
 
 template <>
 AttractorCell decode_cell<AttractorCell>(std::string_view text) {
   const auto f = fields(text);
-  if (f.size() != 2) bad_cell(text);
-  return {named(orbit_class_named(f[0]), text), whole<long>(f[1], text)};
+  if (f.size() != 2 && f.size() != 5) bad_cell(text);
+  AttractorCell c{named(orbit_class_named(f[0]), text), whole<long>(f[1], text)};
+  if (f.size() == 5) {
+    for (PrecisionVerdict v : {PrecisionVerdict::agrees, PrecisionVerdict::artefact, PrecisionVerdict::precision_dependent})
+      if (f[2] == name(v)) c.confirm = v;
+    if (!c.confirm) bad_cell(text);
+    c.check_cls = named(orbit_class_named(f[3]), text);
+    c.check_period = whole<long>(f[4], text);
+  }
+  return c;
+}
+
+namespace {
+// The lattice along one axis of n units: offset (min(s, n) - 1) / 2 of every block of s.
+long lattice_offset(long n, long s) { return (std::min(s, n) - 1) / 2; }
+long lattice_count(long n, long s) { return (n - 1 - lattice_offset(n, s)) / s + 1; }
+}  // namespace
+
+void check_confirm(const GridConfirm& c) {
+  if (!c.on) return;
+  if (c.bits < 64 || c.bits > kMaxBits)
+    throw InputError("confirm", "must be a number of bits in [64, " + std::to_string(kMaxBits) + "] (got " +
+                                    std::to_string(c.bits) + ")");
+  if (c.sample < 0) throw InputError("confirm-sample", "must be a number of starts >= 1 or all");
+}
+
+long confirm_stride(long ux, long uy, long per_unit, long sample) {
+  if (sample <= 0) return 1;
+  long s = 1;
+  while (s < std::max(ux, uy) && confirm_sample_units(ux, uy, s) * per_unit > sample) ++s;
+  return s;
+}
+
+bool in_confirm_sample(long x, long y, long ux, long uy, long stride) {
+  return x % stride == lattice_offset(ux, stride) && y % stride == lattice_offset(uy, stride);
+}
+
+long confirm_sample_units(long ux, long uy, long stride) { return lattice_count(ux, stride) * lattice_count(uy, stride); }
+
+AttractorCell confirmed_cell(const CheckedClassification& check) {
+  AttractorCell c{check.result.cls, check.result.period};
+  c.confirm = check.verdict;
+  c.check_cls = check.checks.at(0).result.cls;
+  c.check_period = check.checks.at(0).result.period;
+  return c;
 }
 
 std::string encode(const CertifiedCell& c) {

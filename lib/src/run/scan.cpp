@@ -39,6 +39,9 @@ void check_scan(const ScanRequest& r, bool certified) {
   if (!r.precision.is_analysis())
     throw InputError("precision", "interval precision is not supported here (use " +
                                       precision_names<AnalysisScalars>(" or ") + ")");
+  check_confirm(r.confirm);
+  if (certified && r.confirm.on)
+    throw InputError("confirm", "is not used with --certify (which compares double's class with the certified one)");
   if (certified) {
     require_certified_model(r.model, "scan");
     if (r.precision.kind != Precision::Kind::double_)
@@ -50,6 +53,9 @@ void check_scan(const ScanRequest& r, bool certified) {
 
 struct GridBase {
   virtual ~GridBase() = default;
+  virtual bool outside(long i, long j) const = 0;
+  virtual Classification classification(long i, long j) const = 0;
+  virtual std::pair<Number, Number> start(long i, long j) const = 0;
   virtual ScanCell cell(long i) const = 0;
   virtual CertifiedCell certified_cell(long i) const = 0;
   virtual std::vector<Number> a(bool exact) const = 0;
@@ -78,19 +84,36 @@ struct Grid final : GridBase {
     return {d, exact_decimal(mpq_class(d))};
   }
 
+  // Start j of the starts at model m: the k x k cell centres of the theta range and of the v
+  // range, by default the trapping region of this point (model/trapping.hpp), from the wall's
+  // fastest upward velocity; eps = 1 needs a v range (refused by check_scan).
+  State<T> start_of(const Model<T>& m, long j) const {
+    const T vlo = r.v_range ? v0 : wall_up_speed(m.wall);
+    const T vhi = r.v_range ? v1 : trapping_top(m).value();
+    return {cell_centre(t0, t1, j % r.k, r.k), cell_centre(vlo, vhi, j / r.k, r.k)};
+  }
+  static bool outside_at(const Model<T>& m, const State<T>& x) { return x.v < m.wall.velocity[m.wall.segment_of(x.theta)]; }
+
+  bool outside(long i, long j) const override {
+    const Model<T> m = model_at(i);
+    return outside_at(m, start_of(m, j));
+  }
+  Classification classification(long i, long j) const override {
+    const Model<T> m = model_at(i);
+    return classify<T>(ImpactMap<T>(m), start_of(m, j), r.classify);
+  }
+  std::pair<Number, Number> start(long i, long j) const override {
+    const State<T> x = start_of(model_at(i), j);
+    return {number_of(x.theta), number_of(x.v)};
+  }
+
   ScanCell cell(long i) const override {
     const Model<T> m = model_at(i);
     const ImpactMap<T> map(m);
-    // Default: the trapping region of this point (model/trapping.hpp), from the wall's fastest
-    // upward velocity; eps = 1 needs a v range (refused by check_scan).
-    const T vlo = r.v_range ? v0 : wall_up_speed(m.wall);
-    const T vhi = r.v_range ? v1 : trapping_top(m).value();
     ScanCell c;
     for (long j = 0; j < r.k * r.k; ++j) {
-      const T theta = cell_centre(t0, t1, j % r.k, r.k), v = cell_centre(vlo, vhi, j / r.k, r.k);
-      const OrbitClass cls = v < m.wall.velocity[m.wall.segment_of(theta)]
-                                 ? OrbitClass::outside
-                                 : classify<T>(map, State<T>{theta, v}, r.classify).cls;
+      const State<T> x = start_of(m, j);
+      const OrbitClass cls = outside_at(m, x) ? OrbitClass::outside : classify<T>(map, x, r.classify).cls;
       ++c.count[static_cast<size_t>(cls)];
     }
     return c;
@@ -144,12 +167,49 @@ long ScanCell::total() const {
 std::string encode(const ScanCell& c) {
   std::string s;
   for (OrbitClass k : scan_classes()) s += (s.empty() ? "" : ",") + std::to_string(c[k]);
+  if (c.confirmed) {
+    // "|agrees,artefact,precision_dependent|j j ..."
+    s += '|' + std::to_string(c.verdicts[0]) + ',' + std::to_string(c.verdicts[1]) + ',' + std::to_string(c.verdicts[2]) + '|';
+    for (size_t n = 0; n < c.artefacts.size(); ++n) s += (n ? " " : "") + std::to_string(c.artefacts[n]);
+  }
   return s;
 }
 
+namespace {
+// The numbers of a text "n<sep>n<sep>...", all >= 0; false if it is anything else.
+bool read_counts(std::string_view text, char sep, std::vector<long>& out) {
+  out.clear();
+  if (text.empty()) return true;
+  const char* at = text.data();
+  const char* const end = text.data() + text.size();
+  while (true) {
+    long n = -1;
+    const auto r = std::from_chars(at, end, n);
+    if (r.ec != std::errc() || n < 0) return false;
+    out.push_back(n);
+    if (r.ptr == end) return true;
+    if (*r.ptr != sep) return false;
+    at = r.ptr + 1;
+  }
+}
+}  // namespace
+
 template <>
-ScanCell decode_cell<ScanCell>(std::string_view text) {
+ScanCell decode_cell<ScanCell>(std::string_view full) {
   ScanCell c;
+  std::string_view text = full;
+  if (const size_t bar = full.find('|'); bar != std::string_view::npos) {
+    text = full.substr(0, bar);
+    const std::string_view rest = full.substr(bar + 1);
+    const size_t bar2 = rest.find('|');
+    std::vector<long> v, j;
+    if (bar2 == std::string_view::npos || !read_counts(rest.substr(0, bar2), ',', v) || v.size() != 3 ||
+        !read_counts(rest.substr(bar2 + 1), ' ', j) || static_cast<long>(j.size()) != v[1])
+      throw std::runtime_error("a grid tile holds a scan cell no bouncer wrote: '" + std::string(full.substr(0, 80)) + "'");
+    c.confirmed = true;
+    for (size_t k = 0; k < 3; ++k) c.verdicts[k] = v[k];
+    c.artefacts = j;
+  }
   const char* at = text.data();
   const char* const end = text.data() + text.size();
   for (OrbitClass k : scan_classes()) {
@@ -164,27 +224,66 @@ ScanCell decode_cell<ScanCell>(std::string_view text) {
   return c;
 }
 
+namespace {
+std::unique_ptr<GridBase> make_grid(const ScanRequest& r) {
+  std::unique_ptr<GridBase> g;
+  with_point_scalar(r.precision, [&](auto tag) { g = std::make_unique<Grid<typename decltype(tag)::type>>(r); });
+  return g;
+}
+}  // namespace
+
 struct ScanGrid::Impl {
   ScanRequest request;
   bool certified;
   Parameter y;
   std::unique_ptr<GridBase> grid;
+  long stride = 1;  // --confirm: the sample's lattice over the parameter points (run/cells.hpp)
+  // --confirm: the same grid at the check's two precisions (requests first: the grids refer to them).
+  ScanRequest check_request[2];
+  std::unique_ptr<GridBase> check[2];
 };
 
 ScanGrid::ScanGrid(const ScanRequest& r, bool certified) : impl_(new Impl{r, certified, scan_parameter(r.model), nullptr}) {
   check_scan(r, certified);
-  with_point_scalar(r.precision, [&](auto tag) {
-    impl_->grid = std::make_unique<Grid<typename decltype(tag)::type>>(impl_->request);
-  });
+  impl_->grid = make_grid(impl_->request);
+  if (r.confirm.on) {
+    impl_->stride = bouncer::confirm_stride(r.p, r.q, r.k * r.k, r.confirm.sample);
+    const std::pair<Precision, Precision> p = check_precisions(r.precision, r.confirm.bits);
+    for (int k = 0; k < 2; ++k) {
+      impl_->check_request[k] = impl_->request;
+      impl_->check_request[k].precision = k == 0 ? p.first : p.second;
+      impl_->check[k] = make_grid(impl_->check_request[k]);
+    }
+  }
 }
 ScanGrid::~ScanGrid() = default;
 const ScanRequest& ScanGrid::request() const { return impl_->request; }
 Parameter ScanGrid::y() const { return impl_->y; }
 GridPlan ScanGrid::plan() const { return point_grid_plan(impl_->request.p * impl_->request.q, impl_->certified ? 4 : 16); }
 std::string ScanGrid::item(long i) const {
-  return impl_->certified ? encode(impl_->grid->certified_cell(i)) : encode(impl_->grid->cell(i));
+  return impl_->certified ? encode(impl_->grid->certified_cell(i)) : encode(cell(i));
 }
-ScanCell ScanGrid::cell(long i) const { return impl_->grid->cell(i); }
+ScanCell ScanGrid::cell(long i) const {
+  const Impl& m = *impl_;
+  const ScanRequest& r = m.request;
+  ScanCell c = m.grid->cell(i);
+  if (!r.confirm.on || !in_confirm_sample(i % r.p, i / r.p, r.p, r.q, m.stride)) return c;
+  // Every start of the point inside the phase space, again at the check's precisions (the
+  // parameters and starts are the same cell centres, computed at each precision).
+  c.confirmed = true;
+  for (long j = 0; j < r.k * r.k; ++j) {
+    if (m.grid->outside(i, j)) continue;
+    const CheckedClassification k =
+        check_precision(m.grid->classification(i, j), r.precision, r.confirm.bits, [&](const Precision& p) {
+          return m.check[p.bits == m.check_request[0].precision.bits ? 0 : 1]->classification(i, j);
+        });
+    ++c.verdicts[static_cast<size_t>(k.verdict)];
+    if (k.verdict == PrecisionVerdict::artefact) c.artefacts.push_back(j);
+  }
+  return c;
+}
+long ScanGrid::confirm_stride() const { return impl_->stride; }
+std::pair<Number, Number> ScanGrid::start(long i, long j) const { return impl_->grid->start(i, j); }
 CertifiedCell ScanGrid::certified_cell(long i) const { return impl_->grid->certified_cell(i); }
 ScanResult ScanGrid::result(std::vector<ScanCell> cells) const {
   return {impl_->request, impl_->y, impl_->grid->a(false), impl_->grid->y(false), std::move(cells)};

@@ -2,9 +2,11 @@
 // (Implemented in lib/src/analysis/classify.cpp for double and Mpfr.)
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "bouncer/model/impact_map.hpp"
@@ -102,6 +104,15 @@ struct CheckedClassification {
 // B = max(check_bits, 2 x the run's bits) (check_bits >= 64). Same windows in every run.
 CheckedClassification classify_checked(const ModelSpec& spec, const Precision& precision, const InitialCondition& start,
                                        const ClassifyOptions& opt, long check_bits);
+
+// The two precisions of a check of a run at `run`: mpfr:B, B = max(check_bits, 64, 2 x the
+// run's bits), and mpfr:2B (both at most kMaxBits).
+std::pair<Precision, Precision> check_precisions(const Precision& run, long check_bits);
+// The check itself, for a run's `result` at `run`, where `at(p)` classifies the same start with
+// the same windows at precision p: classify_checked, and the grids' --confirm (run/basin.hpp,
+// run/scan.hpp), whose starts are cell centres rather than decimals.
+CheckedClassification check_precision(const Classification& result, const Precision& run, long check_bits,
+                                      const std::function<Classification(const Precision&)>& at);
 
 // Instantiated in lib/src/analysis/classify.cpp for the analysis scalars (scalar/scalar_set.hpp).
 #define BOUNCER_X(T, kind) \

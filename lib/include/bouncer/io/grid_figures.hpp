@@ -70,6 +70,16 @@ std::string certified_label(CertifiedClass cls, long period, long long max_steps
 // class is refuted: PREFIX-artefacts.png).
 std::pair<ImageFigure, ImageFigure> certified_figures(const CertifiedMap& m, const std::vector<CertifiedCell>& cells,
                                                       Palette palette);
+// An artefact map (PREFIX-artefacts.png of basin --certify, scan --certify and basin
+// --confirm): `frame` (window, axes, size) with one pixel per cell i (column i mod nx, row
+// i / nx) by its agreement: light grey agrees, vermillion differs (an artefact), dark grey
+// undecided, white outside (not compared); the legend's shares are of the cells compared.
+struct AgreementWords {
+  std::string title, agrees, differs, undecided;
+  std::string outside;  // a legend entry for the white cells; "" for none
+};
+ImageFigure agreement_figure(ImageFigure frame, const std::vector<Agreement>& cells, long nx, long ny,
+                             const AgreementWords& words, Palette palette);
 // A certified map's CSV, without its provenance lines: the header "X,Y,class,period,
 // certified_steps,scalar,double_class,double_period,agreement" (X, Y: the map's x_name,
 // y_name), then one row per cell (cell i at xs[i mod nx], ys[i / nx]).

@@ -38,6 +38,8 @@ struct BasinRequest {
   Precision precision;  // an analysis scalar; certified: double, the twin run
   // certified_basin only: the certificate's schedule (max_steps, max_bits, attractor period).
   CertifyPointOptions cert;
+  // basin only: the starts of a sample classified again at higher precision (run/cells.hpp).
+  GridConfirm confirm;
 };
 
 // The velocity window a request means: its own, or the trapping region.
@@ -65,7 +67,8 @@ class BasinGrid {
   const BasinRequest& request() const;
   GridPlan plan() const;          // nx * ny items in tiles
   std::string item(long i) const;  // encode(cell i)
-  AttractorCell cell(long i) const;
+  AttractorCell cell(long i) const;  // with --confirm, confirmed where i is in the sample
+  long confirm_stride() const;       // --confirm: the sample's lattice (run/cells.hpp); else 1
   CertifiedCell certified_cell(long i) const;
   BasinResult result(std::vector<AttractorCell> cells) const;
   CertifiedBasinResult certified_result(std::vector<CertifiedCell> cells) const;

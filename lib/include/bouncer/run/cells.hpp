@@ -23,8 +23,35 @@ namespace bouncer {
 struct AttractorCell {
   OrbitClass cls = OrbitClass::undecided;
   long period = 0;
+  // --confirm, for a start of the sample inside the phase space: the verdict of the check at
+  // higher precision (analysis/classify.hpp check_precision) and the class and period at its
+  // first precision (mpfr:B). None: not confirmed.
+  std::optional<PrecisionVerdict> confirm;
+  OrbitClass check_cls = OrbitClass::undecided;
+  long check_period = 0;
   friend bool operator==(const AttractorCell&, const AttractorCell&) = default;
 };
+
+// --confirm of a grid of starts (basin, scan): the starts of a sample classified again at
+// mpfr:B, B = max(bits, 2 x the run's bits), and at mpfr:2B when they differ, as a single-point
+// classify does (classify_checked). The sample is a lattice of the grid's units (starts of a
+// basin; parameter points of a scan, each with all its starts): every `stride`-th unit in x and
+// in y, the one at offset (min(stride, n) - 1) / 2 of each block, so it depends on the grid alone.
+struct GridConfirm {
+  bool on = false;
+  long bits = 256;  // 64..kMaxBits
+  long sample = 0;  // at most this many starts (0: every start); at least one unit is confirmed
+};
+// InputError "confirm" (bits outside [64, kMaxBits]) or "confirm-sample" (negative).
+void check_confirm(const GridConfirm& c);
+// The smallest stride whose lattice over ux x uy units of per_unit starts holds at most
+// `sample` starts (1 for sample 0; at most max(ux, uy): a single unit).
+long confirm_stride(long ux, long uy, long per_unit, long sample);
+// Whether unit (x, y) of an ux x uy grid is in the lattice of `stride`; how many units are.
+bool in_confirm_sample(long x, long y, long ux, long uy, long stride);
+long confirm_sample_units(long ux, long uy, long stride);
+// The confirmation of a start: its class, and check.verdict with the first check's class.
+AttractorCell confirmed_cell(const CheckedClassification& check);
 
 // One start's certified answer with double's answer of the same start beside it.
 struct CertifiedCell {

@@ -36,6 +36,9 @@ struct ScanRequest {
   // certified_scan only: the certified start (exact) and the certificate's schedule.
   InitialCondition start{Decimal::from_int(0), Decimal::from_int(0)};
   CertifyPointOptions cert;
+  // scan only: the starts of a sample of parameter points classified again at higher
+  // precision (run/cells.hpp; the lattice is over the p x q points, each with its k x k starts).
+  GridConfirm confirm;
 };
 
 // The scanned parameter: eps (constant model) or c (velocity-dependent); InputError("model")
@@ -50,6 +53,12 @@ struct ScanCell {
   long operator[](OrbitClass c) const { return count[static_cast<size_t>(c)]; }
   long total() const;
   long in_phase_space() const { return total() - (*this)[OrbitClass::outside]; }
+  // --confirm, at a parameter point of the sample: its starts inside the phase space counted by
+  // verdict (PrecisionVerdict: agrees, artefact, precision_dependent), and the artefacts' start
+  // indices j (theta index j mod k, v index j / k: ScanGrid::start).
+  bool confirmed = false;
+  std::array<long, 3> verdicts{};
+  std::vector<long> artefacts;
   friend bool operator==(const ScanCell&, const ScanCell&) = default;
 };
 std::string encode(const ScanCell& c);
@@ -80,7 +89,10 @@ class ScanGrid {
   Parameter y() const;
   GridPlan plan() const;
   std::string item(long i) const;
-  ScanCell cell(long i) const;
+  ScanCell cell(long i) const;  // with --confirm, confirmed where point i is in the sample
+  long confirm_stride() const;  // --confirm: the sample's lattice over the p x q points; else 1
+  // Start j (0 <= j < k * k) of parameter point i, in the run's scalar: (theta, v).
+  std::pair<Number, Number> start(long i, long j) const;
   CertifiedCell certified_cell(long i) const;
   ScanResult result(std::vector<ScanCell> cells) const;
   CertifiedScanResult certified_result(std::vector<CertifiedCell> cells) const;

@@ -7,6 +7,38 @@
 
 namespace bouncer {
 
+namespace {
+
+// --confirm[=BITS] (no value: 256) and --confirm-sample N|all (default 1000 starts) of basin
+// and scan (run/cells.hpp GridConfirm).
+GridConfirm grid_confirm_from(const Options& o, bool certify) {
+  GridConfirm c;
+  if (!o.has("confirm")) {
+    if (o.has("confirm-sample")) throw InputError("confirm-sample", "is only used with --confirm");
+    return c;
+  }
+  if (certify) throw InputError("confirm", "is not used with --certify (which compares double's class with the certified one)");
+  c.on = true;
+  const std::string bits = o.get("confirm");
+  if (!bits.empty() && bits != "true") {
+    const auto d = Decimal::parse(bits);
+    if (!d || d->value().get_den() != 1 || d->value() < 64 || d->value() > kMaxBits)
+      throw InputError("confirm", "must be a number of bits in [64, " + std::to_string(kMaxBits) + "], or no value for 256 (got '" +
+                                      bits + "')");
+    c.bits = d->value().get_num().get_si();
+  }
+  if (o.get_or("confirm-sample", "") != "all") {
+    const std::string n = o.get_or("confirm-sample", "1000");
+    const auto d = Decimal::parse(n);
+    if (!d || d->value().get_den() != 1 || d->value() < 1 || d->value() > 1000000000000.0)
+      throw InputError("confirm-sample", "must be a number of starts in [1, 1e12] or all (got '" + n + "')");
+    c.sample = std::stol(d->value().get_num().get_str());
+  }
+  return c;
+}
+
+}  // namespace
+
 BasinOptions basin_options(const Options& o) {
   BasinOptions b;
   BasinRequest& r = b.request;
@@ -21,6 +53,7 @@ BasinOptions basin_options(const Options& o) {
   r.cert.max_steps = r.classify.transient + r.classify.steps;
   r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
   r.cert.max_attractor_period = r.classify.max_period;
+  r.confirm = grid_confirm_from(o, b.certify);
   return b;
 }
 
@@ -76,6 +109,7 @@ ScanOptions scan_options(const Options& o) {
   r.cert.max_steps = r.classify.transient + r.classify.steps;
   r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
   r.cert.max_attractor_period = r.classify.max_period;
+  r.confirm = grid_confirm_from(o, so.certify);
   return so;
 }
 

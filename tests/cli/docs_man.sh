@@ -10,7 +10,10 @@
 #   - the completion script, sourced in bash: `bouncer <TAB>` offers every command,
 #     `bouncer cert<TAB>` exactly certify-sticking and certify-periodic, `bouncer orbit --<TAB>`
 #     every option of orbit's help, `bouncer orbit --precision <TAB>` the precisions,
-#     `bouncer help <TAB>` the commands, `bouncer orbit --a <TAB>` nothing (a number).
+#     `bouncer help <TAB>` the commands, `bouncer orbit --a <TAB>` nothing (a number);
+#   - where the build has made them (target bouncer_man), `cmake --install --component man`
+#     puts every page where `man -w bouncer-CMD` finds it, identical to the help's, and the
+#     completion in share/bash-completion/completions.
 # Exit 77 (skipped) when man (man-db) or groff is missing.
 # Usage: bash docs_man.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -80,4 +83,19 @@ done
 offered=$(complete_words bouncer help "")
 grep -qx orbit <<<"$offered" || fail completion "bouncer help <TAB> does not offer orbit"
 [[ -z $(complete_words bouncer orbit --a "") ]] || fail completion "bouncer orbit --a <TAB> offers words for a number"
+# the build's pages (CMake target bouncer_man), installed: `man bouncer-CMD` finds each in
+# PREFIX/share/man/man1, the same bytes as generated above; the completion beside it
+build=$(cd "$(dirname "$BOUNCER")/.." && pwd)
+if [[ -f $build/tools/man.stamp && -f $build/cmake_install.cmake ]]; then
+  cmake --install "$build" --component man --prefix "$TMP/inst" >/dev/null || fail install "cmake --install --component man failed"
+  for page in bouncer "${cmds[@]/#/bouncer-}"; do
+    found=$(MANPATH=$TMP/inst/share/man man -w "$page" 2>/dev/null || true)
+    [[ $found == "$TMP/inst/share/man/man1/$page.1" ]] || { fail install "man -w $page gives '$found'"; continue; }
+    cmp -s "$found" "$TMP/man/$page.1" || fail install "the installed $page.1 differs from the help's (stale build?)"
+  done
+  cmp -s "$TMP/inst/share/bash-completion/completions/bouncer" "$TMP/bouncer.bash" ||
+    fail install "share/bash-completion/completions/bouncer is missing or differs from the help's"
+else
+  echo "docs_man: the target bouncer_man is not built in $build: the installed pages are not checked"
+fi
 finish "docs_man: ${#cmds[@]} commands: man pages render without warnings and document every option; completion offers commands and options"

@@ -33,11 +33,6 @@ class Option:
     help: str
     positional: bool = False
 
-    @property
-    def long(self):
-        longs = [n for n in self.names if n.startswith("--")]
-        return longs[0] if longs else self.names[0]
-
     def words(self):
         """Values the completion offers: alternatives named in the type or the help."""
         if "|" in self.value:

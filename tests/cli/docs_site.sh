@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The documentation site (mkdocs.yml, docs/), built as `tools/setup docs` builds it, in a copy:
+#   - tools/gen_docs.py writes a reference page for every command `bouncer --help` lists, and
+#     each page holds every option of that command's --help (read here with grep);
+#   - mkdocs.yml's nav lists every generated reference page (a new command needs its line);
+#   - `mkdocs build --strict` succeeds (a warning, e.g. a link to a missing page, is an error);
+#   - tools/check_site_links.py finds every internal link, anchor and file of the built site,
+#     and no script, stylesheet or image loaded from the network (the site works offline);
+#     and it does fail on a planted broken anchor and a planted missing file.
+# Exit 77 (skipped) when mkdocs is not installed (`tools/setup docs` installs it).
+# Usage: bash docs_site.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+command -v mkdocs >/dev/null || skip "mkdocs is not installed (apt-get install mkdocs, or tools/setup docs)"
+PY=python3; [[ -x /usr/bin/python3 ]] && PY=/usr/bin/python3
+
+cp "$SRC/mkdocs.yml" "$TMP/"
+cp -r "$SRC/docs" "$TMP/docs"
+rm -rf "$TMP/docs/reference" "$TMP/docs/claims.md" "$TMP/docs/pictures"  # generated: made fresh below
+"$PY" "$SRC/tools/gen_docs.py" --bouncer "$BOUNCER" --docs "$TMP/docs" >/dev/null || die "tools/gen_docs.py failed"
+
+mapfile -t cmds < <("$BOUNCER" --help | awk '/^Subcommands:/ {f = 1; next} f && /^  [a-z]/ {print $1} f && /^$/ {f = 0}')
+((${#cmds[@]} >= 10)) || die "bouncer --help lists only ${#cmds[@]} commands"
+for c in "${cmds[@]}"; do
+  page=$TMP/docs/reference/$c.md
+  [[ -f $page ]] || { fail "reference/$c.md" "not generated"; continue; }
+  while read -r opt; do
+    grep -qF -- "$opt" "$page" || fail "reference/$c.md" "does not document $opt"
+  done < <("$BOUNCER" "$c" --help | grep -oE -- '^  (-[A-Za-z],)?--[a-z0-9-]+' | sed 's/^ *//; s/^-[A-Za-z],//')
+  grep -qE -- "^ +- [a-z-]+: reference/$c\.md$" "$TMP/mkdocs.yml" || fail mkdocs.yml "the nav does not list reference/$c.md"
+done
+[[ -s $TMP/docs/claims.md ]] || fail claims.md "not generated"
+
+if ! (cd "$TMP" && mkdocs build --strict -q -d "$TMP/site") >"$TMP/mkdocs.log" 2>&1; then
+  fail "mkdocs build --strict" "$(grep -E 'WARNING|ERROR|Error' "$TMP/mkdocs.log" | head -5)"
+fi
+[[ -f $TMP/site/index.html && -f $TMP/site/reference/orbit.html ]] || die "the site has no index.html or reference/orbit.html"
+"$PY" "$SRC/tools/check_site_links.py" "$TMP/site" >"$TMP/links.log" 2>&1 || fail links "$(head -5 "$TMP/links.log")"
+
+# the link checker can fail: a missing anchor, a missing picture
+mkdir -p "$TMP/bad/sub"
+printf '<html><body><h1 id="top">x</h1><a href="sub/b.html#nowhere">b</a><img src="pic.png"></body></html>' >"$TMP/bad/index.html"
+printf '<html><body><a href="../index.html#top">a</a></body></html>' >"$TMP/bad/sub/b.html"
+"$PY" "$SRC/tools/check_site_links.py" "$TMP/bad" >"$TMP/bad.log" 2>&1 && fail check_site_links "passes a site with broken links"
+grep -q "no id 'nowhere'" "$TMP/bad.log" || fail check_site_links "does not report the missing anchor: $(cat "$TMP/bad.log")"
+grep -q "pic.png does not exist" "$TMP/bad.log" || fail check_site_links "does not report the missing picture: $(cat "$TMP/bad.log")"
+finish "docs_site: ${#cmds[@]} reference pages; mkdocs --strict builds; $(tail -1 "$TMP/links.log" | sed 's/^check_site_links: //')"

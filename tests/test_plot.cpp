@@ -26,6 +26,7 @@ namespace {
 
 struct Decoded {
   int width = 0, height = 0;
+  long pixels_per_metre = 0;  // pHYs, when given in metres and square
   std::vector<std::uint8_t> rgb;
   std::map<std::string, std::string> text;
   Rgb at(int x, int y) const {
@@ -55,6 +56,10 @@ bool decode(const std::string& path, Decoded& out) {
   png_read_info(png, info);
   out.width = static_cast<int>(png_get_image_width(png, info));
   out.height = static_cast<int>(png_get_image_height(png, info));
+  png_uint_32 res_x = 0, res_y = 0;
+  int unit = 0;
+  if (png_get_pHYs(png, info, &res_x, &res_y, &unit) && unit == PNG_RESOLUTION_METER && res_x == res_y)
+    out.pixels_per_metre = static_cast<long>(res_x);
   png_set_expand(png);
   png_set_strip_16(png);
   png_set_strip_alpha(png);
@@ -357,6 +362,37 @@ TEST(Render, SizeOptionSetsThePngPixelsAndBadOptionsThrow) {
   ro.width = 400;
   ro.dpi = 1;
   EXPECT_THROW(write_figure(path, f, ImageFormat::pdf, ro), std::runtime_error);
+}
+
+// --dpi without --size: the pixels scale with the resolution (the figure's own size is set
+// for 150 dpi), so the figure keeps its physical size, and the PNG says how many pixels per
+// inch it has (pHYs, per metre: 300 / 0.0254 = 11811.02 -> 11811).
+TEST(Render, DpiScalesTheOwnSizeAndIsRecordedInThePng) {
+  TempDir tmp;
+  Figure f = small_figure();
+  f.width = 450;
+  f.height = 300;
+  const std::string path = (tmp.path / "d.png").string();
+  RenderOptions ro;  // 150 dpi: the figure's own size
+  write_figure(path, f, ImageFormat::png, ro);
+  Decoded d;
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 450);
+  EXPECT_EQ(d.height, 300);
+  EXPECT_EQ(d.pixels_per_metre, 5906);  // 150 / 0.0254 = 5905.5 -> 5906
+  ro.dpi = 300;
+  write_figure(path, f, ImageFormat::png, ro);
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 900);
+  EXPECT_EQ(d.height, 600);
+  EXPECT_EQ(d.pixels_per_metre, 11811);
+  ro.width = 500;  // --size wins over the scaling
+  ro.height = 400;
+  write_figure(path, f, ImageFormat::png, ro);
+  ASSERT_TRUE(decode(path, d));
+  EXPECT_EQ(d.width, 500);
+  EXPECT_EQ(d.height, 400);
+  EXPECT_EQ(d.pixels_per_metre, 11811);
 }
 
 TEST(Render, SmallLegendGoesInsideTheFrameAwayFromTheData) {

@@ -173,7 +173,9 @@ inline void add_picture_options(OptionSet& o) {
   o.add("format", "Picture formats, a comma list of png, pdf, svg (default png): PREFIX.png, PREFIX.pdf, PREFIX.svg");
   o.add("size", "Picture size WxH: pixels of the PNG, 200..20000 x 150..20000 (default: the command's, e.g. 900x600); "
                 "PDF/SVG pages are W*72/dpi x H*72/dpi points");
-  o.add("dpi", "Resolution, integer in [36, 2400] (default 150): text is set in points at this many pixels per inch");
+  o.add("dpi", "Resolution, integer in [36, 2400] (default 150): text is set in points at this many pixels per inch, "
+               "the picture's pixels scale with it (900x600 at 150 is 1800x1200 at 300) unless --size is given, and "
+               "the PNG records it");
   o.add("palette", "Colours: safe (default; Okabe-Ito categories, viridis densities, colour-blind safe) | "
                    "paper (the paper's: black periodic, red sticking, green chaos)");
 }

@@ -16,17 +16,6 @@ namespace {
 // --confirm: the JSON summary's "confirm" and the artefact map (PREFIX-artefacts.png).
 nlohmann::ordered_json confirm_summary(const BasinResult& b, long stride) {
   const BasinRequest& r = b.request;
-  const std::pair<Precision, Precision> p = check_precisions(r.precision, r.confirm.bits);
-  nlohmann::ordered_json j;
-  j["bits"] = r.confirm.bits;
-  j["precisions"] = {p.first.text(), p.second.text()};
-  j["transient"] = r.classify.transient;
-  j["steps"] = r.classify.steps;
-  j["recheck_factor"] = r.classify.recheck_factor;
-  j["sample"] = {{"requested", r.confirm.sample == 0 ? nlohmann::ordered_json("all") : nlohmann::ordered_json(r.confirm.sample)},
-                 {"stride", stride},
-                 {"rule", "the start at offset (min(s, n) - 1) / 2 of every s x s block of the grid, s = stride"},
-                 {"starts", confirm_sample_units(r.nx, r.ny, stride)}};
   long n[3] = {0, 0, 0};
   nlohmann::ordered_json artefacts = nlohmann::ordered_json::array();
   for (size_t i = 0; i < b.cells.size(); ++i) {
@@ -41,14 +30,11 @@ nlohmann::ordered_json confirm_summary(const BasinResult& b, long stride) {
                            {"check_class", name(c.check_cls)},
                            {"check_period", c.check_period}});
   }
-  const long confirmed = n[0] + n[1] + n[2];
-  j["confirmed"] = confirmed;  // the sample's starts inside the phase space
-  j["agrees"] = n[0];
-  j["artefact"] = n[1];
-  j["precision_dependent"] = n[2];
-  j["confirmed_fraction"] = confirmed > 0 ? nlohmann::ordered_json(static_cast<double>(n[0]) / confirmed) : nlohmann::ordered_json();
-  j["artefacts"] = artefacts;
-  return j;
+  return confirm_json(r.precision, r.confirm, r.classify,
+                      {{"stride", stride},
+                       {"rule", "the start at offset (min(s, n) - 1) / 2 of every s x s block of the grid, s = stride"},
+                       {"starts", confirm_sample_units(r.nx, r.ny, stride)}},
+                      n, std::move(artefacts));
 }
 
 ImageFigure confirm_figure(const BasinResult& b, Palette palette) {

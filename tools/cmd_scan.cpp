@@ -18,20 +18,7 @@ namespace {
 nlohmann::ordered_json confirm_summary(const ScanResult& res, const ScanGrid& grid) {
   const ScanRequest& r = res.request;
   const long stride = grid.confirm_stride();
-  const std::pair<Precision, Precision> p = check_precisions(r.precision, r.confirm.bits);
-  nlohmann::ordered_json j;
-  j["bits"] = r.confirm.bits;
-  j["precisions"] = {p.first.text(), p.second.text()};
-  j["transient"] = r.classify.transient;
-  j["steps"] = r.classify.steps;
-  j["recheck_factor"] = r.classify.recheck_factor;
   const long points = confirm_sample_units(r.p, r.q, stride);
-  j["sample"] = {{"requested", r.confirm.sample == 0 ? nlohmann::ordered_json("all") : nlohmann::ordered_json(r.confirm.sample)},
-                 {"stride", stride},
-                 {"rule", "every start of the parameter point at offset (min(s, n) - 1) / 2 of every s x s block of the "
-                          "grid, s = stride"},
-                 {"points", points},
-                 {"starts", points * r.k * r.k}};
   long n[3] = {0, 0, 0};
   const std::string y = name(res.y);
   nlohmann::ordered_json artefacts = nlohmann::ordered_json::array();
@@ -46,14 +33,13 @@ nlohmann::ordered_json confirm_summary(const ScanResult& res, const ScanGrid& gr
                            {"v", x.second.digits}});
     }
   }
-  const long confirmed = n[0] + n[1] + n[2];
-  j["confirmed"] = confirmed;  // the sample's starts inside the phase space
-  j["agrees"] = n[0];
-  j["artefact"] = n[1];
-  j["precision_dependent"] = n[2];
-  j["confirmed_fraction"] = confirmed > 0 ? nlohmann::ordered_json(static_cast<double>(n[0]) / confirmed) : nlohmann::ordered_json();
-  j["artefacts"] = artefacts;
-  return j;
+  return confirm_json(r.precision, r.confirm, r.classify,
+                      {{"stride", stride},
+                       {"rule", "every start of the parameter point at offset (min(s, n) - 1) / 2 of every s x s block of the "
+                                "grid, s = stride"},
+                       {"points", points},
+                       {"starts", points * r.k * r.k}},
+                      n, std::move(artefacts));
 }
 
 void write_scan(const ScanResult& res, const ScanGrid& grid, const ScanOptions& so, const RunFlags& f, const Provenance& prov) {

@@ -172,6 +172,32 @@ struct PictureJob {
   std::string size_field = "grid";  // the option that sets the number of items, for messages
 };
 
+// --confirm in a grid's JSON summary (basin, scan): the settings (the two precisions of
+// check_precisions, the classifier's windows, the sample as `sample` describes it), then the
+// verdict counts n[] (agrees, artefact, precision_dependent) and the artefacts' starts.
+inline nlohmann::ordered_json confirm_json(const Precision& run, const GridConfirm& c, const ClassifyOptions& w,
+                                           nlohmann::ordered_json sample, const long (&n)[3],
+                                           nlohmann::ordered_json artefacts) {
+  const std::pair<Precision, Precision> p = check_precisions(run, c.bits);
+  nlohmann::ordered_json j;
+  j["bits"] = c.bits;
+  j["precisions"] = {p.first.text(), p.second.text()};
+  j["transient"] = w.transient;
+  j["steps"] = w.steps;
+  j["recheck_factor"] = w.recheck_factor;
+  nlohmann::ordered_json described{{"requested", c.sample == 0 ? nlohmann::ordered_json("all") : nlohmann::ordered_json(c.sample)}};
+  for (auto& item : sample.items()) described[item.key()] = item.value();
+  j["sample"] = std::move(described);
+  const long confirmed = n[0] + n[1] + n[2];
+  j["confirmed"] = confirmed;  // the sample's starts inside the phase space
+  j["agrees"] = n[0];
+  j["artefact"] = n[1];
+  j["precision_dependent"] = n[2];
+  j["confirmed_fraction"] = confirmed > 0 ? nlohmann::ordered_json(static_cast<double>(n[0]) / confirmed) : nlohmann::ordered_json();
+  j["artefacts"] = std::move(artefacts);
+  return j;
+}
+
 // Refuses (InputError naming the option that sets the job's size) a grid whose items, held
 // in memory while it runs and again as the CSV and picture made from them, would need more
 // than the memory available to this process (available_memory_bytes: MemAvailable, ulimit

@@ -129,7 +129,7 @@ void png_append(png_structp png, png_bytep data, png_size_t length) {
   static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), length);
 }
 void png_no_flush(png_structp) {}
-bool encode_png(std::string* out, int w, int h, const std::uint8_t* rgb, png_text* text, int ntext) {
+bool encode_png(std::string* out, int w, int h, double dpi, const std::uint8_t* rgb, png_text* text, int ntext) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, png_silent_error, png_silent_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
   if (!png || !info) {
@@ -144,6 +144,10 @@ bool encode_png(std::string* out, int w, int h, const std::uint8_t* rgb, png_tex
   png_set_compression_level(png, 9);
   png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8, PNG_COLOR_TYPE_RGB,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // The physical resolution (pHYs, pixels per metre), so that a viewer or a typesetter
+  // shows the figure at the size its text was set for.
+  const auto per_metre = static_cast<png_uint_32>(std::lround(dpi / 0.0254));
+  png_set_pHYs(png, info, per_metre, per_metre, PNG_RESOLUTION_METER);
   if (ntext > 0) png_set_text(png, info, text, ntext);
   png_write_info(png, info);
   for (int y = 0; y < h; ++y) png_write_row(png, const_cast<png_bytep>(rgb + static_cast<size_t>(y) * w * 3));
@@ -809,7 +813,7 @@ std::string xml_escaped(const std::string& s) {
 }
 
 // The PNG file of an RGB raster, with its metadata as tEXt/zTXt chunks.
-std::string png_bytes(int w, int h, const std::vector<std::uint8_t>& rgb,
+std::string png_bytes(int w, int h, double dpi, const std::vector<std::uint8_t>& rgb,
                       const std::vector<std::pair<std::string, std::string>>& metadata) {
   const auto meta = with_software(metadata);
   std::vector<std::string> keys, values;
@@ -827,7 +831,7 @@ std::string png_bytes(int w, int h, const std::vector<std::uint8_t>& rgb,
     text[i].text_length = values[i].size();
   }
   std::string bytes;
-  if (!encode_png(&bytes, w, h, rgb.data(), text.data(), static_cast<int>(text.size())))
+  if (!encode_png(&bytes, w, h, dpi, rgb.data(), text.data(), static_cast<int>(text.size())))
     throw OutputError("cannot encode the PNG picture");
   return bytes;
 }
@@ -902,7 +906,7 @@ void render(std::ostream& out, ImageFormat format, int w, int h, double dpi,
     throw OutputError(std::string("cannot render the ") + format_name(format) + " picture: " +
                       cairo_status_to_string(drawn != CAIRO_STATUS_SUCCESS ? drawn : finished));
   if (format == ImageFormat::png) {
-    const std::string png = png_bytes(w, h, rgb, metadata);
+    const std::string png = png_bytes(w, h, dpi, rgb, metadata);
     out.write(png.data(), static_cast<std::streamsize>(png.size()));
     return;
   }
@@ -1126,8 +1130,19 @@ Rgb category_color(int index) {
   return Rgb{static_cast<std::uint8_t>(base.r * f), static_cast<std::uint8_t>(base.g * f), static_cast<std::uint8_t>(base.b * f)};
 }
 
+// The pixels of a figure drawn with `ro`: --size when given, else the figure's own size
+// (set for kDefaultDpi) scaled to ro.dpi, so that --dpi changes the resolution and not the
+// figure's physical size or layout.
+std::pair<int, int> figure_pixels(const RenderOptions& ro, int own_width, int own_height) {
+  const auto scaled = [&](int own) {
+    return static_cast<int>(std::min<double>(kMaxFigureSide, std::lround(own * ro.dpi / kDefaultDpi)));
+  };
+  return {ro.width > 0 ? ro.width : scaled(own_width), ro.height > 0 ? ro.height : scaled(own_height)};
+}
+
 void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, const RenderOptions& ro) {
-  const int W = ro.width > 0 ? ro.width : fig.width, H = ro.height > 0 ? ro.height : fig.height;
+  const std::pair<int, int> pixels = figure_pixels(ro, fig.width, fig.height);
+  const int W = pixels.first, H = pixels.second;
   check_size(W, H);
   if (!(ro.dpi >= kMinDpi && ro.dpi <= kMaxDpi)) throw std::runtime_error("figure dpi out of range");
   const Style st(W, H, ro.dpi);
@@ -1248,7 +1263,8 @@ void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, cons
 
 void write_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format, const RenderOptions& ro) {
   const Raster& r = fig.raster;
-  const int W = ro.width > 0 ? ro.width : fig.width, H = ro.height > 0 ? ro.height : fig.height;
+  const std::pair<int, int> pixels = figure_pixels(ro, fig.width, fig.height);
+  const int W = pixels.first, H = pixels.second;
   check_size(W, H);
   if (!(ro.dpi >= kMinDpi && ro.dpi <= kMaxDpi)) throw std::runtime_error("figure dpi out of range");
   if (r.nx <= 0 || r.ny <= 0 || r.pixels.size() != static_cast<size_t>(r.nx) * r.ny)

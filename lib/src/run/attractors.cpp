@@ -1,4 +1,5 @@
 // Every attractor at a parameter point (run/attractors.hpp): the recurrence mapper.
+#include "bouncer/run/workers.hpp"
 #include "bouncer/run/attractors.hpp"
 
 #include <algorithm>
@@ -677,14 +678,7 @@ AttractorsResult run_mapper(const AttractorsRequest& req, const GridOptions& run
         }
       }
     };
-    const unsigned k = static_cast<unsigned>(std::min<long>(threads, n));
-    if (k <= 1) {
-      work();
-    } else {
-      std::vector<std::thread> pool;
-      for (unsigned t = 0; t < k; ++t) pool.emplace_back(work);
-      for (std::thread& t : pool) t.join();
-    }
+    run_workers(static_cast<unsigned>(std::min<long>(threads, n)), work);
     if (error) std::rethrow_exception(error);
     for (long j = 0; j < n; ++j) {
       Outcome<T>& o = out[static_cast<size_t>(j)];

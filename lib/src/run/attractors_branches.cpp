@@ -9,6 +9,7 @@
 #include <limits>
 #include <thread>
 
+#include "bouncer/run/workers.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/run/attractors_sweep.hpp"
 #include "bouncer/verify/border_collision.hpp"
@@ -242,14 +243,7 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify, int t
         }
       }
     };
-    const unsigned k = static_cast<unsigned>(std::max(1, std::min<int>(threads, static_cast<int>(out.branches.size()))));
-    if (k <= 1) {
-      work();
-    } else {
-      std::vector<std::thread> pool;
-      for (unsigned t = 0; t < k; ++t) pool.emplace_back(work);
-      for (std::thread& t : pool) t.join();
-    }
+    run_workers(static_cast<unsigned>(std::min<size_t>(static_cast<size_t>(std::max(1, threads)), out.branches.size())), work);
     if (error) std::rethrow_exception(error);
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,4 +1,5 @@
 #include "bouncer/run/grid.hpp"
+#include "bouncer/run/workers.hpp"
 #include "bouncer/base/cancel.hpp"
 #include "bouncer/base/input.hpp"
 #include "bouncer/base/output.hpp"
@@ -23,6 +24,7 @@
 #include <iterator>
 #include <mutex>
 #include <sstream>
+#include <functional>
 #include <system_error>
 #include <thread>
 
@@ -100,6 +102,23 @@ double available_memory_bytes() {
     if (mx >> max_text && max_text != "max" && cur >> used) lower(std::strtod(max_text.c_str(), nullptr) - used);
   }
   return have;
+}
+
+void run_workers(unsigned count, const std::function<void()>& work) {
+  if (count <= 1) {
+    work();
+    return;
+  }
+  std::vector<std::thread> pool;
+  for (unsigned i = 0; i < count; ++i) {
+    try {
+      pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;  // the running workers take this one's share of the queue
+    }
+  }
+  if (pool.empty()) work();
+  for (std::thread& t : pool) t.join();
 }
 
 unsigned worker_threads(unsigned requested) {

@@ -147,11 +147,13 @@ const char* format_name(ImageFormat f);
 
 // How a figure is rendered (presentation only: it changes no computed value).
 // width, height: pixels of the PNG; the PDF/SVG page is width*72/dpi x height*72/dpi points.
-// 0 keeps the figure's own width/height. Text sizes are set in points at `dpi` (9.5 pt body
-// text, shrunk on small canvases), so a 900 x 600 figure at 150 dpi is a 6 x 4 inch figure.
+// 0: the figure's own width/height (set for kDefaultDpi) scaled by dpi/kDefaultDpi, so that a
+// 900 x 600 figure is 6 x 4 inches at any dpi (1800 x 1200 pixels at 300). Text sizes are set
+// in points at `dpi` (9.5 pt body text, shrunk on small canvases). The PNG records dpi (pHYs).
+constexpr double kDefaultDpi = 150;
 struct RenderOptions {
   int width = 0, height = 0;
-  double dpi = 150;
+  double dpi = kDefaultDpi;
 };
 // Limits of RenderOptions (the command line checks them: exit 2 naming the option).
 constexpr int kMinFigureWidth = 200, kMinFigureHeight = 150, kMaxFigureSide = 20000;

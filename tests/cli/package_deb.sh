@@ -53,10 +53,10 @@ for f in usr/bin/bouncer usr/libexec/bouncer/proof_elastic_period2 usr/share/bou
 done
 [[ -n $(find "$root/usr" -name bouncer.pc -path '*/pkgconfig/*') ]] || fail layout "the package has no bouncer.pc"
 [[ -n $(find "$root/usr" -name bouncerConfig.cmake) ]] || fail layout "the package has no bouncerConfig.cmake"
+libs=$(ldconfig -p)  # the system's libraries: NAME (FLAGS) => PATH
 for elf in "$root/usr/bin/bouncer" "$root"/usr/libexec/bouncer/proof_* ${core:+"$core"}; do
   for lib in $(objdump -p "$elf" | awk '$1 == "NEEDED" {print $2}'); do
-    path=$(ldconfig -p | awk -v l="$lib" '$1 == l && /x86-64|x32|64/ {print $NF; exit}')
-    [[ -n $path ]] || path=$(ldconfig -p | awk -v l="$lib" '$1 == l {print $NF; exit}')
+    path=$(awk -v l="$lib" '$1 == l && !p {p = $NF} END {print p}' <<<"$libs")
     [[ -n $path ]] || { fail depends "$lib (needed by ${elf#"$root"}) is not a system library"; continue; }
     owner=$(owner_of "$path")
     [[ -n $owner ]] || { fail depends "no Debian package owns $path ($lib)"; continue; }
@@ -73,7 +73,9 @@ only=elastic-period2,trapping-region,sticking-thresholds
 grep -q '3 of 3 claims reproduced' run.err || fail reproduce "$(grep 'claims reproduced' run.err || tail -n 3 run.err)"
 grep -q 'build/proofs' r/report.md && fail reproduce "report.md names build/proofs/"
 if $python_module; then
-  PYTHONPATH="$root/usr/lib/python3/dist-packages" python3 -c "
+  # The python3 the module was built for (Debian's /usr/bin/python3, with python3-numpy).
+  python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
+  PYTHONPATH="$root/usr/lib/python3/dist-packages" "$python" -c "
 import bouncer
 assert bouncer.__file__.startswith('$root/usr/lib/python3/dist-packages/'), bouncer.__file__
 s = bouncer.step(model='constant', a='24', eps='0.5', theta='0.25', v='12')

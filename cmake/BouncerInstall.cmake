@@ -23,3 +23,43 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/bouncerConfig.cmake ${CMAKE_CURRENT_BI
   DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/bouncer)
 # The licence, how to cite and what changed, beside the library (share/doc/bouncer).
 install(FILES LICENSE CITATION.cff CHANGELOG.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+
+# pkg-config beside the CMake package: lib/pkgconfig/bouncer.pc (cmake/bouncer.pc.in), its
+# prefix relative to its own place. The libraries are static: their dependencies are in
+# Requires and Libs, not the .private fields, so that `pkg-config --libs bouncer` links.
+file(RELATIVE_PATH BOUNCER_PC_TO_PREFIX /${CMAKE_INSTALL_LIBDIR}/pkgconfig /)
+string(REGEX REPLACE "/$" "" BOUNCER_PC_TO_PREFIX "${BOUNCER_PC_TO_PREFIX}")
+string(REPLACE "SHELL:" "" BOUNCER_PC_QUADMATH "${BOUNCER_QUADMATH_INCLUDE_FLAGS}")
+string(JOIN " " BOUNCER_PC_CFLAGS ${BOUNCER_FP_FLAGS} ${BOUNCER_PC_QUADMATH})
+set(BOUNCER_PC_LIBS -l${QUADMATH_LIBRARY})
+if(BOUNCER_SANITIZE)
+  string(APPEND BOUNCER_PC_CFLAGS " -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer")
+  string(APPEND BOUNCER_PC_LIBS " -fsanitize=address,undefined")
+endif()
+configure_file(cmake/bouncer.pc.in ${CMAKE_CURRENT_BINARY_DIR}/bouncer.pc @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/bouncer.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+# What `bouncer reproduce` needs beyond bin/bouncer: the proof programs (proofs/CMakeLists.txt,
+# libexec/bouncer/). The paper's manifest and the scenes are compiled into the library
+# (workflow/paper.hpp), so an install reproduces from any directory and `--scene NAME` finds
+# them; the files go to share/bouncer/ as well, to read, copy and edit (--scene PATH,
+# reproduce --manifest PATH).
+install(DIRECTORY data/scenes DESTINATION ${CMAKE_INSTALL_DATADIR}/bouncer FILES_MATCHING PATTERN "*.toml")
+install(FILES data/paper/manifest.toml DESTINATION ${CMAKE_INSTALL_DATADIR}/bouncer/paper)
+
+# A Debian package: `cpack -G DEB` in a build directory (tools/setup package configures one
+# for /usr). dpkg-shlibdeps finds the shared libraries the programs and the Python module
+# link (MPFR, GMP, qd, Cairo, libpng, ...); python3 and python3-numpy are the module's.
+set(CPACK_PACKAGE_NAME bouncer)
+set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
+set(CPACK_PACKAGE_VENDOR "bouncer")
+set(CPACK_PACKAGE_CONTACT "bouncer maintainers <bouncer@localhost>")
+set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Verified numerics for the piecewise linear bouncer (Langer & Miller 2014)")
+set(CPACK_RESOURCE_FILE_LICENSE ${CMAKE_CURRENT_SOURCE_DIR}/LICENSE)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # bouncer_VERSION_ARCH.deb
+set(CPACK_DEBIAN_PACKAGE_SECTION science)
+set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "python3, python3-numpy")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_GENERATOR DEB)
+include(CPack)

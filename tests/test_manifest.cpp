@@ -241,3 +241,16 @@ TEST(Manifest, CommandText) {
   EXPECT_EQ(command_text({"bouncer", "it's"}), "bouncer 'it'\\''s'");
   EXPECT_EQ(command_text({"bouncer", "$(x)"}), "bouncer '$(x)'");
 }
+
+TEST(Manifest, ProofPrefixOfAnInstall) {
+  // An installed bouncer names its proof programs where it found them: the prefix replaces
+  // build/proofs/ in commands and in every place of a claim's rerun text, nothing else.
+  EXPECT_EQ(command_text({"proof_elastic_period2", "--json"}, "/opt/b/libexec/bouncer/"),
+            "/opt/b/libexec/bouncer/proof_elastic_period2 --json");
+  EXPECT_EQ(command_text({"bouncer", "proof_x"}, "/p/"), "bouncer proof_x");  // only the program word
+  EXPECT_EQ(command_text({"proof_a"}, "/my dir/"), "'/my dir/proof_a'");
+  EXPECT_EQ(rerun_text("`build/proofs/proof_a`; `build/proofs/proof_b [--full]`", "/p/"), "`/p/proof_a`; `/p/proof_b [--full]`");
+  EXPECT_EQ(rerun_text("`bouncer basin --scene data/scenes/x.toml`", "/p/"), "`bouncer basin --scene data/scenes/x.toml`");
+  EXPECT_EQ(rerun_text("`build/proofs/proof_a`", kBuildProofPrefix), "`build/proofs/proof_a`");
+  EXPECT_EQ(rerun_text("", "/p/"), "");
+}

@@ -35,6 +35,19 @@ cmake --build "$TMP/consumer-io" >/dev/null
 "$TMP/consumer-io/consumer_io" "$SRC/data/scenes/default.toml" | grep -q '^# bouncer ' ||
   die "the consumer of bouncer::bouncer did not write the provenance of a scene"
 echo "install_consumer: find_package(bouncer) and bouncer::bouncer work"
+# pkg-config, beside the CMake package (lib/pkgconfig/bouncer.pc): the same consumer
+# compiled and linked with nothing but `pkg-config --cflags --libs bouncer`, its prefix
+# found from the .pc file's own place (the install was made to a temporary prefix).
+pc=$(find "$TMP/prefix" -name bouncer.pc -path '*/pkgconfig/*' | head -n 1)
+[[ -n $pc ]] || die "cmake --install did not install bouncer.pc"
+flags=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags --libs bouncer) || die "pkg-config --cflags --libs bouncer failed"
+[[ $flags == *"-I$TMP/prefix/"*include* ]] || die "pkg-config's include directory is not the prefix's: $flags"
+compiler=$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")
+# shellcheck disable=SC2086  # the flags are words
+"$compiler" -o "$TMP/consumer-pc" "$SRC/tests/consumer/io/main.cpp" $flags || die "the pkg-config consumer did not build"
+"$TMP/consumer-pc" "$SRC/data/scenes/default.toml" | grep -q '^# bouncer ' ||
+  die "the pkg-config consumer did not write the provenance of a scene"
+echo "install_consumer: pkg-config --cflags --libs bouncer works"
 # The Python module (when this build has it) is installed into the prefix's Python directory
 # and imports from there alone, away from the source and build trees.
 if compgen -G "$build/python/bouncer/_core*.so" >/dev/null; then

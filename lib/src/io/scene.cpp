@@ -65,8 +65,25 @@ std::string scalar_text(const std::string& key, const toml::node& n) {
 
 // The scene file as a TOML table; a directory, a missing file, a FIFO, a file over 1 MiB,
 // nesting deeper than any scene (base/input.hpp) or bad TOML is InputError("scene").
+// The built-in scene a PATH that is no file names (scene.hpp), if any.
+static const std::string* built_in_scene(const std::string& path) {
+  std::error_code ec;
+  if (path.empty() || std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return nullptr;
+  const auto& scenes = built_in_scenes();
+  std::vector<std::string> keys{path};
+  if (path.find('/') == std::string::npos) {
+    const std::string stem = path.size() > 5 && path.ends_with(".toml") ? path.substr(0, path.size() - 5) : path;
+    keys.push_back("data/scenes/" + stem + ".toml");
+    keys.push_back("data/scenes/picture-" + stem + ".toml");
+  }
+  for (const std::string& k : keys)
+    if (const auto it = scenes.find(k); it != scenes.end()) return &it->second;
+  return nullptr;
+}
+
 static toml::table read_scene_file(const std::string& path) {
-  const std::string text = read_input_file("scene", path, kMaxSceneBytes);
+  const std::string* built_in = built_in_scene(path);
+  const std::string text = built_in ? *built_in : read_input_file("scene", path, kMaxSceneBytes);
   check_toml_text("scene", text, "'" + path + "'", kMaxSceneBytes);
   toml::table table;
   try {

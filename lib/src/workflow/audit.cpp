@@ -18,6 +18,7 @@
 #include "bouncer/base/input.hpp"
 #include "bouncer/workflow/child_process.hpp"
 #include "bouncer/workflow/commands.hpp"
+#include "bouncer/workflow/reproduce.hpp"
 
 namespace bouncer {
 
@@ -172,7 +173,7 @@ AuditPlan plan_rerun(const std::string& path, const std::string& text, const std
     throw InputError("file", "'" + path + "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
                              "(same provenance, exact numbers)");
   if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("proof") && j.contains("claim"))
-    throw InputError("file", "'" + path + "' is a proof certificate; rerun its proof (build/proofs/proof_" +
+    throw InputError("file", "'" + path + "' is a proof certificate; rerun its proof (" + proof_prefix(self) + "proof_" +
                                  (j["proof"].is_string() && safe_name(j["proof"].get<std::string>()) ? j["proof"].get<std::string>()
                                                                                                    : std::string("NAME")) +
                                  " --json) and compare, as the README's proofs section shows");

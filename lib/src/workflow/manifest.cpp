@@ -220,15 +220,24 @@ Manifest parse_manifest(const std::string& text, const std::string& source) {
   return m;
 }
 
-std::string command_text(const std::vector<std::string>& argv) {
+std::string command_text(const std::vector<std::string>& argv, const std::string& proof_prefix) {
   std::string s;
   for (size_t i = 0; i < argv.size(); ++i) {
     std::string w = argv[i];
-    if (i == 0 && w.rfind("proof_", 0) == 0) w.insert(0, "build/proofs/");
+    if (i == 0 && w.rfind("proof_", 0) == 0) w.insert(0, proof_prefix);
     if (i) s += ' ';
     s += shell_word(w);
   }
   return s;
+}
+
+std::string rerun_text(const std::string& rerun, const std::string& proof_prefix) {
+  const std::string from = kBuildProofPrefix;
+  if (proof_prefix == from) return rerun;
+  std::string s;
+  size_t at = 0;
+  for (size_t k; (k = rerun.find(from, at)) != std::string::npos; at = k + from.size()) s += rerun.substr(at, k - at) + proof_prefix;
+  return s + rerun.substr(at);
 }
 
 }  // namespace bouncer

@@ -120,7 +120,7 @@ std::string claims_json(const ReproduceResult& r) {
     if (it.kind == ItemKind::picture) {
       const Picture& p = m.pictures[it.index];
       json j{{"label", p.id()}, {"readme", p.readme}, {"status", it.state == ItemState::cached ? "done" : state},
-             {"command", command_text(it.argv)}};
+             {"command", command_text(it.argv, r.proof_prefix)}};
       if (drawn(it)) j["files"] = it.outputs;
       if (it.state == ItemState::failed) j["problem"] = it.problem;
       jpictures.push_back(j);
@@ -129,7 +129,7 @@ std::string claims_json(const ReproduceResult& r) {
       json j{{"label", p.label}, {"figure", p.figure}, {"status", status}};
       if (it.state == ItemState::skipped) j["reason"] = p.reason;
       if (!p.twin_of.empty()) j["twin_of"] = p.twin_of;
-      if (!it.argv.empty()) j["command"] = command_text(it.argv);
+      if (!it.argv.empty()) j["command"] = command_text(it.argv, r.proof_prefix);
       if (drawn(it)) j["files"] = it.outputs;
       if (it.state == ItemState::failed) j["problem"] = it.problem;
       jpanels.push_back(j);
@@ -139,7 +139,7 @@ std::string claims_json(const ReproduceResult& r) {
       for (const CheckResult& k : it.checks) jchecks.push_back({{"check", k.check}, {"got", k.got}, {"held", k.held}});
       json j{{"id", c.id}, {"row", c.row}, {"paper", c.paper}, {"groups", c.groups}, {"claim", c.text},
              {"expected", c.expected}, {"verdict", it.verdict}, {"status", status_name(it.status)}, {"evidence", c.evidence},
-             {"command", command_text(it.argv)}, {"rerun", c.rerun}, {"checks", jchecks}};
+             {"command", command_text(it.argv, r.proof_prefix)}, {"rerun", rerun_text(c.rerun, r.proof_prefix)}, {"checks", jchecks}};
       if (!it.outputs.empty()) j["output"] = it.outputs[0];
       jclaims.push_back(j);
     }
@@ -168,7 +168,7 @@ std::string report_markdown(const ReproduceResult& r) {
     const Claim& c = m.claims[it.index];
     md << "| " << c.row << " | " << md_cell(c.text) << " | " << md_cell(c.paper) << " | " << c.expected << " | "
        << (it.status == ClaimStatus::reproduced ? "**" + it.verdict + "**" : md_cell(it.verdict)) << " | "
-       << md_cell(c.evidence) << " | " << md_cell(c.rerun) << " |\n";
+       << md_cell(c.evidence) << " | " << md_cell(rerun_text(c.rerun, r.proof_prefix)) << " |\n";
   }
   if (f.paper) md << "\n## Figures\n";
   std::string figure;
@@ -198,7 +198,7 @@ std::string report_markdown(const ReproduceResult& r) {
     }
     if (!p.note.empty()) md << "Note: " << p.note << "\n\n";
     if (!it.argv.empty())
-      md << "Provenance: `" << command_text(it.argv) << " --out panels/" << p.name() << "` (bouncer " << r.build
+      md << "Provenance: `" << command_text(it.argv, r.proof_prefix) << " --out panels/" << p.name() << "` (bouncer " << r.build
          << "); outputs panels/" << p.name() << ".{png,csv,json}\n";
   }
   if (f.any_picture) {
@@ -212,13 +212,13 @@ std::string report_markdown(const ReproduceResult& r) {
         for (const std::string& file : p.files) md << "![" << p.name << "](pictures/" << file << ")\n\n";
       else
         md << "**Failed:** " << md_cell(it.problem) << "\n\n";
-      md << "Provenance: `" << command_text(it.argv) << " --out pictures/" << p.name << "`\n";
+      md << "Provenance: `" << command_text(it.argv, r.proof_prefix) << " --out pictures/" << p.name << "`\n";
     }
   }
   if (f.paper) md << "\n## Claims: provenance\n\n";
   for (const ItemResult& it : r.items) {
     if (it.kind != ItemKind::claim) continue;
-    md << "- " << it.id << ": `" << command_text(it.argv) << "`" << (it.outputs.empty() ? "" : " → " + it.outputs[0]);
+    md << "- " << it.id << ": `" << command_text(it.argv, r.proof_prefix) << "`" << (it.outputs.empty() ? "" : " → " + it.outputs[0]);
     for (const std::string& failed : it.failed_checks) md << "; failed check: " << failed;
     md << "\n";
   }
@@ -249,7 +249,7 @@ std::string report_html(const ReproduceResult& r) {
     const Claim& c = m.claims[it.index];
     h << "<tr><td>" << html_escape(c.row) << "</td><td>" << md_inline_html(c.text) << "</td><td>" << html_escape(c.paper)
       << "</td><td>" << html_escape(c.expected) << "</td><td class=\"" << (it.status == ClaimStatus::reproduced ? "ok" : "bad")
-      << "\">" << html_escape(it.verdict) << "</td><td>" << md_inline_html(c.evidence) << "</td><td>" << md_inline_html(c.rerun)
+      << "\">" << html_escape(it.verdict) << "</td><td>" << md_inline_html(c.evidence) << "</td><td>" << md_inline_html(rerun_text(c.rerun, r.proof_prefix))
       << "</td></tr>\n";
   }
   if (f.paper) h << "</table>\n<h2>Figures</h2>\n";
@@ -282,7 +282,7 @@ std::string report_html(const ReproduceResult& r) {
     }
     if (!p.note.empty()) h << "<p>Note: " << html_escape(p.note) << "</p>\n";
     if (!it.argv.empty())
-      h << "<p>Provenance: <code>" << html_escape(command_text(it.argv)) << " --out panels/" << html_escape(p.name())
+      h << "<p>Provenance: <code>" << html_escape(command_text(it.argv, r.proof_prefix)) << " --out panels/" << html_escape(p.name())
         << "</code> (bouncer " << html_escape(r.build) << ")</p>\n";
     h << "</figure>\n";
   }
@@ -299,14 +299,14 @@ std::string report_html(const ReproduceResult& r) {
       else
         h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
       h << "<figcaption>" << html_escape(p.name) << " (README: " << html_escape(p.readme) << "). " << md_inline_html(p.about)
-        << "</figcaption>\n<p>Provenance: <code>" << html_escape(command_text(it.argv)) << " --out pictures/"
+        << "</figcaption>\n<p>Provenance: <code>" << html_escape(command_text(it.argv, r.proof_prefix)) << " --out pictures/"
         << html_escape(p.name) << "</code></p>\n</figure>\n";
     }
   }
   if (f.paper) h << "<h2>Claims: provenance</h2>\n<ul>\n";
   for (const ItemResult& it : r.items) {
     if (it.kind != ItemKind::claim) continue;
-    h << "<li>" << html_escape(it.id) << ": <code>" << html_escape(command_text(it.argv)) << "</code>";
+    h << "<li>" << html_escape(it.id) << ": <code>" << html_escape(command_text(it.argv, r.proof_prefix)) << "</code>";
     for (const std::string& failed : it.failed_checks) h << "; failed check: " << html_escape(failed);
     h << "</li>\n";
   }

@@ -36,8 +36,15 @@ fs::path executable_path(const std::string& executable) {
   return exe;
 }
 
+// The proof directories a binary in EXE_DIR may use, in order: the build tree's
+// (build/tools/../proofs) and the install's (bin/BOUNCER_PROOFS_FROM_BIN, lib/CMakeLists.txt).
+std::vector<fs::path> proof_directories(const fs::path& exe_dir) {
+  return {exe_dir / ".." / "proofs", exe_dir / BOUNCER_PROOFS_FROM_BIN};
+}
+
 std::optional<fs::path> find_proof(const fs::path& exe_dir, const std::string& name) {
-  for (const fs::path& p : {exe_dir / ".." / "proofs" / name, exe_dir / name}) {
+  for (const fs::path& d : proof_directories(exe_dir)) {
+    const fs::path p = d / name;
     std::error_code ec;
     if (fs::is_regular_file(p, ec) && ::access(p.c_str(), X_OK) == 0) return fs::weakly_canonical(p, ec);
   }
@@ -178,7 +185,7 @@ void plan_items(const ReproduceRequest& r, const Manifest& m, const fs::path& di
     Job job;
     if (!full && !c.quick) {
       job.state = ItemState::deferred;
-      job.problem = "not settled in --quick: run `" + command_text(c.full_run) + "` (or bouncer reproduce --full --only " + c.id + ")";
+      job.problem = "not settled in --quick: run `" + command_text(c.full_run, proof_prefix(r.executable)) + "` (or bouncer reproduce --full --only " + c.id + ")";
       item.argv = c.full_run;
       add(std::move(item), std::move(job));
       continue;
@@ -254,6 +261,23 @@ void judge_claim(const Claim& c, const fs::path& dir, ItemResult& it, ReproduceR
 
 }  // namespace
 
+std::optional<std::string> proof_directory(const std::string& executable) {
+  const fs::path exe_dir = executable_path(executable).parent_path();
+  for (const fs::path& d : proof_directories(exe_dir)) {
+    std::error_code ec;
+    if (fs::is_directory(d, ec)) return fs::weakly_canonical(d, ec).string();
+  }
+  return std::nullopt;
+}
+
+std::string proof_prefix(const std::string& executable) {
+  const fs::path exe_dir = executable_path(executable).parent_path();
+  std::error_code ec;
+  if (fs::is_directory(exe_dir / ".." / "proofs", ec)) return kBuildProofPrefix;
+  const auto dir = proof_directory(executable);
+  return dir ? *dir + "/" : kBuildProofPrefix;
+}
+
 const char* mode_name(ReproduceMode m) {
   switch (m) {
     case ReproduceMode::quick: return "quick";
@@ -309,6 +333,7 @@ ReproduceResult reproduce(const ReproduceRequest& request) {
   const fs::path dir = request.out;
   const fs::path exe = executable_path(request.executable);
   const fs::path exe_dir = exe.parent_path();
+  r.proof_prefix = proof_prefix(request.executable);
   r.build = build_info().version + " (commit " + build_info().commit + ")";
 
   std::vector<Job> jobs;
@@ -328,8 +353,9 @@ ReproduceResult reproduce(const ReproduceRequest& request) {
         job.exec[0] = p->string();
       } else {
         job.state = ItemState::failed;
-        job.problem = "not reproduced: proof binary not found (" + job.exec[0] + " next to " + exe_dir.string() +
-                      " or in ../proofs; build it: cmake --build build --target " + job.exec[0] + ")";
+        job.problem = "not reproduced: proof binary not found (" + job.exec[0] + " in " + (exe_dir / ".." / "proofs").string() +
+                      " or " + (exe_dir / BOUNCER_PROOFS_FROM_BIN).string() + "; build it: cmake --build build --target " +
+                      job.exec[0] + ", or cmake --install it)";
         continue;
       }
     } else {

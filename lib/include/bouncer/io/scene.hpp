@@ -39,8 +39,16 @@ struct Options {
   std::string as_toml(const std::string& command) const;
 };
 
-// Reads a scene file. Keys must be in `allowed`; decimals must be TOML strings or
-// integers (a TOML float has already lost the exact decimal). Throws InputError.
+// The scenes of data/scenes/ compiled into the library (generated from lib/CMakeLists.txt;
+// workflow/paper.hpp), key: the path from the source root ("data/scenes/NAME.toml"), value:
+// the file's text.
+const std::map<std::string, std::string>& built_in_scenes();
+// Reads a scene file. Keys must be in `allowed`; decimals must be TOML strings or integers
+// (a TOML float has already lost the exact decimal). Throws InputError. A PATH that names no
+// file is looked up among the built-in scenes, so that scenes work from any directory and
+// from an install: "data/scenes/NAME.toml", "NAME.toml", "NAME", and for the README's
+// picture scenes (picture-NAME.toml) "NAME" alone too (e.g. bifurcation-eps096). An
+// existing file is always the one read.
 Options load_scene(const std::string& path, const std::string& command, const std::set<std::string>& allowed);
 // The `command` key of a scene (for `bouncer --scene FILE`); throws InputError("scene", ...)
 // when the file is unreadable, a directory, not TOML, or names no command.

@@ -71,8 +71,16 @@ std::string command_problem(const std::vector<std::string>& argv);
 // "SOURCE panel LABEL: ...") naming the item and the field at fault.
 Manifest parse_manifest(const std::string& text, const std::string& source);
 
+// The directory a proof program is named from in commands shown to a reader: the build
+// tree's, relative to the checkout (build/proofs/proof_NAME), as the README and the
+// manifest's `rerun` texts write it.
+inline constexpr const char* kBuildProofPrefix = "build/proofs/";
+
 // A manifest command as a shell line: words quoted where needed, a proof program as
-// build/proofs/proof_NAME (where the build puts it).
-std::string command_text(const std::vector<std::string>& argv);
+// PROOF_PREFIX + proof_NAME (by default where the build puts it; an installed bouncer passes
+// its own proof directory, reproduce.hpp's proof_prefix).
+std::string command_text(const std::vector<std::string>& argv, const std::string& proof_prefix = kBuildProofPrefix);
+// A claim's `rerun` text with build/proofs/ replaced by `proof_prefix`.
+std::string rerun_text(const std::string& rerun, const std::string& proof_prefix);
 
 }  // namespace bouncer

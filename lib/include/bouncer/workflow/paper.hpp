@@ -8,6 +8,8 @@
 #include <string>
 #include <string_view>
 
+#include "bouncer/io/scene.hpp"
+
 namespace bouncer {
 
 // The text of data/paper/manifest.toml as it was when the library was built.
@@ -16,8 +18,7 @@ std::string_view paper_manifest_text();
 // How reports and messages name that manifest.
 inline constexpr const char* kPaperManifestSource = "data/paper/manifest.toml (built in)";
 
-// The scenes of data/scenes/, key: the path from the source root ("data/scenes/NAME.toml"),
-// value: the file's text. A manifest's `--scene PATH` must be one of these keys.
-const std::map<std::string, std::string>& built_in_scenes();
+// The scenes of data/scenes/: built_in_scenes() of io/scene.hpp (declared there, as `--scene`
+// of every command reads them too). A manifest's `--scene PATH` must be one of its keys.
 
 }  // namespace bouncer

@@ -1,7 +1,7 @@
 // `bouncer reproduce` as a library call: the whole paper (or the README's pictures) from a
 // manifest (workflow/manifest.hpp). Every figure panel and every claim runs as a child
-// process of the bouncer binary, or of a proof binary next to it (build/proofs/proof_NAME
-// beside build/tools/bouncer), N at a time (workflow/scheduler.hpp), into the directory DIR:
+// process of the bouncer binary, or of a proof program found from it (proof_directory below),
+// N at a time (workflow/scheduler.hpp), into the directory DIR:
 //   DIR/report.md, DIR/report.html  every panel beside the paper's caption, the claims table,
 //                                   provenance per item; times only in the "Times" section
 //   DIR/claims.json                 per claim: expected verdict, this run's verdict, checks;
@@ -37,6 +37,17 @@ const char* mode_name(ReproduceMode m);  // "quick", "full", "pictures"
 Manifest load_manifest(const std::string& path);
 // How reports name that manifest: `path`, or kPaperManifestSource.
 std::string manifest_source(const std::string& path);
+
+// Where the proof programs (proof_NAME) of the bouncer binary `executable` ("": this
+// process's, /proc/self/exe) are, found from the binary itself and never through PATH or a
+// file the user chooses: in a build tree build/proofs/ beside build/tools/bouncer, in an
+// install BIN/../libexec/bouncer/ (GNUInstallDirs' libexec, relative to bin, so that a
+// relocated install or an unpacked .deb finds its own). std::nullopt: neither exists.
+std::optional<std::string> proof_directory(const std::string& executable = "");
+// How commands shown to a reader name a proof program's directory: kBuildProofPrefix
+// (build/proofs/, checkout-relative) from a build tree, the install's absolute
+// libexec/bouncer/ from an install.
+std::string proof_prefix(const std::string& executable = "");
 
 // Refuses (InputError "reproduce") to run inside a reproduce: its children have
 // BOUNCER_IN_REPRODUCE set, and a manifest runs computing commands only.
@@ -82,6 +93,7 @@ struct ReproduceResult {
   Manifest manifest;
   ReproduceMode mode = ReproduceMode::quick;
   std::string dir, build, manifest_source;
+  std::string proof_prefix = kBuildProofPrefix;  // proof_prefix(): how the reports name proof programs
   std::vector<std::string> only;     // the ids selected with `only`, sorted
   unsigned jobs = 1;
   std::vector<ItemResult> items;     // panels, then claims, then pictures, in manifest order
@@ -102,7 +114,7 @@ ReproduceResult reproduce(const ReproduceRequest& request);
 // bouncer command goes to `validate` with its scenes resolved (and a panel's --out in a
 // temporary directory), under a set cancellation flag (base/cancel.hpp), so that it checks
 // its options and inputs as it always does and stops at its first step; a proof binary
-// must exist next to `executable` ("": this process's binary) or in ../proofs.
+// must exist in proof_directory(executable).
 struct CommandValidation {
   enum class Kind { stopped, ran, refused } kind = Kind::refused;
   int status = 0;       // exit status when refused

@@ -13,7 +13,7 @@ namespace bouncer::cli {
 
 namespace {
 
-// --confirm: the JSON summary's "confirm" and the artefact map (PREFIX-artefacts.png).
+// --confirm: the JSON summary's "confirm" (the artefact map is io/grid_figures.hpp basin_confirm_figure).
 nlohmann::ordered_json confirm_summary(const BasinResult& b, long stride) {
   const BasinRequest& r = b.request;
   long n[3] = {0, 0, 0};
@@ -35,24 +35,6 @@ nlohmann::ordered_json confirm_summary(const BasinResult& b, long stride) {
                        {"rule", "the start at offset (min(s, n) - 1) / 2 of every s x s block of the grid, s = stride"},
                        {"starts", confirm_sample_units(r.nx, r.ny, stride)}},
                       n, std::move(artefacts));
-}
-
-ImageFigure confirm_figure(const BasinResult& b, Palette palette) {
-  const BasinRequest& r = b.request;
-  const std::string hi = check_precisions(r.precision, r.confirm.bits).first.text();
-  std::vector<Agreement> a;
-  a.reserve(b.cells.size());
-  for (const AttractorCell& c : b.cells)
-    a.push_back(!c.confirm                                              ? Agreement::outside
-                : *c.confirm == PrecisionVerdict::agrees                ? Agreement::agrees
-                : *c.confirm == PrecisionVerdict::artefact ? Agreement::differs
-                                                                        : Agreement::undecided);
-  const std::string own = r.precision.text();
-  return agreement_figure(basin_figure(b, palette), a, r.nx, r.ny,
-                          {"Where " + own + " is wrong: its class against " + hi + " and twice its bits",
-                           hi + " agrees", own + "'s class is an artefact", "precision dependent",
-                           "not confirmed (outside the sample or the phase space)"},
-                          palette);
 }
 
 void write_basin(const BasinResult& b, long stride, const RunFlags& f, const Provenance& prov) {
@@ -94,7 +76,7 @@ void write_basin(const BasinResult& b, long stride, const RunFlags& f, const Pro
   ImageFigure art;
   if (confirm) {
     s["confirm"] = confirm_summary(b, stride);
-    art = confirm_figure(b, f.picture.palette);
+    art = basin_confirm_figure(b, f.picture.palette);
     art.metadata = png_metadata(prov, art.title);
     extra.push_back({"artefacts", [&](std::ostream& out, ImageFormat fmt) { write_figure(out, art, fmt, f.picture.render); }});
   }

@@ -508,4 +508,22 @@ std::string certified_map_csv(const CertifiedMap& m, const std::vector<Number>& 
   return csv;
 }
 
+ImageFigure basin_confirm_figure(const BasinResult& b, Palette palette) {
+  const BasinRequest& r = b.request;
+  const std::string hi = check_precisions(r.precision, r.confirm.bits).first.text();
+  std::vector<Agreement> a;
+  a.reserve(b.cells.size());
+  for (const AttractorCell& c : b.cells)
+    a.push_back(!c.confirm                                    ? Agreement::outside
+                : *c.confirm == PrecisionVerdict::agrees      ? Agreement::agrees
+                : *c.confirm == PrecisionVerdict::artefact    ? Agreement::differs
+                                                              : Agreement::undecided);
+  const std::string own = r.precision.text();
+  return agreement_figure(basin_figure(b, palette), a, r.nx, r.ny,
+                          {"Where " + own + " is wrong: its class against " + hi + " and twice its bits",
+                           hi + " agrees", own + "'s class is an artefact", "precision dependent",
+                           "not confirmed (outside the sample or the phase space)"},
+                          palette);
+}
+
 }  // namespace bouncer

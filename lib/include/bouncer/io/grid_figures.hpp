@@ -80,6 +80,9 @@ struct AgreementWords {
 };
 ImageFigure agreement_figure(ImageFigure frame, const std::vector<Agreement>& cells, long nx, long ny,
                              const AgreementWords& words, Palette palette);
+// basin --confirm's artefact map: basin_figure's frame, each start of the confirmation
+// sample by its verdict (run/cells.hpp GridConfirm; analysis/classify.hpp check_precision).
+ImageFigure basin_confirm_figure(const BasinResult& b, Palette palette);
 // A certified map's CSV, without its provenance lines: the header "X,Y,class,period,
 // certified_steps,scalar,double_class,double_period,agreement" (X, Y: the map's x_name,
 // y_name), then one row per cell (cell i at xs[i mod nx], ys[i / nx]).

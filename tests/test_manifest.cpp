@@ -15,6 +15,7 @@
 #include "bouncer/base/input.hpp"
 #include "bouncer/workflow/manifest.hpp"
 #include "bouncer/workflow/paper.hpp"
+#include "bouncer/workflow/report.hpp"
 #include "test_support.hpp"
 
 using namespace bouncer;
@@ -253,4 +254,25 @@ TEST(Manifest, ProofPrefixOfAnInstall) {
   EXPECT_EQ(rerun_text("`bouncer basin --scene data/scenes/x.toml`", "/p/"), "`bouncer basin --scene data/scenes/x.toml`");
   EXPECT_EQ(rerun_text("`build/proofs/proof_a`", kBuildProofPrefix), "`build/proofs/proof_a`");
   EXPECT_EQ(rerun_text("", "/p/"), "");
+}
+
+// The report shows the paper's captions as text, not LaTeX (issue 24): hand-converted cases
+// of every construct the captions use, and every caption of the built-in manifest free of
+// math delimiters, commands and braces.
+TEST(Report, CaptionsAreTextNotLatex) {
+  EXPECT_EQ(latex_text("Branched Fermi acceleration for $a=19.0$;"), "Branched Fermi acceleration for a = 19.0;");
+  EXPECT_EQ(latex_text("the model with $c\\sim 1000$ (cf. Fig.~\\ref{fig:bifurc_three})"),
+            "the model with c ∼ 1000 (cf. Fig. bifurc_three)");
+  EXPECT_EQ(latex_text("$(\\theta_*,v_*)=(\\theta_*,12)$"), "(θ*,v*) = (θ*,12)");
+  EXPECT_EQ(latex_text("as $\\theta_n=1/2$, $\\sigma<0$"), "as θₙ = 1/2, σ < 0");
+  EXPECT_EQ(latex_text("in parameter $a,\\epsilon$-space, $k>1000$"), "in parameter a,ε-space, k > 1000");
+  EXPECT_EQ(latex_text("$x^2$ and $v_{n+1}$ and $a_{xy}$"), "x² and vₙ₊₁ and a_xy");
+  EXPECT_EQ(latex_text("Sec.~\\ref{sec:5.1}, 50\\% and \\emph{typical}"), "Sec. 5.1, 50% and typical");
+  const Manifest m = parse_manifest(std::string(paper_manifest_text()), kPaperManifestSource);
+  ASSERT_FALSE(m.panels.empty());
+  for (const Panel& p : m.panels) {
+    const std::string t = latex_text(p.caption);
+    EXPECT_EQ(t.find_first_of("$\\{}~"), std::string::npos) << p.label << ": " << t;
+    EXPECT_EQ(t.find("  "), std::string::npos) << p.label << ": " << t;
+  }
 }

@@ -8,6 +8,9 @@
 #pragma GCC diagnostic pop
 
 #include <algorithm>
+#include <cctype>
+#include <map>
+#include <string>
 #include <filesystem>
 #include <iomanip>
 #include <sstream>
@@ -15,6 +18,83 @@
 #include "bouncer/base/output.hpp"
 
 namespace bouncer {
+
+std::string latex_text(const std::string& latex) {
+  static const std::map<std::string, std::string> symbols{
+      {"epsilon", "ε"}, {"varepsilon", "ε"}, {"theta", "θ"}, {"sigma", "σ"}, {"lambda", "λ"}, {"pi", "π"},
+      {"alpha", "α"},   {"beta", "β"},       {"gamma", "γ"}, {"delta", "δ"}, {"mu", "μ"},      {"omega", "ω"},
+      {"infty", "∞"},   {"pm", "±"},         {"cdot", "·"},  {"times", "×"}, {"ldots", "…"},   {"dots", "…"}};
+  static const std::map<std::string, std::string> relations{{"sim", "∼"}, {"approx", "≈"}, {"le", "≤"}, {"leq", "≤"},
+                                                            {"ge", "≥"},  {"geq", "≥"},    {"to", "→"}, {"rightarrow", "→"}};
+  static const std::map<char, std::string> sub{{'0', "₀"}, {'1', "₁"}, {'2', "₂"}, {'3', "₃"}, {'4', "₄"}, {'5', "₅"},
+                                               {'6', "₆"}, {'7', "₇"}, {'8', "₈"}, {'9', "₉"}, {'n', "ₙ"}, {'i', "ᵢ"},
+                                               {'k', "ₖ"}, {'j', "ⱼ"}, {'+', "₊"}, {'-', "₋"}, {'*', "*"}};
+  static const std::map<char, std::string> sup{{'0', "⁰"}, {'1', "¹"}, {'2', "²"}, {'3', "³"}, {'4', "⁴"}, {'5', "⁵"},
+                                               {'6', "⁶"}, {'7', "⁷"}, {'8', "⁸"}, {'9', "⁹"}, {'n', "ⁿ"}, {'+', "⁺"},
+                                               {'-', "⁻"}, {'*', "*"}};
+  std::string out;
+  bool math = false;
+  auto relation = [&](const std::string& r) {  // " = ", " ∼ ": one space either side
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    out += " " + r + " ";
+  };
+  for (size_t i = 0; i < latex.size(); ++i) {
+    const char c = latex[i];
+    if (c == '$') {
+      math = !math;
+      continue;
+    }
+    if (c == '~') {
+      out += ' ';
+    } else if (c == '{' || c == '}') {
+      // groups only group
+    } else if (c == '\\' && i + 1 < latex.size() && std::isalpha(static_cast<unsigned char>(latex[i + 1]))) {
+      size_t j = i + 1;
+      while (j < latex.size() && std::isalpha(static_cast<unsigned char>(latex[j]))) ++j;
+      const std::string name = latex.substr(i + 1, j - i - 1);
+      i = j - 1;
+      if (name == "ref" && j < latex.size() && latex[j] == '{') {
+        const size_t end = latex.find('}', j);
+        const std::string label = latex.substr(j + 1, (end == std::string::npos ? latex.size() : end) - j - 1);
+        const size_t colon = label.find(':');
+        out += colon == std::string::npos ? label : label.substr(colon + 1);
+        i = end == std::string::npos ? latex.size() : end;
+      } else if (const auto r = relations.find(name); r != relations.end()) {
+        relation(r->second);
+        while (i + 1 < latex.size() && latex[i + 1] == ' ') ++i;
+      } else if (const auto g = symbols.find(name); g != symbols.end()) {
+        out += g->second;
+        if (i + 1 < latex.size() && latex[i + 1] == ' ' && math) ++i;  // the space that ends the command
+      }  // any other command (\textit, \emph, \mathrm ...): its argument stays, the name goes
+    } else if (c == '\\' && i + 1 < latex.size()) {
+      ++i;
+      out += latex[i] == ',' || latex[i] == ' ' ? ' ' : latex[i];  // \, \  \% \$ ...
+    } else if (math && (c == '_' || c == '^') && i + 1 < latex.size()) {
+      const std::map<char, std::string>& table = c == '_' ? sub : sup;
+      std::string script;
+      if (latex[i + 1] == '{') {
+        const size_t end = latex.find('}', i + 2);
+        script = latex.substr(i + 2, (end == std::string::npos ? latex.size() : end) - i - 2);
+        i = end == std::string::npos ? latex.size() : end;
+      } else {
+        script = latex.substr(i + 1, 1);
+        ++i;
+      }
+      bool all = true;
+      for (char ch : script) all = all && table.count(ch);
+      if (all)
+        for (char ch : script) out += table.at(ch);
+      else
+        out += std::string(1, c) + script;  // no Unicode form: a_{xy} stays readable as a_xy
+    } else if (math && (c == '=' || c == '<' || c == '>')) {
+      relation(std::string(1, c));
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 
 namespace {
 
@@ -177,7 +257,7 @@ std::string report_markdown(const ReproduceResult& r) {
     const Panel& p = m.panels[it.index];
     if (p.figure != figure) {
       figure = p.figure;
-      md << "\n### " << figure << "\n\n> " << md_cell(p.caption) << "\n";
+      md << "\n### " << figure << "\n\n> " << md_cell(latex_text(p.caption)) << "\n";
     }
     md << "\n#### " << p.label << (p.panel.empty() ? "" : " " + p.panel)
        << (p.twin_of.empty() ? "" : " (certified twin of " + p.twin_of + ", not a panel of the paper)") << "\n\n";
@@ -274,7 +354,7 @@ std::string report_html(const ReproduceResult& r) {
       h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
     h << "<figcaption>" << html_escape(p.label) << (p.panel.empty() ? "" : " " + html_escape(p.panel))
       << (p.twin_of.empty() ? "" : " (certified twin of " + html_escape(p.twin_of) + ", not a panel of the paper)") << ". Paper: "
-      << html_escape(p.caption) << "</figcaption>\n";
+      << html_escape(latex_text(p.caption)) << "</figcaption>\n";
     if (!p.params.empty()) {
       h << "<p>Parameters:";
       for (const auto& kv : p.params) h << " " << html_escape(kv.first) << " = " << html_escape(kv.second) << ";";

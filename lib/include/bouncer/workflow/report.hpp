@@ -11,6 +11,12 @@
 
 namespace bouncer {
 
+// The paper's LaTeX (a figure caption: "$a=19.0$", "$c\sim 1000$", "Fig.~\ref{fig:x}") as plain
+// Unicode text for the reports ("a = 19.0", "c ∼ 1000", "Fig. x"): math delimiters dropped,
+// Greek letters and relations as their characters, _n and ^2 as sub- and superscripts where
+// Unicode has them, \ref{kind:label} as its label, ~ as a space, braces dropped.
+std::string latex_text(const std::string& latex);
+
 // The README's Markdown claims table (| # | Claim (paper) | Verdict | Evidence | Rerun |).
 std::string claims_table(const Manifest& manifest);
 

@@ -257,7 +257,10 @@ std::string report_markdown(const ReproduceResult& r) {
     const Panel& p = m.panels[it.index];
     if (p.figure != figure) {
       figure = p.figure;
-      md << "\n### " << figure << "\n\n> " << md_cell(latex_text(p.caption)) << "\n";
+      // Text, not Markdown: θ* and v* must not start emphasis.
+      std::string caption;
+      for (char ch : md_cell(latex_text(p.caption))) caption += ch == '*' || ch == '_' ? std::string("\\") + ch : std::string(1, ch);
+      md << "\n### " << figure << "\n\n> " << caption << "\n";
     }
     md << "\n#### " << p.label << (p.panel.empty() ? "" : " " + p.panel)
        << (p.twin_of.empty() ? "" : " (certified twin of " + p.twin_of + ", not a panel of the paper)") << "\n\n";

@@ -112,7 +112,10 @@ void run_workers(unsigned count, const std::function<void()>& work) {
   std::vector<std::thread> pool;
   for (unsigned i = 0; i < count; ++i) {
     try {
-      pool.emplace_back(work);
+      pool.emplace_back([&work] {
+        const MpfrThreadCaches caches;  // freed when this worker ends
+        work();
+      });
     } catch (const std::system_error&) {
       break;  // the running workers take this one's share of the queue
     }

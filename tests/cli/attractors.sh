@@ -40,12 +40,7 @@ run e05 attractors "${M[@]}" --starts 30x20 --threads 2 --quiet --out e05 && out
 python3 - <<'PY' || fail e05-content "see above"
 import csv, json, math, sys
 from fractions import Fraction as F
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 
 doc = json.load(open("e05.json"))
 s = doc["summary"]
@@ -98,7 +93,7 @@ for a in atts:
         for (th, v), box in zip(a["points"], c["points"]):
             check(off(th, box["theta"]) < F(1, 10**12) and off(v, box["v"]) < F(1, 10**12),
                   f"point ({th}, {v}) is far from its certified box {box}")
-sys.exit(1 if bad else 0)
+done()
 PY
 
 # The result is reproducible from its provenance (the starts run in fixed batches).
@@ -119,12 +114,7 @@ run sweep attractors "${V[@]}" --range 23.05:23.15 --values 3 --starts 16x16 --n
 python3 - <<'PY' || fail sweep-content "see above"
 import csv, json, sys
 from fractions import Fraction as F
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 s = json.load(open("sw.json"))["summary"]
 check(s["vary"] == "a" and s["values"] == ["23.05", "23.1", "23.15"], f"values {s['values']}")
 rows = list(csv.DictReader(l for l in open("sw.csv") if not l.startswith("#")))
@@ -135,7 +125,7 @@ for k, v in enumerate(s["values"]):
     check(abs(sum(inchains) + s["undecided_fraction"][k] - 1) < 1e-12, f"a = {v}: chain shares")
 periods = {c["period"] for c in s["chains"] if all(f is not None for f in c["fraction"])}
 check({3, 7} <= periods, f"periods 3 and 7 should persist over 23.05..23.15: {periods}")
-sys.exit(1 if bad else 0)
+done()
 PY
 
 # The elastic model (claims rows 10 and 10b): at a = 18 the search must find the nine-branch
@@ -164,12 +154,7 @@ run ends attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --val
 python3 - <<'PY' || fail ends-content "see above"
 import json, sys
 from fractions import Fraction as F
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 s = json.load(open("st.json"))["summary"]
 st = [c for c in s["chains"] if c["kind"] == "sticking" and c["period"] == 1]
 check(len(st) == 1, f"one period-1 sticking chain: {[(c['kind'], c['period']) for c in s['chains']]}")
@@ -183,7 +168,7 @@ check(ev.get("kind") == "border" and ev.get("end") == "low", f"event {ev}")
 # --no-certify proves no orbit, but the ends are proved only with certify: not here.
 check(ev.get("certified") is False, f"certified without certificates: {ev}")
 check(s["branches"] and s["branches"][c["branch"]]["period"] == 1, "the chain's branch")
-sys.exit(1 if bad else 0)
+done()
 PY
 run ends-cert attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --threads 2 --quiet --out sc && outputs ends-cert sc
 python3 - <<'PY' || fail ends-cert-content "see above"

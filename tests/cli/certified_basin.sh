@@ -48,12 +48,7 @@ outputs bc bc
 python3 - "$BOUNCER" <<'PY' || fail properties "see above"
 import csv, decimal, json, re, subprocess, sys
 bouncer = sys.argv[1]
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 def rows(name):
     return list(csv.DictReader(l for l in open(name + ".csv") if not l.startswith("#")))
 
@@ -150,7 +145,7 @@ summary = json.load(open("el.json"))["summary"]
 check(summary["double_vs_certified"]["differs"] == 0, "elastic differs: %s" % summary["double_vs_certified"])
 elb = json.load(open("elb.json"))["summary"]["columns"]
 check(len(elb) == 2 and all(c["class"] in ("not_trapped", "undecided") for c in elb), "elastic columns %s" % elb)
-sys.exit(1 if bad else 0)
+done()
 PY
 
 # bifurcation --certify --vary eps: each column is the exact orbit at the exact double eps;

@@ -37,12 +37,7 @@ run e18 basin "${E18[@]}" --confirm --threads 2 --quiet --out e18 && outputs e18
 run e18-classify classify --model elastic --a 18 --theta 0.1 --v 10 --transient 20000 --steps 20000 --json
 python3 - <<'PY' || fail e18-content "see above"
 import csv, json, sys
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 rows = list(csv.DictReader(l for l in open("e18.csv") if not l.startswith("#")))
 check(list(rows[0].keys()) == ["theta", "v", "class", "period", "confirm", "check_class", "check_period"], f"columns {list(rows[0])}")
 first = rows[0]
@@ -62,7 +57,7 @@ pc = json.load(open("e18-classify.out"))["precision_check"]
 check(pc["verdict"] == "artefact", f"classify's verdict {pc['verdict']}")
 check([k["precision"] for k in pc["checks"]] == ["mpfr:256", "mpfr:512"], "classify's precisions")
 check(pc["checks"][0]["class"] == "unbounded", "classify at mpfr:256")
-sys.exit(1 if bad else 0)
+done()
 PY
 json_holds e18-provenance 'j["provenance"]["inputs"]["confirm"] in ("", "true")' e18.json
 
@@ -70,12 +65,7 @@ json_holds e18-provenance 'j["provenance"]["inputs"]["confirm"] in ("", "true")'
 run a12 basin "${M12[@]}" --grid 4x3 --confirm --threads 2 --quiet --out a12 && outputs a12 a12
 python3 - <<'PY' || fail a12-content "see above"
 import csv, json, sys
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 rows = list(csv.DictReader(l for l in open("a12.csv") if not l.startswith("#")))
 inside = [r for r in rows if r["class"] != "outside"]
 check(len(rows) == 12 and len(inside) > 0, f"{len(rows)} rows, {len(inside)} inside")
@@ -88,7 +78,7 @@ for r in rows:
 c = json.load(open("a12.json"))["summary"]["confirm"]
 check(c["confirmed"] == len(inside) == c["agrees"] and c["artefact"] == 0 and c["precision_dependent"] == 0, f"counts {c}")
 check(c["confirmed_fraction"] == 1 and c["artefacts"] == [], f"fraction {c['confirmed_fraction']}")
-sys.exit(1 if bad else 0)
+done()
 PY
 
 # A bare --confirm is recorded so that the result reruns from its provenance.

@@ -20,12 +20,7 @@ for p in t10 t50; do outputs "$p" "$p"; done
 python3 - <<'PY' || fail properties "see above"
 import csv, json, sys
 from fractions import Fraction as F
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 
 for name, pmax, (alo, ahi), (elo, ehi) in [("t10", 10, (0, 30), (0, 1)), ("t50", 50, (F("0.5"), 100), (F("0.01"), F("0.99")))]:
     rs = list(csv.DictReader(l for l in open(name + ".csv") if not l.startswith("#")))
@@ -56,7 +51,7 @@ for name, pmax, (alo, ahi), (elo, ehi) in [("t10", 10, (0, 30), (0, 1)), ("t50",
                 check(max(below) < e, f"{name}: curve {q} not above curve {p} at a={float(a)}")
     s = json.load(open(name + ".json"))
     check(s["provenance"]["command"] == "tongues" and s["summary"]["points"] == len(rs), f"{name}: summary")
-sys.exit(1 if bad else 0)
+done()
 PY
 
 bad() {  # NAME OPTION-NAME ARGS...

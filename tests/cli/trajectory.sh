@@ -43,12 +43,7 @@ def rows(path):
     lines = [l for l in open(path) if not l.startswith("#")]
     return list(csv.DictReader(lines))
 
-bad = 0
-def check(cond, what):
-    global bad
-    if not cond:
-        print("FAIL:", what, file=sys.stderr)
-        bad += 1
+from clichecks import check, done
 
 for name, exact, tol in [("fp", False, 1e-12), ("st", False, 1e-12), ("fpm", True, F(1, 10**40)), ("stm", True, F(1, 10**40)),
                           ("dp", True, F(1, 10**40)), ("di", True, F(1, 10**40)), ("ri", True, F(1, 10**40))]:
@@ -129,7 +124,7 @@ for name in ("dp", "di", "ri"):
     stuck = [F(r["t"]) for r in rs if r["event"] == "stuck"]
     check(stuck and min(stuck) > F(6, 10) and max(stuck) < F(3, 2) and (name == "ri" or any(t < 1 for t in stuck)),
           f"{name}: stuck rows not between the collapse and the release")
-sys.exit(1 if bad else 0)
+done()
 PY
 
 # Bad input: exit 2, one line naming the option, no files.

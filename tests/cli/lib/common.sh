@@ -23,6 +23,8 @@ CLI_NAME=$(basename "$0" .sh)
 BOUNCER=${1:?usage: bash $CLI_NAME.sh <bouncer-binary> <source-dir>}
 # shellcheck disable=SC2034  # SRC is for the scripts that source this file
 SRC=${2:?usage: bash $CLI_NAME.sh <bouncer-binary> <source-dir>}
+# The inline Python checks import clichecks (check, done) from this directory.
+export PYTHONPATH="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)${PYTHONPATH:+:$PYTHONPATH}"
 [[ -x $BOUNCER ]] || { echo "FAIL: bouncer binary '$BOUNCER' is not executable" >&2; exit 1; }
 TMP=$(mktemp -d)
 CLI_ON_EXIT=()

@@ -141,11 +141,11 @@ void expect_estimate_contains(const BranchEnd<double>& e, const BorderCollisionC
   EXPECT_LT(e.estimate.radius, 1e-9) << what;  // still ~10 of double's digits
 }
 
-BorderCollisionQuestion question_of(const BranchEnd<double>& end, bool high) {
+BorderCollisionQuestion question_of(const BranchEnd<double>& end, bool high, long period = 7) {
   BorderCollisionQuestion q;
   q.end.model = test_support::spec(Law::veldep, "28", "1", "1000");
   q.end.vary = Parameter::a;
-  q.end.period = 7;
+  q.end.period = period;
   q.end.last_point = {parse_decimal("theta", ScalarTraits<double>::to_string(end.last_point.theta)),
                       parse_decimal("v", ScalarTraits<double>::to_string(end.last_point.v))};
   const auto [lo, hi] = branch_end_interval<double>(end.bracket_lo, end.bracket_hi, high, 53);
@@ -241,6 +241,58 @@ TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
   std::printf("veldep unstable P7 low end: double bracket [%.17g, %.17g], certified [%s, %s] (%s), double off by %.3g\n",
               b.low.bracket_lo, b.low.bracket_hi, c.parameter.lo.c_str(), c.parameter.hi.c_str(), c.margin_text.c_str(),
               gap(b.low.bracket_lo, b.low.bracket_hi, c));
+}
+
+TEST(BorderCollision, VeldepPeriod11EndWithACoincidentClearanceAndLongFlights) {
+  // The stable period 11 at c = 1000 beside period 3 (attractors at a = 24.5: 13% of the
+  // starts). At its high end impact 10 reaches the wall's top theta = 1/2 from above, so the
+  // same flight's clearance at that corner vanishes with it (identity B of
+  // coincident_clearance), and the other margins of eleven steps must be decided over the
+  // branch side: one interval evaluation over the proof's box straddled 0 (+-0.3 for a
+  // clearance of 0.1); the side is now cut into pieces with tight orbit enclosures. Truth
+  // independent of the certifier: the double continuation's bracket (bisection on the
+  // margin along Newton orbits) within 1e-9, and its widened bracket (the end re-located at
+  // 117 bits) contains the enclosure.
+  const ModelSpec s = test_support::spec(Law::veldep, "24.5", "1", "1000");
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 11,
+                                     State<double>{0.01685443925323413, 25.227892214860187}, 24.0, 25.0);
+  ASSERT_TRUE(b.started) << b.note;
+  estimate_end_accuracy(s, b);
+  for (const bool high : {false, true}) {
+    const BranchEnd<double>& e = high ? b.high : b.low;
+    ASSERT_EQ(e.reason, EndReason::border) << e.detail;
+    const BorderCollisionCertificate c = certify_border_collision(question_of(e, high, 11));
+    ASSERT_TRUE(c.certified) << c.statement;
+    EXPECT_EQ(c.margin, Margin::knot) << c.margin_text;
+    EXPECT_LE(c.width, 1e-30);
+    EXPECT_LT(gap(e.bracket_lo, e.bracket_hi, c), 1e-9);
+    expect_estimate_contains(e, c, high ? "period 11 high end" : "period 11 low end");
+  }
+}
+
+TEST(BorderCollision, VeldepPeriod66EndsNeedTheSecondPrecision) {
+  // The stable period 66 at c = 1000, a = 15.2 (every start of a 32 x 32 grid reaches it)
+  // lives on a = 15.1876..15.2031 and ends at both sides where an impact reaches theta = 1/2
+  // (the low end is certified here: 5 s; `continue --certify` proves both).
+  // Sixty-six interval steps widen a box by about 2^66: at 128 bits the parameter interval
+  // cannot be both narrow enough for the Krawczyk operator and wide enough for the margins'
+  // signs at its ends; the second precision (max_bits = 256) proves it. Truth as for
+  // period 11: the double bracket within 1e-9, and the widened bracket contains a*.
+  const ModelSpec s = test_support::spec(Law::veldep, "15.2", "1", "1000");
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 66,
+                                     State<double>{0.007894477576029256, 43.635535422440235}, 15.0, 15.5);
+  ASSERT_TRUE(b.started) << b.note;
+  estimate_end_accuracy(s, b);
+  const BranchEnd<double>& e = b.low;
+  ASSERT_EQ(e.reason, EndReason::border) << e.detail;
+  BorderCollisionQuestion q = question_of(e, /*high=*/false, 66);
+  q.max_bits = 256;
+  const BorderCollisionCertificate c = certify_border_collision(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.margin, Margin::knot) << c.margin_text;
+  EXPECT_LE(c.width, 1e-30);
+  EXPECT_LT(gap(e.bracket_lo, e.bracket_hi, c), 1e-9);
+  expect_estimate_contains(e, c, "period 66 low end");
 }
 
 // Period doubling on the eps = 0.9 period-2 branch (test_continuation.cpp): no closed form

@@ -754,12 +754,19 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
                  ", far from the interval given (no border collision of this margin next to it)");
   }
 
-  // The proof over Y x Z, Z = [phat - w, phat + w], w from the interval given, shrinking.
+  // The proof over Y x Z, Z = [phat - w, phat + w], w from the interval given, shrinking by
+  // 16 per try down to about 2^(48 - bits) |a*|. Long periods need the small Z: the interval
+  // evaluation of q steps over Y widens it by up to the product of the steps' derivative
+  // norms (a period-66 end's impact speeds straddled 0 over the box of a 1e-12 wide Z), and
+  // Y is as wide as the orbit moves across Z.
   std::optional<Proved> proved;
   std::string why;
-  for (int k = 0; k < 6 && !proved; ++k) {
+  Mpfr w_floor = abs(phat) + 1;
+  mpfr_mul_2si(w_floor.get(), w_floor.get(), 48 - bits, MPFR_RNDN);
+  for (int k = 0; !proved; ++k) {
     Mpfr w(bits);
     mpfr_div_2si(w.get(), w0.get(), 4 * k, MPFR_RNDN);
+    if (k >= 6 && w < w_floor) break;
     const Mpfr zlo = phat - w, zhi = phat + w;
     Proved pr;
     pr.Z = Mpfi(zlo, zhi);
@@ -848,30 +855,65 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     throw Fail("the border margin is not certainly > 0 at the branch side's end of Z, " + std::string(name(S.par)) + " = " + text(zb));
   if (Tr::lt(border_sign(zx), zero) != Truth::yes)
     throw Fail("the border margin is not certainly < 0 at the far end of Z, " + std::string(name(S.par)) + " = " + text(zx));
-  // 4. Every other margin keeps its branch-side sign over Y x side.
+  // 4. Every other margin keeps its branch-side sign on the branch side. One interval
+  // evaluation over Y x side wraps badly for long periods (the box Y was inflated for the
+  // proof, and its width grows through q steps: a period-11 end had its clearances straddle
+  // 0 by +-0.3 where they are 0.1), so the side is cut into pieces P: over each, the
+  // parametric Krawczyk operator (unknowns the orbit, p free in P) encloses x(P) in a small
+  // box; if that box lies inside Y it holds the orbit unique in Y, and the margins are
+  // evaluated over it. A piece where a margin is undecided is halved, at most 511 times.
   {
-    const Eval ev = evaluate(S, S.release ? S.R : State<Mpfi>{pr.Y[0], pr.Y[1]}, side);
-    std::optional<std::vector<IDual>> slopes;
-    for (size_t i = 0; i < ev.margins.size(); ++i) {
-      if (static_cast<int>(i) == S.border) continue;
-      if (Tr::lt(zero, oriented(S, ev.margins, i)) == Truth::yes) continue;
-      // Orbits through the release state (the parameter the only variable): a margin that
-      // also tends to 0 at a* (the knot at a = 32, reached as the flight grazes that corner)
-      // is positive on the side if it is monotone there (its derivative over the side has
-      // one sign) and positive at both of the side's ends.
-      bool ok = coincident_clearance(S, ev.margins, i, side);
-      if (!ok && S.release) {
-        if (!slopes) slopes = margin_slopes(S, side);
-        const Mpfi& d = (*slopes)[i].d[0];
-        const bool monotone = Tr::lt(zero, d) == Truth::yes || Tr::lt(d, zero) == Truth::yes;
-        if (monotone) {
-          const Eval e1 = evaluate(S, S.R, thin(side.lower())), e2 = evaluate(S, S.R, thin(side.upper()));
-          ok = Tr::lt(zero, oriented(S, e1.margins, i)) == Truth::yes && Tr::lt(zero, oriented(S, e2.margins, i)) == Truth::yes;
+    // The first margin (other than the border) not certainly of its branch-side sign over
+    // the orbit box X and parameters P, or -1.
+    auto undecided_margin = [&](const State<Mpfi>& X, const Mpfi& P) -> long {
+      const Eval ev = evaluate(S, X, P);
+      std::optional<std::vector<IDual>> slopes;
+      for (size_t i = 0; i < ev.margins.size(); ++i) {
+        if (static_cast<int>(i) == S.border) continue;
+        if (Tr::lt(zero, oriented(S, ev.margins, i)) == Truth::yes) continue;
+        // Orbits through the release state (the parameter the only variable): a margin that
+        // also tends to 0 at a* (the knot at a = 32, reached as the flight grazes that
+        // corner) is positive on the side if it is monotone there (its derivative over the
+        // side has one sign) and positive at both of the side's ends.
+        bool ok = coincident_clearance(S, ev.margins, i, P);
+        if (!ok && S.release) {
+          if (!slopes) slopes = margin_slopes(S, P);
+          const Mpfi& d = (*slopes)[i].d[0];
+          const bool monotone = Tr::lt(zero, d) == Truth::yes || Tr::lt(d, zero) == Truth::yes;
+          if (monotone) {
+            const Eval e1 = evaluate(S, S.R, thin(P.lower())), e2 = evaluate(S, S.R, thin(P.upper()));
+            ok = Tr::lt(zero, oriented(S, e1.margins, i)) == Truth::yes && Tr::lt(zero, oriented(S, e2.margins, i)) == Truth::yes;
+          }
         }
+        if (!ok) return static_cast<long>(i);
       }
-      if (!ok)
-        throw Fail("on the branch side, " + margin_words(S.ids[i]) +
+      return -1;
+    };
+    // x(P) in a small box inside Y, or Y itself.
+    auto orbit_over = [&](const Mpfi& P) {
+      State<Mpfi> X{pr.Y[0], pr.Y[1]};
+      try {
+        Problem O = orbit_problem(P);
+        const std::vector<Mpfi> T = prove_tight(S, O, newton(S, O, {u[0], u[1]}));
+        if (pr.Y[0].contains(T[0]) && pr.Y[1].contains(T[1])) X = State<Mpfi>{T[0], T[1]};
+      } catch (const Fail&) {
+      } catch (const Undecided&) {
+      }
+      return X;
+    };
+    std::vector<Mpfi> todo = {side};
+    int evaluations = 0;
+    while (!todo.empty()) {
+      const Mpfi P = todo.back();
+      todo.pop_back();
+      const long i = S.release ? undecided_margin(S.R, P) : undecided_margin(orbit_over(P), P);
+      if (i < 0) continue;
+      if (S.release || ++evaluations > 511)
+        throw Fail("on the branch side, " + margin_words(S.ids[static_cast<size_t>(i)]) +
                    " is not certainly of its branch-side sign over the proof's box (a second margin near 0 at a*?)");
+      const Mpfr m = P.mid();
+      todo.push_back(Mpfi(P.lower(), m));
+      todo.push_back(Mpfi(m, P.upper()));
     }
   }
   // 5. The step's own events at a branch-side point next to a*: a short decimal, enclosed
@@ -1169,10 +1211,19 @@ Certificate attempt(long bits, const char* what, Proof&& proof) {
 }  // namespace
 
 BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q) {
-  return attempt<BorderCollisionCertificate>(q.bits, " about a*", [&](BorderCollisionCertificate& c) {
-    std::vector<State<Mpfi>> orbit;
-    run(q, c, orbit);
-  });
+  const auto t0 = std::chrono::steady_clock::now();
+  BorderCollisionQuestion at = q;
+  for (;;) {
+    BorderCollisionCertificate c = attempt<BorderCollisionCertificate>(at.bits, " about a*", [&](BorderCollisionCertificate& r) {
+      std::vector<State<Mpfi>> orbit;
+      run(at, r, orbit);
+    });
+    if (c.certified || 2 * at.bits > q.max_bits) {
+      c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // every attempt
+      return c;
+    }
+    at.bits *= 2;
+  }
 }
 
 PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q) {

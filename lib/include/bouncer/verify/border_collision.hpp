@@ -87,6 +87,13 @@ struct BorderCollisionQuestion {
   // extrapolated from two branch-side orbits, is nearest.
   std::optional<Margin> margin;
   long bits = 128;  // MPFI precision of every interval evaluation
+  // If > bits: when the proof fails, it is tried again at twice the bits, up to max_bits.
+  // Long periods need it: q interval steps widen a box by up to the product of the steps'
+  // derivative norms (about 2^66 over a period-66 orbit), and the parameter interval Z must
+  // be wide against that growth times the precision's ulp (the margins' signs at Z's ends,
+  // the step's own events next to a*) yet narrow against the margins divided by it (the
+  // Krawczyk operator over Y x Z): at 128 bits that window can be empty.
+  long max_bits = 0;
 };
 
 struct BorderCollisionCertificate {
@@ -157,7 +164,8 @@ PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& 
 // `continue --certify` on one end of a branch: the question over branch_end_interval's
 // interval (its texts lo, hi) and its certificate.
 // The one-sided certificate (certify_branch_end) and the two-sided one
-// (certify_border_collision, at max(128, the branch's bits)), and whether the branch's own
+// (certify_border_collision, at max(128, the branch's bits), and at twice those bits if that
+// fails), and whether the branch's own
 // bracket of a* (in its scalar) contains the certified enclosure: a double bracket can lie
 // past a* (issue 23), and this says so.
 struct CertifiedBranchEnd {
@@ -199,6 +207,7 @@ CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, 
     bq.end = c;
     if (e.margin >= 0) bq.margin = static_cast<Margin>(e.margin);
     bq.bits = std::max<long>(bits, 128);
+    bq.max_bits = 2 * bq.bits;
     r.two_sided = certify_border_collision(bq);
     if (r.two_sided.certified) {
       const mpq_class lo = parse_decimal("certify", Tr::to_string(e.bracket_lo)).value();

@@ -16,7 +16,7 @@ PY=python3; [[ -x /usr/bin/python3 ]] && PY=/usr/bin/python3
 
 cp "$SRC/mkdocs.yml" "$TMP/"
 cp -r "$SRC/docs" "$TMP/docs"
-rm -rf "$TMP/docs/reference" "$TMP/docs/claims.md" "$TMP/docs/pictures"  # generated: made fresh below
+rm -rf "$TMP/docs/reference" "$TMP/docs/pictures"  # generated: made fresh below
 "$PY" "$SRC/tools/gen_docs.py" --bouncer "$BOUNCER" --docs "$TMP/docs" >/dev/null || die "tools/gen_docs.py failed"
 
 mapfile -t cmds < <("$BOUNCER" --help | awk '/^Subcommands:/ {f = 1; next} f && /^  [a-z]/ {print $1} f && /^$/ {f = 0}')
@@ -29,7 +29,7 @@ for c in "${cmds[@]}"; do
   done < <("$BOUNCER" "$c" --help | grep -oE -- '^  (-[A-Za-z],)?--[a-z0-9-]+' | sed 's/^ *//; s/^-[A-Za-z],//')
   grep -qE -- "^ +- [a-z-]+: reference/$c\.md$" "$TMP/mkdocs.yml" || fail mkdocs.yml "the nav does not list reference/$c.md"
 done
-[[ -s $TMP/docs/claims.md ]] || fail claims.md "not generated"
+[[ -s $TMP/docs/claims.md ]] || fail claims.md "missing (committed; checked by cli.reproduce_claims_table)"
 
 if ! (cd "$TMP" && mkdocs build --strict -q -d "$TMP/site") >"$TMP/mkdocs.log" 2>&1; then
   fail "mkdocs build --strict" "$(grep -E 'WARNING|ERROR|Error' "$TMP/mkdocs.log" | head -5)"

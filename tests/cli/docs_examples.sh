@@ -17,7 +17,7 @@ PY=python3; [[ -x /usr/bin/python3 ]] && PY=/usr/bin/python3
 CHECK=$SRC/tools/check_docs_examples.py
 # 3 s per example: the guideline of 2 s (the slowest, the sweep, takes 1.6 s here) with a margin
 # for a slower machine; 20 s for all of them.
-limits=(--max-cpu 3 --max-total 20)
+limits=(--max-cpu 3 --max-total 20)  # the defaults, spelled out
 grep -qa AddressSanitizer "$BOUNCER" && limits=(--max-cpu 15 --max-total 100)
 
 # 1. the committed documentation

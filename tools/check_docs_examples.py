@@ -16,7 +16,8 @@ LC_ALL=C. The quoted block must equal the output after this normalisation, and o
   * `(commit HEX)` and `(commit HEX+dirty-HEX)` become `(commit COMMIT)`: the build's commit;
   * in `# time:` lines every number becomes `T` (timings differ from run to run);
   * the temporary directory's path becomes `DIR`;
-  * a quoted line `...` stands for any number of printed lines (zero or more), so a quote
+  * a quoted line holding only `...` (indented or not) stands for any number of printed
+    lines (zero or more), so a quote
     may leave out provenance lines or long stretches; every other quoted line must match a
     printed line exactly, digits included, in order.
 Examples must be fast: one command may use at most --max-cpu seconds of CPU (default 3: the
@@ -119,7 +120,7 @@ def matches(expected, actual):
     # positions in actual reachable after consuming expected[:k]
     reach = {0}
     for e in expected:
-        if e == "...":
+        if e.strip() == "...":
             lo = min(reach)
             reach = set(range(lo, len(actual) + 1))
         else:

@@ -57,7 +57,7 @@ for path in files:
                 j += 1
             body = range(start, j)
             def digits(line):  # digits outside `(commit ...)` in a line that is not `# time:`
-                if line == "..." or line.startswith("# time:"):
+                if line.strip() == "..." or line.startswith("# time:"):
                     return []
                 cut = re.sub(r"\(commit [^)]*\)", lambda c: " " * len(c.group()), line)
                 return list(re.finditer(r"\d", cut))

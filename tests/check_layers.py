@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The library's layers (README, "Layout and development"): base -> scalar -> model ->
+"""The library's layers (docs/guide/development.md): base -> scalar -> model ->
 analysis -> verify -> run -> io -> workflow. A file of one layer includes headers of its own and lower
 layers only, and the numerics target (every layer but io and workflow) needs none of the I/O libraries.
 Also: tools/ and python/ hold no science the issue named (no class-name comparison of

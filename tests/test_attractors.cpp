@@ -210,7 +210,7 @@ TEST(Attractors, OrbitsThroughAnotherOrbitsCellsAreStillFound) {
 }
 
 TEST(Attractors, ChaoticSetWithItsExponent) {
-  // veldep c = 1000, a = 27.2: a chaotic attractor (the README's exponent curve is positive
+  // veldep c = 1000, a = 27.2: a chaotic attractor (the exponent curve of docs/guide/dynamics.md is positive
   // there); basin classifies every start chaotic, and its exponent is positive.
   AttractorsRequest r;
   r.model = spec(Law::veldep, "27.2", "1", "1000");

@@ -11,7 +11,7 @@
 //
 // The velocity-dependent period-7 branch (c = 1000, scene continue-veldep-period7.toml) has no
 // closed form: its ends, located by double continuation, are certified here and compared with
-// the mpfr:128 continuation's a* quoted in README ("Accuracy and tests", 27.72056130544585948764
+// the mpfr:128 continuation's a* quoted in docs/guide/dynamics.md ("Accuracy and tests", 27.72056130544585948764
 // 2437424316, from a different algorithm: bisection on the margin along Newton orbits).
 #include <gtest/gtest.h>
 
@@ -177,7 +177,7 @@ TEST(BorderCollision, VeldepPeriod7EndsAgainstDoubleContinuation) {
   EXPECT_EQ(lo.knot, 1) << lo.margin_text;
   EXPECT_LE(lo.width, 1e-30);
   EXPECT_EQ(lo.orbit.size(), 7u);
-  // The mpfr:128 continuation's a* (README) lies in the enclosure, to its 32 digits.
+  // The mpfr:128 continuation's a* (docs/guide/dynamics.md) lies in the enclosure, to its 32 digits.
   const mpq_class readme = parse_decimal("a", "27.720561305445859487642437424316").value();
   EXPECT_LT(std::fabs(mpq_class(readme - (lo.lo + lo.hi) / 2).get_d()), 1e-29) << lo.parameter.lo;
   // The double bracket is the truth to Newton's tolerance only: within 1e-9, but it need
@@ -219,7 +219,7 @@ TEST(BorderCollision, VeldepPeriod7EndsAgainstDoubleContinuation) {
 }
 
 TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
-  // The unstable period-7 orbit (README, "bouncer continue") ends going down where a flight
+  // The unstable period-7 orbit (docs/guide/dynamics.md, "bouncer continue") ends going down where a flight
   // grazes theta = 1/2; issue 23 quotes an independent high-precision implementation's
   // a* = 24.61675675147981...
   const ModelSpec s = test_support::spec(Law::veldep, "25", "1", "1000");

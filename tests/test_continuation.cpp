@@ -94,7 +94,7 @@ TEST(Continuation, StickingThresholdInEpsMatchesClosedForm) {
   EXPECT_LT(std::fabs(err.to_double()), 1e-30) << ScalarTraits<Mpfr>::to_string(b.high.param);
 }
 
-// A generic (non-degenerate) orbit: the period-2 orbit of a = 19, eps = 0.9 (README,
+// A generic (non-degenerate) orbit: the period-2 orbit of a = 19, eps = 0.9 (docs/guide/dynamics.md,
 // bouncer periodic). Continued forward to a = 19.4 and back from there, the branch returns
 // to the same orbit at a = 19.
 TEST(Continuation, ForwardThenBackReturnsToTheSameOrbit) {
@@ -126,7 +126,7 @@ TEST(Continuation, ForwardThenBackReturnsToTheSameOrbit) {
 // Period doubling on the period-2 branch of eps = 0.9 (continued down from a = 19). No
 // closed form for its a* is known to us, so the located point is checked against what a
 // multiplier -1 must mean, with truth independent of the locator: the constant-eps map
-// contracts area by eps^2 per impact (README, measure identity), so det DP^2 = eps^4 and at
+// contracts area by eps^2 per impact (docs/guide/dynamics.md, measure identity), so det DP^2 = eps^4 and at
 // a multiplier -1 the other one is exactly -eps^4 = -0.6561; on the two sides of a* the
 // orbit's least multiplier lies on the two sides of -1.
 TEST(Continuation, PeriodDoublingWhereAMultiplierIsMinusOne) {

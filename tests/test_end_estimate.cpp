@@ -154,7 +154,7 @@ TEST(EndEstimate, ThresholdInEpsAtMpfr128) {
 }
 
 TEST(EndEstimate, Eps09Period2KnotEndAgainstMpfr256) {
-  // The period-2 branch of eps = 0.9 (README, "bouncer continue") ends at a* ~ 22.0114 where
+  // The period-2 branch of eps = 0.9 (docs/guide/dynamics.md, "bouncer continue") ends at a* ~ 22.0114 where
   // impact 1 reaches theta = 1/2; no closed form: a* located by the same continuation at
   // mpfr:256 (to 2^-244 relative; classification beyond off) is the truth. A regression
   // case too: a re-location that predicted its first trial orbit as constant over the 4.6e-6

@@ -24,7 +24,7 @@ using bouncer::test_support::expect_input_error;
 
 namespace {
 
-// One ready panel, one claim checked on a proof's certificate, one README picture: the
+// One ready panel, one claim checked on a proof's certificate, one documentation picture: the
 // smallest manifest with every kind of item. Each test changes one line of it.
 const std::string kPanel = R"toml(
 [[panel]]

@@ -1,7 +1,7 @@
 // Certified periodic orbits (verify/periodic_certify.hpp) against independent truth:
 //   * closed forms: the eq. 5 family (corrected: v* = 4(1+eps)/(1-eps) at
 //     a = 8(1+eps)/(p(1-eps)), multipliers 1 and eps^2) and the velocity-dependent fixed
-//     points (v = ap/2 with a from the derived relation, README "Claims");
+//     points (v = ap/2 with a from the derived relation, docs/claims.md);
 //   * an invariant the certifier never uses: for constant restitution the map contracts area
 //     by eps^2 per impact and the relative-velocity factors telescope around a cycle, so
 //     det DP^Q = eps^(2Q) on every period-Q impact orbit (1 for the elastic model);
@@ -90,7 +90,7 @@ TEST(CertifyPeriodic, Eq5FamilyAtAnotherEpsAndP) {
 }
 
 TEST(CertifyPeriodic, Eq10PeriodTwoFamilyInItsCorrectedForm) {
-  // README claim 3 (corrected): a = 8(1+e)^3/((1-e)(1+e^2)), v = 4 + 8e(1+e)/((1-e)(1+e^2)),
+  // docs/claims.md row 3 (corrected): a = 8(1+e)^3/((1-e)(1+e^2)), v = 4 + 8e(1+e)/((1-e)(1+e^2)),
   // multipliers 1 and e^4. e = 1/2: a = 43.2 = 216/5, v = 13.6 = 68/5, lambda2 = 1/16.
   PeriodicQuestion q;
   q.model = constant_model("0.5", "43.2");
@@ -106,7 +106,7 @@ TEST(CertifyPeriodic, Eq10PeriodTwoFamilyInItsCorrectedForm) {
 }
 
 TEST(CertifyPeriodic, VelocityDependentFixedPointFamilyHasVEqualsAHalf) {
-  // The derived condition (README "Claims"): v = ap/2 and ap/2 = 2^(5/3) c arccoth(ap/8)^(5/3) - 4.
+  // The derived condition (docs/claims.md): v = ap/2 and ap/2 = 2^(5/3) c arccoth(ap/8)^(5/3) - 4.
   const double c10 = 10, a_star = veldep_fixed_point_a(c10, 1);
   PeriodicQuestion q;
   q.model.law = Law::veldep;
@@ -171,7 +171,7 @@ TEST(CertifyPeriodic, AMultipleOfThePeriodHasTheTrueMinimalPeriod) {
 }
 
 TEST(CertifyPeriodic, ThePeriod103AttractorAtEps096A2882IsProvedStable) {
-  // README claim 9: the release orbit at eps = 0.96, a = 28.82 falls onto a period-103
+  // docs/claims.md row 9: the release orbit at eps = 0.96, a = 28.82 falls onto a period-103
   // attractor. The guess is the double orbit's state after 20000 steps from (1/2, 4).
   PeriodicQuestion q;
   q.model = constant_model("0.96", "28.82");

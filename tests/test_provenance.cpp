@@ -1,6 +1,6 @@
 // Provenance (io/provenance.hpp) against independent truth: the libraries' own version
 // queries (mpfr_get_version, gmp_version, MPFI_VERSION_STRING, BOOST_VERSION), the commit
-// forms the README promises (40 hex digits, optionally +dirty-<16 hex>, or
+// forms the documentation promises (docs/guide/development.md) (40 hex digits, optionally +dirty-<16 hex>, or
 // tree-sha256:<64 hex>), an unquoting reader written here from quote_input's documented rule
 // (so every value round-trips through the "# inputs:" line), and an independent JSON parser
 // (nlohmann) reading as_json back field by field.
@@ -119,7 +119,7 @@ TEST(BuildInfo, CommitHasOneOfTheTwoDocumentedForms) {
   EXPECT_FALSE(b.version.empty());
   EXPECT_FALSE(b.compiler.empty());
   EXPECT_FALSE(b.build_type.empty());
-  // Reproducible doubles need this flag (README "Layout and development").
+  // Reproducible doubles need this flag (docs/guide/development.md).
   EXPECT_TRUE(contains(b.flags, "-ffp-contract=off")) << b.flags;
 }
 

@@ -1,8 +1,8 @@
 // The request readers of the commands that the CLI and the Python module share
 // (lib/include/bouncer/io/requests/): continue, certify-sticking, certify-periodic. For
-// each, a default (what the README and --help promise), a bound (the value just inside is
+// each, a default (what the documentation, docs/guide/, and --help promise), a bound (the value just inside is
 // read, the value just outside is refused) and errors that name the field the user must fix.
-// Truth: the README's documented defaults and ranges, not the program's output.
+// Truth: the documented defaults (docs/guide/) and ranges, not the program's output.
 #include <gtest/gtest.h>
 
 #include <functional>
@@ -44,7 +44,7 @@ std::string refused(const std::string& field, const std::function<void()>& f) {
   return "";
 }
 
-// The README's period-2 branch of the constant model, eps = 0.9.
+// The period-2 branch (docs/guide/dynamics.md) of the constant model, eps = 0.9.
 Options continue_opts() {
   return opts({{"model", "constant"}, {"eps", "0.9"}, {"a", "19"}, {"period", "2"},
                {"guess", "0.1678819228862684,14.143149884133248"}, {"range", "12:23"}});
@@ -129,7 +129,7 @@ TEST(ContinueRequest, ErrorsNameTheField) {
 Options sticking_opts() { return opts({{"eps", "0.96"}, {"a", "28.82"}}); }
 
 TEST(CertifyStickingRequest, Defaults) {
-  // README: --model constant, the release state (1/2, 4), 100000 steps, interval:double
+  // docs/guide/certified.md: --model constant, the release state (1/2, 4), 100000 steps, interval:double
   // first then MPFI up to 4096 bits, Lohner, attractor proof on; ranges depth 10, 400 pieces.
   const CertifyStickingRequest r = certify_sticking_request(sticking_opts());
   const StickingQuestion& q = r.question;
@@ -196,7 +196,7 @@ TEST(CertifyStickingRequest, ErrorsNameTheField) {
 Options periodic_opts() { return opts({{"model", "constant"}, {"eps", "0.5"}, {"a", "24"}, {"period", "1"}}); }
 
 TEST(CertifyPeriodicRequest, Defaults) {
-  // README: Newton from a grid (8 per axis, 60 iterations), 64 to 1024 bits, family auto;
+  // docs/guide/certified.md (certify-periodic): Newton from a grid (8 per axis, 60 iterations), 64 to 1024 bits, family auto;
   // ranges depth 8, 256 pieces.
   const CertifyPeriodicRequest r = certify_periodic_request(periodic_opts());
   const PeriodicQuestion& q = r.question;

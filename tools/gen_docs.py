@@ -7,7 +7,7 @@ description, usage and options (CLI11's format: a description line, `Usage: ...`
 `Positionals:` / `Options:` sections of `  NAME [TYPE] [...] [REQUIRED]   description`).
 
     tools/gen_docs.py --bouncer build/tools/bouncer \
-        [--docs DIR]            DIR/reference/index.md, DIR/reference/CMD.md, DIR/claims.md,
+        [--docs DIR]            DIR/reference/index.md, DIR/reference/CMD.md,
                                 DIR/pictures/*.png (copied from data/pictures/)
         [--man DIR]             DIR/bouncer.1, DIR/bouncer-CMD.1 (roff, section 1)
         [--completion FILE]     a bash completion script for bouncer
@@ -300,7 +300,7 @@ def write(path, text, written):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--bouncer", required=True, help="the built bouncer executable")
-    ap.add_argument("--docs", help="docs directory: writes reference/*.md and claims.md into it")
+    ap.add_argument("--docs", help="docs directory: writes reference/*.md and pictures/*.png into it")
     ap.add_argument("--man", help="directory for bouncer.1 and bouncer-CMD.1")
     ap.add_argument("--completion", help="file for the bash completion script")
     args = ap.parse_args()
@@ -323,14 +323,6 @@ def main():
         outputs[os.path.join(ref, "index.md")] = reference_index(top, cmds)
         for c in cmds:
             outputs[os.path.join(ref, c.name + ".md")] = reference_page(c, version)
-        p = subprocess.run([bouncer, "reproduce", "--claims-table"], capture_output=True, text=True)
-        if p.returncode != 0:
-            sys.exit(f"gen_docs: `bouncer reproduce --claims-table` exited {p.returncode}")
-        outputs[os.path.join(args.docs, "claims.md")] = (
-            "# Claims: what the paper says, and what is true\n\n"
-            "Generated from the manifest `data/paper/manifest.toml` by `bouncer reproduce --claims-table` "
-            "(the same table as the README's). `bouncer reproduce --quick` rechecks every claim; "
-            "see [Reproducing the paper](howto/reproduce.md).\n\n" + p.stdout)
     if args.man:
         outputs[os.path.join(args.man, "bouncer.1")] = man_page(top, version, cmds)
         for c in cmds:
@@ -340,7 +332,7 @@ def main():
     written = []
     for path, text in outputs.items():
         write(path, text, written)
-    if args.docs:  # the README's pictures, shown by the pages (data/pictures/ is their one copy)
+    if args.docs:  # the pictures the pages show (data/pictures/ is their one copy)
         pictures = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data", "pictures")
         os.makedirs(os.path.join(args.docs, "pictures"), exist_ok=True)
         for name in sorted(os.listdir(pictures)):

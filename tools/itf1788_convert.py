@@ -20,7 +20,7 @@ that bouncer's interval types (DoubleInterval, Mpfi) provide are kept:
     subset isMember precedes strictPrecedes       (contains, contains(point), Tr::le, Tr::lt)
     isCommonInterval                              (Tr::is_finite)
 
-Conventions of ITF1788 kept here (see the repository's README and its code generators,
+Conventions of ITF1788 kept here (see docs/scalars.md and its code generators,
 itf1788/plugins/*/callbacks.py):
   * Every numeric literal is a binary64 number: the generators paste it into the target
     language as a floating-point literal (C++: verbatim; Octave: hex forms turned into 18

@@ -1,5 +1,5 @@
 // A basin, a parameter scan and a certified basin through the library alone, each written as
-// its own small CSV (README, "Using the library"). Built with the project (CI builds it);
+// its own small CSV (docs/guide/cmake.md). Built with the project (CI builds it);
 // run from any directory, it writes basin.csv, scan.csv and certified.csv there.
 #include <bouncer/run/basin.hpp>
 #include <bouncer/run/scan.hpp>

@@ -163,7 +163,7 @@ class BranchEnd:
     last_point: the orbit's first point on the branch side
     beyond: what the map does just past a* (param, class_, period, lambda_, evidence,
         newton_orbit_events, newton_orbit_minimal_period), or None; beyond_note
-    accuracy: how far param can be trusted (README, bouncer continue, "Printed digits"):
+    accuracy: how far param can be trusted (docs/guide/dynamics.md, bouncer continue, "Printed digits"):
         kind estimate | given | not_estimated; for an estimate a_star_backed and
         a_star_plus_minus (the digits it backs), a_star_digits, bracket_estimate (lo, hi),
         error_estimate, refined_param, refined_bits; otherwise note. An estimate, not a proof.

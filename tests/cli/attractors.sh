@@ -130,7 +130,7 @@ PY
 
 # The elastic model (claims rows 10 and 10b): at a = 18 the search must find the nine-branch
 # accelerator mode, or its finding nothing at a = 19 says nothing. Truth from the map by hand
-# (README, Claims row 10): a long flight returns v + 2u = v + 8, so a mode whose phases cycle
+# (docs/claims.md, row 10): a long flight returns v + 2u = v + 8, so a mode whose phases cycle
 # through 9 branches gains 9 x 8 = 72 per period; its period is 33. The starts: theta =
 # 1/32, the 16 v cell centres of [5, 150] (the column theta = 1/32 of row 10b's 16 x 16 check).
 run elastic18 attractors --model elastic --a 18 --theta-range 0:0.0625 --v-range 5:150 --starts 1x16 --no-certify \

@@ -6,7 +6,9 @@
 #   - `mkdocs build --strict` succeeds (a warning, e.g. a link to a missing page, is an error);
 #   - tools/check_site_links.py finds every internal link, anchor and file of the built site,
 #     and no script, stylesheet or image loaded from the network (the site works offline);
-#     and it does fail on a planted broken anchor and a planted missing file.
+#     and it does fail on a planted broken anchor and a planted missing file;
+#   - README.md (the entry point, outside the site, read on GitHub) is under 200 lines and each
+#     of its relative links names a file or directory of the repository.
 # Exit 77 (skipped) when mkdocs is not installed (`tools/setup docs` installs it).
 # Usage: bash docs_site.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -16,7 +18,7 @@ PY=python3; [[ -x /usr/bin/python3 ]] && PY=/usr/bin/python3
 
 cp "$SRC/mkdocs.yml" "$TMP/"
 cp -r "$SRC/docs" "$TMP/docs"
-rm -rf "$TMP/docs/reference" "$TMP/docs/claims.md" "$TMP/docs/pictures"  # generated: made fresh below
+rm -rf "$TMP/docs/reference" "$TMP/docs/pictures"  # generated: made fresh below
 "$PY" "$SRC/tools/gen_docs.py" --bouncer "$BOUNCER" --docs "$TMP/docs" >/dev/null || die "tools/gen_docs.py failed"
 
 mapfile -t cmds < <("$BOUNCER" --help | awk '/^Subcommands:/ {f = 1; next} f && /^  [a-z]/ {print $1} f && /^$/ {f = 0}')
@@ -29,7 +31,7 @@ for c in "${cmds[@]}"; do
   done < <("$BOUNCER" "$c" --help | grep -oE -- '^  (-[A-Za-z],)?--[a-z0-9-]+' | sed 's/^ *//; s/^-[A-Za-z],//')
   grep -qE -- "^ +- [a-z-]+: reference/$c\.md$" "$TMP/mkdocs.yml" || fail mkdocs.yml "the nav does not list reference/$c.md"
 done
-[[ -s $TMP/docs/claims.md ]] || fail claims.md "not generated"
+[[ -s $TMP/docs/claims.md ]] || fail claims.md "missing (committed; checked by cli.reproduce_claims_table)"
 
 if ! (cd "$TMP" && mkdocs build --strict -q -d "$TMP/site") >"$TMP/mkdocs.log" 2>&1; then
   fail "mkdocs build --strict" "$(grep -E 'WARNING|ERROR|Error' "$TMP/mkdocs.log" | head -5)"
@@ -44,4 +46,21 @@ printf '<html><body><a href="../index.html#top">a</a></body></html>' >"$TMP/bad/
 "$PY" "$SRC/tools/check_site_links.py" "$TMP/bad" >"$TMP/bad.log" 2>&1 && fail check_site_links "passes a site with broken links"
 grep -q "no id 'nowhere'" "$TMP/bad.log" || fail check_site_links "does not report the missing anchor: $(cat "$TMP/bad.log")"
 grep -q "pic.png does not exist" "$TMP/bad.log" || fail check_site_links "does not report the missing picture: $(cat "$TMP/bad.log")"
+lines=$(wc -l <"$SRC/README.md")
+((lines < 200)) || fail README "$lines lines: the README is the entry point, keep it under 200 (the rest belongs in docs/)"
+"$PY" - "$SRC" >"$TMP/readme.log" 2>&1 <<'PY' || fail README "$(cat "$TMP/readme.log")"
+import os, re, sys
+src = sys.argv[1]
+text = open(os.path.join(src, "README.md"), encoding="utf-8").read()
+text = re.sub(r"```.*?```", "", text, flags=re.S)
+bad = []
+links = re.findall(r"\]\(([^)#]+)(?:#[^)]*)?\)", text)
+for target in links:
+    if re.match(r"[a-z]+:", target):
+        continue
+    if not os.path.exists(os.path.join(src, target)):
+        bad.append(target)
+if bad or len(links) < 10:
+    sys.exit(f"README.md links to missing files: {bad}" if bad else f"only {len(links)} links in README.md")
+PY
 finish "docs_site: ${#cmds[@]} reference pages; mkdocs --strict builds; $(tail -1 "$TMP/links.log" | sed 's/^check_site_links: //')"

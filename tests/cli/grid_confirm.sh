@@ -2,7 +2,7 @@
 # End-to-end: `--confirm` of `bouncer basin` and `bouncer scan` (issue 23): the starts of a
 # sample classified again at mpfr:B and, where they differ, at mpfr:2B.
 #   - an artefact: elastic a = 18 from (0.1, 10) is quasiperiodic in double for 40000 steps
-#     and an accelerator mode at mpfr:256 and mpfr:512 (README, bouncer classify). A 2 x 1
+#     and an accelerator mode at mpfr:256 and mpfr:512 (docs/guide/dynamics.md, bouncer classify). A 2 x 1
 #     basin whose first cell centre is (0.1, 10) reports that start as an artefact, with
 #     mpfr's class unbounded, in the CSV, the JSON (counts, fraction, the artefact's start)
 #     and an artefact map; single-point classify of the same start says the same;

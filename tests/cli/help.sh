@@ -5,7 +5,7 @@
 #     wall, downward-sticking, theta, v, steps, precision, format, every, out, scene), with
 #     the allowed ranges of the numeric ones;
 #   - `bouncer --version` exits 0 and names version and commit;
-#   - every command the README documents is listed by `bouncer --help`, and its own --help
+#   - every command the documentation describes (docs/guide/) is listed by `bouncer --help`, and its own --help
 #     exits 0 (the table of commands, lib/.../workflow/commands.hpp, and the binding of each
 #     row to its options, tools/commands.cpp, are complete);
 #   - `bouncer` without a subcommand is bad input (status 2, one line on stderr);

@@ -5,9 +5,9 @@
 #     through PATH): `reproduce --check` refuses none of the manifest's commands;
 #   * reproduces the claims: `reproduce --quick --only SUBSET` with every claim a proof
 #     program settles (all seven), two claims and a panel of bouncer's own commands (the
-#     manifest's --scene commands, the README pictures', are validated by --check). The
-#     subset, not the whole --quick run, keeps this test short (measured in the README,
-#     "Install"; the whole run takes minutes: tools/setup run does it);
+#     manifest's --scene commands, the documentation pictures', are validated by --check). The
+#     subset, not the whole --quick run, keeps this test short (measured in
+#     docs/guide/install.md; the whole run takes minutes: tools/setup run does it);
 #   * prints rerun commands that work from the install (PREFIX/libexec/bouncer/proof_NAME,
 #     no checkout-relative build/proofs/), and they do run;
 #   * reads scenes by name (--scene bifurcation-eps096, --scene default), by the

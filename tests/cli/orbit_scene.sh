@@ -18,7 +18,7 @@ out() { data "$TMP/$1.out"; }  # header + rows of the output of `run NAME`
 # (pipelines here always read their input to the end: with pipefail, `| head` or `| grep -q`
 # could fail the pipeline through SIGPIPE)
 
-# ---- the default scene as the README runs it
+# ---- the default scene as docs/guide/install.md runs it
 if run default orbit --scene "$DEFAULT"; then
   steps=$(sed -n 's/^steps *= *\([0-9][0-9]*\).*/\1/p' "$DEFAULT")
   [[ -n $steps ]] || fail default "cannot read 'steps' from $DEFAULT"

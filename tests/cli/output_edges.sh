@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # End-to-end: outputs never replace what they should not and never fail silently
-# (lib/include/bouncer/base/output.hpp, README "Exit status and outputs").
+# (lib/include/bouncer/base/output.hpp, docs/guide/orbit.md, "Exit status and outputs").
 #   * stdout on a full device (/dev/full): exit 1, one line, for every kind of command;
 #   * --out /dev/full: exit 1, no PATH.partial left; --out /dev/null: written through, the
 #     device stays a device; --out a named pipe: written through (its reader gets the data);

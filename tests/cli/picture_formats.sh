@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end: the picture formats and presentation options (README "Pictures").
+# End-to-end: the picture formats and presentation options (docs/guide/pictures.md).
 #   * --format png,pdf,svg writes PREFIX.png/.pdf/.svg: PNG magic and an IHDR of --size
 #     pixels with more than one colour and the provenance chunk; %PDF- with a MediaBox of
 #     size*72/dpi points, the DejaVu Sans font embedded (text drawn), the provenance in its

@@ -5,7 +5,7 @@
 #   - exits 0 and writes PREFIX.csv, PREFIX.png (a PNG of the command's size) and PREFIX.json;
 #   - the CSV coordinates are the grid of the window, checked against exact rational
 #     arithmetic (python fractions): within 2 ulps at 256 bits of the exact decimal grid
-#     point (the ends are rounded once, the grid arithmetic once more; see the README), and
+#     point (the ends are rounded once, the grid arithmetic once more; see docs/guide/pictures.md), and
 #     distinct (a double would make them one value);
 #   - the pictures place what they show by the exact values: a basin across the wall's
 #     knot theta = 1/2 is split at the middle of its frame, and portrait points at

@@ -4,7 +4,7 @@
 #     method, bits, mode, notes, subclaims [name, paper, verdict, statement, evidence],
 #     seconds, verdict, statement); `proof` is the program's own name, `bits` the default
 #     precision (64 for sticking_period, else 128) or the --bits given, `mode` default;
-#   * the overall verdict is the one derived by hand in each proof's header (README, "Claims"),
+#   * the overall verdict is the one derived by hand in each proof's header (docs/claims.md),
 #     every sub-claim is settled (no "not proved"), and the exit status is 0;
 #   * the text certificate says the same: its verdict/statement lines and its sub-claim
 #     verdicts equal the JSON fields (two output paths, one content);
@@ -15,7 +15,7 @@ set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
 PROOFS="$(dirname "$BOUNCER")/../proofs"
 
-# Overall verdicts established in the proof headers (and the README claims table).
+# Overall verdicts established in the proof headers (and the claims table, docs/claims.md).
 declare -A VERDICT=(
   [elastic_period2]=refuted [fixed_point_family]=corrected [inelastic_period2]=corrected
   [sticking_period]=refuted [trapping_region]=corrected [veldep_collapse]=refuted

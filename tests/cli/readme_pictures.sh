@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# The README's pictures (data/pictures/) are drawn by `bouncer reproduce --pictures`:
-#   * every picture the README shows exists, and every data/pictures/*.png is a file of a
+# The documentation's pictures (data/pictures/, copied into the site by tools/gen_docs.py)
+# are drawn by `bouncer reproduce --pictures`:
+#   * every picture README.md or a page of docs/ shows exists (data/pictures/NAME.png in the
+#     README, pictures/NAME.png relative to the page in docs/), and every data/pictures/*.png is a file of a
 #     [[picture]] entry of data/paper/manifest.toml (the Python example's figure aside: its
 #     script draws it), and every entry's files are in data/pictures/;
 #   * each committed PNG records (tEXt "Source") the command of its entry as reproduce runs
@@ -20,10 +22,22 @@ m = tomllib.load(open(os.path.join(src, "data/paper/manifest.toml"), "rb"))
 pics = m.get("picture", [])
 errors = []
 files = {f: p for p in pics for f in p.get("files", [p["name"] + ".png"])}
-readme = open(os.path.join(src, "README.md"), encoding="utf-8").read()
-for ref in re.findall(r"data/pictures/([A-Za-z0-9_.-]+\.png)", readme):
-    if not os.path.isfile(os.path.join(src, "data/pictures", ref)):
-        errors.append(f"README shows data/pictures/{ref}, which does not exist")
+shown = 0
+pages = [os.path.join(src, "README.md")] + [os.path.join(d, f) for d, _, fs in os.walk(os.path.join(src, "docs"))
+                                            for f in fs if f.endswith(".md")]
+for page in pages:
+    text = open(page, encoding="utf-8").read()
+    for ref in re.findall(r"\]\(((?:\.\./)*(?:data/)?pictures/[A-Za-z0-9_.-]+\.png)\)", text):
+        shown += 1
+        name = os.path.basename(ref)
+        if not os.path.isfile(os.path.join(src, "data/pictures", name)):
+            errors.append(f"{os.path.relpath(page, src)} shows {ref}, which is not in data/pictures/")
+        elif page.endswith("README.md") and ref != "data/pictures/" + name:
+            errors.append(f"README.md shows {ref}: write data/pictures/{name}")
+        elif not page.endswith("README.md") and os.path.normpath(os.path.join(os.path.dirname(page), ref)) != os.path.join(src, "docs", "pictures", name):
+            errors.append(f"{os.path.relpath(page, src)} shows {ref}, which is not docs/pictures/{name} from there")
+if shown < 10:
+    errors.append(f"only {shown} pictures shown in README.md and docs/: is the pattern still right?")
 committed = sorted(f for f in os.listdir(os.path.join(src, "data/pictures")) if f.endswith(".png"))
 for f in committed:
     if f not in files and not f.startswith("python-"):
@@ -82,4 +96,4 @@ grep -q '## Claims' "$D/report.md" && fail report "a pictures report has a claim
 refused bad-quick 'pictures' reproduce --pictures --quick --out "$TMP/x"
 refused bad-only "unknown item 'fig:basin1'" reproduce --pictures --only fig:basin1 --out "$TMP/y"
 
-finish "ok: README pictures drawn by reproduce --pictures; one redrawn and audited"
+finish "ok: the pictures of README and docs/ drawn by reproduce --pictures; one redrawn and audited"

@@ -9,9 +9,9 @@
 #   * a certified twin (twin_of) is labelled PANEL-certified, in PANEL's figure, with its
 #     caption, and its commands certify;
 #   * every claim has an expected verdict from the five words, a run command and checks, and
-#     together the claims cover all 11 claim groups of DESIGN.md section 4 and README rows
-#     1-15;
-#   * `reproduce --check` accepts every command of the manifest, quick and full, and the README
+#     together the claims cover all 11 claim groups of DESIGN.md section 4 and the claims table's
+#     rows 1-15 (docs/claims.md);
+#   * `reproduce --check` accepts every command of the manifest, quick and full, and the documentation
 #     pictures' commands with their built-in scenes (each is
 #     parsed and validated by the command itself, stopped before its first step): a full
 #     command that only --full would run is checked here too; and it refuses the bad command
@@ -90,7 +90,7 @@ for c in m.get("claim", []):
 if groups != set(range(1, 12)):
     errors.append(f"claim groups covered {sorted(groups)}, DESIGN.md section 4 has 1..11")
 if not {str(i) for i in range(1, 16)} <= rows:
-    errors.append(f"README rows covered {sorted(rows, key=int)}, need at least 1..15 (the paper claims of the old README tables)")
+    errors.append(f"claims table rows covered {sorted(rows, key=int)}, need at least 1..15 (the paper claims of the first claims tables)")
 # tiles_from: an earlier panel, the same command apart from --show (a presentation option).
 def without_show(argv):
     out, skip = [], False

@@ -25,7 +25,7 @@ ST=(--model constant --eps 0.5 --a 24 --theta 0.5 --v 4)
 "$BOUNCER" trajectory "${ST[@]}" --periods 5 --out st || fail st "exit $?"
 "$BOUNCER" trajectory "${ST[@]}" --periods 5 --samples 50 --precision mpfr:160 --out stm || fail stm "exit $?"
 # A collapse on the downward wall (eps 0.3, a 24 from (0.6, -3): stuck at theta = 0.6833),
-# under both conventions: released at the next peak, t = 1.5 (README "Downward sticking").
+# under both conventions: released at the next peak, t = 1.5 (docs/model.md, "Downward sticking").
 DS=(--model constant --eps 0.3 --a 24 --theta 0.6 --v -3 --periods 2 --samples 64 --precision mpfr:160)
 "$BOUNCER" trajectory "${DS[@]}" --out dp || fail dp "exit $?"
 "$BOUNCER" trajectory "${DS[@]}" --downward-sticking impact --out di || fail di "exit $?"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end: files from strangers (README, "Security"). audit and reproduce run only what
+# End-to-end: files from strangers (docs/guide/security.md). audit and reproduce run only what
 # bouncer itself would run, and write only where they own the place:
 #   * the reproducer: a two-line CSV naming command=reproduce and a manifest is
 #     refused (exit 2, one line); nothing is run, no ./reproduction appears, the file the

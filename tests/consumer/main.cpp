@@ -2,7 +2,7 @@
 // with no C++ standard of its own (the target carries C++20). It prints one certified step
 // of the eq. 5 fixed point (eps = 1/2, p = 1: a = 24, v* = 12) at 256 bits, and exits 0 only
 // if the enclosure of the image contains the start (a fixed point) and is narrow.
-// The README's library snippet is this file.
+// docs/guide/cmake.md shows this file.
 #include <bouncer/model/impact_map.hpp>
 
 #include <iostream>

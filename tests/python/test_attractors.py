@@ -5,7 +5,7 @@ independent truth:
   v* = 4(1+eps)/(1-eps) = 12 (a = 8(1+eps)/(p(1-eps)) with p = 2), multipliers 1 and eps^2,
   taking every start in the phase space;
 * eps = 1/2, a = 24 (fig. basin2): the eq. 5 family and the period-4 sticking cycle through the
-  release state (1/2, 4) (the paper; README, certified basins), each proved, their shares of
+  release state (1/2, 4) (the paper; docs/guide/pictures.md, certified basins), each proved, their shares of
   the starts those of `Model.basin` over the same starts (basin classifies every start on its
   own, over 5000 + 500 steps: a different method), within a few binomial standard errors;
 * the typed objects: numpy arrays, complex multipliers, labels per start.

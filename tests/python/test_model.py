@@ -83,7 +83,7 @@ def orbit_matches_cli_orbit(o, r, precision):
 @pytest.mark.parametrize("precision", ["double", "mpfr:256", "interval:double"])
 @pytest.mark.parametrize("params,start", [
     (dict(model="constant", a="28.82", eps="0.96"), ("0.3", "7.5")),
-    (dict(model="constant", a="20", eps="0.3"), ("0.3", "9")),  # sticks every 3 steps (README)
+    (dict(model="constant", a="20", eps="0.3"), ("0.3", "9")),  # sticks every 3 steps
 ])
 def test_orbit_is_the_cli_orbit_bit_for_bit(precision, params, start):
     steps = 120
@@ -412,7 +412,7 @@ def test_certify_sticking_matches_the_cli():
 
 def test_certify_sticking_sticks_with_the_exact_release():
     """From (0.3, 9) at a = 20, eps = 0.3 the orbit first sticks at step 9 (as Model.orbit
-    shows), then from the release state every 3 steps (README)."""
+    shows), then from the release state every 3 steps."""
     m = bouncer.Model(model="constant", a="20", eps="0.3")
     c = m.certify_sticking("0.3", "9", max_steps=100)
     assert (c.certified, c.outcome, c.period, c.double_period) == (True, "sticks", 9, 9)

@@ -161,7 +161,7 @@ def test_certify_sticking_as_in_the_issue_and_as_the_cli():
 
 def test_certify_sticking_known_artefact_case():
     # eps = 0.5, a = 15 from the release state: double says "sticks"; the certified orbit does
-    # not stick within the steps it covers (README, claims).
+    # not stick within the steps it covers (docs/claims.md).
     r = bouncer.certify_sticking(eps="0.5", a="15", max_steps=2000)
     assert r["outcome"] != "sticks"
 
@@ -221,7 +221,7 @@ def test_lyapunov_single_and_curve_match_cli():
 
 
 def test_classify_known_sticking_orbit():
-    # README: a = 20, eps = 0.3 from (0.3, 9) sticks with period 3 (the release state recurs).
+    # a = 20, eps = 0.3 from (0.3, 9) sticks with period 3 (the release state recurs).
     opts = dict(model="constant", a="20", eps="0.3", theta="0.3", v="9")
     r = bouncer.classify(**opts)
     assert r["class"] == "sticking" and r["period"] == 3
@@ -254,7 +254,7 @@ def test_certified_basin_agrees_with_the_cli_and_certify_sticking():
     _, out, _ = cli(*words("basin", **opts), "--quiet")
     rows = csv_rows(out)
     assert [r["classes"][k] for k in r["class"].ravel()] == [row[2] for row in rows[1:]]
-    # Each label against certify-sticking at that exact double start (README: sticking = sticks;
+    # Each label against certify-sticking at that exact double start (sticking = sticks;
     # no_sticking = no sticking within the steps, or no further sticking after the first,
     # because the release orbit is free of sticking).
     release = bouncer.certify_sticking(model="constant", a="15", eps="0.5", max_steps=300)
@@ -274,7 +274,7 @@ def test_certified_basin_agrees_with_the_cli_and_certify_sticking():
 
 
 def test_certified_veldep_basin_is_every_pixel_trapped():
-    # README claim 18b: at a = 25, c = 1000 every start is certified trapped (period 3 or 31).
+    # docs/claims.md, row 18b: at a = 25, c = 1000 every start is certified trapped (period 3 or 31).
     r = bouncer.basin(model="veldep", a="25", c="1000", grid=(4, 3), transient=2000, steps=300, certify=True,
                       threads=2)
     labels = {r["classes"][k] for k in r["class"].ravel()}

@@ -199,6 +199,32 @@ grep -q "appears at a in (22.1, 22.25): border collision at a\* = 22.2222.* cert
 run no-branches attractors --model constant --eps 0.25 --vary a --range 22.1:22.4 --values 3 --starts 12x12 --no-branches --quiet --out nb
 python3 -c "import json,sys; s=json.load(open('nb.json'))['summary']; sys.exit(0 if s['branches'] is None and all('ends' not in c for c in s['chains']) else 1)" ||
   fail no-branches "branches written with --no-branches"
+# One attractor split by the matching: the velocity-dependent period 4 at c = 1000 moves more
+# than the match distance between a = 20.4, 20.5, 20.6, 20.7, so without branches it is four
+# chains; its continued branch spans [20.4, 20.7] with no event, so with branches the four are
+# one chain, joined by the branch at each of the three steps. Independent of the sweep:
+# `continue` from the period-4 orbit at 20.4 reaches the range's end with no event.
+V4=(attractors --model veldep --c 1000 --vary a --range 20.4:20.7 --values 4 --starts 16x16 --no-certify --quiet)
+run split-nb "${V4[@]}" --no-branches --out sp0
+run split "${V4[@]}" --out sp1
+python3 - <<'PY' || fail split-chains "see above"
+import json
+from clichecks import check, done
+p4 = lambda f: [c for c in json.load(open(f))["summary"]["chains"] if c["period"] == 4]
+without, merged = p4("sp0.json"), p4("sp1.json")
+check(len(without) == 4 and all(len([x for x in c["fraction"] if x is not None]) == 1 for c in without),
+      f"without branches: four one-value chains of period 4, got {[c['present'] for c in without]}")
+check(len(merged) == 1 and merged[0]["present"] == "20.4..20.7", f"with branches: one chain, got {[c['present'] for c in merged]}")
+check(merged and merged[0]["joined_by_branch"] == [["20.4", "20.5"], ["20.5", "20.6"], ["20.6", "20.7"]],
+      f"joined at each step, got {merged and merged[0]['joined_by_branch']}")
+check(merged and merged[0]["ends"] == [], f"no appearance or disappearance inside the range, got {merged and merged[0]['ends']}")
+done()
+PY
+run split-point attractors --model veldep --c 1000 --a 20.4 --starts 16x16 --quiet --json
+guess=$(python3 -c "import json; s=json.load(open('$TMP/split-point.out'))['summary']; print(','.join([a['points'][0] for a in s['attractors'] if a['period'] == 4][0]))")
+run split-continue continue --model veldep --c 1000 --a 20.4 --period 4 --guess "$guess" --range 20.4:20.7 --json
+python3 -c "import json,sys; s=json.load(open('$TMP/split-continue.out'))['summary']; sys.exit(0 if s['high']['reason'] == 'range_end' and not s['bifurcations'] else 1)" ||
+  fail split-continue "the period-4 branch does not reach a = 20.7 without an event: $(head -c 400 "$TMP/split-continue.out")"
 # Memory: a request whose starts would not fit in the memory available (here a 1.5 GB
 # address space, ulimit -v) is refused at once, naming --starts; not under AddressSanitizer,
 # which reserves terabytes of address space (tests/cli/output_safety.sh).

@@ -446,6 +446,10 @@ std::string attractors_sweep_json(const AttractorsSweepResult& r) {
     j["period"] = c.period;
     j["name"] = chain_title(c);
     j["present"] = presence(r, c);
+    // Where the chain was joined by its continued branch, not by the match distance.
+    json joined = json::array();
+    for (const size_t k : c.joined) joined.push_back({r.values[k].text(), r.values[k + 1].text()});
+    j["joined_by_branch"] = joined;
     json f = json::array(), e = json::array(), id = json::array(), cert = json::array();
     for (size_t k = 0; k < c.index.size(); ++k) {
       if (c.index[k] < 0) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "bouncer/base/error.hpp"
 #include "bouncer/run/cells.hpp"
@@ -47,6 +48,70 @@ Decimal value_at(const Decimal& lo, const Decimal& hi, long k, long n) {
 double attractor_distance(const FoundAttractor& x, const FoundAttractor& y) {
   if (x.points.empty() || y.points.empty()) return std::numeric_limits<double>::infinity();
   return std::max(farthest(x.points, y.points), farthest(y.points, x.points));
+}
+
+void merge_split_chains(AttractorsSweepResult& r) {
+  if (!r.branches) return;
+  ChainBranches& cb = *r.branches;
+  auto unexplained = [&](size_t c, bool appears, size_t before) {
+    for (const ChainTransition& t : cb.transitions[c])
+      if (t.appears == appears && t.before == before && t.event < 0) return true;
+    return false;
+  };
+  auto spans = [&](const ContinuedBranch& b, size_t before, size_t after) {
+    if (!b.started) return false;
+    const double lo = std::stod(b.low_param), hi = std::stod(b.high_param);
+    const double x = r.values[before].approx(), y = r.values[after].approx();
+    for (const BranchEventInfo& e : b.events)
+      if (!e.end && e.param >= x && e.param <= y) return false;  // a bifurcation in between
+    return lo <= x && y <= hi;
+  };
+  for (bool merged = true; merged;) {
+    merged = false;
+    for (size_t x = 0; x < r.chains.size() && !merged; ++x) {
+      const int b = cb.chain_branch[x];
+      if (b < 0) continue;
+      for (const ChainTransition& t : cb.transitions[x]) {
+        if (t.appears || t.event >= 0 || !spans(cb.branches[static_cast<size_t>(b)], t.before, t.after)) continue;
+        for (const int yi : cb.branches[static_cast<size_t>(b)].chains) {
+          const size_t y = static_cast<size_t>(yi);
+          if (y == x || r.chains[y].index[t.after] < 0 || !unexplained(y, true, t.before)) continue;
+          bool overlap = false;
+          for (size_t k = 0; k < r.chains[x].index.size(); ++k) overlap |= r.chains[x].index[k] >= 0 && r.chains[y].index[k] >= 0;
+          if (overlap) continue;
+          // y joins x.
+          const size_t at = t.before;
+          AttractorChain& cx = r.chains[x];
+          for (size_t k = 0; k < cx.index.size(); ++k)
+            if (r.chains[y].index[k] >= 0) cx.index[k] = r.chains[y].index[k];
+          cx.joined.push_back(at);
+          cx.joined.insert(cx.joined.end(), r.chains[y].joined.begin(), r.chains[y].joined.end());
+          std::sort(cx.joined.begin(), cx.joined.end());
+          std::vector<ChainTransition> ts;
+          for (const ChainTransition& u : cb.transitions[x])
+            if (!(!u.appears && u.before == at)) ts.push_back(u);
+          for (const ChainTransition& u : cb.transitions[y])
+            if (!(u.appears && u.before == at)) ts.push_back(u);
+          std::sort(ts.begin(), ts.end(), [](const ChainTransition& p, const ChainTransition& q) { return p.before < q.before; });
+          cb.transitions[x] = std::move(ts);
+          // Remove y; renumber.
+          r.chains.erase(r.chains.begin() + static_cast<std::ptrdiff_t>(y));
+          cb.transitions.erase(cb.transitions.begin() + static_cast<std::ptrdiff_t>(y));
+          cb.chain_branch.erase(cb.chain_branch.begin() + static_cast<std::ptrdiff_t>(y));
+          for (ContinuedBranch& br : cb.branches) {
+            std::vector<int> keep;
+            for (const int c : br.chains)
+              if (c != yi) keep.push_back(c > yi ? c - 1 : c);
+            br.chains = std::move(keep);
+          }
+          merged = true;
+          break;
+        }
+        if (merged) break;
+      }
+    }
+  }
+  for (size_t c = 0; c < r.chains.size(); ++c) r.chains[c].id = static_cast<int>(c);
 }
 
 AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const GridOptions& run) {
@@ -96,7 +161,10 @@ AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const Gr
       res.chains.push_back(std::move(c));
     }
   }
-  if (r.continue_branches) res.branches = continue_chains(res, r.certify_ends, static_cast<int>(worker_threads(run.threads)));
+  if (r.continue_branches) {
+    res.branches = continue_chains(res, r.certify_ends, static_cast<int>(worker_threads(run.threads)));
+    merge_split_chains(res);
+  }
   return res;
 }
 

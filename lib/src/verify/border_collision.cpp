@@ -755,7 +755,8 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   }
 
   // The proof over Y x Z, Z = [phat - w, phat + w], w from the interval given, shrinking by
-  // 16 per try down to about 2^(48 - bits) |a*|. Long periods need the small Z: the interval
+  // 16 per try (then by 2^12: each try of a long period costs q interval steps with
+  // derivatives, six times) down to about 2^(48 - bits) |a*|. Long periods need the small Z: the interval
   // evaluation of q steps over Y widens it by up to the product of the steps' derivative
   // norms (a period-66 end's impact speeds straddled 0 over the box of a 1e-12 wide Z), and
   // Y is as wide as the orbit moves across Z.
@@ -765,7 +766,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   mpfr_mul_2si(w_floor.get(), w_floor.get(), 48 - bits, MPFR_RNDN);
   for (int k = 0; !proved; ++k) {
     Mpfr w(bits);
-    mpfr_div_2si(w.get(), w0.get(), 4 * k, MPFR_RNDN);
+    mpfr_div_2si(w.get(), w0.get(), k < 6 ? 4 * k : 24 + 12 * (k - 6), MPFR_RNDN);
     if (k >= 6 && w < w_floor) break;
     const Mpfr zlo = phat - w, zhi = phat + w;
     Proved pr;

@@ -45,6 +45,9 @@ struct AttractorChain {
   AttractorKind kind = AttractorKind::undecided;
   long period = 0;
   std::vector<int> index;  // per value: the attractor's index at that value, or -1
+  // Values k where the chain was joined across (k, k+1) by its continued branch, not by the
+  // match distance (merge_split_chains: the orbit moved farther than the distance allows).
+  std::vector<size_t> joined;
 };
 
 // One event of a continued branch: an end (the orbit ceases to exist on the branch's piece:
@@ -105,6 +108,14 @@ struct AttractorsSweepResult {
 
 // The Hausdorff distance of two attractors' point sets (infinity if either has none).
 double attractor_distance(const FoundAttractor& x, const FoundAttractor& y);
+
+// One attractor split into two chains by the matching (its orbit moved more than the match
+// distance between two values): chain x disappears between values k and k+1 and chain y
+// appears there, neither explained by a branch event, both lie on one continued branch, and
+// that branch spans [values[k], values[k+1]] with no event in it. Then y is x continued: y's
+// values join x (x.joined records k) and y is removed; chains are renumbered. Needs
+// r.branches (continue_chains); sweep_attractors calls it.
+void merge_split_chains(AttractorsSweepResult& r);
 
 // Throws InputError for a bad request ("vary", "range", "values", and find_attractors').
 // With r.continue_branches, also continue_chains (r.certify_ends: certify).

@@ -662,6 +662,18 @@ void put_attractors(py::dict& d, const std::vector<AttractorCell>& cells) {
   d["class_names"] = names;
 }
 
+// --confirm (run/cells.hpp GridConfirm): each start's verdict ("unchecked" outside the
+// sample), and the class and period at the check's first precision.
+void put_confirm(py::dict& d, const std::vector<AttractorCell>& cells, const GridConfirm& g) {
+  std::vector<std::string> verdicts, names = py::cast<std::vector<std::string>>(d["class_names"]);
+  d["confirm"] = codes_of(cells, [](const AttractorCell& c) { return c.confirm ? std::string(name(*c.confirm)) : std::string("unchecked"); }, verdicts);
+  d["confirm_names"] = verdicts;
+  d["check_class"] = codes_of(cells, [](const AttractorCell& c) { return name(c.check_cls); }, names);
+  d["check_period"] = ints_of(cells, [](const AttractorCell& c) { return c.check_period; });
+  d["class_names"] = names;
+  d["confirm_bits"] = g.bits;
+}
+
 void put_certified(py::dict& d, const std::vector<CertifiedCell>& cells) {
   std::vector<std::string> names;
   d["class_"] = codes_of(cells, [](const CertifiedCell& c) { return name(c.cls); }, names);
@@ -930,6 +942,7 @@ class ModelCore {
       const BasinResult r = interruptible([&] { return bouncer::basin(b.request, run); });
       put_axes(d, "theta", r.theta, "v", r.v);
       put_attractors(d, r.cells);
+      if (r.request.confirm.on) put_confirm(d, r.cells, r.request.confirm);
       d["v_range"] = py::make_tuple(r.request.v_range->first.text(), r.request.v_range->second.text());
     }
     d["certified"] = b.certify;

@@ -16,6 +16,10 @@ import numpy as np
 from . import _core
 from ._cli import CLASSES, _decimal
 
+# The verdicts of basin(confirm=...) (analysis/classify.hpp PrecisionVerdict), "unchecked"
+# for the starts outside the sample.
+CONFIRM_VERDICTS = ("unchecked", "agrees", "artefact", "precision_dependent")
+
 Interval = _core.Interval
 Step = _core.Step
 Orbit = _core.Orbit
@@ -297,6 +301,11 @@ class Basin:
     certified: True for certify=True, which also fills certified_steps, double_class (codes
         into classes), double_period, agreement (codes: "agrees" | "differs" | "undecided" |
         "outside", in ``agreements``) and scalar (the tier that decided each start)
+    confirm (M, N) int8, for confirm=...: codes into ``confirm_verdicts`` ("unchecked" outside
+        the sample; "agrees"; "artefact": the start's class at the run's precision is not what
+        mpfr:B and mpfr:2B both give; "precision_dependent": those two differ too);
+        check_class (codes into classes) and check_period: the class at mpfr:B where checked;
+        confirm_bits: B
     """
     theta: np.ndarray
     v: np.ndarray
@@ -313,6 +322,11 @@ class Basin:
     agreement: Optional[np.ndarray] = None
     agreements: Tuple[str, ...] = ("agrees", "differs", "undecided", "outside")
     scalar: Optional[np.ndarray] = None
+    confirm: Optional[np.ndarray] = None
+    confirm_verdicts: Tuple[str, ...] = CONFIRM_VERDICTS
+    check_class: Optional[np.ndarray] = None
+    check_period: Optional[np.ndarray] = None
+    confirm_bits: Optional[int] = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -516,6 +530,17 @@ def _recode(raw: np.ndarray, names: List[str], table: Tuple[str, ...], shape: Tu
     return remap[raw].reshape(shape)
 
 
+def _confirm_text(confirm: Union[bool, int]) -> Optional[str]:
+    """basin(confirm=...) as the CLI's --confirm[=BITS]: False -> absent, True -> 256 bits."""
+    if confirm is False or confirm is None:
+        return None
+    if confirm is True:
+        return "256"
+    if isinstance(confirm, int):
+        return str(confirm)
+    raise TypeError(f"confirm: expected True, False or a number of bits, got {type(confirm).__name__}")
+
+
 def _grid_fields(d: Dict[str, Any]) -> Dict[str, Any]:
     """The per-cell arrays of a native grid result, reshaped to (M, N), codes into CLASSES."""
     shape = tuple(d["shape"])
@@ -528,6 +553,10 @@ def _grid_fields(d: Dict[str, Any]) -> Dict[str, Any]:
                    double_period=d["double_period"].reshape(shape),
                    agreement=_recode(d["agreement"], names, agreements, shape),
                    scalar=np.array(d["scalar"], dtype=str).reshape(shape))
+    if "confirm" in d:
+        out.update(confirm=_recode(d["confirm"], d["confirm_names"], CONFIRM_VERDICTS, shape),
+                   check_class=_recode(d["check_class"], names, CLASSES, shape),
+                   check_period=d["check_period"].reshape(shape), confirm_bits=d["confirm_bits"])
     return out
 
 
@@ -729,7 +758,8 @@ class Model(_core.Model):
     def basin(self, *, grid: Tuple[int, int] = (100, 100), theta_range: Optional[Tuple[Number, Number]] = None,
               v_range: Optional[Tuple[Number, Number]] = None, transient: Optional[int] = None,
               steps: Optional[int] = None, max_period: Optional[int] = None, recheck_factor: Optional[int] = None,
-              certify: bool = False, max_bits: Optional[int] = None, threads: Optional[int] = None) -> Basin:
+              certify: bool = False, max_bits: Optional[int] = None, threads: Optional[int] = None,
+              confirm: Union[bool, int] = False, confirm_sample: Union[int, str, None] = None) -> Basin:
         """Basins of attraction: every start of an N x M grid (cell centres) classified, or
         certified (``bouncer basin``, the same library call, reader and defaults).
 
@@ -742,11 +772,17 @@ class Model(_core.Model):
             the model's precision must be double, the twin run); max_bits: the schedule's last
             MPFI precision, an integer in [64, 4096] (default 256)
         threads: worker threads, an integer >= 1 (default: all cores); results do not depend on it
+        confirm: True (mpfr:256) or a number of bits B in [64, 65536]: a sample of the starts
+            classified again at mpfr:B and mpfr:2B, as single-point classify does, which flags
+            where the run's class is a floating-point artefact (``basin --confirm``); not with
+            certify. confirm_sample: how many starts, an integer >= 1 or "all" (default 1000;
+            a lattice of the grid, independent of threads)
         """
         d = self._basin(_texts(grid=_grid_text(grid, "grid"), theta_range=_range_text(theta_range, "theta_range"),
                                v_range=_range_text(v_range, "v_range"), transient=transient, steps=steps,
                                max_period=max_period, recheck_factor=recheck_factor,
-                               certify="true" if certify else None, max_bits=max_bits, threads=threads))
+                               certify="true" if certify else None, max_bits=max_bits, threads=threads,
+                               confirm=_confirm_text(confirm), confirm_sample=confirm_sample))
         return Basin(theta=d["theta"], v=d["v"], theta_text=d["theta_text"], v_text=d["v_text"], classes=CLASSES,
                      v_range=tuple(d["v_range"]), certified=d["certified"], **_grid_fields(d))
 

@@ -332,6 +332,52 @@ TEST(PeriodDoubling, Eps09Period2AgainstTheAreaIdentity) {
               c.other.hi.c_str(), c.seconds);
 }
 
+// A fold (saddle-node) with the same truth: the eps = 0.9 period-11 orbit (stable at a = 12.5,
+// beside periods 6 and others) ends going down where a multiplier reaches +1; there the other
+// multiplier is det DP^11 = eps^22 exactly (area contraction eps^2 per impact), which the
+// certifier computes by interval duals without knowing it. The double continuation's bracket
+// and its end estimate (the fold re-located by bisection at 117 bits, analysis/end_estimate.hpp)
+// are checked against the enclosure: the first test of that re-location with a known a*.
+TEST(Fold, Eps09Period11AgainstTheAreaIdentity) {
+  const ModelSpec s = test_support::spec(Law::constant, "12.5", "0.9");
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 11,
+                                     State<double>{0.04780185758554826, 34.63889719838767}, 12.0, 13.0);
+  ASSERT_TRUE(b.started) << b.note;
+  estimate_end_accuracy(s, b);
+  ASSERT_EQ(b.low.reason, EndReason::fold) << b.low.detail;
+  PeriodDoublingQuestion q;
+  q.model = s;
+  q.period = 11;
+  q.point = {parse_decimal("theta", ScalarTraits<double>::to_string(b.low.last_point.theta)),
+             parse_decimal("v", ScalarTraits<double>::to_string(b.low.last_point.v))};
+  q.lo = parse_decimal("lo", ScalarTraits<double>::to_string(b.low.bracket_lo));
+  q.hi = parse_decimal("hi", ScalarTraits<double>::to_string(b.low.bracket_hi));
+  const PeriodDoublingCertificate c = certify_fold(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_LE(c.width, 1e-30);
+  mpq_class e22 = 1;
+  for (int i = 0; i < 22; ++i) e22 *= mpq_class(9, 10);
+  EXPECT_LE(parse_decimal("lo", c.other.lo).value(), e22) << c.other.lo;
+  EXPECT_GE(parse_decimal("hi", c.other.hi).value(), e22) << c.other.hi;
+  // trace = 1 + eps^22 (the multipliers 1 and eps^22).
+  EXPECT_LE(parse_decimal("lo", c.trace.lo).value(), mpq_class(1 + e22)) << c.trace.lo;
+  EXPECT_GE(parse_decimal("hi", c.trace.hi).value(), mpq_class(1 + e22)) << c.trace.hi;
+  EXPECT_LT(gap(b.low.bracket_lo, b.low.bracket_hi, c.lo, c.hi), 1e-8);
+  ASSERT_EQ(b.low.estimate.kind, EndEstimate::Kind::estimate) << b.low.estimate.note;
+  EXPECT_LE(b.low.estimate.lo, c.lo) << b.low.estimate.lo.get_d() << " vs " << c.parameter.lo;
+  EXPECT_GE(b.low.estimate.hi, c.hi) << b.low.estimate.hi.get_d() << " vs " << c.parameter.hi;
+  std::printf("eps 0.9 P11 fold: double bracket [%.17g, %.17g], certified [%s, %s], other multiplier [%s, %s], %.3f s\n",
+              b.low.bracket_lo, b.low.bracket_hi, c.parameter.lo.c_str(), c.parameter.hi.c_str(), c.other.lo.c_str(),
+              c.other.hi.c_str(), c.seconds);
+  // Far from the fold (the middle of the branch) Newton on the augmented system goes elsewhere
+  // or the box fails: nothing is certified there.
+  PeriodDoublingQuestion far = q;
+  far.lo = parse_decimal("lo", "12.499");
+  far.hi = parse_decimal("hi", "12.5");
+  const PeriodDoublingCertificate none = certify_fold(far);
+  EXPECT_FALSE(none.certified && none.lo <= mpq_class(12.5) && none.hi >= mpq_class(12.499)) << none.statement;
+}
+
 TEST(PeriodDoubling, NoMultiplierMinusOneIsNotCertified) {
   // At a = 19 the period-2 orbit's multipliers are far from -1 (the doubling is near 16.6).
   PeriodDoublingQuestion q;

@@ -100,7 +100,8 @@ ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, 
 }
 
 // Krawczyk on the events of a branch that explain a transition (needed[e]): border ends
-// (certify_branch_ends, both sides of a*) and period doublings (certify_period_doubling).
+// (certify_branch_ends, both sides of a*), period doublings (certify_period_doubling) and
+// folds, ends or on the branch (certify_fold).
 template <class T>
 void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, ContinuedBranch& cb, const std::vector<bool>& needed) {
   using Tr = ScalarTraits<T>;
@@ -112,9 +113,11 @@ void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, Continu
   const CertifiedBranchEnds c = certify_branch_ends(s.point.model, s.vary, cb.period, ends, bits, /*one_sided=*/false);
   take_certificate(cb.events.front(), c.low);
   take_certificate(cb.events.back(), c.high);
-  for (size_t e = 1; e + 1 < cb.events.size(); ++e) {
+  for (size_t e = 0; e < cb.events.size(); ++e) {
     BranchEventInfo& i = cb.events[e];
-    if (!needed[e] || i.kind != name(SmoothKind::period_doubling)) continue;
+    const bool pd = !i.end && i.kind == name(SmoothKind::period_doubling);
+    const bool fold = i.end ? i.kind == name(EndReason::fold) : i.kind == name(SmoothKind::fold);
+    if (!needed[e] || !(pd || fold)) continue;
     // The branch point nearest to it starts the proof.
     const BranchPoint<T>* near = &b.points.front();
     for (const BranchPoint<T>& p : b.points)
@@ -127,13 +130,13 @@ void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, Continu
     q.lo = parse_decimal("lo", i.bracket_lo);
     q.hi = parse_decimal("hi", i.bracket_hi);
     q.bits = std::max<long>(bits, 128);
-    const PeriodDoublingCertificate pd = certify_period_doubling(q);
+    const PeriodDoublingCertificate c = pd ? certify_period_doubling(q) : certify_fold(q);
     i.tried = true;
-    i.certified = pd.certified;
-    if (pd.certified)
-      i.enclosure = pd.parameter;
+    i.certified = c.certified;
+    if (c.certified)
+      i.enclosure = c.parameter;
     else
-      i.reason = pd.reason.empty() ? pd.statement : pd.reason;
+      i.reason = c.reason.empty() ? c.statement : c.reason;
   }
 }
 

@@ -129,7 +129,7 @@ AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const Gr
 // Each chain's appearances and disappearances inside the range are tied to the branch events;
 // with certify, the events so tied (and only they) are proved: border ends on both sides of
 // a* (verify/border_collision.hpp certify_branch_ends), period doublings
-// (certify_period_doubling); folds and the other ends are reported, not proved.
+// (certify_period_doubling) and folds (certify_fold); the other ends are reported, not proved.
 constexpr long kMaxBranchPeriod = 100;
 // The proofs run on `threads` workers (GridOptions::threads); the result does not depend on it.
 ChainBranches continue_chains(const AttractorsSweepResult& r, bool certify, int threads = 1);

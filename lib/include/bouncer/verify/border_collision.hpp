@@ -133,8 +133,7 @@ BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestio
 // for every p in Z exactly one period-Q point x(p) in Y (events fixed); exactly one p* in
 // [lo, hi] where det(DP^Q + I) = 0, i.e. a multiplier of x(p*) is exactly -1; that
 // determinant changes sign across p*, so a real multiplier crosses -1. Which way the doubled
-// orbit branches (the normal form's coefficient) is not certified. Folds (det(DP^Q - I) = 0)
-// are not offered: no test has a fold with a known a*.
+// orbit branches (the normal form's coefficient) is not certified. Folds: certify_fold below.
 struct PeriodDoublingQuestion {
   ModelSpec model;                  // any value of the varied parameter
   Parameter vary = Parameter::a;
@@ -160,6 +159,18 @@ struct PeriodDoublingCertificate {
 };
 
 PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q);
+
+// Fold (saddle-node), the same question and certificate: the augmented system
+// (P^Q(x; p) - x, det(DP^Q(x; p) - I)) in (theta_0, v_0, p), Krawczyk over a small box around
+// its Newton point (every branch decided over the box). Proves: exactly one (x*, p*) in the
+// box with P^Q(x*) = x* and a multiplier exactly +1 (the other, det DP^Q, is `other`, not +1),
+// p* in [lo, hi]; and, because K(B) inside B makes every Jacobian over B nonsingular, that
+// the fold is nondegenerate (the period-Q points near x* form one smooth curve that turns
+// back quadratically at p*: two orbits on one side, none on the other; the argument is in
+// border_collision.cpp run_fold). Not certified: how large that neighbourhood is, and which
+// side has the two orbits (the branch's side, by continuation). z_lo, z_hi = lo, hi; trace,
+// det, other over the tight box.
+PeriodDoublingCertificate certify_fold(const PeriodDoublingQuestion& q);
 
 // `continue --certify` on one end of a branch: the question over branch_end_interval's
 // interval (its texts lo, hi) and its certificate.

@@ -62,7 +62,9 @@ int run_typed(const Request& req, const Provenance& prov, bool print_json, Outpu
   // The digits of each located end that an error estimate backs (analysis/end_estimate.hpp).
   estimate_end_accuracy(r.model, b, r.opt);
   // --certify: Krawczyk on the branch side of each border end (verify/branch_end.hpp).
-  const CertifiedBranchEnds certified = r.certify ? certify_branch_ends(r.model, r.vary, r.period, b, bits) : CertifiedBranchEnds{};
+  // --certify: also every period doubling and fold, on the branch or at an end.
+  CertifiedBranchEnds certified = r.certify ? certify_branch_ends(r.model, r.vary, r.period, b, bits) : CertifiedBranchEnds{};
+  if (r.certify) certify_smooth_events(r.model, r.vary, r.period, b, bits, certified);
   const std::string doc = branch_json(r, m, b, certified, prov);
   if (req.out) {
     const Figure fig = branch_figure(r, m, b, req.show == "theta", prov);
@@ -105,7 +107,7 @@ CommandRunner setup_continue(CLI::App* sub) {
   auto quiet = std::make_shared<bool>(false);
   sub->add_flag("--quiet", *quiet, "Accepted like the picture commands (continue prints no progress)");
   opts->add_flag("certify",
-                 "Krawczyk on the branch side of each border end: a certified one-sided bound on a*");
+                 "Krawczyk proofs: each border end's a* enclosed on both sides (and a one-sided bound from the branch side), each period doubling and fold enclosed");
   // The lambda holds every flag's storage: CLI11 writes through the references after
   // add_continue has returned.
   auto run = [opts, scene, json_flag, quiet](const std::string& argv_text) {

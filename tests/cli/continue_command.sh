@@ -11,7 +11,8 @@
 #   - each located end's error estimate: its widened bracket contains a* (the closed forms,
 #     and the veldep period-7 ends' a* at mpfr:128), the text prints only its digits;
 #   - a scene file gives the same result as the command line;
-#   - --certify's certified one-sided bounds are consistent with the closed form;
+#   - --certify's certified one-sided bounds are consistent with the closed form; its fold and
+#     period doubling enclosures hold the area identity's other multiplier (eps^2 per impact);
 #   - bad input exits 2 with one line on stderr naming the option, nothing on stdout.
 # Usage: bash continue_command.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -103,6 +104,35 @@ jq_is certify.high '(.summary.high.certified.certified_to | tonumber) as $c | $c
 jq_is certify.input '.provenance.inputs.certify' true "$TMP/cert.json"
 # The error estimate's widened brackets contain the two-sided certified enclosures.
 jq_is certify.estimate '[.summary.low, .summary.high] | map(.certified.two_sided.estimate_contains) | all' true "$TMP/cert.json"
+
+# --- --certify proves folds and period doublings ---------------------------------------
+# eps = 0.9: the period-11 orbit ends going down at a fold, and the period-2 orbit has a
+# period doubling at a* ~ 15.78. The constant-eps map contracts area by eps^2 per impact, so
+# at the fold the other multiplier is det DP^11 = 0.9^22 and at the period doubling it is
+# -0.9^4: both inside the certified enclosures (compared as exact fractions).
+"$BOUNCER" continue --model constant --eps 0.9 --a 12.5 --period 11 --guess 0.04780185758554826,34.63889719838767 \
+  --range 12:13 --certify --json >"$TMP/fold.json"
+"$BOUNCER" continue --model constant --eps 0.9 --a 19 --period 2 --guess 0.1678819228862684,14.143149884133248 \
+  --range 12:21 --certify --json >"$TMP/pd.json"
+python3 - "$TMP/fold.json" "$TMP/pd.json" <<'PY' || fail certify.smooth "see above"
+import json, sys
+from fractions import Fraction as F
+from clichecks import check, done
+fold = json.load(open(sys.argv[1]))["summary"]["low"]
+check(fold["reason"] == "fold", f"low end {fold['reason']}")
+c = fold.get("certified", {})
+lo, hi = (F(x) for x in c.get("other_multiplier") or ["1", "0"])
+check(c.get("certified") and lo <= F(9, 10) ** 22 <= hi, f"fold: other multiplier {c.get('other_multiplier')} vs 0.9^22")
+a_lo, a_hi = (F(x) for x in c.get("enclosure") or ["1", "0"])
+check(a_lo <= F(fold["param"]) + F(1, 10**9) and F(fold["param"]) - F(1, 10**9) <= a_hi, f"fold enclosure {c.get('enclosure')} vs {fold['param']}")
+check(c.get("estimate_contains") is True, "the fold's widened bracket contains the enclosure")
+bif = json.load(open(sys.argv[2]))["summary"]["bifurcations"]
+check(len(bif) == 1 and bif[0]["kind"] == "period_doubling", f"bifurcations {bif}")
+pc = bif[0].get("certified", {}) if bif else {}
+lo, hi = (F(x) for x in pc.get("other_multiplier") or ["1", "0"])
+check(pc.get("certified") and lo <= -F(9, 10) ** 4 <= hi, f"period doubling: other multiplier {pc.get('other_multiplier')} vs -0.9^4")
+done()
+PY
 
 # --- bad input: exit 2, one line naming the option, nothing on stdout -----------------
 bad_input() {  # bad_input NAME FIELD ARGS...

@@ -118,18 +118,7 @@ void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, Continu
     const bool pd = !i.end && i.kind == name(SmoothKind::period_doubling);
     const bool fold = i.end ? i.kind == name(EndReason::fold) : i.kind == name(SmoothKind::fold);
     if (!needed[e] || !(pd || fold)) continue;
-    // The branch point nearest to it starts the proof.
-    const BranchPoint<T>* near = &b.points.front();
-    for (const BranchPoint<T>& p : b.points)
-      if (std::fabs(Tr::to_double(p.param) - i.param) < std::fabs(Tr::to_double(near->param) - i.param)) near = &p;
-    PeriodDoublingQuestion q;
-    q.model = s.point.model;
-    q.vary = s.vary;
-    q.period = cb.period;
-    q.point = {parse_decimal("theta", text_of(near->orbit.points[0].theta)), parse_decimal("v", text_of(near->orbit.points[0].v))};
-    q.lo = parse_decimal("lo", i.bracket_lo);
-    q.hi = parse_decimal("hi", i.bracket_hi);
-    q.bits = std::max<long>(bits, 128);
+    const PeriodDoublingQuestion q = smooth_event_question(s.point.model, s.vary, cb.period, b, i.param, i.bracket_lo, i.bracket_hi, bits);
     const PeriodDoublingCertificate c = pd ? certify_period_doubling(q) : certify_fold(q);
     i.tried = true;
     i.certified = c.certified;

@@ -189,7 +189,63 @@ struct CertifiedBranchEnd {
 // Both ends of a branch: set at each border end (EndReason::border), empty at the others.
 struct CertifiedBranchEnds {
   std::optional<CertifiedBranchEnd> low, high;
+  // certify_smooth_events: per bifurcation of the branch (aligned with Branch::bifurcations)
+  // the period doubling's or fold's certificate (a Neimark-Sacker is not offered: not
+  // certified, with the reason), and a fold end's.
+  std::vector<PeriodDoublingCertificate> bifurcations;
+  std::optional<PeriodDoublingCertificate> low_fold, high_fold;
 };
+
+// The question for a smooth event of b (a period doubling or a fold, on the branch or at an
+// end) at `param` with the bracket [lo, hi] (the branch scalar's texts): the branch point
+// nearest to it starts the proof, at max(bits, 128).
+template <class T>
+PeriodDoublingQuestion smooth_event_question(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b,
+                                             double param, const std::string& lo, const std::string& hi, long bits) {
+  using Tr = ScalarTraits<T>;
+  const BranchPoint<T>* near = &b.points.front();
+  for (const BranchPoint<T>& p : b.points)
+    if (std::fabs(Tr::to_double(p.param) - param) < std::fabs(Tr::to_double(near->param) - param)) near = &p;
+  PeriodDoublingQuestion q;
+  q.model = model;
+  q.vary = vary;
+  q.period = period;
+  q.point = {parse_decimal("theta", Tr::to_string(near->orbit.points[0].theta)),
+             parse_decimal("v", Tr::to_string(near->orbit.points[0].v))};
+  q.lo = parse_decimal("lo", lo);
+  q.hi = parse_decimal("hi", hi);
+  q.bits = std::max<long>(bits, 128);
+  return q;
+}
+
+// `continue --certify`: proves every period doubling and fold of b (certify_period_doubling,
+// certify_fold) and its fold ends, into c.
+template <class T>
+void certify_smooth_events(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b, long bits,
+                           CertifiedBranchEnds& c) {
+  using Tr = ScalarTraits<T>;
+  if (!b.started || b.points.empty()) return;
+  c.bifurcations.clear();
+  for (const Bifurcation<T>& x : b.bifurcations) {
+    if (x.kind == SmoothKind::neimark_sacker) {
+      PeriodDoublingCertificate none;
+      none.reason = "a Neimark-Sacker bifurcation has no certifier";
+      none.statement = "Not certified: " + none.reason + ". Nothing is claimed.";
+      c.bifurcations.push_back(none);
+      continue;
+    }
+    const PeriodDoublingQuestion q = smooth_event_question(model, vary, period, b, Tr::to_double(x.param),
+                                                           Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi), bits);
+    c.bifurcations.push_back(x.kind == SmoothKind::period_doubling ? certify_period_doubling(q) : certify_fold(q));
+  }
+  for (const bool high : {false, true}) {
+    const BranchEnd<T>& e = high ? b.high : b.low;
+    if (e.reason != EndReason::fold) continue;
+    const PeriodDoublingQuestion q = smooth_event_question(model, vary, period, b, Tr::to_double(e.param),
+                                                           Tr::to_string(e.bracket_lo), Tr::to_string(e.bracket_hi), bits);
+    (high ? c.high_fold : c.low_fold) = certify_fold(q);
+  }
+}
 
 // Certifies each border end of `b`: its branch side (model: the branch's, any value of the
 // varied parameter; bits: the branch's precision), and a* on both sides. one_sided = false

@@ -120,6 +120,22 @@ json certified_json(const CertifiedBranchEnd& c, const EndEstimate& est, long pe
   return cj;
 }
 
+// A period doubling's or fold's certificate (--certify): the enclosure of p*, the
+// multipliers there, the theorem, and whether the estimate's widened bracket contains it.
+json smooth_json(const PeriodDoublingCertificate& c, const EndEstimate& est) {
+  json j;
+  j["certified"] = c.certified;
+  j["bits"] = c.bits;
+  j["enclosure"] = c.certified ? json{c.parameter.lo, c.parameter.hi} : json(nullptr);
+  j["width"] = c.certified ? json(c.width) : json(nullptr);
+  j["other_multiplier"] = c.certified ? json{c.other.lo, c.other.hi} : json(nullptr);
+  j["events"] = c.events;
+  j["estimate_contains"] = c.certified && est.kind == EndEstimate::Kind::estimate ? json(est.lo <= c.lo && c.hi <= est.hi) : json(nullptr);
+  j["statement"] = c.statement;
+  if (!c.certified) j["reason"] = c.reason;
+  return j;
+}
+
 }  // namespace
 
 std::string class_words(const Classification& c) {
@@ -255,15 +271,19 @@ std::string branch_json(const ContinueRequest& r, const Model<T>& m, const Branc
   json low = end_json(b, b.low, r.vary, m.wall), high = end_json(b, b.high, r.vary, m.wall);
   if (certified.low) low["certified"] = certified_json(*certified.low, b.low.estimate, r.period, r.vary);
   if (certified.high) high["certified"] = certified_json(*certified.high, b.high.estimate, r.period, r.vary);
+  if (certified.low_fold) low["certified"] = smooth_json(*certified.low_fold, b.low.estimate);
+  if (certified.high_fold) high["certified"] = smooth_json(*certified.high_fold, b.high.estimate);
   low["events_at_end"] = event_text(b.points.front().events);
   high["events_at_end"] = event_text(b.points.back().events);
   sum["low"] = low;
   sum["high"] = high;
   json bif = json::array();
-  for (const Bifurcation<T>& x : b.bifurcations) {
+  for (size_t i = 0; i < b.bifurcations.size(); ++i) {
+    const Bifurcation<T>& x = b.bifurcations[i];
     json one{{"kind", name(x.kind)}, {"param", Tr::to_string(x.param)},
              {"bracket", {Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi)}}};
     add_accuracy(one, x.estimate);
+    if (i < certified.bifurcations.size()) one["certified"] = smooth_json(certified.bifurcations[i], x.estimate);
     bif.push_back(one);
   }
   sum["bifurcations"] = bif;
@@ -298,8 +318,13 @@ std::string branch_text(const ContinueRequest& r, const Branch<T>& b, const Cert
                                       : "; the error estimate's widened bracket does NOT contain it (the estimate failed)")
          << "\n";
   }
-  for (const Bifurcation<T>& x : b.bifurcations)
+  for (const auto* f : {&certified.low_fold, &certified.high_fold})
+    if (*f) text << (f == &certified.low_fold ? "low end" : "high end") << " fold: " << (*f)->statement << "\n";
+  for (size_t i = 0; i < b.bifurcations.size(); ++i) {
+    const Bifurcation<T>& x = b.bifurcations[i];
     text << name(x.kind) << " at " << par << "* = " << end_value_text(x.estimate, Tr::to_string(x.param)) << "\n";
+    if (i < certified.bifurcations.size()) text << "  " << certified.bifurcations[i].statement << "\n";
+  }
   return text.str();
 }
 

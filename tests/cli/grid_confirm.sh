@@ -10,6 +10,9 @@
 #     (a = 8(1+eps)/(p(1-eps)) with p = 2); every confirmed start is fixed in double and at
 #     mpfr:256, for basin and for a scan whose only point is (12, 0.5) (dyadic: the same
 #     parameters at every precision);
+#   - a scan's artefact: eps = 7/8, a = 17 from (1/8, 18) settles on period 2 before step
+#     5000 at mpfr:256 and mpfr:512, after it in double (transient_chaos): the scan's only
+#     start is flagged, as single-point classify flags it;
 #   - the sample: a 10 x 10 basin with --confirm-sample 4 confirms exactly the starts at
 #     columns and rows 2 and 7 (stride 5, worked out by hand), with 1 and 2 threads alike;
 #   - bouncer audit reruns a --confirm result bit for bit;
@@ -100,6 +103,29 @@ ok = ok and c["sample"]["points"] == 1 and c["sample"]["starts"] == 9 and c["agr
 if not ok:
     print("FAIL: scan at (12, 0.5):", r, c, file=sys.stderr)
 sys.exit(0 if ok else 1)
+PY
+
+# --- A scan's artefact: eps = 7/8, a = 17 (dyadic), the start (1/8, 18) -----------------------------
+# A chaotic transient ends on the period-2 orbit: at mpfr:256 and mpfr:512 before step 5000
+# (periodic), in double after it (transient_chaos, settling on periodic): the 53-bit orbit
+# leaves the true one within about a hundred steps, the 256- and 512-bit ones track it past
+# its capture. The scan's only point, its only start, is that start (theta 0:1/4, v 17:19);
+# single-point classify of the same start says the same.
+run s17 scan --model constant --a-range 16.5:17.5 --eps-range 0.85:0.9 --grid 1x1 --ics 1 --theta-range 0:0.25 \
+  --v-range 17:19 --confirm --quiet --out s17 && outputs s17 s17
+run s17-classify classify --model constant --eps 0.875 --a 17 --theta 0.125 --v 18 --json
+python3 - <<'PY' || fail s17-content "see above"
+import csv, json
+from clichecks import check, done
+r = list(csv.DictReader(l for l in open("s17.csv") if not l.startswith("#")))[0]
+check(float(r["a"]) == 17 and float(r["eps"]) == 0.875 and r["total"] == "1", f"the point {r}")
+check(r["transient_chaos"] == "1" and r["confirm_artefact"] == "1", f"double's class and the verdict {r}")
+c = json.load(open("s17.json"))["summary"]["confirm"]
+check(c["artefact"] == 1 and c["artefacts"] == [{"a": "17", "eps": "0.875", "theta": "0.125", "v": "18"}], f"artefacts {c}")
+pc = json.load(open("s17-classify.out"))
+check(pc["class"] == "transient_chaos" and pc["precision_check"]["verdict"] == "artefact", f"classify {pc['class']}, {pc['precision_check']['verdict']}")
+check([k["class"] for k in pc["precision_check"]["checks"]] == ["periodic", "periodic"], f"checks {pc['precision_check']['checks']}")
+done()
 PY
 
 # --- The sample: 10 x 10 starts, at most 4 confirmed --------------------------------------------------

@@ -8,6 +8,8 @@ description, usage and options (CLI11's format: a description line, `Usage: ...`
 
     tools/gen_docs.py --bouncer build/tools/bouncer \
         [--docs DIR]            DIR/reference/index.md, DIR/reference/CMD.md,
+                                DIR/reference/python.md (the package's __all__, from its
+                                sources), DIR/reference/cpp.md (the public headers),
                                 DIR/pictures/*.png (copied from data/pictures/)
         [--man DIR]             DIR/bouncer.1, DIR/bouncer-CMD.1 (roff, section 1)
         [--completion FILE]     a bash completion script for bouncer
@@ -288,6 +290,127 @@ def completion_script(top, cmds):
 
 # ---------------------------------------------------------------- main
 
+# ---- API pages: read from the sources, never imported (the docs build needs no built module) ----
+
+def _doc_block(text):
+    """A docstring as Markdown: dedented, inside a text block (its layout is columns)."""
+    import textwrap
+    lines = text.expandtabs().split("\n")
+    body = textwrap.dedent("\n".join(lines[1:])) if len(lines) > 1 else ""
+    out = (lines[0].strip() + ("\n" + body if body.strip() else "")).strip("\n")
+    return "```text\n" + out + "\n```\n"
+
+
+def python_api_page(src, version):
+    """docs/reference/python.md: every public name of the bouncer package (__all__ in
+    python/bouncer/__init__.py), its signature and docstring, read with ast from the module
+    that defines it (_model.py, _cli.py; _core.pyi for the native types)."""
+    import ast
+    pkg = os.path.join(src, "python", "bouncer")
+    init = ast.parse(open(os.path.join(pkg, "__init__.py"), encoding="utf-8").read())
+    public = []
+    for node in init.body:
+        if isinstance(node, ast.Assign) and any(isinstance(t, ast.Name) and t.id == "__all__" for t in node.targets):
+            public = [e.value for e in node.value.elts]
+    if not public:
+        sys.exit("gen_docs: python/bouncer/__init__.py has no __all__")
+    defs = {}
+    for mod in ("_model.py", "_cli.py", "_core.pyi"):
+        tree = ast.parse(open(os.path.join(pkg, mod), encoding="utf-8").read())
+        for node in tree.body:
+            if isinstance(node, (ast.FunctionDef, ast.ClassDef)) and node.name not in defs:
+                defs[node.name] = (mod, node)
+            elif isinstance(node, ast.Assign):
+                for t in node.targets:
+                    if isinstance(t, ast.Name) and t.id not in defs:
+                        defs[t.id] = (mod, node)
+
+    def signature(fn, drop_self):
+        a = fn.args
+        text = ast.unparse(a)
+        if drop_self and text.startswith("self"):
+            text = text[len("self"):].lstrip(", ")
+        ret = " -> " + ast.unparse(fn.returns) if fn.returns is not None else ""
+        return f"{fn.name}({text}){ret}"
+
+    out = [f"# Python API\n\n*Generated from the package's sources by tools/gen_docs.py ({version}).* "
+           "Install and the two layers (`bouncer.Model`, typed; the command line in-process): "
+           "[From Python](../guide/python.md). Every public name of `bouncer` (`__all__`):\n"]
+    # Headings "class Step", "step()", "EVENTS": distinct anchors for the class Step and the
+    # function step (MkDocs' toc: lower case, spaces to '-', other punctuation dropped).
+    def heading(name):
+        if name not in defs:
+            sys.exit(f"gen_docs: bouncer.{name} is in __all__ but defined in none of _model.py, _cli.py, _core.pyi")
+        node = defs[name][1]
+        if isinstance(node, ast.ClassDef):
+            return f"class {name}", f"class-{name.lower()}"
+        if isinstance(node, ast.FunctionDef):
+            return f"{name}()", name.lower()
+        return name, name.lower()
+
+    out.append("".join(f"[`{heading(n)[0]}`](#{heading(n)[1]}) " for n in public) + "\n")
+    for name in public:
+        mod, node = defs[name]
+        out.append(f"\n## {heading(name)[0]}\n")
+        if isinstance(node, ast.FunctionDef):
+            out.append(f"```python\n{signature(node, False)}\n```\n")
+            doc = ast.get_docstring(node)
+            if doc:
+                out.append(_doc_block(doc))
+        elif isinstance(node, ast.ClassDef):
+            bases = ", ".join(ast.unparse(b) for b in node.bases)
+            out.append(f"```python\nclass {name}{'(' + bases + ')' if bases else ''}\n```\n")
+            doc = ast.get_docstring(node)
+            if doc:
+                out.append(_doc_block(doc))
+            for m in node.body:
+                if isinstance(m, ast.FunctionDef) and not m.name.startswith("_") and ast.get_docstring(m):
+                    out.append(f"\n### {name}.{m.name}\n\n```python\n{signature(m, True)}\n```\n")
+                    out.append(_doc_block(ast.get_docstring(m)))
+        else:
+            out.append(f"```python\n{ast.unparse(node)[:300]}\n```\n")
+        out.append(f"\n*Defined in* `python/bouncer/{mod}`.\n")
+    return "".join(out)
+
+
+def cpp_api_page(src, version):
+    """docs/reference/cpp.md: every public header of the library (lib/include/bouncer), by
+    layer, with the comment that opens it (each header starts with what it is for)."""
+    root = os.path.join(src, "lib", "include", "bouncer")
+    layers = ["base", "scalar", "model", "analysis", "verify", "run", "io", "workflow"]
+    out = [f"# C++ API\n\n*Generated from the headers by tools/gen_docs.py ({version}).* The library "
+           "(`find_package(bouncer)` or `pkg-config bouncer`; [Using the library from CMake](../guide/cmake.md)) "
+           "is layered: each layer includes only the ones before it (tests/check_layers.py checks). "
+           "One section per public header, with the comment it opens with; the declarations and their "
+           "comments are in the header itself.\n"]
+    seen = set()
+    for layer in layers + sorted(d for d in os.listdir(root) if os.path.isdir(os.path.join(root, d)) and d not in layers):
+        d = os.path.join(root, layer)
+        if not os.path.isdir(d):
+            continue
+        headers = []
+        for dirpath, _, files in os.walk(d):
+            headers += [os.path.join(dirpath, f) for f in files if f.endswith(".hpp")]
+        if not headers:
+            continue
+        out.append(f"\n## {layer}\n")
+        for h in sorted(headers):
+            rel = os.path.relpath(h, os.path.join(src, "lib", "include"))
+            seen.add(rel)
+            comment = []
+            for line in open(h, encoding="utf-8"):
+                t = line.strip()
+                if t.startswith("//"):
+                    comment.append(t[2:].strip())
+                elif t == "" and not comment:
+                    continue
+                else:
+                    break
+            out.append(f"\n### `{rel}`\n\n")
+            out.append(" ".join(comment).strip() + "\n" if comment else "(no opening comment)\n")
+    return "".join(out)
+
+
 def write(path, text, written):
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
     tmp = path + ".partial"
@@ -323,6 +446,9 @@ def main():
         outputs[os.path.join(ref, "index.md")] = reference_index(top, cmds)
         for c in cmds:
             outputs[os.path.join(ref, c.name + ".md")] = reference_page(c, version)
+        src = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+        outputs[os.path.join(ref, "python.md")] = python_api_page(src, version)
+        outputs[os.path.join(ref, "cpp.md")] = cpp_api_page(src, version)
     if args.man:
         outputs[os.path.join(args.man, "bouncer.1")] = man_page(top, version, cmds)
         for c in cmds:

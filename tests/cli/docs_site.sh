@@ -3,6 +3,8 @@
 #   - tools/gen_docs.py writes a reference page for every command `bouncer --help` lists, and
 #     each page holds every option of that command's --help (read here with grep);
 #   - mkdocs.yml's nav lists every generated reference page (a new command needs its line);
+#   - the Python API page has a section for every name of bouncer.__all__, the C++ API page
+#     one for every public header;
 #   - `mkdocs build --strict` succeeds (a warning, e.g. a link to a missing page, is an error);
 #   - tools/check_site_links.py finds every internal link, anchor and file of the built site,
 #     and no script, stylesheet or image loaded from the network (the site works offline);
@@ -32,6 +34,22 @@ for c in "${cmds[@]}"; do
   grep -qE -- "^ +- [a-z-]+: reference/$c\.md$" "$TMP/mkdocs.yml" || fail mkdocs.yml "the nav does not list reference/$c.md"
 done
 [[ -s $TMP/docs/claims.md ]] || fail claims.md "missing (committed; checked by cli.reproduce_claims_table)"
+# The API pages: every public Python name (bouncer.__all__) has its section, every public
+# header its own (both generated from the sources).
+"$PY" - "$SRC" "$TMP/docs/reference" >"$TMP/api.log" 2>&1 <<'PY' || fail api "$(head -5 "$TMP/api.log")"
+import ast, os, re, sys
+src, ref = sys.argv[1], sys.argv[2]
+init = ast.parse(open(os.path.join(src, "python/bouncer/__init__.py")).read())
+names = [e.value for n in init.body if isinstance(n, ast.Assign) and getattr(n.targets[0], "id", "") == "__all__" for e in n.value.elts]
+py = open(os.path.join(ref, "python.md")).read()
+missing = [n for n in names if not re.search(rf"^## (class )?{re.escape(n)}(\(\))?$", py, re.M)]
+cpp = open(os.path.join(ref, "cpp.md")).read()
+headers = [os.path.relpath(os.path.join(d, f), os.path.join(src, "lib/include")) for d, _, fs in os.walk(os.path.join(src, "lib/include/bouncer")) for f in fs if f.endswith(".hpp")]
+missing += [h for h in headers if f"### `{h}`" not in cpp]
+if len(names) < 20 or len(headers) < 20 or missing:
+    print(f"{len(names)} names, {len(headers)} headers; missing: {missing[:10]}")
+    sys.exit(1)
+PY
 
 if ! (cd "$TMP" && mkdocs build --strict -q -d "$TMP/site") >"$TMP/mkdocs.log" 2>&1; then
   fail "mkdocs build --strict" "$(grep -E 'WARNING|ERROR|Error' "$TMP/mkdocs.log" | head -5)"

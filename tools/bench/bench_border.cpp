@@ -1,5 +1,5 @@
 // bench_border: the cost of a certified two-sided border collision (issue 23: < 1 s at
-// mpfr:128). For each case: the double continuation that locates the end (not timed), then
+// mpfr:128), of long periods (11, 66: the second needs 256 bits), a period doubling and a fold. For each case: the double continuation that locates the end (not timed), then
 // certify_border_collision at 128 (and 256) bits, wall-clock, best of three; a table with
 // the enclosure's width and the double bracket's distance to it. Timings are printed,
 // never checked.
@@ -54,6 +54,8 @@ int main(int argc, char** argv) {
       {"veldep c 1000 P7 low end (knot 1/2)", spec(Law::veldep, "28", "1", "1000"), 7, 0.19204436106841707, 26.916257785320354, 27, 29, false},
       {"veldep c 1000 P7 high end (knot 0)", spec(Law::veldep, "28", "1", "1000"), 7, 0.19204436106841707, 26.916257785320354, 27, 29, true},
       {"veldep c 1000 unstable P7 (grazing 1/2)", spec(Law::veldep, "25", "1", "1000"), 7, 0.016124178545083214, 10.063538832537404, 22, 28, false},
+      {"veldep c 1000 P11 high end (knot 1/2)", spec(Law::veldep, "24.5", "1", "1000"), 11, 0.01685443925323413, 25.227892214860187, 24, 25, true},
+      {"veldep c 1000 P66 low end (knot 1/2)", spec(Law::veldep, "15.2", "1", "1000"), 66, 0.007894477576029256, 43.635535422440235, 15, 15.5, false},
   };
   std::printf("%-44s %5s %10s %12s %12s  %s\n", "border collision", "bits", "seconds", "width", "double off", "margin");
   for (const Case& k : cases) {
@@ -94,7 +96,40 @@ int main(int argc, char** argv) {
                   c.parameter.hi.c_str(), end.bracket_lo, end.bracket_hi);
     }
   }
-  // Period doubling on the eps = 0.9 period-2 branch (the same construction, smooth end).
+  // Smooth ends: a period doubling (eps = 0.9 period 2) and a fold (eps = 0.9 period 11),
+  // the same construction on det(DP^Q +- I).
+  auto smooth = [&](const char* name, const PeriodDoublingQuestion& q0, double blo_d, double bhi_d, auto certify) {
+    PeriodDoublingQuestion q = q0;
+    for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
+      q.bits = bits;
+      double best = 1e300;
+      PeriodDoublingCertificate c;
+      for (int run = 0; run < (quick ? 1 : 3); ++run) {
+        const auto t0 = std::chrono::steady_clock::now();
+        c = certify(q);
+        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      }
+      if (!c.certified) {
+        std::printf("%-44s %5ld %10.4f  NOT CERTIFIED: %s\n", name, bits, best, c.reason.c_str());
+        continue;
+      }
+      const mpq_class blo(blo_d), bhi(bhi_d);
+      const double off = bhi < c.lo ? mpq_class(c.lo - bhi).get_d() : c.hi < blo ? mpq_class(blo - c.hi).get_d() : 0.0;
+      std::printf("%-44s %5ld %10.4f %12.3g %12.3g  other multiplier [%s, %s]\n", name, bits, best, c.width, off,
+                  c.other.lo.c_str(), c.other.hi.c_str());
+      std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
+                  c.parameter.hi.c_str(), blo_d, bhi_d);
+    }
+  };
+  auto question = [](const ModelSpec& ms, long period, const State<double>& x, double lo, double hi) {
+    PeriodDoublingQuestion q;
+    q.model = ms;
+    q.period = period;
+    q.point = {*Decimal::parse(ScalarTraits<double>::to_string(x.theta)), *Decimal::parse(ScalarTraits<double>::to_string(x.v))};
+    q.lo = *Decimal::parse(ScalarTraits<double>::to_string(lo));
+    q.hi = *Decimal::parse(ScalarTraits<double>::to_string(hi));
+    return q;
+  };
   {
     const ModelSpec ms = spec(Law::constant, "19", "0.9", "1000");
     const Branch<double> b = continue_branch(make_model<double>(ms, 53), Parameter::a, 2,
@@ -104,35 +139,17 @@ int main(int argc, char** argv) {
       const BranchPoint<double>* near = &b.points[0];
       for (const BranchPoint<double>& p : b.points)
         if (std::fabs(p.param - pd.param) < std::fabs(near->param - pd.param)) near = &p;
-      PeriodDoublingQuestion q;
-      q.model = ms;
-      q.period = 2;
-      q.point = {*Decimal::parse(ScalarTraits<double>::to_string(near->orbit.points[0].theta)),
-                 *Decimal::parse(ScalarTraits<double>::to_string(near->orbit.points[0].v))};
-      q.lo = *Decimal::parse(ScalarTraits<double>::to_string(pd.bracket_lo));
-      q.hi = *Decimal::parse(ScalarTraits<double>::to_string(pd.bracket_hi));
-      for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
-        q.bits = bits;
-        double best = 1e300;
-        PeriodDoublingCertificate c;
-        for (int run = 0; run < (quick ? 1 : 3); ++run) {
-          const auto t0 = std::chrono::steady_clock::now();
-          c = certify_period_doubling(q);
-          best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-        }
-        const char* name = "eps 0.9 P2 period doubling (multiplier -1)";
-        if (!c.certified) {
-          std::printf("%-44s %5ld %10.4f  NOT CERTIFIED: %s\n", name, bits, best, c.reason.c_str());
-          continue;
-        }
-        const mpq_class blo(pd.bracket_lo), bhi(pd.bracket_hi);
-        const double off = bhi < c.lo ? mpq_class(c.lo - bhi).get_d() : c.hi < blo ? mpq_class(blo - c.hi).get_d() : 0.0;
-        std::printf("%-44s %5ld %10.4f %12.3g %12.3g  other multiplier [%s, %s]\n", name, bits, best, c.width, off,
-                    c.other.lo.c_str(), c.other.hi.c_str());
-        std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
-                    c.parameter.hi.c_str(), pd.bracket_lo, pd.bracket_hi);
-      }
+      smooth("eps 0.9 P2 period doubling (multiplier -1)", question(ms, 2, near->orbit.points[0], pd.bracket_lo, pd.bracket_hi),
+             pd.bracket_lo, pd.bracket_hi, [](const PeriodDoublingQuestion& q) { return certify_period_doubling(q); });
     }
+  }
+  {
+    const ModelSpec ms = spec(Law::constant, "12.5", "0.9", "1000");
+    const Branch<double> b = continue_branch(make_model<double>(ms, 53), Parameter::a, 11,
+                                             State<double>{0.04780185758554826, 34.63889719838767}, 12.0, 13.0);
+    if (b.low.reason == EndReason::fold)
+      smooth("eps 0.9 P11 fold (multiplier +1)", question(ms, 11, b.low.last_point, b.low.bracket_lo, b.low.bracket_hi),
+             b.low.bracket_lo, b.low.bracket_hi, [](const PeriodDoublingQuestion& q) { return certify_fold(q); });
   }
   return 0;
 }

@@ -104,7 +104,6 @@ ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, 
 // folds, ends or on the branch (certify_fold).
 template <class T>
 void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, ContinuedBranch& cb, const std::vector<bool>& needed) {
-  using Tr = ScalarTraits<T>;
   const long bits = s.point.precision.bits;
   if (!b.started) return;
   Branch<T> ends = b;  // the ends not needed are not certified

@@ -256,6 +256,29 @@ TEST(Manifest, ProofPrefixOfAnInstall) {
   EXPECT_EQ(rerun_text("", "/p/"), "");
 }
 
+TEST(Manifest, RerunTextNamesNoCheckoutPath) {
+  // A built-in scene by name (found from any directory and from an install; picture- dropped
+  // as --scene accepts it), an unknown scene path kept as written, ctest run in build/ and,
+  // for an install, said to need a build tree.
+  EXPECT_EQ(rerun_text("`bouncer basin --scene data/scenes/picture-basin-eps05-a24.toml --out b`", "/p/"),
+            "`bouncer basin --scene basin-eps05-a24 --out b`");
+  EXPECT_EQ(rerun_text("`bouncer continue --scene data/scenes/continue-veldep-period7.toml --certify`", kBuildProofPrefix),
+            "`bouncer continue --scene continue-veldep-period7 --certify`");
+  EXPECT_EQ(rerun_text("`bouncer scan --scene data/scenes/nope.toml`", "/p/"), "`bouncer scan --scene data/scenes/nope.toml`");
+  EXPECT_EQ(rerun_text("`ctest -R Sticking`; `bouncer certify-sticking --a 24`", kBuildProofPrefix),
+            "`ctest --test-dir build -R Sticking`; `bouncer certify-sticking --a 24`");
+  EXPECT_EQ(rerun_text("`ctest -R Sticking`; `x`", "/p/"), "`ctest --test-dir build -R Sticking` (in a build tree of the sources); `x`");
+  // Every rerun of the built-in manifest, as an install shows it: no path into a checkout
+  // except the ctest line that says it needs one.
+  for (const Claim& c : parse_manifest(std::string(paper_manifest_text()), kPaperManifestSource).claims) {
+    const std::string r = rerun_text(c.rerun, "/usr/libexec/bouncer/");
+    EXPECT_EQ(r.find("data/scenes/"), std::string::npos) << c.id << ": " << r;
+    EXPECT_EQ(r.find("build/"), std::string::npos) << c.id << ": " << r;
+    for (size_t k = 0; (k = r.find("--test-dir build", k)) != std::string::npos; ++k)
+      EXPECT_NE(r.find("(in a build tree of the sources)", k), std::string::npos) << c.id << ": " << r;
+  }
+}
+
 // The report shows the paper's captions as text, not LaTeX (issue 24): hand-converted cases
 // of every construct the captions use, and every caption of the built-in manifest free of
 // math delimiters, commands and braces.

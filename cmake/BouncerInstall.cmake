@@ -64,15 +64,16 @@ set(BOUNCER_DEV_PACKAGES "g++, cmake | pkg-config, libboost-dev, libgmp-dev, lib
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "${BOUNCER_DEV_PACKAGES}")
 string(REPLACE ", cmake | pkg-config" ", cmake or pkg-config" BOUNCER_DEV_PACKAGES_TEXT "${BOUNCER_DEV_PACKAGES}")
 string(REPLACE "," "" BOUNCER_DEV_PACKAGES_TEXT "${BOUNCER_DEV_PACKAGES_TEXT}")
-set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "${CPACK_PACKAGE_DESCRIPTION_SUMMARY}
-The exact impact map of a particle bouncing on a wall that moves as a triangle wave, in
+# (cpack takes the Description's first line from the summary above: this is the rest.)
+set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "The exact impact map of a particle bouncing on a wall that moves as a triangle wave, in
 double, long double, double-double, quad, MPFR and interval arithmetic, with certified
 answers (sticking, periodic orbits, basins) and the figures of the paper. Installs the
 bouncer command, the proof programs bouncer reproduce runs (libexec/bouncer), the scenes
 and the paper's manifest (share/bouncer), the Python module, and the C++ library's headers
 and static libraries with a CMake package and a pkg-config file.
-To build C++ programs against the library (find_package(bouncer) or pkg-config bouncer)
-install as well: ${BOUNCER_DEV_PACKAGES_TEXT}.")
+To build C++ programs against the library (find_package(bouncer) or pkg-config bouncer),
+install as well (the Suggests):
+${BOUNCER_DEV_PACKAGES_TEXT}.")
 set(CPACK_RESOURCE_FILE_LICENSE ${CMAKE_CURRENT_SOURCE_DIR}/LICENSE)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # bouncer_VERSION_ARCH.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION science)

@@ -433,7 +433,7 @@ std::string report_html(const ReproduceResult& r) {
       const Claim& c = m.claims[it->index];
       const bool ok = it->status == ClaimStatus::reproduced;
       h << "<tr id=\"" << anchor("claim-", c.id) << "\"><td>" << html_escape(c.row) << "</td><td><details><summary>"
-        << html_escape(short_text(c.text, 90)) << "</summary>\n<dl>\n<dt>Claim (<code>" << html_escape(c.id) << "</code>)</dt><dd>"
+        << html_escape(short_text(c.text, 80)) << "</summary>\n<dl>\n<dt>Claim (<code>" << html_escape(c.id) << "</code>)</dt><dd>"
         << md_inline_html(c.text) << "</dd>\n<dt>Paper</dt><dd>" << html_escape(c.paper) << "</dd>\n<dt>Evidence</dt><dd>"
         << md_inline_html(c.evidence) << "</dd>\n<dt>Rerun</dt><dd>" << md_inline_html(rerun_text(c.rerun, r.proof_prefix))
         << "</dd>\n";

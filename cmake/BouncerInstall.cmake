@@ -53,8 +53,27 @@ install(FILES data/paper/manifest.toml DESTINATION ${CMAKE_INSTALL_DATADIR}/boun
 set(CPACK_PACKAGE_NAME bouncer)
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_VENDOR "bouncer")
-set(CPACK_PACKAGE_CONTACT "bouncer maintainers <bouncer@localhost>")
+# The maintainer is the authors as CITATION.cff names them (the project publishes no address,
+# so none is made up here).
+set(CPACK_PACKAGE_CONTACT "The bouncer authors")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Verified numerics for the piecewise linear bouncer (Langer & Miller 2014)")
+# What a C++ developer installs to build against the installed library (find_package(bouncer)
+# or pkg-config bouncer; cmake/bouncerConfig.cmake.in and bouncer.pc.in name the same): the
+# headers and static libraries are in this package, their dependencies' headers are not.
+set(BOUNCER_DEV_PACKAGES "g++, cmake | pkg-config, libboost-dev, libgmp-dev, libmpfr-dev, libmpfi-dev, libqd-dev, nlohmann-json3-dev, libtomlplusplus-dev, libpng-dev, libcairo2-dev, libfreetype-dev")
+set(CPACK_DEBIAN_PACKAGE_SUGGESTS "${BOUNCER_DEV_PACKAGES}")
+string(REPLACE ", cmake | pkg-config" ", cmake or pkg-config" BOUNCER_DEV_PACKAGES_TEXT "${BOUNCER_DEV_PACKAGES}")
+string(REPLACE "," "" BOUNCER_DEV_PACKAGES_TEXT "${BOUNCER_DEV_PACKAGES_TEXT}")
+# (cpack takes the Description's first line from the summary above: this is the rest.)
+set(CPACK_DEBIAN_PACKAGE_DESCRIPTION "The exact impact map of a particle bouncing on a wall that moves as a triangle wave, in
+double, long double, double-double, quad, MPFR and interval arithmetic, with certified
+answers (sticking, periodic orbits, basins) and the figures of the paper. Installs the
+bouncer command, the proof programs bouncer reproduce runs (libexec/bouncer), the scenes
+and the paper's manifest (share/bouncer), the Python module, and the C++ library's headers
+and static libraries with a CMake package and a pkg-config file.
+To build C++ programs against the library (find_package(bouncer) or pkg-config bouncer),
+install as well (the Suggests):
+${BOUNCER_DEV_PACKAGES_TEXT}.")
 set(CPACK_RESOURCE_FILE_LICENSE ${CMAKE_CURRENT_SOURCE_DIR}/LICENSE)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # bouncer_VERSION_ARCH.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION science)

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -329,6 +330,23 @@ TEST(Audit, AFailedRerunIsReported) {
   a = audit(r);
   EXPECT_EQ(a.verdict, AuditVerdict::rerun_failed);
   EXPECT_EQ(a.message, "the rerun's output is not JSON");
+}
+
+TEST(Audit, SaysWhereItsTimeWent) {
+  // A rerun that takes 0.3 s (a script that sleeps, then prints nothing): rerun_seconds holds
+  // at least that, and the rerun and the comparison together fit in the wall time of the call.
+  TempDir t("bouncer-test-audit");
+  const std::string script = put(t / "slow.sh", "#!/bin/sh\nsleep 0.3\n");
+  std::filesystem::permissions(script, std::filesystem::perms::owner_all);
+  AuditRequest r = request_for(put(t / "o.csv", text_result("orbit", "a=24")));
+  r.executable = script;
+  const auto t0 = std::chrono::steady_clock::now();
+  const AuditResult a = audit(r);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_EQ(a.verdict, AuditVerdict::different);  // its output is empty
+  EXPECT_GE(a.rerun_seconds, 0.3);
+  EXPECT_GE(a.compare_seconds, 0.0);
+  EXPECT_LE(a.rerun_seconds + a.compare_seconds, wall);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -256,6 +256,29 @@ TEST(Manifest, ProofPrefixOfAnInstall) {
   EXPECT_EQ(rerun_text("", "/p/"), "");
 }
 
+TEST(Manifest, RerunTextNamesNoCheckoutPath) {
+  // A built-in scene by name (found from any directory and from an install; picture- dropped
+  // as --scene accepts it), an unknown scene path kept as written, ctest run in build/ and,
+  // for an install, said to need a build tree.
+  EXPECT_EQ(rerun_text("`bouncer basin --scene data/scenes/picture-basin-eps05-a24.toml --out b`", "/p/"),
+            "`bouncer basin --scene basin-eps05-a24 --out b`");
+  EXPECT_EQ(rerun_text("`bouncer continue --scene data/scenes/continue-veldep-period7.toml --certify`", kBuildProofPrefix),
+            "`bouncer continue --scene continue-veldep-period7 --certify`");
+  EXPECT_EQ(rerun_text("`bouncer scan --scene data/scenes/nope.toml`", "/p/"), "`bouncer scan --scene data/scenes/nope.toml`");
+  EXPECT_EQ(rerun_text("`ctest -R Sticking`; `bouncer certify-sticking --a 24`", kBuildProofPrefix),
+            "`ctest --test-dir build -R Sticking`; `bouncer certify-sticking --a 24`");
+  EXPECT_EQ(rerun_text("`ctest -R Sticking`; `x`", "/p/"), "`ctest --test-dir build -R Sticking` (in a build tree of the sources); `x`");
+  // Every rerun of the built-in manifest, as an install shows it: no path into a checkout
+  // except the ctest line that says it needs one.
+  for (const Claim& c : parse_manifest(std::string(paper_manifest_text()), kPaperManifestSource).claims) {
+    const std::string r = rerun_text(c.rerun, "/usr/libexec/bouncer/");
+    EXPECT_EQ(r.find("data/scenes/"), std::string::npos) << c.id << ": " << r;
+    EXPECT_EQ(r.find("build/"), std::string::npos) << c.id << ": " << r;
+    for (size_t k = 0; (k = r.find("--test-dir build", k)) != std::string::npos; ++k)
+      EXPECT_NE(r.find("(in a build tree of the sources)", k), std::string::npos) << c.id << ": " << r;
+  }
+}
+
 // The report shows the paper's captions as text, not LaTeX (issue 24): hand-converted cases
 // of every construct the captions use, and every caption of the built-in manifest free of
 // math delimiters, commands and braces.
@@ -275,4 +298,62 @@ TEST(Report, CaptionsAreTextNotLatex) {
     EXPECT_EQ(t.find_first_of("$\\{}~"), std::string::npos) << p.label << ": " << t;
     EXPECT_EQ(t.find("  "), std::string::npos) << p.label << ": " << t;
   }
+}
+
+// report.html's navigation (issue 24) for items in every state, built by hand: a drawn panel
+// and a pending one, a reproduced claim and one whose check failed. The contents link each;
+// the contact sheet shows the drawn panel's thumbnail and says the other is pending; each
+// claim is one row whose summary is its text cut at a word (hand-cut below), its details
+// holding the whole text, the rerun and each check with its outcome.
+TEST(Report, HtmlLinksEveryItemInEveryState) {
+  const std::string long_text =
+      "A claim long enough to be cut: the fixed points attract most of the trapping region at every a we tried";
+  const Manifest m = parse_manifest(
+      kPanel + replaced(replaced(kPanel, "fig:a", "fig:b"), "status = \"ready\"", "status = \"pending\"\nreason = \"needs a week\"") +
+          kClaim + replaced(replaced(replaced(kClaim, "\"c1\"", "\"c2\""), "row = \"1\"", "row = \"2\""), "A claim", long_text),
+      "m.toml");
+  ReproduceResult r;
+  r.manifest = m;
+  r.build = "0.0.0 (commit x)";
+  r.proof_prefix = "/opt/b/libexec/bouncer/";
+  auto item = [](const std::string& id, ItemKind kind, size_t index, ItemState state) {
+    ItemResult it;
+    it.id = id;
+    it.kind = kind;
+    it.index = index;
+    it.state = state;
+    return it;
+  };
+  r.items.push_back(item("fig:a", ItemKind::panel, 0, ItemState::done));
+  r.items.back().argv = m.panels[0].quick;
+  r.items.push_back(item("fig:b", ItemKind::panel, 1, ItemState::skipped));
+  r.items.push_back(item("c1", ItemKind::claim, 0, ItemState::done));
+  r.items.back().status = ClaimStatus::reproduced;
+  r.items.back().verdict = "refuted";
+  r.items.back().argv = m.claims[0].run;
+  r.items.back().outputs = {"claims/c1.json"};
+  r.items.back().checks = {{"verdict == \"refuted\"", "\"refuted\"", true, true}};
+  r.items.push_back(item("c2", ItemKind::claim, 1, ItemState::done));
+  r.items.back().status = ClaimStatus::not_reproduced;
+  r.items.back().verdict = "not reproduced: check bits >= 53 failed";
+  r.items.back().argv = m.claims[1].run;
+  r.items.back().checks = {{"bits >= 53", "24", true, false}};
+  const std::string h = report_html(r);
+  for (const char* link : {"href=\"#claim-c1\"", "href=\"#claim-c2\"", "href=\"#fig:a\"", "href=\"#fig:b\"", "href=\"#figure-fig:f\"",
+                           "href=\"#contact-sheet\"", "href=\"#times\""})
+    EXPECT_TRUE(contains(h, link)) << link;
+  for (const char* id : {"id=\"claim-c1\"", "id=\"claim-c2\"", "id=\"fig:a\"", "id=\"fig:b\"", "id=\"figure-fig:f\"", "id=\"contact-sheet\""})
+    EXPECT_TRUE(contains(h, id)) << id;
+  EXPECT_TRUE(contains(h, "<a href=\"#fig:a\"><img src=\"panels/a.png\""));
+  EXPECT_TRUE(contains(h, "<a href=\"#fig:b\"><span class=\"bad\">(pending)</span>"));
+  EXPECT_FALSE(contains(h, "src=\"panels/b.png\""));
+  // The summary: the first 80 characters end inside "region"; cut at the space before it.
+  EXPECT_TRUE(contains(h, "<summary>A claim long enough to be cut: the fixed points attract most of the trapping …</summary>")) << h;
+  EXPECT_TRUE(contains(h, long_text));  // whole, in the details
+  EXPECT_TRUE(contains(h, "<summary>A claim</summary>"));
+  EXPECT_TRUE(contains(h, "<li class=\"ok\">held: <code>verdict == &quot;refuted&quot;</code>"));
+  EXPECT_TRUE(contains(h, "<li class=\"bad\">FAILED: <code>bits &gt;= 53</code> (got <code>24</code>)"));
+  EXPECT_TRUE(contains(h, "<code>/opt/b/libexec/bouncer/proof_elastic_period2</code>"));  // the rerun, for this install
+  EXPECT_TRUE(contains(h, "<a href=\"claims/c1.json\">claims/c1.json</a>"));
+  EXPECT_EQ(h.find("build/proofs"), std::string::npos);
 }

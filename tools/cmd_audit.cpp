@@ -9,9 +9,11 @@
 // failed, 2 the file is not a result (or cannot be read).
 #include <atomic>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -46,6 +48,14 @@ std::optional<std::string> check_command(const std::vector<std::string>& words) 
 
 int report(const AuditRequest& request, const AuditResult& r) {
   std::ostream& out = command_out();
+  // A reproduce directory's audit takes as long as the reproduce it reruns: where its time
+  // went, on stderr beside reproduce's own progress (times are never part of the verdict).
+  if (r.reproduce_directory && r.verdict != AuditVerdict::not_a_result) {
+    std::ostringstream t;
+    t << std::fixed << std::setprecision(1) << "bouncer audit: " << r.rerun_seconds << " s the rerun of reproduce, "
+      << std::setprecision(2) << r.compare_seconds << " s the comparison\n";
+    std::cerr << t.str();
+  }
   switch (r.verdict) {
     case AuditVerdict::not_a_result:
       throw InputError("file", r.message);

@@ -19,22 +19,8 @@ namespace bouncer::cli {
 // Edit distance (Levenshtein), for suggestions (base/text.hpp: reproduce suggests ids with it too).
 using bouncer::edit_distance;
 
-// The closest of `names` to `word`, if it is close enough to be a typo. A name that is a
-// prefix of the word, or the word a prefix of it (--epsilon / --eps), counts as distance 1.
-inline std::optional<std::string> closest(const std::string& word, const std::vector<std::string>& names) {
-  std::optional<std::string> best;
-  size_t best_d = std::max<size_t>(2, word.size() / 3) + 1;
-  for (const std::string& n : names) {
-    size_t d = edit_distance(word, n);
-    const size_t shorter = std::min(word.size(), n.size());
-    if (shorter >= 4 && (word.rfind(n, 0) == 0 || n.rfind(word, 0) == 0)) d = std::min<size_t>(d, 1);
-    if (d < best_d) {
-      best = n;
-      best_d = d;
-    }
-  }
-  return best;
-}
+// The closest of names to a word, if close enough to be a typo (base/text.hpp).
+using bouncer::closest;
 
 // One printable line (base/input.hpp): control characters escaped, at most `limit` characters.
 using bouncer::one_line;

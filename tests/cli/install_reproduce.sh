@@ -9,7 +9,8 @@
 #     subset, not the whole --quick run, keeps this test short (measured in
 #     docs/guide/install.md; the whole run takes minutes: tools/setup run does it);
 #   * prints rerun commands that work from the install (PREFIX/libexec/bouncer/proof_NAME,
-#     no checkout-relative build/proofs/), and they do run;
+#     no checkout-relative build/proofs/, a built-in scene by name, not data/scenes/NAME.toml),
+#     and they do run;
 #   * reads scenes by name (--scene bifurcation-eps096, --scene default), by the
 #     checkout's path (data/scenes/NAME.toml) and by the installed file's path.
 # Usage: bash install_reproduce.sh <bouncer-binary> <source-dir>
@@ -66,6 +67,21 @@ cmd=$(jq -r '.claims[] | select(.id == "elastic-period2") | .command' "$TMP/r/cl
 $cmd > cert.json || fail rerun "the printed command '$cmd' failed"
 jq_is rerun-cert '.verdict' "$(jq -r .verdict "$TMP/r/claims/elastic-period2.json")" cert.json
 jq_is rerun-claim '.claim' "$(jq -r .claim "$TMP/r/claims/elastic-period2.json")" cert.json
+
+# The claims' rerun commands work from here too: a built-in scene by its name (never the
+# checkout's data/scenes/ path), and the one that needs a build tree of the sources says so.
+grep -l -- '--scene data/scenes/' "$TMP/r/report.md" "$TMP/r/report.html" "$TMP/r/claims.json" &&
+  fail rerun "a report names a scene by the checkout's path"
+rerun=$(jq -r '.claims[] | select(.id == "basin-fixed-points") | .rerun' "$TMP/r/claims.json")
+[[ $rerun == *"--scene "* ]] || fail rerun "basin-fixed-points' rerun names no scene: $rerun"
+words=$(sed 's/^`bouncer //; s/`.*$//' <<<"$rerun")
+# shellcheck disable=SC2086  # the command's words
+"$P" $words --quiet > /dev/null || fail rerun "the printed rerun '$rerun' failed from the install"
+out=$(grep -o -- '--out [^ ]*' <<<"$words" | cut -d' ' -f2)
+[[ -n $out && -s $out.csv ]] || fail rerun "the printed rerun '$rerun' wrote no $out.csv"
+rerun=$(jq -r '.claims[] | select(.id == "sticking-thresholds") | .rerun' "$TMP/r/claims.json")
+[[ $rerun == *'`ctest --test-dir build '*'` (in a build tree of the sources)'* ]] ||
+  fail rerun "sticking-thresholds' ctest rerun does not say it needs a build tree: $rerun"
 
 # Scenes by name, by the checkout's path and by the installed path; a name that is no scene
 # is still "not found" for the option.

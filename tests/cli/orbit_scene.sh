@@ -6,7 +6,8 @@
 #     --theta/--v replaces the scene's list; a bad scene value overridden by a good one is fine);
 #   - a scene with theta/v lists runs several orbits (orbit column), each starting at its IC;
 #   - scene keys every/out work like the options;
-#   - every orbit scene in data/scenes/ runs (the eps = 0.96 scene prints n = 0, 100, ..., 2000).
+#   - every orbit scene in data/scenes/ runs (the eps = 0.96 scene prints n = 0, 100, ..., 2000);
+#   - a scene name with a typo is refused with "did you mean NAME?" naming the built-in scene.
 # Usage: bash orbit_scene.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
@@ -126,4 +127,20 @@ else
   fail fermi "data/scenes/orbit-elastic-fermi.toml is missing"
 fi
 
-finish "orbit_scene.sh: scenes run, lists give several orbits, command line overrides"
+# ---- a scene name with a typo: refused with the built-in scene it most likely means (issue
+# 24), for every scene of data/scenes/ (one letter dropped from the middle of its name, as a
+# name and as the checkout path), writing nothing
+for scene in "$SCENES"/*.toml; do
+  name=$(basename "$scene" .toml)
+  name=${name#picture-}
+  cmd=$(sed -n 's/^command *= *"\([a-z-]*\)".*/\1/p' "$scene")
+  [[ -n $cmd ]] || cmd=orbit
+  half=$((${#name} / 2))
+  typo=${name:0:half}${name:half+1}
+  refused "typo-$name" "'$typo' not found.*(did you mean $name?)" "$cmd" --scene "$typo" --out "$TMP/typo/o"
+  refused "typo-path-$name" "(did you mean $name?)" "$cmd" --scene "data/scenes/$typo.toml" --out "$TMP/typo/o"
+done
+[[ ! -e $TMP/typo ]] || fail typo "a refused scene left output: $(ls -R "$TMP/typo")"
+refused typo-far "'no-such-scene-at-all' not found$" orbit --scene no-such-scene-at-all
+
+finish "orbit_scene.sh: scenes run, lists give several orbits, command line overrides, typos get a suggestion"

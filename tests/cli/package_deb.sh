@@ -5,7 +5,9 @@
 # programs (a subset: the whole --quick run takes minutes; tests/cli/install_reproduce.sh
 # runs every proof's claim), its Python module imports from the packaged dist-packages, and
 # the package's Depends name the Debian package of every shared library the programs and
-# the module load (dpkg-shlibdeps), and python3 and python3-numpy. Label `package`; exit 77
+# the module load (dpkg-shlibdeps), and python3 and python3-numpy; its Maintainer is
+# CITATION.cff's authors and its Suggests and description name the -dev packages a C++
+# developer needs (those cmake/bouncerConfig.cmake.in names). Label `package`; exit 77
 # (skipped) without dpkg-deb or dpkg-shlibdeps (Debian's dpkg-dev).
 # cpack first builds the build directory's default target (its `preinstall`): in CI
 # everything is built already and that is a check only.
@@ -42,6 +44,19 @@ compgen -G "$build/python/bouncer/_core*.so" >/dev/null && python_module=true
 depends=$(dpkg-deb -f "$deb" Depends)
 for p in python3 python3-numpy; do
   [[ ", $depends," == *", $p"[\ ,]* ]] || fail depends "$p is not in Depends: $depends"
+done
+# Maintainer: the authors as CITATION.cff names them. Suggests and the description: every
+# -dev package cmake/bouncerConfig.cmake.in says a consumer of the library needs.
+maintainer=$(dpkg-deb -f "$deb" Maintainer)
+authors=$(sed -n 's/^  - name: "\(.*\)"$/\1/p' "$SRC/CITATION.cff" | head -n 1)
+[[ -n $authors && $maintainer == "$authors"* ]] || fail maintainer "Maintainer '$maintainer', CITATION.cff names '$authors'"
+suggests=$(dpkg-deb -f "$deb" Suggests)
+description=$(dpkg-deb -f "$deb" Description)
+devs=$(grep -o '[a-z0-9+.-]*-dev' "$SRC/cmake/bouncerConfig.cmake.in" | sort -u)
+[[ $(wc -w <<<"$devs") -ge 8 ]] || die "bouncerConfig.cmake.in names only '$devs'"
+for p in $devs; do
+  [[ ", $suggests," == *", $p"[\ ,]* ]] || fail suggests "$p is not in Suggests: $suggests"
+  grep -qw -- "$p" <<<"$description" || fail description "the description does not name $p"
 done
 dpkg-deb -x "$deb" "$TMP/root"
 root="$TMP/root"

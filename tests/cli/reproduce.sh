@@ -4,7 +4,9 @@
 #     fig:arnold panel (bouncer tongues): exit 0; claims.json parses, has a verdict per selected claim equal to its
 #     expected verdict, and lists every selected panel;
 #   * report.md and report.html reference only images that exist (every ![](...) and src=);
-#     report.html is well-formed (html.parser, every opened tag closed in order);
+#     report.html is well-formed (html.parser, every opened tag closed in order) and navigable
+#     (contents linking every claim and panel, one expandable row per claim with its rerun
+#     command, a contact sheet of thumbnails linking to the panels, no dangling #link);
 #   * the run is resumable: a second run reruns nothing (every item "cached") and writes the
 #     same report apart from the Times section;
 #   * a claim whose check fails, and a claim whose command fails, make exit 1 and are named
@@ -93,6 +95,52 @@ class P(HTMLParser):
 p = P(); p.feed(html); p.close()
 if p.bad or p.stack:
     errors.append(f"report.html not well-formed: {p.bad[:3]} unclosed {p.stack}")
+# Navigable (issue 24): every claim and panel of claims.json is linked from the contents; the
+# claims table has one row per claim whose details open on a click, holding its rerun
+# command; a contact sheet of every drawn panel's thumbnail links to the panel; every link
+# inside the page lands on an element; no rerun command names a checkout path of a scene.
+class Nav(HTMLParser):
+    def __init__(self):
+        super().__init__(); self.ids = []; self.links = []; self.where = []; self.rows = {}; self.row = None
+        self.sheet = []; self.in_sheet = 0; self.in_nav = False; self.nav_links = []; self.href = None
+    def handle_starttag(self, tag, attrs):
+        a = dict(attrs)
+        if "id" in a: self.ids.append(a["id"])
+        if tag == "nav": self.in_nav = True
+        if tag == "div" and a.get("id") == "contact-sheet": self.in_sheet = 1
+        elif tag == "div" and self.in_sheet: self.in_sheet += 1
+        if tag == "a" and "href" in a:
+            self.links.append(a["href"]); self.href = a["href"]
+            if self.in_nav: self.nav_links.append(a["href"])
+        if tag == "img" and self.in_sheet and self.href: self.sheet.append((self.href, a.get("src")))
+        if tag == "tr" and a.get("id", "").startswith("claim-"):
+            self.row = a["id"]; self.rows[self.row] = {"details": 0, "summary": 0, "text": ""}
+        if self.row and tag in ("details", "summary"): self.rows[self.row][tag] += 1
+    def handle_endtag(self, tag):
+        if tag == "nav": self.in_nav = False
+        if tag == "div" and self.in_sheet: self.in_sheet -= 1
+        if tag == "a": self.href = None
+        if tag == "tr": self.row = None
+    def handle_data(self, data):
+        if self.row: self.rows[self.row]["text"] += data
+n = Nav(); n.feed(html); n.close()
+for c in j["claims"]:
+    cid = "claim-" + c["id"]
+    if "#" + cid not in n.nav_links: errors.append(f"the contents do not link claim {c['id']}")
+    row = n.rows.get(cid)
+    if not row or row["details"] != 1 or row["summary"] != 1:
+        errors.append(f"claim {c['id']}: not one table row with one expandable details ({row and {k: row[k] for k in ('details', 'summary')}})")
+    elif c["verdict"] not in row["text"] or "Rerun" not in row["text"]:
+        errors.append(f"claim {c['id']}: its row lacks the verdict or the rerun command")
+for q in j["panels"]:
+    if "#" + q["label"] not in n.nav_links: errors.append(f"the contents do not link panel {q['label']}")
+    name = q["label"].split(":", 1)[-1]
+    if q.get("status") == "done" and ("#" + q["label"], f"panels/{name}.png") not in n.sheet:
+        errors.append(f"the contact sheet has no thumbnail of {q['label']} linking to it: {n.sheet}")
+for l in n.links:
+    if l.startswith("#") and l[1:] not in n.ids: errors.append(f"link {l} lands nowhere")
+if len(set(n.ids)) != len(n.ids): errors.append("report.html repeats an id")
+if "--scene data/scenes/" in html: errors.append("a rerun command in report.html names a scene by its checkout path")
 if not html.startswith("<!DOCTYPE html>"):
     errors.append("report.html has no doctype")
 if errors:

@@ -138,6 +138,10 @@ killed() {  # killed NAME N COMMAND...: start it, wait for N children, SIGKILL i
 }
 killed kill_reproduce 2 reproduce --manifest "$SRC/tests/data/reproduce-slow-manifest.toml" --jobs 2 --out killed
 result long.csv orbit "model=constant a=20 eps=0.5 theta=0.1 v=5 steps=2000000000 every=1000000000"
-killed kill_audit 1 audit long.csv
+# A killed audit cannot remove its private directory (SIGKILL runs no clean-up): it is made
+# under TMPDIR, here the test's own directory, so that nothing is left in /tmp.
+mkdir -p "$TMP/audit-tmp"
+TMPDIR="$TMP/audit-tmp" killed kill_audit 1 audit long.csv
+compgen -G "$TMP/audit-tmp/bouncer-audit-*" > /dev/null || fail kill_audit "the audit's private directory was not under TMPDIR"
 
 finish "trust boundary: all checks passed"

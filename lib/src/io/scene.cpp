@@ -1,5 +1,6 @@
 #include "bouncer/io/scene.hpp"
 #include "bouncer/base/input.hpp"
+#include "bouncer/base/text.hpp"
 
 #include <toml++/toml.h>
 
@@ -81,8 +82,27 @@ static const std::string* built_in_scene(const std::string& path) {
   return nullptr;
 }
 
+// For a PATH that is neither a file nor a built-in scene: " (did you mean NAME?)" with the
+// built-in scene's name closest to PATH's name (picture- dropped, as --scene accepts it), or "".
+static std::string scene_suggestion(const std::string& path) {
+  std::string stem = std::filesystem::path(path).filename().string();
+  if (stem.size() > 5 && stem.ends_with(".toml")) stem.resize(stem.size() - 5);
+  if (stem.rfind("picture-", 0) == 0) stem = stem.substr(8);
+  std::vector<std::string> names;
+  for (const auto& [key, text] : built_in_scenes()) {
+    std::string name = std::filesystem::path(key).stem().string();
+    if (name.rfind("picture-", 0) == 0) name = name.substr(8);
+    names.push_back(name);
+  }
+  const std::optional<std::string> guess = closest(stem, names);
+  return guess && *guess != stem ? " (did you mean " + *guess + "?)" : "";
+}
+
 static toml::table read_scene_file(const std::string& path) {
   const std::string* built_in = built_in_scene(path);
+  if (std::error_code ec; !built_in && !path.empty() && !std::filesystem::exists(std::filesystem::symlink_status(path, ec)))
+    if (const std::string guess = scene_suggestion(path); !guess.empty())
+      throw InputError("scene", "'" + path + "' not found: no such file and no built-in scene" + guess);
   const std::string text = built_in ? *built_in : read_input_file("scene", path, kMaxSceneBytes);
   check_toml_text("scene", text, "'" + path + "'", kMaxSceneBytes);
   toml::table table;

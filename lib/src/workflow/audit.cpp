@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -119,12 +120,22 @@ AuditResult audit_result(const AuditRequest& request, const std::string& text) {
   result.rerun = "bouncer " + plan.command;
   for (size_t i = 2; i < argv.size(); ++i) result.rerun += " " + (argv[i].rfind(dir, 0) == 0 ? "<tmp>" + argv[i].substr(dir.size()) : argv[i]);
   if (request.on_rerun) request.on_rerun(result.rerun);
+  std::chrono::steady_clock::time_point rerun_ended{};
+  // The comparison's time (from the rerun's end) stamped on every outcome after the rerun.
+  auto done = [&]() {
+    if (rerun_ended != std::chrono::steady_clock::time_point{})
+      result.compare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - rerun_ended).count();
+    return result;
+  };
   auto failed = [&](const std::string& why) {
     result.verdict = AuditVerdict::rerun_failed;
     result.message = why;
-    return result;
+    return done();
   };
+  const auto started = std::chrono::steady_clock::now();
   result.rerun_status = audit_detail::run_to_file(argv, dir + "/stdout", dir);
+  rerun_ended = std::chrono::steady_clock::now();
+  result.rerun_seconds = std::chrono::duration<double>(rerun_ended - started).count();
   if (result.rerun_status != 0) return failed("the rerun failed (exit status " + std::to_string(result.rerun_status) + ")");
   const std::optional<std::string> again = audit_detail::read_result(plan.compare_path);
   if (!again) return failed("the rerun wrote no result");
@@ -138,7 +149,7 @@ AuditResult audit_result(const AuditRequest& request, const std::string& text) {
     result.first = compare_text_results(text, *again);
   }
   result.verdict = result.first.identical ? AuditVerdict::identical : AuditVerdict::different;
-  return result;
+  return done();
 }
 
 AuditResult audit_any(const AuditRequest& request) {

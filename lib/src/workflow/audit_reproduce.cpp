@@ -5,6 +5,7 @@
 // removed as for single results (times, invocation, output paths); of a proof certificate,
 // its verdicts and statements (its evidence strings hold timings). Pictures are compared
 // through their CSV and JSON, not as PNG bytes.
+#include <chrono>
 #include <filesystem>
 #include <map>
 
@@ -77,7 +78,10 @@ AuditResult audit_reproduce(const std::string& directory, const AuditRequest& re
   AuditResult result;
   result.reproduce_directory = true;
   result.directory = dir.string();
+  const auto started = std::chrono::steady_clock::now();
   result.rerun_status = run_to_file(argv, (tmp / "stdout").string(), tmp.string());
+  const auto rerun_ended = std::chrono::steady_clock::now();
+  result.rerun_seconds = std::chrono::duration<double>(rerun_ended - started).count();
   const std::optional<std::string> now_text = read_result((tmp / "r" / "claims.json").string());
   const json now = json::parse(now_text.value_or(""), nullptr, false);
   if ((result.rerun_status != 0 && result.rerun_status != 1) || !now_text || now.is_discarded()) {
@@ -174,6 +178,7 @@ AuditResult audit_reproduce(const std::string& directory, const AuditRequest& re
   }
   result.claims_compared = old_claims.size();
   result.verdict = differences.empty() ? AuditVerdict::identical : AuditVerdict::different;
+  result.compare_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - rerun_ended).count();
   return result;
 }
 

@@ -3,12 +3,15 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstring>
 #include <set>
 
 #include "bouncer/base/error.hpp"
 #include "bouncer/base/input.hpp"
 #include "bouncer/workflow/commands.hpp"
 #include "bouncer/workflow/paper.hpp"
+#include "bouncer/io/scene.hpp"
 
 namespace bouncer {
 
@@ -232,12 +235,36 @@ std::string command_text(const std::vector<std::string>& argv, const std::string
 }
 
 std::string rerun_text(const std::string& rerun, const std::string& proof_prefix) {
-  const std::string from = kBuildProofPrefix;
-  if (proof_prefix == from) return rerun;
   std::string s;
+  // build/proofs/ as the reader's proof directory.
+  const std::string from = kBuildProofPrefix;
   size_t at = 0;
   for (size_t k; (k = rerun.find(from, at)) != std::string::npos; at = k + from.size()) s += rerun.substr(at, k - at) + proof_prefix;
-  return s + rerun.substr(at);
+  s += rerun.substr(at);
+  // --scene data/scenes/NAME.toml of a built-in scene as --scene NAME (picture- dropped):
+  // found by name from any directory and from an install, where the checkout's path is not.
+  const std::string scene = "--scene data/scenes/";
+  for (size_t k = 0; (k = s.find(scene, k)) != std::string::npos;) {
+    size_t end = k + scene.size();
+    while (end < s.size() && (std::isalnum(static_cast<unsigned char>(s[end])) || std::strchr("._-", s[end]))) ++end;
+    const std::string file = s.substr(k + 8, end - k - 8);  // data/scenes/NAME.toml
+    if (file.size() > 17 && file.ends_with(".toml") && built_in_scenes().count(file)) {
+      std::string name = file.substr(12, file.size() - 17);
+      if (name.rfind("picture-", 0) == 0) name = name.substr(8);
+      s.replace(k, end - k, "--scene " + name);
+    }
+    k += scene.size() - 12;
+  }
+  // ctest runs in a build tree of the sources, named as build/ is for the proofs.
+  const std::string ctest = "`ctest -R ";
+  for (size_t k = 0; (k = s.find(ctest, k)) != std::string::npos;) {
+    s.replace(k, ctest.size(), "`ctest --test-dir build -R ");
+    k = s.find('`', k + 1);
+    if (k == std::string::npos) break;
+    if (proof_prefix != kBuildProofPrefix) s.insert(k + 1, " (in a build tree of the sources)");
+    ++k;
+  }
+  return s;
 }
 
 }  // namespace bouncer

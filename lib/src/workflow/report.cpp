@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstring>
 #include <map>
 #include <string>
 #include <filesystem>
@@ -312,88 +313,211 @@ std::string report_markdown(const ReproduceResult& r) {
   return md.str();
 }
 
+namespace {
+
+// A manifest text (Markdown inline marks) as plain text of at most `limit` characters, cut
+// at a word with "…": the one-line summary of a claim in the compact claims table.
+std::string short_text(const std::string& s, size_t limit) {
+  std::string t;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '`') continue;
+    if (s.compare(i, 2, "**") == 0 || s.compare(i, 2, "\\|") == 0) {
+      if (s[i] == '\\') t += '|';
+      ++i;
+      continue;
+    }
+    t += s[i] == '\n' ? ' ' : s[i];
+  }
+  // Characters, not bytes: UTF-8 continuation bytes are not counted and never split.
+  size_t chars = 0, cut = std::string::npos;
+  for (size_t i = 0; i < t.size(); ++i)
+    if ((static_cast<unsigned char>(t[i]) & 0xC0) != 0x80 && ++chars > limit) {
+      cut = i;
+      break;
+    }
+  if (cut == std::string::npos) return t;
+  const size_t space = t.rfind(' ', cut);
+  t.resize(space != std::string::npos && space > cut / 2 ? space : cut);
+  while (!t.empty() && std::strchr(" ,;:(", t.back())) t.pop_back();
+  return t + " …";
+}
+
+// An id for an HTML anchor: the manifest's ids and labels are already names (letters,
+// digits, . _ : + -, manifest.hpp), kept as they are so that #fig:basin2 names the panel.
+std::string anchor(const std::string& prefix, const std::string& id) { return html_escape(prefix + id); }
+
+}  // namespace
+
 std::string report_html(const ReproduceResult& r) {
   const Manifest& m = r.manifest;
   const Framing f = framing(r);
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>" << html_escape(f.title) << "</title>\n"
-    << "<style>body{font-family:sans-serif;max-width:1100px;margin:auto}table{border-collapse:collapse}"
-       "td,th{border:1px solid #999;padding:4px;vertical-align:top}img{max-width:100%}"
-       ".ok{color:#060}.bad{color:#a00}figure{margin:1em 0}figcaption{font-style:italic}</style>\n</head>\n<body>\n";
-  h << "<h1>" << html_escape(f.title) << "</h1>\n";
+    << "<style>body{font-family:sans-serif;max-width:1100px;margin:auto;padding:0 1em}table{border-collapse:collapse}"
+       "td,th{border:1px solid #999;padding:3px 6px;vertical-align:top;text-align:left}img{max-width:100%}"
+       ".ok{color:#060}.bad{color:#a00}figure{margin:1em 0}figcaption{font-style:italic}"
+       "table.claims{width:100%;table-layout:fixed}table.claims th:first-child{width:3em}table.claims th:nth-child(n+3){width:8em}"
+       "table.claims code{overflow-wrap:anywhere;word-break:break-word}table.claims summary{cursor:pointer}"
+       "table.claims details[open]{background:#f6f6f6}table.claims dl{margin:.4em 0}table.claims dd{margin:0 0 .4em 1.5em}"
+       "nav ul ul{columns:2;column-gap:2em;list-style:none;padding-left:1em}nav li{break-inside:avoid}"
+       ".sheet{display:flex;flex-wrap:wrap;gap:8px}.sheet a{width:160px;font-size:80%;text-align:center;"
+       "text-decoration:none;color:inherit}.sheet img{width:160px;height:120px;object-fit:contain;border:1px solid #ccc}"
+       "</style>\n</head>\n<body>\n";
+  h << "<h1 id=\"top\">" << html_escape(f.title) << "</h1>\n";
   h << "<p>Mode: <code>" << mode_name(r.mode) << "</code>. Built by bouncer " << html_escape(r.build) << ". Manifest: "
     << html_escape(r.manifest_source) << ".</p>\n";
   h << "<p class=\"" << (r.ok ? "ok" : "bad") << "\"><strong>Result: " << f.result_text << "</strong> ("
     << html_escape(r.summary) << ").</p>\n";
-  if (f.paper)
-    h << "<h2>Claims</h2>\n<table>\n<tr><th>#</th><th>Claim</th><th>Paper</th><th>Expected</th><th>This run</th><th>Evidence</th><th>Rerun</th></tr>\n";
-  for (const ItemResult& it : r.items) {
-    if (it.kind != ItemKind::claim) continue;
-    const Claim& c = m.claims[it.index];
-    h << "<tr><td>" << html_escape(c.row) << "</td><td>" << md_inline_html(c.text) << "</td><td>" << html_escape(c.paper)
-      << "</td><td>" << html_escape(c.expected) << "</td><td class=\"" << (it.status == ClaimStatus::reproduced ? "ok" : "bad")
-      << "\">" << html_escape(it.verdict) << "</td><td>" << md_inline_html(c.evidence) << "</td><td>" << md_inline_html(rerun_text(c.rerun, r.proof_prefix))
-      << "</td></tr>\n";
+  auto items_of = [&](ItemKind kind) {
+    std::vector<const ItemResult*> v;
+    for (const ItemResult& it : r.items)
+      if (it.kind == kind) v.push_back(&it);
+    return v;
+  };
+  const std::vector<const ItemResult*> claims = items_of(ItemKind::claim), panels = items_of(ItemKind::panel),
+                                       pictures = items_of(ItemKind::picture);
+  // The figures in manifest order, each with its panels.
+  std::vector<std::pair<std::string, std::vector<const ItemResult*>>> figures;
+  for (const ItemResult* it : panels) {
+    const Panel& p = m.panels[it->index];
+    if (figures.empty() || figures.back().first != p.figure) figures.push_back({p.figure, {}});
+    figures.back().second.push_back(it);
   }
-  if (f.paper) h << "</table>\n<h2>Figures</h2>\n";
-  std::string figure;
-  for (const ItemResult& it : r.items) {
-    if (it.kind != ItemKind::panel) continue;
-    const Panel& p = m.panels[it.index];
-    if (p.figure != figure) {
-      figure = p.figure;
-      h << "<h3>" << html_escape(figure) << "</h3>\n";
+  auto panel_title = [&](const Panel& p) {
+    std::string t = p.label;
+    if (!p.panel.empty()) t.append(" ").append(p.panel);
+    if (!p.twin_of.empty()) t.append(" (certified twin)");
+    return t;
+  };
+
+  // Contents: every claim and every figure and panel, linked.
+  h << "<nav id=\"contents\">\n<h2>Contents</h2>\n<ul>\n";
+  if (f.paper && !claims.empty()) {
+    h << "<li><a href=\"#claims\">Claims</a> (" << claims.size() << ")\n<ul>\n";
+    for (const ItemResult* it : claims) {
+      const Claim& c = m.claims[it->index];
+      h << "<li><a href=\"#" << anchor("claim-", c.id) << "\">" << html_escape(c.row) << " " << html_escape(c.id) << "</a> <span class=\""
+        << (it->status == ClaimStatus::reproduced ? "ok" : "bad") << "\">" << html_escape(it->verdict) << "</span></li>\n";
     }
-    h << "<figure id=\"" << html_escape(p.label) << "\">\n";
-    if (drawn(it))
-      h << "<img src=\"panels/" << html_escape(p.name()) << ".png\" alt=\"" << html_escape(p.label) << "\">\n"
-        << (p.twin_of.empty() ? std::string()
-                              : "<img src=\"panels/" + html_escape(p.name()) + "-artefacts.png\" alt=\"where double is wrong\">\n")
-        << "<p class=\"files\"><a href=\"panels/" << html_escape(p.name()) << ".pdf\">PDF</a> · <a href=\"panels/"
-        << html_escape(p.name()) << ".svg\">SVG</a> · <a href=\"panels/" << html_escape(p.name()) << ".csv\">CSV</a></p>\n";
-    else if (it.state == ItemState::skipped)
-      h << "<p><strong>Pending:</strong> " << html_escape(p.reason) << ".</p>\n";
-    else
-      h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
-    h << "<figcaption>" << html_escape(p.label) << (p.panel.empty() ? "" : " " + html_escape(p.panel))
-      << (p.twin_of.empty() ? "" : " (certified twin of " + html_escape(p.twin_of) + ", not a panel of the paper)") << ". Paper: "
-      << html_escape(latex_text(p.caption)) << "</figcaption>\n";
-    if (!p.params.empty()) {
-      h << "<p>Parameters:";
-      for (const auto& kv : p.params) h << " " << html_escape(kv.first) << " = " << html_escape(kv.second) << ";";
-      h << "</p>\n";
-    }
-    if (!p.note.empty()) h << "<p>Note: " << html_escape(p.note) << "</p>\n";
-    if (!it.argv.empty())
-      h << "<p>Provenance: <code>" << html_escape(command_text(it.argv, r.proof_prefix)) << " --out panels/" << html_escape(p.name())
-        << "</code> (bouncer " << html_escape(r.build) << ")</p>\n";
-    h << "</figure>\n";
+    h << "</ul></li>\n";
   }
-  if (f.any_picture) {
-    h << "<h2>The pictures (data/pictures)</h2>\n<p>Not figures of the paper: the pictures the README shows, "
+  if (!figures.empty()) {
+    h << "<li><a href=\"#figures\">Figures</a> (" << figures.size() << ", " << panels.size() << " panels; <a href=\"#contact-sheet\">contact sheet</a>)\n<ul>\n";
+    for (const auto& [figure, its] : figures) {
+      h << "<li><a href=\"#" << anchor("figure-", figure) << "\">" << html_escape(figure) << "</a>:";
+      for (const ItemResult* it : its) {
+        const Panel& p = m.panels[it->index];
+        h << " <a href=\"#" << anchor("", p.label) << "\">" << html_escape(p.name()) << "</a>";
+      }
+      h << "</li>\n";
+    }
+    h << "</ul></li>\n";
+  }
+  if (!pictures.empty()) {
+    h << "<li><a href=\"#pictures\">The pictures (data/pictures)</a>\n<ul>\n";
+    for (const ItemResult* it : pictures) {
+      const Picture& p = m.pictures[it->index];
+      h << "<li><a href=\"#" << anchor("", p.id()) << "\">" << html_escape(p.name) << "</a></li>\n";
+    }
+    h << "</ul></li>\n";
+  }
+  h << "<li><a href=\"#times\">Times</a></li>\n</ul>\n</nav>\n";
+
+  // Claims: one line each (row, claim, expected, this run's verdict); the details (the
+  // whole claim, the paper's place, the evidence, how to rerun it, what ran and each check)
+  // open on a click.
+  if (f.paper && !claims.empty()) {
+    h << "<section id=\"claims\">\n<h2>Claims</h2>\n<p>One line per claim; click a claim for its evidence, checks and the "
+         "command that reruns it.</p>\n<table class=\"claims\">\n<tr><th>#</th><th>Claim</th><th>Expected</th><th>This run</th></tr>\n";
+    for (const ItemResult* it : claims) {
+      const Claim& c = m.claims[it->index];
+      const bool ok = it->status == ClaimStatus::reproduced;
+      h << "<tr id=\"" << anchor("claim-", c.id) << "\"><td>" << html_escape(c.row) << "</td><td><details><summary>"
+        << html_escape(short_text(c.text, 80)) << "</summary>\n<dl>\n<dt>Claim (<code>" << html_escape(c.id) << "</code>)</dt><dd>"
+        << md_inline_html(c.text) << "</dd>\n<dt>Paper</dt><dd>" << html_escape(c.paper) << "</dd>\n<dt>Evidence</dt><dd>"
+        << md_inline_html(c.evidence) << "</dd>\n<dt>Rerun</dt><dd>" << md_inline_html(rerun_text(c.rerun, r.proof_prefix))
+        << "</dd>\n";
+      if (!it->argv.empty()) {
+        h << "<dt>This run</dt><dd><code>" << html_escape(command_text(it->argv, r.proof_prefix)) << "</code>";
+        if (!it->outputs.empty()) h << " → <a href=\"" << html_escape(it->outputs[0]) << "\">" << html_escape(it->outputs[0]) << "</a>";
+        h << "</dd>\n";
+      }
+      if (!it->checks.empty()) {
+        h << "<dt>Checks</dt><dd><ul>\n";
+        for (const CheckResult& k : it->checks)
+          h << "<li class=\"" << (k.held ? "ok" : "bad") << "\">" << (k.held ? "held" : "FAILED") << ": <code>" << html_escape(k.check)
+            << "</code> (got <code>" << html_escape(k.got) << "</code>)</li>\n";
+        h << "</ul></dd>\n";
+      }
+      if (!ok && !it->problem.empty()) h << "<dt>Problem</dt><dd class=\"bad\">" << html_escape(it->problem) << "</dd>\n";
+      h << "</dl>\n</details></td><td>" << html_escape(c.expected) << "</td><td class=\"" << (ok ? "ok" : "bad") << "\">"
+        << html_escape(it->verdict) << "</td></tr>\n";
+    }
+    h << "</table>\n</section>\n";
+  }
+
+  // Figures: a contact sheet of thumbnails, each linking to its panel, then every panel.
+  if (!figures.empty()) {
+    h << "<section id=\"figures\">\n<h2>Figures</h2>\n<div id=\"contact-sheet\" class=\"sheet\">\n";
+    for (const ItemResult* it : panels) {
+      const Panel& p = m.panels[it->index];
+      h << "<a href=\"#" << anchor("", p.label) << "\">";
+      if (drawn(*it)) h << "<img src=\"panels/" << html_escape(p.name()) << ".png\" alt=\"" << html_escape(p.label) << "\" loading=\"lazy\">";
+      else h << "<span class=\"bad\">(" << (it->state == ItemState::skipped ? "pending" : "failed") << ")</span>";
+      h << "<br>" << html_escape(panel_title(p)) << "</a>\n";
+    }
+    h << "</div>\n";
+  }
+  for (const auto& [figure, its] : figures) {
+    h << "<section id=\"" << anchor("figure-", figure) << "\">\n<h3>" << html_escape(figure) << "</h3>\n";
+    for (const ItemResult* it : its) {
+      const Panel& p = m.panels[it->index];
+      h << "<figure id=\"" << anchor("", p.label) << "\">\n";
+      if (drawn(*it))
+        h << "<img src=\"panels/" << html_escape(p.name()) << ".png\" alt=\"" << html_escape(p.label) << "\">\n"
+          << (p.twin_of.empty() ? std::string()
+                                : "<img src=\"panels/" + html_escape(p.name()) + "-artefacts.png\" alt=\"where double is wrong\">\n")
+          << "<p class=\"files\"><a href=\"panels/" << html_escape(p.name()) << ".pdf\">PDF</a> · <a href=\"panels/"
+          << html_escape(p.name()) << ".svg\">SVG</a> · <a href=\"panels/" << html_escape(p.name()) << ".csv\">CSV</a></p>\n";
+      else if (it->state == ItemState::skipped)
+        h << "<p><strong>Pending:</strong> " << html_escape(p.reason) << ".</p>\n";
+      else
+        h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it->problem) << "</p>\n";
+      h << "<figcaption>" << html_escape(p.label);
+      if (!p.panel.empty()) h << " " << html_escape(p.panel);
+      if (!p.twin_of.empty()) h << " (certified twin of " << html_escape(p.twin_of) << ", not a panel of the paper)";
+      h << ". Paper: " << html_escape(latex_text(p.caption)) << "</figcaption>\n";
+      if (!p.params.empty()) {
+        h << "<p>Parameters:";
+        for (const auto& kv : p.params) h << " " << html_escape(kv.first) << " = " << html_escape(kv.second) << ";";
+        h << "</p>\n";
+      }
+      if (!p.note.empty()) h << "<p>Note: " << html_escape(p.note) << "</p>\n";
+      if (!it->argv.empty())
+        h << "<p>Provenance: <code>" << html_escape(command_text(it->argv, r.proof_prefix)) << " --out panels/" << html_escape(p.name())
+          << "</code> (bouncer " << html_escape(r.build) << ")</p>\n";
+      h << "<p><a href=\"#contents\">contents</a></p>\n</figure>\n";
+    }
+    h << "</section>\n";
+  }
+  if (!figures.empty()) h << "</section>\n";
+  if (!pictures.empty()) {
+    h << "<section id=\"pictures\">\n<h2>The pictures (data/pictures)</h2>\n<p>Not figures of the paper: the pictures the README shows, "
          "drawn by the same build (<code>cp pictures/*.png</code> into data/pictures/ regenerates them).</p>\n";
-    for (const ItemResult& it : r.items) {
-      if (it.kind != ItemKind::picture) continue;
-      const Picture& p = m.pictures[it.index];
-      h << "<figure id=\"" << html_escape(p.id()) << "\">\n";
-      if (drawn(it))
+    for (const ItemResult* it : pictures) {
+      const Picture& p = m.pictures[it->index];
+      h << "<figure id=\"" << anchor("", p.id()) << "\">\n";
+      if (drawn(*it))
         for (const std::string& file : p.files)
           h << "<img src=\"pictures/" << html_escape(file) << "\" alt=\"" << html_escape(p.name) << "\">\n";
       else
-        h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it.problem) << "</p>\n";
+        h << "<p class=\"bad\"><strong>Failed:</strong> " << html_escape(it->problem) << "</p>\n";
       h << "<figcaption>" << html_escape(p.name) << " (README: " << html_escape(p.readme) << "). " << md_inline_html(p.about)
-        << "</figcaption>\n<p>Provenance: <code>" << html_escape(command_text(it.argv, r.proof_prefix)) << " --out pictures/"
+        << "</figcaption>\n<p>Provenance: <code>" << html_escape(command_text(it->argv, r.proof_prefix)) << " --out pictures/"
         << html_escape(p.name) << "</code></p>\n</figure>\n";
     }
+    h << "</section>\n";
   }
-  if (f.paper) h << "<h2>Claims: provenance</h2>\n<ul>\n";
-  for (const ItemResult& it : r.items) {
-    if (it.kind != ItemKind::claim) continue;
-    h << "<li>" << html_escape(it.id) << ": <code>" << html_escape(command_text(it.argv, r.proof_prefix)) << "</code>";
-    for (const std::string& failed : it.failed_checks) h << "; failed check: " << html_escape(failed);
-    h << "</li>\n";
-  }
-  if (f.paper) h << "</ul>\n";
   h << "<section id=\"times\">\n<h2>Times</h2>\n<p>Volatile: the only part of this report that changes between identical runs.</p>\n"
     << "<table>\n<tr><th>item</th><th>state</th><th>seconds</th></tr>\n";
   for (const ItemResult& it : r.items)

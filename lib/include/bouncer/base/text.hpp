@@ -1,9 +1,11 @@
 // Text for messages: the distance used to suggest close names for a typo (options, commands,
-// reproduce's item ids). (One printable line of any value: one_line, base/input.hpp.)
+// reproduce's item ids, scene names) and the closest name itself. (One printable line of any
+// value: one_line, base/input.hpp.)
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,23 @@ inline std::size_t edit_distance(const std::string& a, const std::string& b) {
     }
   }
   return row[b.size()];
+}
+
+// The closest of `names` to `word`, if it is close enough to be a typo. A name that is a
+// prefix of the word, or the word a prefix of it (--epsilon / --eps), counts as distance 1.
+inline std::optional<std::string> closest(const std::string& word, const std::vector<std::string>& names) {
+  std::optional<std::string> best;
+  std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
+  for (const std::string& n : names) {
+    std::size_t d = edit_distance(word, n);
+    const std::size_t shorter = std::min(word.size(), n.size());
+    if (shorter >= 4 && (word.rfind(n, 0) == 0 || n.rfind(word, 0) == 0)) d = std::min<std::size_t>(d, 1);
+    if (d < best_d) {
+      best = n;
+      best_d = d;
+    }
+  }
+  return best;
 }
 
 }  // namespace bouncer

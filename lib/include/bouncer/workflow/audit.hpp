@@ -90,6 +90,10 @@ struct AuditResult {
   // not_a_result: why, in one line, about the field "file" ("'x.png' is a picture; ...").
   std::string message;
   int rerun_status = 0;  // the rerun's exit status (-1: it did not exit)
+  // Wall-clock seconds of the rerun (a reproduce directory: the whole reproduce) and of the
+  // comparison after it (reading and parsing both sides): audit costs the run it checks plus
+  // compare_seconds (README, "bouncer audit FILE"; tools/bench/bench_audit.py measures both).
+  double rerun_seconds = 0, compare_seconds = 0;
 };
 
 // Audits request.file. Throws OutputError if the temporary directory cannot be made.

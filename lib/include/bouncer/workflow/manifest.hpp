@@ -80,7 +80,10 @@ inline constexpr const char* kBuildProofPrefix = "build/proofs/";
 // PROOF_PREFIX + proof_NAME (by default where the build puts it; an installed bouncer passes
 // its own proof directory, reproduce.hpp's proof_prefix).
 std::string command_text(const std::vector<std::string>& argv, const std::string& proof_prefix = kBuildProofPrefix);
-// A claim's `rerun` text with build/proofs/ replaced by `proof_prefix`.
+// A claim's `rerun` text as a reader runs it: build/proofs/ replaced by `proof_prefix`, a
+// built-in scene's path (--scene data/scenes/picture-NAME.toml) by its name (--scene NAME,
+// found from any directory and from an install), `ctest -R X` run in build/ (and, for an
+// install, said to need a build tree of the sources).
 std::string rerun_text(const std::string& rerun, const std::string& proof_prefix);
 
 }  // namespace bouncer

@@ -71,6 +71,7 @@
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/scalar/thread_caches.hpp"
 #include "bouncer/run/orbit.hpp"
+#include "bouncer/verify/border_collision.hpp"
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
 #include "bouncer/verify/sticking.hpp"
@@ -804,7 +805,8 @@ class ModelCore {
     });
   }
 
-  // bouncer continue without --certify and --out (its request: io/requests/continue.hpp).
+  // bouncer continue without --out (its request: io/requests/continue.hpp); with certify,
+  // the same proofs as `continue --certify` (verify/border_collision.hpp).
   py::dict continue_branch(const Texts& texts) const {
     const ContinueRequest r = continue_request(with_model(texts));
     return with_point_scalar(r.precision, [&](auto tag) {
@@ -820,8 +822,61 @@ class ModelCore {
         return br;
       });
       if (!b.started) throw InputError("guess", b.note);
-      return branch_dict(b, m, name(r.vary));
+      py::dict d = branch_dict(b, m, name(r.vary));
+      if (r.certify) {
+        const CertifiedBranchEnds cert = interruptible([&] {
+          CertifiedBranchEnds x = certify_branch_ends(r.model, r.vary, r.period, b, bits);
+          certify_smooth_events(r.model, r.vary, r.period, b, bits, x);
+          return x;
+        });
+        for (const bool high : {false, true}) {
+          py::dict end = d[high ? "high" : "low"];
+          const auto& border = high ? cert.high : cert.low;
+          const auto& fold = high ? cert.high_fold : cert.low_fold;
+          end["certified"] = border ? border_dict(*border) : fold ? smooth_dict(*fold) : py::object(py::none());
+        }
+        py::list bif = d["bifurcations"];
+        for (size_t i = 0; i < cert.bifurcations.size() && i < bif.size(); ++i)
+          bif[i].cast<py::dict>()["certified"] = smooth_dict(cert.bifurcations[i]);
+      }
+      return d;
     });
+  }
+
+  // A border end's proofs (continue --certify): the two-sided enclosure of a* and the
+  // one-sided bound from the branch side, as the CLI's JSON `certified` (io/reports/continue.cpp).
+  static py::dict border_dict(const CertifiedBranchEnd& c) {
+    const BorderCollisionCertificate& t = c.two_sided;
+    py::dict d;
+    d["kind"] = "border";
+    d["certified"] = t.certified;
+    d["bits"] = t.bits;
+    d["enclosure"] = t.certified ? interval_of(t.parameter) : py::object(py::none());
+    d["width"] = t.certified ? py::object(py::float_(t.width)) : py::object(py::none());
+    d["margin"] = name(t.margin);
+    d["margin_text"] = t.margin_text;
+    d["events"] = t.events;
+    d["bracket_contains"] = c.bracket_contains;
+    d["statement"] = t.statement;
+    d["reason"] = t.reason;
+    d["one_sided_certified"] = c.certificate.certified;
+    d["one_sided_bound"] = c.certificate.certified ? py::object(py::str(exact_decimal(c.certificate.bound))) : py::object(py::none());
+    return d;
+  }
+
+  // A period doubling's or fold's certificate (certify_period_doubling, certify_fold).
+  static py::dict smooth_dict(const PeriodDoublingCertificate& c) {
+    py::dict d;
+    d["kind"] = "smooth";
+    d["certified"] = c.certified;
+    d["bits"] = c.bits;
+    d["enclosure"] = c.certified ? interval_of(c.parameter) : py::object(py::none());
+    d["width"] = c.certified ? py::object(py::float_(c.width)) : py::object(py::none());
+    d["other_multiplier"] = c.certified ? interval_of(c.other) : py::object(py::none());
+    d["events"] = c.events;
+    d["statement"] = c.statement;
+    d["reason"] = c.reason;
+    return d;
   }
 
   // bouncer certify-sticking without --a-range (its request: io/requests/certify_sticking.hpp).

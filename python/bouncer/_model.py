@@ -171,6 +171,8 @@ class BranchEnd:
         kind estimate | given | not_estimated; for an estimate a_star_backed and
         a_star_plus_minus (the digits it backs), a_star_digits, bracket_estimate (lo, hi),
         error_estimate, refined_param, refined_bits; otherwise note. An estimate, not a proof.
+    certified: with continue_branch(certify=True), the end's proof (a border end's two-sided
+        enclosure of a*, or a fold's), else None
     """
     reason: str
     param: Real
@@ -183,6 +185,7 @@ class BranchEnd:
     beyond: Optional[Dict[str, Any]]
     beyond_note: str
     accuracy: Dict[str, Any]
+    certified: Optional[Dict[str, Any]] = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -681,10 +684,11 @@ class Model(_core.Model):
                         vary: str = "a", step: Optional[Number] = None, max_points: Optional[int] = None,
                         max_iter: Optional[int] = None, beyond: Optional[Number] = None,
                         transient: Optional[int] = None, steps: Optional[int] = None,
-                        max_period: Optional[int] = None, recheck_factor: Optional[int] = None) -> Branch:
+                        max_period: Optional[int] = None, recheck_factor: Optional[int] = None,
+                        certify: bool = False) -> Branch:
         """Continues the period-q orbit near ``guess`` in ``vary`` over ``range`` from the
         model's own value of that parameter, and locates where the branch ends
-        (``bouncer continue``, without its pictures and ``--certify``).
+        (``bouncer continue``, without its pictures).
 
         period: q, an integer in [1, 100]
         guess: (theta, v) near the orbit at the model's parameter value
@@ -699,11 +703,18 @@ class Model(_core.Model):
             (default 1e-6)
         transient, steps, max_period, recheck_factor: the classifier past each end, as in
             classify (defaults 5000, 500, min(64, steps/2), 20)
+        certify: True: the proofs of ``continue --certify``: each border end's a* enclosed on
+            both sides (low/high ``certified``: kind "border", certified, bits, enclosure (an
+            Interval), width, margin, margin_text, events, bracket_contains, statement,
+            reason, one_sided_certified, one_sided_bound), each period doubling and fold, on
+            the branch (each bifurcation's "certified") or at a fold end (kind "smooth":
+            certified, bits, enclosure, width, other_multiplier (an Interval), events,
+            statement, reason); None where an end has no certifier
         """
         d = self._continue_branch(_texts(
             period=period, guess=guess, range=_range_text(range, "range"), vary=vary, step=step,
             max_points=max_points, max_iter=max_iter, beyond=beyond, transient=transient, steps=steps,
-            max_period=max_period, recheck_factor=recheck_factor))
+            max_period=max_period, recheck_factor=recheck_factor, certify="true" if certify else None))
         d["low"] = _build(BranchEnd, d["low"])
         d["high"] = _build(BranchEnd, d["high"])
         return _build(Branch, d)

@@ -677,3 +677,25 @@ def test_repr_and_properties():
     for _ in range(5):
         theta, v = m.step(theta, v)  # the step is the state: iterating the map
     assert (theta, v) == tuple(m.orbit(0.3, 9.5, 5).theta[-1:]) + tuple(m.orbit(0.3, 9.5, 5).v[-1:])
+
+
+def test_continue_branch_certify_proves_the_ends_against_closed_forms():
+    """continue_branch(certify=True), as `continue --certify`: the period-1 sticking orbit
+    through (1/2, 4) at eps = 1/4 lives exactly for 200/9 <= a < 32 (the sticking threshold
+    and the knot theta = 0: closed forms), so the low end's enclosure holds 200/9 and the
+    high end's 32 (exact fractions); the eps = 0.9 period-11 fold's other multiplier is
+    det DP^11 = 0.9^22 (area contraction eps^2 per impact). Without certify: None."""
+    from fractions import Fraction as F
+    m = bouncer.Model(model="constant", eps="0.25", a="26")
+    b = m.continue_branch(1, ("0.5", "4"), ("20", "33.5"), certify=True)
+    for end, truth in ((b.low, F(200, 9)), (b.high, F(32))):
+        c = end.certified
+        assert c is not None and c["kind"] == "border" and c["certified"], c
+        assert F(c["enclosure"].lo) <= truth <= F(c["enclosure"].hi) and c["width"] < 1e-30
+    assert m.continue_branch(1, ("0.5", "4"), ("20", "33.5")).low.certified is None
+    f = bouncer.Model(model="constant", eps="0.9", a="12.5").continue_branch(
+        11, ("0.04780185758554826", "34.63889719838767"), ("12", "13"), certify=True)
+    assert f.low.reason == "fold"
+    c = f.low.certified
+    assert c is not None and c["kind"] == "smooth" and c["certified"], c
+    assert F(c["other_multiplier"].lo) <= F(9, 10) ** 22 <= F(c["other_multiplier"].hi)

@@ -9,6 +9,8 @@
 #   - tools/check_site_links.py finds every internal link, anchor and file of the built site,
 #     and no script, stylesheet or image loaded from the network (the site works offline);
 #     and it does fail on a planted broken anchor and a planted missing file;
+#   - headless Chromium renders the front page and a reference page (tools/screenshot_site.py:
+#     the theme's navigation bar and text in each screenshot), where chromium is installed;
 #   - README.md (the entry point, outside the site, read on GitHub) is under 200 lines and each
 #     of its relative links names a file or directory of the repository.
 # Exit 77 (skipped) when mkdocs is not installed (`tools/setup docs` installs it).
@@ -56,6 +58,16 @@ if ! (cd "$TMP" && mkdocs build --strict -q -d "$TMP/site") >"$TMP/mkdocs.log" 2
 fi
 [[ -f $TMP/site/index.html && -f $TMP/site/reference/orbit.html ]] || die "the site has no index.html or reference/orbit.html"
 "$PY" "$SRC/tools/check_site_links.py" "$TMP/site" >"$TMP/links.log" 2>&1 || fail links "$(head -5 "$TMP/links.log")"
+# It renders: headless Chromium screenshots of the front page and a reference page, checked
+# for the navigation bar and text (tools/screenshot_site.py; 77: no chromium here, which
+# `tools/setup docs` installs: said, not failed).
+rc=0
+"$PY" "$SRC/tools/screenshot_site.py" "$TMP/site" "$TMP/shots" >"$TMP/shots.log" 2>&1 || rc=$?
+case $rc in
+  0) ;;
+  77) echo "docs_site: $(cat "$TMP/shots.log")" ;;
+  *) fail screenshots "$(head -3 "$TMP/shots.log")" ;;
+esac
 
 # the link checker can fail: a missing anchor, a missing picture
 mkdir -p "$TMP/bad/sub"

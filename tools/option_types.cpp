@@ -48,6 +48,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 73> kinds{{
 
 std::string option_type_name(const std::string& command, const std::string& name) {
   if (command == "reproduce" && name == "out") return "DIR";  // a directory of results, not a prefix
+  // One file, not a prefix: the text output of orbit and of the two certify commands.
+  if ((command == "orbit" || command == "certify-sticking" || command == "certify-periodic") && name == "out") return "PATH";
   for (const auto& [n, kind] : kinds)
     if (n == name) return std::string(kind);
   return "TEXT";

@@ -1,0 +1,328 @@
+// What a referee checks in a figure, as properties of the drawing logic (io/plot.hpp's
+// FigureLayout: what the renderer actually drew), not pixels copied from the program:
+// the curve palette's colour distances (CIE76, against published CIELAB values), the label
+// placement (no overlaps, as near as possible), legends that list only what is drawn, colour
+// bars where a density is drawn, direct labels that overlap nothing, and axis titles that
+// name their quantity.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bouncer/io/grid_figures.hpp"
+#include "bouncer/io/plot.hpp"
+
+using namespace bouncer;
+
+namespace {
+
+Decimal dec(const char* s) { return *Decimal::parse(s); }
+
+bool contains(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+bool any_starts_with(const std::vector<std::string>& v, const std::string& prefix) {
+  return std::any_of(v.begin(), v.end(), [&](const std::string& s) { return s.rfind(prefix, 0) == 0; });
+}
+bool overlap(const TextBox& a, const TextBox& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
+
+// No two boxes overlap, none overlaps the tick labels, and all lie in the canvas.
+void expect_clear(const FigureLayout& lay, double w, double h) {
+  for (size_t i = 0; i < lay.direct_labels.size(); ++i) {
+    const TextBox& a = lay.direct_labels[i];
+    EXPECT_GE(a.x0, 0) << a.text;
+    EXPECT_LE(a.x1, w) << a.text;
+    EXPECT_GE(a.y0, 0) << a.text;
+    EXPECT_LE(a.y1, h) << a.text;
+    for (size_t j = i + 1; j < lay.direct_labels.size(); ++j)
+      EXPECT_FALSE(overlap(a, lay.direct_labels[j])) << a.text << " / " << lay.direct_labels[j].text;
+    for (const TextBox& t : lay.tick_labels) EXPECT_FALSE(overlap(a, t)) << a.text << " / tick " << t.text;
+  }
+}
+
+}  // namespace
+
+// ---- colours ----------------------------------------------------------------------------------
+
+TEST(Palette, LabConversionMatchesPublishedValues) {
+  // sRGB (D65) to CIELAB reference values (e.g. Lindbloom's calculator, brucelindbloom.com).
+  const Lab white = to_lab(Rgb{255, 255, 255}), black = to_lab(Rgb{0, 0, 0}), red = to_lab(Rgb{255, 0, 0});
+  EXPECT_NEAR(white.l, 100, 0.01);
+  EXPECT_NEAR(white.a, 0, 0.01);
+  EXPECT_NEAR(white.b, 0, 0.01);
+  EXPECT_NEAR(black.l, 0, 1e-9);
+  EXPECT_NEAR(red.l, 53.24, 0.05);
+  EXPECT_NEAR(red.a, 80.09, 0.05);
+  EXPECT_NEAR(red.b, 67.20, 0.05);
+  const Lab blue = to_lab(Rgb{0, 0, 255});
+  EXPECT_NEAR(blue.l, 32.30, 0.05);
+  EXPECT_NEAR(blue.a, 79.19, 0.05);
+  EXPECT_NEAR(blue.b, -107.86, 0.05);
+  // CIE76 is the Euclidean distance: white to black is 100.
+  EXPECT_NEAR(delta_e76(Rgb{255, 255, 255}, Rgb{0, 0, 0}), 100, 0.01);
+}
+
+TEST(Palette, TenAndTwentyCurvesAreToldApartAndNoneIsFaintOnWhite) {
+  for (int n : {10, 20}) {
+    double worst = 1e9;
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j) worst = std::min(worst, delta_e76(series_color(i), series_color(j)));
+    // 25 is several times the just-noticeable difference (about 2.3) and well above the
+    // 10 or so at which thin lines of two colours are confused.
+    EXPECT_GE(worst, 25) << n << " series";
+  }
+  for (int i = 0; i < 20; ++i) {
+    EXPECT_LE(to_lab(series_color(i)).l, 72) << "series " << i << " is faint on white";
+    EXPECT_GE(delta_e76(series_color(i), Rgb{255, 255, 255}), 30) << i;
+  }
+  // The case: the old category colours gave p = 2 and p = 8 (indices 1 and 7) nearly
+  // the same blue.
+  EXPECT_GE(delta_e76(series_color(1), series_color(7)), 25);
+}
+
+// ---- label placement ---------------------------------------------------------------------
+
+TEST(Labels, SpreadLabelsKeepsFarLabelsAndSeparatesCloseOnes) {
+  // Far apart: unchanged.
+  const std::vector<double> far = spread_labels({10, 50, 90}, 5, 0, 100);
+  EXPECT_DOUBLE_EQ(far[0], 10);
+  EXPECT_DOUBLE_EQ(far[1], 50);
+  EXPECT_DOUBLE_EQ(far[2], 90);
+  // Two wanted at the same place: one size apart, centred on it.
+  const std::vector<double> two = spread_labels({40, 40}, 6, 0, 100);
+  EXPECT_DOUBLE_EQ(std::min(two[0], two[1]), 37);
+  EXPECT_DOUBLE_EQ(std::max(two[0], two[1]), 43);
+  // Against the upper end: pushed inside [lo, hi].
+  const std::vector<double> top = spread_labels({99, 99.5, 100}, 4, 0, 100);
+  for (double y : top) EXPECT_LE(y, 100 - 2 + 1e-9);
+  EXPECT_NEAR(std::max({top[0], top[1], top[2]}) - std::min({top[0], top[1], top[2]}), 8, 1e-9);
+}
+
+TEST(Labels, RandomWishesNeverOverlapAndKeepTheirOrder) {
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 1 + static_cast<int>(rng() % 25);
+    const double size = 1 + (rng() % 100) / 10.0, lo = 0, hi = 300;
+    std::uniform_real_distribution<double> u(-20, 320);
+    std::vector<double> wanted(static_cast<size_t>(n));
+    for (double& w : wanted) w = u(rng);
+    const std::vector<double> at = spread_labels(wanted, size, lo, hi);
+    ASSERT_EQ(at.size(), wanted.size());
+    std::vector<size_t> order(wanted.size());
+    for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return wanted[a] < wanted[b]; });
+    for (size_t k = 1; k < order.size(); ++k)  // same order as wished, at least one size apart
+      EXPECT_GE(at[order[k]] - at[order[k - 1]], size - 1e-9);
+    if (n * size <= hi - lo)
+      for (double y : at) {
+        EXPECT_GE(y, lo + size / 2 - 1e-9);
+        EXPECT_LE(y, hi - size / 2 + 1e-9);
+      }
+  }
+}
+
+// ---- legends list only what is drawn ---------------------------------------------------------
+
+TEST(Legend, RasterClassesWithoutACellAndCurvesOutsideTheWindowAreLeftOut) {
+  ImageFigure f;
+  Raster& r = f.raster;
+  r.nx = 2;
+  r.ny = 1;
+  const Rgb a{10, 20, 30}, b{200, 100, 0}, c{0, 200, 0};
+  r.pixels = {a, b};
+  r.legend = {{"class a", a}, {"class b", b}, {"class c (no cell)", c}};
+  r.notes = {"+3 more types"};
+  Series inside, outside, key;
+  inside.label = "inside";
+  inside.x = {0.2, 0.8};
+  inside.y = {0.5, 0.5};
+  outside.label = "outside";
+  outside.x = {3, 4};
+  outside.y = {3, 4};
+  key.label = "a line style (no points: a key)";
+  f.overlay = {inside, outside, key};
+  const FigureLayout lay = figure_layout(f);
+  EXPECT_EQ(lay.legend, (std::vector<std::string>{"class a", "class b", "inside", "a line style (no points: a key)"}));
+  EXPECT_EQ(lay.notes, (std::vector<std::string>{"+3 more types"}));
+  EXPECT_FALSE(lay.colorbar);
+}
+
+TEST(Legend, ArtefactMapNamesTheUncomparedCellsOnlyWhenThereAreAny) {
+  ImageFigure frame;
+  frame.raster.nx = 2;
+  frame.raster.ny = 2;
+  frame.raster.pixels.assign(4, Rgb{255, 255, 255});
+  const AgreementWords words{"artefacts", "agrees", "differs", "undecided", "not confirmed"};
+  const std::vector<Agreement> all{Agreement::agrees, Agreement::agrees, Agreement::differs, Agreement::agrees};
+  const FigureLayout full = figure_layout(agreement_figure(frame, all, 2, 2, words, Palette::safe));
+  EXPECT_FALSE(any_starts_with(full.legend, "not confirmed"));
+  EXPECT_FALSE(any_starts_with(full.legend, "undecided"));  // no such cell either
+  EXPECT_TRUE(any_starts_with(full.legend, "agrees"));
+  EXPECT_TRUE(any_starts_with(full.legend, "differs"));
+  const std::vector<Agreement> sample{Agreement::agrees, Agreement::outside, Agreement::outside, Agreement::undecided};
+  const FigureLayout part = figure_layout(agreement_figure(frame, sample, 2, 2, words, Palette::safe));
+  EXPECT_TRUE(contains(part.legend, "not confirmed"));
+  EXPECT_TRUE(any_starts_with(part.legend, "undecided"));
+  EXPECT_FALSE(any_starts_with(part.legend, "differs"));
+}
+
+// A bifurcation result by hand: `columns` columns over a in [20, 21], each with the given
+// points (theta; sticking).
+BifurcationResult bifurcation(int columns, bool with_sticking) {
+  BifurcationResult b;
+  b.request.lo = dec("20");
+  b.request.hi = dec("21");
+  b.request.samples = columns;
+  b.request.record = 50;
+  for (int k = 0; k < columns; ++k) {
+    BifurcationColumn col;
+    col.value.value = 20 + k / (columns - 1.0);
+    for (int i = 0; i < 50; ++i) {
+      BifurcationPoint p;
+      p.theta.value = (k % 3 == 0) ? 0.25 : std::fmod(0.618 * i, 1.0);  // a dense line and a spread
+      p.v.value = 5 + i % 7;
+      col.points.push_back(p);
+    }
+    if (with_sticking && k == columns / 2) {
+      BifurcationPoint s;
+      s.theta.value = 0.5;
+      s.v.value = 4;
+      s.sticking = true;
+      col.points.push_back(s);
+    }
+    b.columns.push_back(col);
+  }
+  return b;
+}
+
+TEST(Legend, BifurcationDensityHasAColourBarAndNamesStickingOnlyWhereDrawn) {
+  for (Palette palette : {Palette::safe, Palette::paper}) {
+    const FigureLayout plain = figure_layout(bifurcation_figure(bifurcation(30, false), true, 100, palette));
+    EXPECT_TRUE(plain.colorbar);
+    // Counts on the bar: the densest cell has 50 points (the line at theta = 1/4).
+    EXPECT_EQ(plain.colorbar_ticks, (std::vector<std::string>{"1", "2", "5", "10", "20", "50"}));
+    EXPECT_FALSE(any_starts_with(plain.legend, "sticking release"));
+    const FigureLayout sticky = figure_layout(bifurcation_figure(bifurcation(30, true), true, 100, palette));
+    EXPECT_TRUE(sticky.colorbar);
+    EXPECT_TRUE(any_starts_with(sticky.legend, "sticking release"));
+  }
+}
+
+// ---- direct labels -----------------------------------------------------------------------------
+
+ScanResult scan(bool curves_window_top) {
+  ScanResult s;
+  ScanRequest& r = s.request;
+  r.model.law = Law::constant;
+  r.a_lo = dec("10");
+  r.a_hi = dec("30");
+  r.y_lo = dec("0.05");
+  r.y_hi = dec(curves_window_top ? "0.95" : "0.6");
+  r.p = 8;
+  r.q = 6;
+  r.k = 2;
+  s.y = Parameter::eps;
+  for (int i = 0; i < 48; ++i) {
+    ScanCell c;
+    c.count[static_cast<size_t>(i % 3 == 0 ? OrbitClass::periodic : OrbitClass::chaotic)] = 4;
+    s.cells.push_back(c);
+  }
+  return s;
+}
+
+TEST(DirectLabels, TheTenEq5CurvesOfTheScanAreNamedAtTheirEndsWithoutOverlap) {
+  for (bool paper_window : {true, false}) {
+    const ImageFigure fig = scan_figure(scan(paper_window), std::nullopt, true, Palette::safe);
+    const FigureLayout lay = figure_layout(fig);
+    std::vector<std::string> named;
+    for (const TextBox& b : lay.direct_labels) named.push_back(b.text);
+    // In the paper's window (a in [10, 30], eps in [0.05, 0.95]) every curve shows. With
+    // eps up to 0.6 curve p reaches a >= 10 only if a(0.6) = 8 * 1.6 / (0.4 p) = 32 / p >= 10:
+    // p = 1, 2, 3 (p = 1 leaves through the right edge, a(0.6) = 32 > 30; 2 and 3 through
+    // the top); the others are not drawn and not named.
+    const int shown = paper_window ? 10 : 3;
+    EXPECT_EQ(named.size(), static_cast<size_t>(shown));
+    for (int p = 1; p <= shown; ++p) EXPECT_TRUE(contains(named, "p = " + std::to_string(p))) << p;
+    for (const std::string& n : named) EXPECT_FALSE(contains(lay.legend, n)) << n << " in the legend too";
+    EXPECT_TRUE(lay.colorbar);  // the share is a density: its key is the bar
+    expect_clear(lay, fig.width, fig.height);
+    // Each named curve is drawn: the legend's key explains them.
+    EXPECT_TRUE(any_starts_with(lay.legend, "eq. 5"));
+  }
+}
+
+TEST(DirectLabels, CrowdedCurveEndsOfALinePlotAreSpreadApart) {
+  // Twelve curves ending within 5% of the height of each other at the right edge (the
+  // Arnold tongues at a = 30): the labels must not overlap each other or the ticks.
+  Figure f;
+  f.width = 1000;
+  f.height = 760;
+  f.x_min = 0;
+  f.x_max = 30;
+  f.y_min = 0;
+  f.y_max = 1;
+  for (int p = 1; p <= 12; ++p) {
+    Series s;
+    s.label = "p = " + std::to_string(p);
+    s.end_label = true;
+    s.lines = true;
+    s.markers = false;
+    s.color = series_color(p - 1);
+    for (int k = 0; k <= 100; ++k) {
+      const double a = 0.3 * k, r = a * p / 8;  // eq. 5 solved for eps: (r - 1)/(r + 1)
+      s.x.push_back(a);
+      s.y.push_back(r > 1 ? (r - 1) / (r + 1) : NAN);
+    }
+    f.series.push_back(s);
+  }
+  const FigureLayout lay = figure_layout(f);
+  EXPECT_EQ(lay.direct_labels.size(), 12u);
+  EXPECT_TRUE(lay.legend.empty());
+  expect_clear(lay, f.width, f.height);
+  // All right of the frame: the curves leave through its right edge.
+  for (const TextBox& b : lay.direct_labels) EXPECT_GT(b.x0, lay.frame.x1) << b.text;
+}
+
+TEST(DirectLabels, CurvesLeavingThroughTheTopAreNamedAboveTheFrame) {
+  Figure f;
+  f.x_min = 0;
+  f.x_max = 10;
+  f.y_min = 0;
+  f.y_max = 10;
+  for (int k = 1; k <= 4; ++k) {
+    Series s;
+    s.label = "slope " + std::to_string(k);
+    s.end_label = true;
+    s.lines = true;
+    s.markers = false;
+    s.x = {0, 20};
+    s.y = {0, 20.0 * k};  // leaves through the top at x = 10 / k
+    f.series.push_back(s);
+  }
+  const FigureLayout lay = figure_layout(f);
+  ASSERT_EQ(lay.direct_labels.size(), 4u);
+  for (const TextBox& b : lay.direct_labels) {
+    if (b.text == "slope 1") {
+      EXPECT_GT(b.x0, lay.frame.x1);  // through the corner (10, 10): the right column
+    } else {
+      EXPECT_LT(b.y1, lay.frame.y0);  // above the frame
+    }
+  }
+  expect_clear(lay, f.width, f.height);
+}
+
+// ---- axis titles -------------------------------------------------------------------------------
+
+TEST(AxisTitles, ParameterAxesNameTheirSymbolAndQuantity) {
+  for (Parameter p : {Parameter::a, Parameter::eps, Parameter::c}) {
+    const std::string t = parameter_label(p);
+    // A symbol, then its meaning in parentheses: never a lone glyph.
+    EXPECT_NE(t.find(" ("), std::string::npos) << t;
+    EXPECT_EQ(t.back(), ')') << t;
+  }
+  EXPECT_EQ(parameter_label(Parameter::eps).rfind("ε (", 0), 0u);
+  const ImageFigure fig = scan_figure(scan(true), std::nullopt, false, Palette::safe);
+  EXPECT_EQ(fig.xlabel, parameter_label(Parameter::a));
+  EXPECT_EQ(fig.ylabel, parameter_label(Parameter::eps));
+}

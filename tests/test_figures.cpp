@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bouncer/io/attractors.hpp"
 #include "bouncer/io/grid_figures.hpp"
 #include "bouncer/io/plot.hpp"
 
@@ -325,4 +326,51 @@ TEST(AxisTitles, ParameterAxesNameTheirSymbolAndQuantity) {
   const ImageFigure fig = scan_figure(scan(true), std::nullopt, false, Palette::safe);
   EXPECT_EQ(fig.xlabel, parameter_label(Parameter::a));
   EXPECT_EQ(fig.ylabel, parameter_label(Parameter::eps));
+}
+
+// ---- the stacked basin shares of attractors --vary -------------------------------------------
+
+TEST(StackedShares, AHundredChainsAreColouredByFamilyAndTheLargeBandsTagged) {
+  // 6 values, 20 attractors at each: the first with 43% of the starts, 19 with 3%; 120
+  // chains of 40 periods (3 chains each).
+  AttractorsSweepResult r;
+  r.request.lo = dec("20");
+  r.request.hi = dec("21");
+  r.request.values = 6;
+  r.request.point.model.law = Law::veldep;
+  for (int k = 0; k < 6; ++k) {
+    r.values.push_back(*Decimal::parse(std::to_string(20 + k * 0.2).substr(0, 4)));
+    AttractorsResult at;
+    for (int i = 0; i < 20; ++i) {
+      FoundAttractor a;
+      a.kind = AttractorKind::periodic;
+      a.period = 2 + (k * 20 + i) % 40;
+      a.fraction = i == 0 ? 0.43 : 0.03;
+      at.attractors.push_back(a);
+    }
+    r.at.push_back(at);
+  }
+  for (int c = 0; c < 120; ++c) {
+    AttractorChain ch;
+    ch.id = c;
+    ch.kind = AttractorKind::periodic;
+    ch.period = 2 + c % 40;
+    ch.index.assign(6, -1);
+    ch.index[static_cast<size_t>(c / 20)] = c % 20;
+    r.chains.push_back(ch);
+  }
+  const ImageFigure fig = attractors_sweep_figure(r, Palette::safe);
+  const FigureLayout lay = figure_layout(fig);
+  // 12 families in colour and one entry for the 28 others (undecided: no cell, left out).
+  ASSERT_EQ(lay.legend.size(), 13u);
+  EXPECT_EQ(lay.legend.back().rfind("28 smaller families", 0), 0u);
+  EXPECT_FALSE(any_starts_with(lay.legend, "undecided"));
+  for (size_t i = 0; i < 12; ++i)
+    for (size_t j = i + 1; j < 12; ++j)
+      EXPECT_GE(delta_e76(fig.raster.legend[i].second, fig.raster.legend[j].second), 10) << lay.legend[i] << " / " << lay.legend[j];
+  // The six 43% bands carry their tags (the periods of chains 0, 20, ..., 100: 2, 22, 2, 22,
+  // 2, 22); the 3% bands are too thin for text.
+  ASSERT_EQ(lay.direct_labels.size(), 6u);
+  for (size_t i = 0; i < 6; ++i) EXPECT_TRUE(lay.direct_labels[i].text == "P2" || lay.direct_labels[i].text == "P22");
+  expect_clear(lay, fig.width, fig.height);
 }

@@ -605,8 +605,8 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
   const std::pair<AxisZoom, AxisZoom> zoom = set_exact_window(ras, r.request.lo.value() - half, r.request.hi.value() + half, 0, 1);
   ras.pixels.assign(n * 400, Rgb{255, 255, 255});
   const Rgb undecided = attractor_color(OrbitClass::undecided, 0, 0, palette);
-  // Each chain's tallest band (value, bottom, top): where its tag is written.
-  std::vector<std::array<double, 3>> tallest(r.chains.size(), {0.0, 0.0, 0.0});
+  // Each chain's tallest band (at value tallest_at): where its tag is written.
+  std::vector<std::array<double, 2>> tallest(r.chains.size(), {0.0, 0.0});  // bottom, top
   std::vector<size_t> tallest_at(r.chains.size(), 0);
   for (size_t k = 0; k < n; ++k) {
     std::vector<std::pair<double, Rgb>> bands;  // cumulative top of each band, from the bottom
@@ -615,8 +615,8 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
       const int i = r.chains[c].index[k];
       if (i < 0) continue;
       const double share = r.at[k].attractors[static_cast<size_t>(i)].fraction;
-      if (share > tallest[c][2] - tallest[c][1]) {
-        tallest[c] = {0.0, top, top + share};
+      if (share > tallest[c][1] - tallest[c][0]) {
+        tallest[c] = {top, top + share};
         tallest_at[c] = k;
       }
       top += share;
@@ -684,10 +684,16 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
     ras.legend.emplace_back(std::to_string(family_order.size() - shown) + " smaller families (greys, light and dark in turn)",
                             other_light);
   }
-  // Tags in the bands tall enough for a line of text (a tenth of the starts or more).
-  for (size_t c = 0; c < r.chains.size(); ++c)
-    if (tallest[c][2] - tallest[c][1] >= 0.1)
-      fig.annotations.push_back({zoom.first(r.values[tallest_at[c]].value()), (tallest[c][1] + tallest[c][2]) / 2,
+  // Tags in the bands tall enough for a line of text (a tenth of the starts or more), the
+  // tallest first (where two would overlap, the renderer keeps the first).
+  std::vector<size_t> by_height(r.chains.size());
+  for (size_t c = 0; c < by_height.size(); ++c) by_height[c] = c;
+  std::stable_sort(by_height.begin(), by_height.end(), [&](size_t x, size_t y) {
+    return tallest[x][1] - tallest[x][0] > tallest[y][1] - tallest[y][0];
+  });
+  for (size_t c : by_height)
+    if (tallest[c][1] - tallest[c][0] >= 0.1)
+      fig.annotations.push_back({zoom.first(r.values[tallest_at[c]].value()), (tallest[c][0] + tallest[c][1]) / 2,
                                  chain_tag(r.chains[c]), Rgb{0, 0, 0}});
   ras.notes.push_back("in the bands: P3 period 3, F2 family of period-2 points, k4 sticking cycle k = 4");
   ras.legend_below = families.size() > 6;

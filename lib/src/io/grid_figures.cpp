@@ -228,7 +228,7 @@ std::string certified_label(CertifiedClass cls, long period, long long max_steps
     case CertifiedClass::sticking: return "sticking, k = " + std::to_string(period);
     case CertifiedClass::fixed: return never + "trapped at a fixed point";
     case CertifiedClass::periodic: return never + "trapped, period " + std::to_string(period);
-    case CertifiedClass::no_sticking: return "no (further) sticking in >= " + std::to_string(max_steps) + " steps";
+    case CertifiedClass::no_sticking: return "no (further) sticking in ≥ " + std::to_string(max_steps) + " steps";
     case CertifiedClass::not_trapped:
       return area_preserving ? "exact orbit certified through " + std::to_string(max_steps) + " steps"
                              : "certified " + std::to_string(max_steps) + " steps, no trapping set";

@@ -288,10 +288,10 @@ struct Fitted {
   double size;
 };
 Fitted fit_text(const Painter& p, const std::string& s, double size, double max_w, bool allow_wrap = true,
-                const std::vector<std::string>& seps = {" "}) {
+                const std::vector<std::string>& seps = {" "}, bool shrink_first = true) {
   if (s.empty()) return {{}, size};
   if (p.width(s, size) <= max_w) return {{s}, size};
-  if (p.width(s, size * 0.85) <= max_w) return {{s}, size * 0.85};
+  if (shrink_first && p.width(s, size * 0.85) <= max_w) return {{s}, size * 0.85};
   std::vector<std::string> lines{s};
   if (allow_wrap) {
     size_t best_at = std::string::npos, best_len = 0;
@@ -719,8 +719,9 @@ void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& se
           open = true;
         }
       };
-      // Over an image, a white halo under the line keeps it visible on dark and light cells.
-      if (halo) {
+      // Over an image, a white halo under a solid line keeps it visible on dark and light
+      // cells (a dashed line, a marker of an event, stays thin).
+      if (halo && !s.dashed) {
         p.color(kWhite);
         cairo_set_line_width(cr, 1.6 * st.line + 1.6 * st.unit);
         path();
@@ -894,11 +895,17 @@ void draw_end_labels(const Painter& p, const Frame& f, const std::vector<EndLabe
     }
   }
 }
-// Text centred at (x, y) with a white halo (Annotation).
+// Text centred at (x, y) with a white halo (Annotation), unless its box would overlap one
+// already written (`taken`): labels never cover each other; the earlier ones win.
 void draw_annotation(const Painter& p, double x, double y, const std::string& text, Rgb color, const Style& st,
-                     FigureLayout* lay) {
+                     std::vector<TextBox>& taken, FigureLayout* lay) {
   if (text.empty()) return;
   const double size = st.small, w = p.width(text, size), baseline = y + Painter::cap(size) / 2;
+  const TextBox box{text, x - w / 2 - 0.15 * size, baseline - Painter::cap(size) - 0.15 * size, x + w / 2 + 0.15 * size,
+                    baseline + 0.15 * size};
+  for (const TextBox& t : taken)
+    if (box.x0 < t.x1 && t.x0 < box.x1 && box.y0 < t.y1 && t.y0 < box.y1) return;
+  taken.push_back(box);
   cairo_t* cr = p.cr();
   cairo_set_font_size(cr, size);
   cairo_move_to(cr, x - w / 2, baseline);
@@ -1590,7 +1597,8 @@ void draw_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format, 
       // The bar's title wraps at about its own width (two lines rather than a wide column
       // that narrows the plot).
       bar_label = fit_text(p, r.colorbar_label, st.small,
-                           std::min(col_max, std::max(9.0 * st.body, 2.4 * st.body + max_label_width(p, tbar, st.small))));
+                           std::min(col_max, std::max(9.0 * st.body, 2.4 * st.body + max_label_width(p, tbar, st.small))), true,
+                           {" "}, false);
       double lw = 0;
       for (const auto& l : bar_label.lines) lw = std::max(lw, p.width(l, bar_label.size));
       col = std::max({col, 1.6 * st.body + 0.8 * st.body + max_label_width(p, tbar, st.small), lw});
@@ -1644,7 +1652,8 @@ void draw_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format, 
     draw_axes(p, f, tx, ty, lin, lin, axis_title(fig.xlabel, x_offset), ylines, false, st, lay);
     draw_series(p, f, overlay, lin, lin, st, true);
     p.clip(f.left, f.top, f.right, f.bottom);
-    for (const Annotation& a : notes_on) draw_annotation(p, f.px(a.x), f.py(a.y), a.text, a.color, st, lay);
+    std::vector<TextBox> taken;
+    for (const Annotation& a : notes_on) draw_annotation(p, f.px(a.x), f.py(a.y), a.text, a.color, st, taken, lay);
     p.unclip();
     p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
     draw_end_labels(p, f, ends, end_room, st, lay);

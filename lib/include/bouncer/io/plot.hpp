@@ -137,7 +137,8 @@ struct Raster {
 std::pair<AxisZoom, AxisZoom> set_exact_window(Raster& r, const mpq_class& x0, const mpq_class& x1, const mpq_class& y0, const mpq_class& y1);
 
 // Text written over the picture at (x, y) in axis coordinates, centred there, in `color`
-// with a white halo so that it reads on any background (direct labels of regions).
+// with a white halo so that it reads on any background (direct labels of regions). One that
+// would overlap an earlier one is left out: put the most important first.
 struct Annotation {
   double x = 0, y = 0;
   std::string text;

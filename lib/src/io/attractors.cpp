@@ -634,8 +634,9 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
   }
   // The legend: one entry per coloured family, largest first, with where its chains are
   // and, for the chains continued as branches, the explained appearances and
-  // disappearances (a*): a dashed vertical line in the family's colour at each, dots on the
-  // frame's top and bottom ("certified": every one enclosed by Krawczyk).
+  // disappearances (a*): dots on the frame's top and bottom in the family's colour at each,
+  // joined by a dashed vertical line when there are at most 12 chains ("certified": every
+  // one enclosed by Krawczyk).
   const size_t shown = std::min(family_order.size(), kColouredFamilies);
   for (size_t rank = 0; rank < shown; ++rank) {
     const size_t fam = family_order[rank];
@@ -667,7 +668,9 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
           all_certified = all_certified && e.certified;
         }
       if (!at.empty()) {
-        fig.overlay.push_back(line);
+        // Many chains: the dots on the frame's edges mark the a* (full-height lines of a
+        // hundred events would hide the bands).
+        if (r.chains.size() <= 12) fig.overlay.push_back(line);
         fig.overlay.push_back(dots);
       }
     }

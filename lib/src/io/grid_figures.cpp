@@ -368,6 +368,8 @@ ImageFigure scan_figure(const ScanResult& s, std::optional<OrbitClass> show, boo
     ras.legend = {{"fixed + periodic (black: all starts)", Rgb{0, 0, 0}},
                   {"chaotic (green: all starts)", paper_green},
                   {"neither (sticking, ...)", Rgb{255, 255, 255}}};
+    // The legend lists only colours some cell has; the blends need their rule stated.
+    ras.notes = {"a cell mixes these by the shares of its starts"};
   } else {
     for (int i = 0; i < 64; ++i) ras.colorbar.push_back(viridis_color(i / 63.0));
     ras.colorbar_lo = 0;

@@ -1653,7 +1653,12 @@ void draw_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format, 
     draw_series(p, f, overlay, lin, lin, st, true);
     p.clip(f.left, f.top, f.right, f.bottom);
     std::vector<TextBox> taken;
-    for (const Annotation& a : notes_on) draw_annotation(p, f.px(a.x), f.py(a.y), a.text, a.color, st, taken, lay);
+    for (const Annotation& a : notes_on) {
+      // Kept inside the frame: a tag of the first or last column is not cut by the edge.
+      const double half = p.width(a.text, st.small) / 2 + 0.2 * st.small;
+      const double x = f.right - f.left > 2 * half ? std::clamp(f.px(a.x), f.left + half, f.right - half) : f.px(a.x);
+      draw_annotation(p, x, f.py(a.y), a.text, a.color, st, taken, lay);
+    }
     p.unclip();
     p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
     draw_end_labels(p, f, ends, end_room, st, lay);

@@ -3,16 +3,23 @@
 // the curve palette's colour distances (CIE76, against published CIELAB values), the label
 // placement (no overlaps, as near as possible), legends that list only what is drawn, colour
 // bars where a density is drawn, direct labels that overlap nothing, and axis titles that
-// name their quantity.
+// name their quantity; and the contact sheet (thumbnails in reading order, read back with
+// Cairo's PNG reader).
+#include <cairo/cairo.h>  // (the library links Cairo; its headers are not on the suites' path)
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "bouncer/base/error.hpp"
 #include "bouncer/io/attractors.hpp"
+#include "bouncer/io/contact_sheet.hpp"
 #include "bouncer/io/grid_figures.hpp"
 #include "bouncer/io/plot.hpp"
 
@@ -373,4 +380,74 @@ TEST(StackedShares, AHundredChainsAreColouredByFamilyAndTheLargeBandsTagged) {
   ASSERT_EQ(lay.direct_labels.size(), 6u);
   for (size_t i = 0; i < 6; ++i) EXPECT_TRUE(lay.direct_labels[i].text == "P2" || lay.direct_labels[i].text == "P22");
   expect_clear(lay, fig.width, fig.height);
+}
+
+// ---- contact sheet -----------------------------------------------------------------------------
+
+TEST(ContactSheet, ThumbnailsAppearInReadingOrderAndAMissingFileWritesNothing) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("bouncer-sheet-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  // Five figures, each one raster cell of its own colour (a large uniform area).
+  const Rgb colours[] = {{200, 30, 30}, {30, 160, 30}, {30, 30, 200}, {200, 160, 30}, {120, 30, 160}};
+  std::vector<std::string> files;
+  for (int i = 0; i < 5; ++i) {
+    ImageFigure f;
+    f.title = "figure " + std::to_string(i);
+    f.raster.nx = f.raster.ny = 1;
+    f.raster.pixels = {colours[i]};
+    files.push_back((dir / ("f" + std::to_string(i) + ".png")).string());
+    write_png(files.back(), f);
+  }
+  ContactSheetOptions o;
+  o.columns = 2;
+  o.thumb_width = 300;
+  const std::string sheet = (dir / "sheet.png").string();
+  const std::pair<int, int> size = write_contact_sheet(files, sheet, o);
+  // Read back with Cairo's own PNG reader (not the writer's libpng path).
+  cairo_surface_t* img = cairo_image_surface_create_from_png(sheet.c_str());
+  ASSERT_EQ(cairo_surface_status(img), CAIRO_STATUS_SUCCESS);
+  const int w = cairo_image_surface_get_width(img), h = cairo_image_surface_get_height(img);
+  EXPECT_EQ(w, size.first);
+  EXPECT_EQ(h, size.second);
+  EXPECT_GE(w, 2 * 300);   // two columns of 300-pixel thumbnails
+  EXPECT_LT(w, 2 * 300 + 200);
+  const unsigned char* data = cairo_image_surface_get_data(img);
+  const int stride = cairo_image_surface_get_stride(img);
+  std::vector<double> cx(5, 0), cy(5, 0);
+  std::vector<long> n(5, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint32_t px;
+      std::memcpy(&px, data + static_cast<size_t>(y) * stride + 4 * static_cast<size_t>(x), 4);
+      const Rgb c{static_cast<std::uint8_t>(px >> 16), static_cast<std::uint8_t>(px >> 8), static_cast<std::uint8_t>(px)};
+      for (int i = 0; i < 5; ++i)
+        if (c == colours[i]) {
+          cx[i] += x;
+          cy[i] += y;
+          ++n[i];
+        }
+    }
+  cairo_surface_destroy(img);
+  for (int i = 0; i < 5; ++i) {
+    ASSERT_GT(n[i], 5000) << "thumbnail " << i;  // about 0.3^2 of the raster's area
+    cx[i] /= n[i];
+    cy[i] /= n[i];
+  }
+  // Reading order: 0 1 / 2 3 / 4.
+  EXPECT_LT(cx[0], cx[1]);
+  EXPECT_NEAR(cy[0], cy[1], 2);
+  EXPECT_LT(cy[1], cy[2]);
+  EXPECT_NEAR(cx[0], cx[2], 2);
+  EXPECT_NEAR(cx[2], cx[4], 2);
+  EXPECT_LT(cy[3], cy[4]);
+  // A missing picture: an error naming it, and no sheet (not even a partial one).
+  const std::string other = (dir / "other.png").string();
+  std::vector<std::string> bad = files;
+  bad.push_back((dir / "missing.png").string());
+  EXPECT_THROW(write_contact_sheet(bad, other, o), OutputError);
+  EXPECT_FALSE(fs::exists(other));
+  EXPECT_FALSE(fs::exists(other + ".partial"));
+  EXPECT_THROW(write_contact_sheet({}, other, o), std::invalid_argument);
+  fs::remove_all(dir);
 }

@@ -25,6 +25,7 @@
 #include <stdexcept>
 
 #include "bouncer/base/output.hpp"
+#include "bouncer/io/contact_sheet.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/scalar/decimal.hpp"
 
@@ -1718,6 +1719,65 @@ FigureLayout figure_layout(const ImageFigure& f, const RenderOptions& r) {
   std::ostringstream sink;
   draw_figure(sink, f, ImageFormat::svg, r, &lay);
   return lay;
+}
+
+std::pair<int, int> write_contact_sheet(const std::vector<std::string>& pngs, const std::string& out,
+                                        const ContactSheetOptions& o) {
+  if (pngs.empty()) throw std::invalid_argument("contact sheet: no pictures");
+  if (o.columns < 1 || o.columns > 16 || o.thumb_width < 64 || o.thumb_width > 2000)
+    throw std::invalid_argument("contact sheet: columns in [1, 16], thumb_width in [64, 2000]");
+  // Read every picture first: a missing or broken one is reported before anything is written.
+  std::vector<cairo_surface_t*> images;
+  auto release = [&] {
+    for (cairo_surface_t* s : images) cairo_surface_destroy(s);
+  };
+  for (const std::string& path : pngs) {
+    cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+    if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS || cairo_image_surface_get_width(s) <= 0) {
+      cairo_surface_destroy(s);
+      release();
+      throw OutputError("contact sheet: cannot read '" + path + "' as a PNG picture");
+    }
+    images.push_back(s);
+  }
+  const int tw = o.thumb_width, cols = std::min<int>(o.columns, static_cast<int>(images.size()));
+  const Style st(tw * cols, tw, kDefaultDpi);
+  const double caption = Painter::leading(st.small) + 0.4 * st.body, gap = 0.8 * st.body;
+  double row_h = 0;
+  for (cairo_surface_t* s : images)
+    row_h = std::max(row_h, static_cast<double>(tw) * cairo_image_surface_get_height(s) / cairo_image_surface_get_width(s));
+  const int rows = static_cast<int>((images.size() + cols - 1) / cols);
+  const int W = static_cast<int>(std::ceil(cols * (tw + gap) + gap));
+  const int H = static_cast<int>(std::ceil(rows * (row_h + caption + gap) + gap));
+  try {
+    check_size(W, H);
+    write_output("out", out, [&](std::ostream& os) {
+      render(os, ImageFormat::png, W, H, kDefaultDpi, {{"Title", "contact sheet"}}, [&](const Painter& p) {
+        for (size_t i = 0; i < images.size(); ++i) {
+          const double x = gap + static_cast<double>(i % cols) * (tw + gap), y = gap + static_cast<double>(i / cols) * (row_h + caption + gap);
+          const std::string name = std::filesystem::path(pngs[i]).filename().string();
+          const Fitted f = fit_text(p, name, st.small, tw, false);
+          if (!f.lines.empty()) p.text(x, y + Painter::cap(f.size), f.lines[0], f.size, kBlack);
+          const double scale = static_cast<double>(tw) / cairo_image_surface_get_width(images[i]);
+          cairo_t* cr = p.cr();
+          cairo_save(cr);
+          cairo_translate(cr, x, y + caption);
+          cairo_scale(cr, scale, scale);
+          cairo_set_source_surface(cr, images[i], 0, 0);
+          cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
+          cairo_paint(cr);
+          cairo_restore(cr);
+          p.rect(x, y + caption, x + tw, y + caption + scale * cairo_image_surface_get_height(images[i]), Rgb{200, 200, 200},
+                 1.0);
+        }
+      });
+    });
+  } catch (...) {
+    release();
+    throw;
+  }
+  release();
+  return {W, H};
 }
 
 void write_figure(const std::string& path, const Figure& f, ImageFormat format, const RenderOptions& r) {

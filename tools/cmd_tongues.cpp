@@ -51,13 +51,14 @@ void finish(const TonguesRequest& r, const Tongues& tongues, const RunFlags& f, 
   std::string csv = "p,a,eps,theta_min,full,a_double,eps_double\n";
   Figure fig;
   Series switches;
-  switches.label = "switch: ε = 1/(4p-1), a = 16/(2p-1)";
+  switches.label = "switch: ε = 1/(4p−1), a = 16/(2p−1)";
   switches.marker_size = 4;
   nlohmann::ordered_json curves = nlohmann::ordered_json::array();
   for (const TongueCurve& c : tongues.curves) {
     const long p = c.p;
     // The solid and dashed parts; the switch point belongs to both, so they join.
-    Series solid = line("p = " + std::to_string(p), category_color(static_cast<int>(p - 1)), false), dashed = solid;
+    Series solid = line("p = " + std::to_string(p), series_color(static_cast<int>(p - 1)), false), dashed = solid;
+    solid.end_label = true;  // named at its end: ten curves need more than colours
     dashed.dashed = true;
     for (const TonguePoint& q : c.points) {
       const double a = nearest_double(q.a), e = nearest_double(q.eps);
@@ -66,9 +67,10 @@ void finish(const TonguesRequest& r, const Tongues& tongues, const RunFlags& f, 
       for (Series* s : {q.full ? &solid : nullptr, !q.full || q.at_switch ? &dashed : nullptr, q.at_switch ? &switches : nullptr})
         if (s) s->x.push_back(a), s->y.push_back(e);
     }
-    // The legend names p once (on the solid part if any), and only for p <= 12.
-    if (solid.x.size() >= 2 || p > 12) dashed.label.clear();
-    if (p > 12) solid.label.clear();
+    // The curve is named once, at its end (on the solid part if any), and only for p <= 20.
+    if (solid.x.size() >= 2 || p > 20) dashed.label.clear();
+    dashed.end_label = true;
+    if (p > 20) solid.label.clear();
     for (Series* s : {&solid, &dashed})
       if (s->x.size() >= 2) fig.series.push_back(std::move(*s));
     nlohmann::ordered_json j;
@@ -80,18 +82,18 @@ void finish(const TonguesRequest& r, const Tongues& tongues, const RunFlags& f, 
   }
   if (!switches.x.empty()) fig.series.push_back(std::move(switches));
   fig.series.push_back(line("solid: θ* fills (0, 1/2)", Rgb{110, 110, 110}, false));
-  fig.series.push_back(line("dashed: θ* > 1/2 - 2pε/(1+ε) > 0", Rgb{110, 110, 110}, true));
-  fig.title = "Period-p fixed points (eq. 5): a = 8(1+ε)/(p(1-ε))";
-  fig.subtitle = "p = 1.." + std::to_string(r.p_max) + "; family θ* in (max(0, 1/2 - 2pε/(1+ε)), 1/2), proved";
-  fig.xlabel = "a (dimensionless gravity)";
-  fig.ylabel = "ε (restitution)";
+  fig.series.push_back(line("dashed: θ* > 1/2 − 2pε/(1+ε) > 0", Rgb{110, 110, 110}, true));
+  fig.title = "Period-p fixed points (eq. 5): a = 8(1+ε)/(p(1−ε))";
+  fig.subtitle = "p = 1.." + std::to_string(r.p_max) + "; family θ* in (max(0, 1/2 − 2pε/(1+ε)), 1/2), proved";
+  fig.xlabel = parameter_label(Parameter::a);
+  fig.ylabel = parameter_label(Parameter::eps);
   fig.x_min = r.a_range.first.approx();
   fig.x_max = r.a_range.second.approx();
   fig.y_min = r.eps_range.first.approx();
   fig.y_max = r.eps_range.second.approx();
   fig.width = 1000;
   fig.height = 760;
-  fig.legend_below = true;  // twelve entries: the plot keeps the figure's width
+  fig.legend_below = true;  // the keys of the marks and line styles: the plot keeps the figure's width
   fig.metadata = png_metadata(prov, fig.title);
   nlohmann::ordered_json s;
   s["command"] = "tongues";

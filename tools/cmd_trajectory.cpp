@@ -74,7 +74,7 @@ void finish(const TrajectoryRequest& r, const Trajectory<T>& tr, const RunFlags&
   if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
   if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();
   const long n = tr.impacts;
-  fig.subtitle = par + "; from θ0 = " + r.start.theta.text() + ", v0 = " + r.start.v.text() + "; " + std::to_string(n) +
+  fig.subtitle = par + "; from θ₀ = " + r.start.theta.text() + ", v₀ = " + r.start.v.text() + "; " + std::to_string(n) +
                  (n == 1 ? " impact" : " impacts") +
                  (tr.sticking_steps ? ", " + std::to_string(tr.sticking_steps) + " sticking" : "") + ", " +
                  r.precision.text();

@@ -16,6 +16,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
+import matplotlib.text
 import matplotlib.ticker
 import numpy as np
 from matplotlib.colors import ListedColormap
@@ -55,10 +56,6 @@ right.plot(bits[~stays], left_at[~stays], "o", color="#0072B2", label="leaves th
 if stays.any():
     right.plot(bits[stays], np.full(stays.sum(), sweep["inputs"]["steps"]), "^", color="#009E73",
                label="stays inside through the last step")
-for name, x, y, inside in zip(sweep["precision"], bits, left_at, stays):
-    if not name.startswith("mpfr") and not name.startswith("interval"):
-        right.annotate(name, (x, sweep["inputs"]["steps"] if inside else y), textcoords="offset points",
-                       xytext=(0, 7), fontsize=7, color="#333333", rotation=90, ha="center", va="bottom")
 right.set_xscale("log", base=2)
 right.xaxis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
 right.set_xlabel("significand bits")
@@ -71,6 +68,26 @@ right.grid(True, which="both", alpha=0.3)
 fig.text(0.01, 0.01, f"{basin['command_line']}\n{sweep['command_line']}", fontsize=6, family="monospace",
          va="bottom", color="#555555")
 fig.tight_layout(rect=(0, 0.06, 1, 1))
+# After the layout: the named precisions' labels, horizontal above their points; where one
+# would overlap a label already placed (dd and quad are 7 bits apart), it is lifted a line
+# at a time and joined to its point by a thin leader.
+placed = []
+for name, x, y, inside in sorted(zip(sweep["precision"], bits, left_at, stays), key=lambda t: t[1]):
+    if name.startswith("mpfr") or name.startswith("interval"):
+        continue
+    point = (x, sweep["inputs"]["steps"] if inside else y)
+    for lift in range(12):
+        dy = 6 + 9 * lift
+        label = right.annotate(name, point, textcoords="offset points", xytext=(0, dy), fontsize=7, color="#333333",
+                               ha="center", va="bottom",
+                               arrowprops=dict(arrowstyle="-", color="#999999", lw=0.6, shrinkA=0, shrinkB=3)
+                               if lift else None)
+        fig.canvas.draw()
+        box = matplotlib.text.Text.get_window_extent(label).expanded(1.1, 1.15)
+        if not any(box.overlaps(other) for other in placed):
+            placed.append(box)
+            break
+        label.remove()
 fig.savefig(out, dpi=150, metadata={"Software": f"bouncer {bouncer.__version__}, matplotlib"})
 print(f"wrote {out}: basin {basin['class'].shape[1]} x {basin['class'].shape[0]}, "
       f"sweep of {len(sweep['precision'])} precisions")

@@ -2,6 +2,7 @@
 #include "bouncer/io/attractors.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -316,6 +317,24 @@ std::string chain_title(const AttractorChain& c) {
   return attractor_title(a);
 }
 
+// The short name written inside a band of the stacked figure: "P3" (period 3), "F2" (family
+// of period-2 points), "k4" (sticking cycle), "Q5" (accelerator mode), "chaos", "qp", ...
+std::string chain_tag(const AttractorChain& c) {
+  const std::string q = std::to_string(c.period);
+  switch (c.kind) {
+    case AttractorKind::periodic: return "P" + q;
+    case AttractorKind::family: return "F" + q;
+    case AttractorKind::sticking: return "k" + q;
+    case AttractorKind::chaotic: return "chaos";
+    case AttractorKind::quasiperiodic: return "qp";
+    case AttractorKind::effective_sticking: return "eff. st.";
+    case AttractorKind::accelerator: return "Q" + q;
+    case AttractorKind::escape: return "esc.";
+    case AttractorKind::undecided: return "?";
+  }
+  return "?";
+}
+
 // Where a chain exists: "23.05..23.15" (first..last value present), or several pieces.
 std::string presence(const AttractorsSweepResult& r, const AttractorChain& c) {
   std::string out;
@@ -528,33 +547,83 @@ std::string attractors_sweep_json(const AttractorsSweepResult& r) {
 ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette palette) {
   const AttractorsRequest& q = r.request.point;
   const size_t n = r.values.size();
-  std::vector<Rgb> color;
-  int periodic_rank = 0, sticking_rank = 0;
-  for (const AttractorChain& c : r.chains) {
-    FoundAttractor a;
-    a.kind = c.kind;
-    a.period = c.period;
-    a.id = 1;
-    const OrbitClass cls = orbit_class(a);
-    color.push_back(attractor_color(cls == OrbitClass::fixed ? OrbitClass::periodic : cls, periodic_rank, sticking_rank, palette));
-    if (cls == OrbitClass::periodic || cls == OrbitClass::fixed) ++periodic_rank;
-    if (cls == OrbitClass::sticking) ++sticking_rank;
+  // Colours by family, not by chain: a sweep can have a hundred chains, and a hundred
+  // colours cannot be told apart. A family is the chains of one kind and period (one title:
+  // "period 3"); the families are ranked by their summed share over the sweep and the 12
+  // largest get the attractor colours (distinct, colour-blind safe first), the rest two
+  // alternating greys, light and dark, so that neighbouring bands still separate. The large
+  // bands carry their family's tag written in them (chain_tag), so a reader needs no colour
+  // to name them; the legend lists the 12 families.
+  constexpr size_t kColouredFamilies = 12;
+  std::vector<std::string> family_of(r.chains.size());
+  std::vector<std::string> families;
+  std::vector<double> family_share;
+  for (size_t c = 0; c < r.chains.size(); ++c) {
+    family_of[c] = chain_title(r.chains[c]);
+    double share = 0;
+    for (size_t k = 0; k < n; ++k)
+      if (r.chains[c].index[k] >= 0) share += r.at[k].attractors[static_cast<size_t>(r.chains[c].index[k])].fraction;
+    auto it = std::find(families.begin(), families.end(), family_of[c]);
+    if (it == families.end()) {
+      families.push_back(family_of[c]);
+      family_share.push_back(share);
+    } else {
+      family_share[static_cast<size_t>(it - families.begin())] += share;
+    }
+  }
+  std::vector<size_t> family_order(families.size());
+  for (size_t i = 0; i < families.size(); ++i) family_order[i] = i;
+  std::stable_sort(family_order.begin(), family_order.end(), [&](size_t x, size_t y) { return family_share[x] > family_share[y]; });
+  std::vector<Rgb> family_color(families.size());
+  std::vector<size_t> family_rank(families.size());
+  {
+    int periodic_rank = 0, sticking_rank = 0;
+    for (size_t rank = 0; rank < family_order.size(); ++rank) {
+      const size_t fam = family_order[rank];
+      family_rank[fam] = rank;
+      const size_t c = static_cast<size_t>(std::find(family_of.begin(), family_of.end(), families[fam]) - family_of.begin());
+      FoundAttractor a;
+      a.kind = r.chains[c].kind;
+      a.period = r.chains[c].period;
+      a.id = 1;
+      const OrbitClass cls = orbit_class(a);
+      family_color[fam] = rank < kColouredFamilies
+                              ? attractor_color(cls == OrbitClass::fixed ? OrbitClass::periodic : cls, periodic_rank, sticking_rank, palette)
+                              : Rgb{0, 0, 0};
+      if (cls == OrbitClass::periodic || cls == OrbitClass::fixed) ++periodic_rank;
+      if (cls == OrbitClass::sticking) ++sticking_rank;
+    }
+  }
+  std::vector<Rgb> color(r.chains.size());
+  const Rgb other_light{214, 206, 192}, other_dark{120, 108, 92};
+  size_t others = 0;
+  for (size_t c = 0; c < r.chains.size(); ++c) {
+    const size_t fam = static_cast<size_t>(std::find(families.begin(), families.end(), family_of[c]) - families.begin());
+    color[c] = family_rank[fam] < kColouredFamilies ? family_color[fam] : (others++ % 2 == 0 ? other_light : other_dark);
   }
   ImageFigure fig;
   Raster& ras = fig.raster;
   ras.nx = static_cast<int>(n);
   ras.ny = 400;
   const mpq_class half = (r.request.hi.value() - r.request.lo.value()) / (2 * static_cast<long>(n - 1));
-  set_exact_window(ras, r.request.lo.value() - half, r.request.hi.value() + half, 0, 1);
+  const std::pair<AxisZoom, AxisZoom> zoom = set_exact_window(ras, r.request.lo.value() - half, r.request.hi.value() + half, 0, 1);
   ras.pixels.assign(n * 400, Rgb{255, 255, 255});
   const Rgb undecided = attractor_color(OrbitClass::undecided, 0, 0, palette);
+  // Each chain's tallest band (at value tallest_at): where its tag is written.
+  std::vector<std::array<double, 2>> tallest(r.chains.size(), {0.0, 0.0});  // bottom, top
+  std::vector<size_t> tallest_at(r.chains.size(), 0);
   for (size_t k = 0; k < n; ++k) {
     std::vector<std::pair<double, Rgb>> bands;  // cumulative top of each band, from the bottom
     double top = 0;
     for (size_t c = 0; c < r.chains.size(); ++c) {
       const int i = r.chains[c].index[k];
       if (i < 0) continue;
-      top += r.at[k].attractors[static_cast<size_t>(i)].fraction;
+      const double share = r.at[k].attractors[static_cast<size_t>(i)].fraction;
+      if (share > tallest[c][1] - tallest[c][0]) {
+        tallest[c] = {top, top + share};
+        tallest_at[c] = k;
+      }
+      top += share;
       bands.emplace_back(top, color[c]);
     }
     bands.emplace_back(top + r.at[k].undecided_fraction, undecided);
@@ -567,66 +636,74 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
         }
     }
   }
-  // The legend: the chains present at the most values, then by largest share (at most 16),
-  // then undecided.
-  std::vector<size_t> order(r.chains.size());
-  std::vector<double> peak(r.chains.size(), 0);
-  std::vector<long> present(r.chains.size(), 0);
-  for (size_t c = 0; c < r.chains.size(); ++c) {
-    order[c] = c;
-    for (size_t k = 0; k < n; ++k)
-      if (r.chains[c].index[k] >= 0) {
-        ++present[c];
-        peak[c] = std::max(peak[c], r.at[k].attractors[static_cast<size_t>(r.chains[c].index[k])].fraction);
-      }
-  }
-  std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
-    if (present[x] != present[y]) return present[x] > present[y];
-    return peak[x] > peak[y];
-  });
-  const size_t shown = std::min<size_t>(order.size(), 16);
-  // The explained appearances and disappearances of the chains in the legend: a dashed
-  // vertical line in the chain's colour at each a*, dots on the frame's top and bottom; the
-  // legend entry lists them ("certified": every one of them enclosed by Krawczyk).
-  for (size_t i = 0; i < shown; ++i) {
-    const size_t c = order[i];
-    std::string mark;
+  // The legend: one entry per coloured family, largest first, with where its chains are
+  // and, for the chains continued as branches, the explained appearances and
+  // disappearances (a*): dots on the frame's top and bottom in the family's colour at each,
+  // joined by a dashed vertical line when there are at most 12 chains ("certified": every
+  // one enclosed by Krawczyk).
+  const size_t shown = std::min(family_order.size(), kColouredFamilies);
+  for (size_t rank = 0; rank < shown; ++rank) {
+    const size_t fam = family_order[rank];
+    std::vector<size_t> members;
+    for (size_t c = 0; c < r.chains.size(); ++c)
+      if (family_of[c] == families[fam]) members.push_back(c);
+    std::vector<std::string> at;
+    bool all_certified = true;
     if (r.branches) {
       Series line;
-      line.color = color[c];
+      line.color = family_color[fam];
       line.lines = true;
       line.markers = false;
       line.dashed = true;
       Series dots;
-      dots.color = color[c];
+      dots.color = family_color[fam];
       dots.marker_size = 4;
-      std::vector<std::string> at;
-      bool all_certified = true;
-      for (const ChainTransition& t : r.branches->transitions[c]) {
-        if (t.event < 0) continue;
-        const BranchEventInfo& e = r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)];
-        const double x = ras.x_offset.active() ? NAN : e.param;
-        if (!std::isfinite(x)) continue;
-        line.x.insert(line.x.end(), {x, x, NAN});
-        line.y.insert(line.y.end(), {0.0, 1.0, NAN});
-        dots.x.insert(dots.x.end(), {x, x});
-        dots.y.insert(dots.y.end(), {0.99, 0.01});
-        at.push_back(g(e.param, 5) + (e.kind == "border" ? "" : e.kind == "period_doubling" ? " PD" : " " + e.kind));
-        all_certified = all_certified && e.certified;
-      }
+      for (size_t c : members)
+        for (const ChainTransition& t : r.branches->transitions[c]) {
+          if (t.event < 0) continue;
+          const BranchEventInfo& e = r.branches->branches[static_cast<size_t>(t.branch)].events[static_cast<size_t>(t.event)];
+          const double x = ras.x_offset.active() ? NAN : e.param;
+          if (!std::isfinite(x)) continue;
+          line.x.insert(line.x.end(), {x, x, NAN});
+          line.y.insert(line.y.end(), {0.0, 1.0, NAN});
+          dots.x.insert(dots.x.end(), {x, x});
+          dots.y.insert(dots.y.end(), {0.99, 0.01});
+          at.push_back(g(e.param, 5) + (e.kind == "border" ? "" : e.kind == "period_doubling" ? " PD" : " " + e.kind));
+          all_certified = all_certified && e.certified;
+        }
       if (!at.empty()) {
-        fig.overlay.push_back(line);
+        // Many chains: the dots on the frame's edges mark the a* (full-height lines of a
+        // hundred events would hide the bands).
+        if (r.chains.size() <= 12) fig.overlay.push_back(line);
         fig.overlay.push_back(dots);
-        std::string m;
-        for (size_t j = 0; j < at.size() && j < 3; ++j) m += (j ? ", " : "") + at[j];
-        if (at.size() > 3) m += ", ...";
-        mark = std::string("; ") + name(r.request.vary) + "* " + m + (all_certified ? " certified" : "");
       }
     }
-    ras.legend.emplace_back(chain_title(r.chains[c]) + " (" + presence(r, r.chains[c]) + mark + ")", color[c]);
+    std::string where = members.size() == 1 ? presence(r, r.chains[members[0]]) : std::to_string(members.size()) + " chains";
+    if (!at.empty()) {
+      std::string m;
+      for (size_t j = 0; j < at.size() && j < 3; ++j) m += (j ? ", " : "") + at[j];
+      if (at.size() > 3) m += ", ...";
+      where += std::string("; ") + name(r.request.vary) + "* " + m + (all_certified ? " certified" : "");
+    }
+    ras.legend.emplace_back(families[fam] + " [" + chain_tag(r.chains[members[0]]) + "] (" + where + ")", family_color[fam]);
   }
-  if (shown < order.size()) ras.legend.emplace_back("+" + std::to_string(order.size() - shown) + " more", Rgb{255, 255, 255});
-  ras.legend_below = r.chains.size() > 8;
+  if (shown < family_order.size()) {
+    ras.legend.emplace_back(std::to_string(family_order.size() - shown) + " smaller families (greys, light and dark in turn)",
+                            other_light);
+  }
+  // Tags in the bands tall enough for a line of text (a tenth of the starts or more), the
+  // tallest first (where two would overlap, the renderer keeps the first).
+  std::vector<size_t> by_height(r.chains.size());
+  for (size_t c = 0; c < by_height.size(); ++c) by_height[c] = c;
+  std::stable_sort(by_height.begin(), by_height.end(), [&](size_t x, size_t y) {
+    return tallest[x][1] - tallest[x][0] > tallest[y][1] - tallest[y][0];
+  });
+  for (size_t c : by_height)
+    if (tallest[c][1] - tallest[c][0] >= 0.1)
+      fig.annotations.push_back({zoom.first(r.values[tallest_at[c]].value()), (tallest[c][0] + tallest[c][1]) / 2,
+                                 chain_tag(r.chains[c]), Rgb{0, 0, 0}});
+  ras.notes.push_back("in the bands: P3 period 3, F2 family of period-2 points, k4 sticking cycle k = 4");
+  ras.legend_below = families.size() > 6;
   ras.legend.emplace_back("undecided", undecided);
   const std::string vary = name(r.request.vary);
   fig.title = "Basin shares of the attractors against " + vary + ", " + model_title(q.model.law) + " model";
@@ -640,7 +717,7 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
   if (m.law == Law::veldep) params += ", " + par(Parameter::c, "c", m.c);
   fig.subtitle = params + "; " + std::to_string(n) + " values, " + std::to_string(q.nx) + " x " + std::to_string(q.ny) +
                  " starts each; " + q.precision.text();
-  fig.xlabel = vary == "eps" ? "ε" : vary;
+  fig.xlabel = parameter_label(r.request.vary);
   fig.ylabel = "share of the starts (stacked)";
   fig.width = 1300;
   fig.height = 720;

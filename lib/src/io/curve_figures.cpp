@@ -58,7 +58,7 @@ Figure portrait_figure(const PortraitResult& p, const PortraitView& view) {
   const PortraitAxis ax(view.theta_window), ay(view.v_window);
   for (size_t k = 0; k < orbits; ++k) {
     Series s;
-    s.color = orbits == 1 ? Rgb{20, 20, 20} : category_color(static_cast<int>(k));
+    s.color = orbits == 1 ? Rgb{20, 20, 20} : series_color(static_cast<int>(k) + 1);  // (index 0 is black)
     s.marker_size = static_cast<size_t>(r.steps) * orbits > 20000 ? 0 : 1;
     if (k < 12) s.label = "θ₀ = " + r.starts[k].theta.text() + ", v₀ = " + r.starts[k].v.text();
     for (const PortraitPoint& q : p.orbits[k].points) {
@@ -183,7 +183,7 @@ Figure exponent_curve_figure(const ExponentCurveResult& c, Palette palette) {
   fig.subtitle = fixed + std::to_string(r.samples) + " values x " + std::to_string(r.ics) + " start" + (r.ics == 1 ? "" : "s") +
                  ", " + std::to_string(r.lyapunov.transient) + " + " + std::to_string(r.lyapunov.steps) + " steps, " +
                  r.precision.text() + (not_drawn ? "; " + std::to_string(not_drawn) + " with λ = −∞ or NaN not drawn" : "");
-  fig.xlabel = r.vary == Parameter::eps ? "ε" : vary;
+  fig.xlabel = parameter_label(r.vary);
   fig.ylabel = "λ per collision (± standard error)";
   fig.legend_below = true;
   fig.x_min = zx(x_lo);

@@ -35,6 +35,15 @@ std::string parameters_text(const ModelSpec& m) {
   return par;
 }
 
+std::string parameter_label(Parameter p) {
+  switch (p) {
+    case Parameter::a: return "a (dimensionless gravity)";
+    case Parameter::eps: return "ε (restitution)";
+    case Parameter::c: return "c (restitution velocity scale)";
+  }
+  return name(p);
+}
+
 std::string model_title(Law law) {
   switch (law) {
     case Law::constant: return "constant restitution";
@@ -204,8 +213,8 @@ CertifiedMap certified_map(const CertifiedScanResult& s) {
   m.subtitle = "the orbit of (θ₀, v₀) = (" + r.start.theta.text() + ", " + r.start.v.text() + "); " + std::to_string(r.p) +
                " x " + std::to_string(r.q) + " exact parameter points, " + std::to_string(r.cert.max_steps) +
                " steps, interval:double then MPFI up to " + std::to_string(r.cert.max_bits) + " bits";
-  m.xlabel = "a";
-  m.ylabel = s.y == Parameter::eps ? "ε" : "c";
+  m.xlabel = parameter_label(Parameter::a);
+  m.ylabel = parameter_label(s.y);
   m.max_steps = r.cert.max_steps;
   m.max_bits = r.cert.max_bits;
   m.collapses = r.model.law == Law::constant;
@@ -219,7 +228,7 @@ std::string certified_label(CertifiedClass cls, long period, long long max_steps
     case CertifiedClass::sticking: return "sticking, k = " + std::to_string(period);
     case CertifiedClass::fixed: return never + "trapped at a fixed point";
     case CertifiedClass::periodic: return never + "trapped, period " + std::to_string(period);
-    case CertifiedClass::no_sticking: return "no (further) sticking in >= " + std::to_string(max_steps) + " steps";
+    case CertifiedClass::no_sticking: return "no (further) sticking in ≥ " + std::to_string(max_steps) + " steps";
     case CertifiedClass::not_trapped:
       return area_preserving ? "exact orbit certified through " + std::to_string(max_steps) + " steps"
                              : "certified " + std::to_string(max_steps) + " steps, no trapping set";
@@ -359,6 +368,8 @@ ImageFigure scan_figure(const ScanResult& s, std::optional<OrbitClass> show, boo
     ras.legend = {{"fixed + periodic (black: all starts)", Rgb{0, 0, 0}},
                   {"chaotic (green: all starts)", paper_green},
                   {"neither (sticking, ...)", Rgb{255, 255, 255}}};
+    // The legend lists only colours some cell has; the blends need their rule stated.
+    ras.notes = {"a cell mixes these by the shares of its starts"};
   } else {
     for (int i = 0; i < 64; ++i) ras.colorbar.push_back(viridis_color(i / 63.0));
     ras.colorbar_lo = 0;
@@ -368,12 +379,21 @@ ImageFigure scan_figure(const ScanResult& s, std::optional<OrbitClass> show, boo
   if (fixed_point_curves) {
     // Paper eq. 5: the fixed points of the constant model exist at a = 8(1+eps)/(p(1-eps)),
     // p = 1..10 (fig. paramspace1's curves), drawn over the window in its axis coordinates.
+    // Ten curves: each in its own colour of the qualitative palette (the paper palette: its
+    // blue) and named "p = N" at its end, where it leaves the frame; the legend says what
+    // they are.
     const double e0 = r.y_lo.value().get_d(), e1 = std::min(r.y_hi.value().get_d(), 1 - 1e-9);
-    const Rgb blue = paper ? Rgb{30, 70, 210} : Rgb{86, 180, 233};
+    Series key;
+    key.label = "eq. 5: a = 8(1+ε)/(p(1−ε))";
+    key.color = paper ? Rgb{30, 70, 210} : Rgb{90, 90, 90};
+    key.lines = true;
+    key.markers = false;
+    fig.overlay.push_back(key);
     for (int pp = 1; pp <= 10; ++pp) {
       Series curve;
-      if (pp == 1) curve.label = "eq. 5, p = 1…10: a = 8(1+ε)/(p(1−ε))";
-      curve.color = blue;
+      curve.label = "p = " + std::to_string(pp);
+      curve.end_label = true;
+      curve.color = paper ? Rgb{30, 70, 210} : series_color(pp - 1);
       curve.lines = true;
       curve.markers = false;
       for (int k = 0; k <= 400; ++k) {
@@ -389,8 +409,8 @@ ImageFigure scan_figure(const ScanResult& s, std::optional<OrbitClass> show, boo
                  " parameters, " + std::to_string(r.k) + " x " + std::to_string(r.k) + " initial conditions, " +
                  std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
                  r.precision.text();
-  fig.xlabel = "a";
-  fig.ylabel = s.y == Parameter::eps ? "ε" : "c";
+  fig.xlabel = parameter_label(Parameter::a);
+  fig.ylabel = parameter_label(s.y);
   return fig;
 }
 
@@ -475,15 +495,32 @@ ImageFigure bifurcation_figure(const BifurcationResult& b, bool show_theta, long
     else if (count[i] == 0) ras.pixels.push_back(column_bg[i % static_cast<size_t>(nx)]);
     else ras.pixels.push_back(density(std::log1p(static_cast<double>(count[i])) / std::log1p(static_cast<double>(max_count))));
   }
-  ras.legend = {{paper ? "orbit points (darker: denser)" : "orbit points (green: sparse, purple: dense)", density(1.0)},
-                {show_theta ? "sticking release (θ = 1/2)" : "sticking release (v = 4)", red}};
+  // The density's key is the colour bar (orbit points per cell, log scale, ticks at 1, 2, 5,
+  // 10, ... up to the densest cell); the legend names the marks (a sticking release only
+  // where one is drawn: the renderer leaves out classes no cell has).
+  {
+    const double full = std::log1p(static_cast<double>(max_count));
+    const double lo = max_count > 1 ? std::log1p(1.0) / full : 0;  // one point per cell at most: one colour
+    for (int i = 0; i < 64; ++i) ras.colorbar.push_back(density(lo + (1 - lo) * i / 63.0));
+    ras.colorbar_lo = lo;
+    ras.colorbar_hi = 1;
+    ras.colorbar_label = "orbit points per cell (log scale)";
+    for (long decade = 1; decade <= max_count; decade *= 10)
+      for (long m : {1L, 2L, 5L})
+        if (m * decade <= max_count) {
+          // Every 1-2-5 step while there are few decades, only the powers of ten beyond.
+          if (m != 1 && max_count > 1000) continue;
+          ras.colorbar_ticks.emplace_back(max_count > 1 ? std::log1p(static_cast<double>(m * decade)) / full : 1,
+                                          std::to_string(m * decade));
+        }
+  }
+  ras.legend = {{show_theta ? "sticking release (θ = 1/2)" : "sticking release (v = 4)", red}};
   if (r.certify) {
     ras.legend.emplace_back("double refuted by the certificate (" + std::to_string(differs) + " values)", refuted_bg);
     if (orbit_only > 0)
       ras.legend.emplace_back("orbit certified, class open (" + std::to_string(orbit_only) + " values)", orbit_only_bg);
     ras.legend.emplace_back("no certified answer (" + std::to_string(undecided - orbit_only) + " values)", undecided_bg);
   }
-  ras.colorbar.clear();  // grey level ~ log(points per cell); the legend names the marks
   ras.legend_below = true;
   fig.title = "Bifurcation diagram, " + model_title(r.model.law) + " model";
   std::string fixed;
@@ -495,7 +532,7 @@ ImageFigure bifurcation_figure(const BifurcationResult& b, bool show_theta, long
                  ", " + r.precision.text() +
                  (r.certify ? "; columns certified (interval:double, then MPFI up to " + std::to_string(r.cert.max_bits) + " bits)"
                             : "");
-  fig.xlabel = r.vary == Parameter::eps ? "ε" : name(r.vary);
+  fig.xlabel = parameter_label(r.vary);
   fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
   return fig;
 }

@@ -25,6 +25,7 @@
 #include <stdexcept>
 
 #include "bouncer/base/output.hpp"
+#include "bouncer/io/contact_sheet.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/scalar/decimal.hpp"
 
@@ -288,10 +289,10 @@ struct Fitted {
   double size;
 };
 Fitted fit_text(const Painter& p, const std::string& s, double size, double max_w, bool allow_wrap = true,
-                const std::vector<std::string>& seps = {" "}) {
+                const std::vector<std::string>& seps = {" "}, bool shrink_first = true) {
   if (s.empty()) return {{}, size};
   if (p.width(s, size) <= max_w) return {{s}, size};
-  if (p.width(s, size * 0.85) <= max_w) return {{s}, size * 0.85};
+  if (shrink_first && p.width(s, size * 0.85) <= max_w) return {{s}, size * 0.85};
   std::vector<std::string> lines{s};
   if (allow_wrap) {
     size_t best_at = std::string::npos, best_len = 0;
@@ -616,7 +617,13 @@ std::string typeset_title(const std::string& title) {
 
 // Axes: ticks, tick labels, grid lines (optional), frame and axis titles.
 void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& ty, const AxisMap& mx, const AxisMap& my,
-               const std::string& xlabel, const std::vector<std::string>& ylines, bool grid, const Style& st) {
+               const std::string& xlabel, const std::vector<std::string>& ylines, bool grid, const Style& st,
+               FigureLayout* lay = nullptr) {
+  auto record = [&](const std::string& t, double x, double baseline, double size, double align) {
+    if (!lay) return;
+    const double w = p.width(t, size);
+    lay->tick_labels.push_back({t, x - align * w, baseline - Painter::cap(size), x + (1 - align) * w, baseline});
+  };
   const double tick = 0.4 * st.body, lw = 0.8 * st.line;
   if (grid) {
     p.clip(f.left, f.top, f.right, f.bottom);
@@ -629,12 +636,14 @@ void draw_axes(const Painter& p, const Frame& f, const Ticks& tx, const Ticks& t
     const double x = f.px(mx.pos(tx.values[i]));
     p.line(x, f.bottom, x, f.bottom + tick, kFrame, lw);
     p.text(x, f.bottom + tick + 0.2 * st.body + Painter::cap(st.small), typeset(tx.labels[i]), st.small, kBlack, 0.5);
+    record(typeset(tx.labels[i]), x, f.bottom + tick + 0.2 * st.body + Painter::cap(st.small), st.small, 0.5);
   }
   for (size_t i = 0; i < ty.values.size(); ++i) {
     const double y = f.py(my.pos(ty.values[i]));
     p.line(f.left - tick, y, f.left, y, kFrame, lw);
     widest = std::max(widest, p.width(typeset(ty.labels[i]), st.small));
     p.text(f.left - tick - 0.3 * st.body, y + Painter::cap(st.small) / 2, typeset(ty.labels[i]), st.small, kBlack, 1);
+    record(typeset(ty.labels[i]), f.left - tick - 0.3 * st.body, y + Painter::cap(st.small) / 2, st.small, 1);
   }
   p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
   const double cx = (f.left + f.right) / 2, cy = (f.top + f.bottom) / 2;
@@ -688,7 +697,7 @@ Ticks axis_ticks(const AxisMap& m, double p0, double p1, int target) {
 
 // Series: lines, error bars, markers, clipped to the frame.
 void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& series, const AxisMap& mx, const AxisMap& my,
-                 const Style& st) {
+                 const Style& st, bool halo = false) {
   p.clip(f.left, f.top, f.right, f.bottom);
   cairo_t* cr = p.cr();
   for (const auto& s : series) {
@@ -699,20 +708,31 @@ void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& se
     // Far outside the frame: not drawn (Cairo's fixed point cannot hold it).
     auto near = [&](double x, double y) { return std::fabs(x) < 1e6 && std::fabs(y) < 1e6; };
     if (s.lines) {
+      auto path = [&] {
+        bool open = false;
+        for (size_t i = 0; i < n; ++i) {
+          if (!ok(i) || !near(X(i), Y(i))) {
+            open = false;
+            continue;
+          }
+          if (open) cairo_line_to(cr, X(i), Y(i));
+          else cairo_move_to(cr, X(i), Y(i));
+          open = true;
+        }
+      };
+      // Over an image, a white halo under a solid line keeps it visible on dark and light
+      // cells (a dashed line, a marker of an event, stays thin).
+      if (halo && !s.dashed) {
+        p.color(kWhite);
+        cairo_set_line_width(cr, 1.6 * st.line + 1.6 * st.unit);
+        path();
+        cairo_stroke(cr);
+      }
       p.color(s.color);
       cairo_set_line_width(cr, 1.6 * st.line);
       const double dash[] = {6 * st.line, 4 * st.line};
       if (s.dashed) cairo_set_dash(cr, dash, 2, 0);
-      bool open = false;
-      for (size_t i = 0; i < n; ++i) {
-        if (!ok(i) || !near(X(i), Y(i))) {
-          open = false;
-          continue;
-        }
-        if (open) cairo_line_to(cr, X(i), Y(i));
-        else cairo_move_to(cr, X(i), Y(i));
-        open = true;
-      }
+      path();
       cairo_stroke(cr);
       cairo_set_dash(cr, nullptr, 0, 0);
     }
@@ -774,6 +794,141 @@ int best_corner(const Frame& f, const std::vector<Series>& series, const AxisMap
   }
   covered_out = best;
   return corner;
+}
+
+// ---- direct labels ----
+// A curve's label at its end: where it leaves the window (axis positions), and whether it
+// leaves through the top (the label goes in a row above the frame) or elsewhere (a column
+// right of the frame).
+struct EndLabel {
+  std::string text;
+  Rgb color;
+  double x = 0, y = 0;
+  bool top = false;
+};
+std::vector<EndLabel> end_labels(const std::vector<Series>& series, const AxisMap& mx, const AxisMap& my, double x0, double x1,
+                                 double y0, double y1) {
+  std::vector<EndLabel> out;
+  for (const Series& s : series) {
+    if (!s.end_label || s.label.empty()) continue;
+    const size_t n = std::min(s.x.size(), s.y.size());
+    auto inside = [&](size_t i) {
+      if (!mx.drawable(s.x[i]) || !my.drawable(s.y[i])) return false;
+      const double x = mx.pos(s.x[i]), y = my.pos(s.y[i]);
+      return x >= x0 && x <= x1 && y >= y0 && y <= y1;
+    };
+    size_t last = n;
+    for (size_t i = n; i-- > 0;)
+      if (inside(i)) {
+        last = i;
+        break;
+      }
+    if (last == n) continue;  // not drawn: no label
+    EndLabel e{s.label, s.color, mx.pos(s.x[last]), my.pos(s.y[last]), false};
+    if (last + 1 < n && mx.drawable(s.x[last + 1]) && my.drawable(s.y[last + 1])) {
+      // The crossing of the segment to the next point with the window's edge.
+      const double qx = mx.pos(s.x[last + 1]), qy = my.pos(s.y[last + 1]), dx = qx - e.x, dy = qy - e.y;
+      double t = 1;
+      bool top = false;
+      if (qx > x1 && dx > 0) t = std::min(t, (x1 - e.x) / dx);
+      if (qx < x0 && dx < 0) t = std::min(t, (x0 - e.x) / dx);
+      if (qy < y0 && dy < 0) t = std::min(t, (y0 - e.y) / dy);
+      if (qy > y1 && dy > 0 && (y1 - e.y) / dy < t) {
+        t = (y1 - e.y) / dy;
+        top = true;
+      }
+      e.x += t * dx;
+      e.y += t * dy;
+      e.top = top;
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+// Room the end labels need: right of the frame (their widest text and a leader), above it.
+double end_label_right_room(const Painter& p, const std::vector<EndLabel>& labels, const Style& st) {
+  double w = 0;
+  for (const EndLabel& e : labels)
+    if (!e.top) w = std::max(w, p.width(e.text, st.small));
+  return w > 0 ? w + 1.1 * st.body : 0;
+}
+double end_label_top_room(const std::vector<EndLabel>& labels, const Style& st) {
+  for (const EndLabel& e : labels)
+    if (e.top) return Painter::leading(st.small) + 0.3 * st.body;
+  return 0;
+}
+// The labels in the series' colours, moved apart where they would overlap (spread_labels),
+// each joined to its curve's end by a thin leader line.
+void draw_end_labels(const Painter& p, const Frame& f, const std::vector<EndLabel>& labels, double right_room, const Style& st,
+                     FigureLayout* lay) {
+  std::vector<size_t> right, top;
+  for (size_t i = 0; i < labels.size(); ++i) (labels[i].top ? top : right).push_back(i);
+  const double h = Painter::leading(st.small), lw = 0.7 * st.line;
+  if (!right.empty()) {
+    std::vector<double> wanted;
+    for (size_t i : right) wanted.push_back(std::clamp(f.py(labels[i].y), f.top, f.bottom));
+    const std::vector<double> at = spread_labels(wanted, h, f.top - 0.5 * h, f.bottom + 0.5 * h);
+    const double tx = f.right + 0.9 * st.body;
+    for (size_t k = 0; k < right.size(); ++k) {
+      const EndLabel& e = labels[right[k]];
+      const double baseline = at[k] + Painter::cap(st.small) / 2;
+      p.line(std::min(f.px(e.x), f.right), std::clamp(f.py(e.y), f.top, f.bottom), tx - 0.2 * st.body, at[k], e.color, lw);
+      p.text(tx, baseline, e.text, st.small, e.color);
+      if (lay) lay->direct_labels.push_back({e.text, tx, baseline - Painter::cap(st.small), tx + p.width(e.text, st.small), baseline});
+    }
+  }
+  if (!top.empty()) {
+    double widest = 0;
+    std::vector<double> wanted;
+    for (size_t i : top) {
+      wanted.push_back(f.px(labels[i].x));
+      widest = std::max(widest, p.width(labels[i].text, st.small));
+    }
+    const double size = widest + 0.6 * st.small;
+    const std::vector<double> at = spread_labels(wanted, size, f.left, f.right + right_room);
+    const double baseline = f.top - 0.45 * st.body;
+    for (size_t k = 0; k < top.size(); ++k) {
+      const EndLabel& e = labels[top[k]];
+      p.line(f.px(e.x), f.top, at[k], baseline + 0.15 * st.body, e.color, lw);
+      p.text(at[k], baseline, e.text, st.small, e.color, 0.5);
+      const double w = p.width(e.text, st.small);
+      if (lay) lay->direct_labels.push_back({e.text, at[k] - w / 2, baseline - Painter::cap(st.small), at[k] + w / 2, baseline});
+    }
+  }
+}
+// Text centred at (x, y) with a white halo (Annotation), unless its box would overlap one
+// already written (`taken`): labels never cover each other; the earlier ones win.
+void draw_annotation(const Painter& p, double x, double y, const std::string& text, Rgb color, const Style& st,
+                     std::vector<TextBox>& taken, FigureLayout* lay) {
+  if (text.empty()) return;
+  const double size = st.small, w = p.width(text, size), baseline = y + Painter::cap(size) / 2;
+  const TextBox box{text, x - w / 2 - 0.15 * size, baseline - Painter::cap(size) - 0.15 * size, x + w / 2 + 0.15 * size,
+                    baseline + 0.15 * size};
+  for (const TextBox& t : taken)
+    if (box.x0 < t.x1 && t.x0 < box.x1 && box.y0 < t.y1 && t.y0 < box.y1) return;
+  taken.push_back(box);
+  cairo_t* cr = p.cr();
+  cairo_set_font_size(cr, size);
+  cairo_move_to(cr, x - w / 2, baseline);
+  cairo_text_path(cr, text.c_str());
+  p.color(kWhite);
+  cairo_set_line_width(cr, 0.3 * size);
+  cairo_stroke_preserve(cr);
+  p.color(color);
+  cairo_fill(cr);
+  if (lay) lay->direct_labels.push_back({text, x - w / 2, baseline - Painter::cap(size), x + w / 2, baseline});
+}
+// Whether a series has a point in the window (axis positions): only drawn series get a
+// legend entry.
+bool shows_in(const Series& s, const AxisMap& mx, const AxisMap& my, double x0, double x1, double y0, double y1) {
+  const size_t n = std::min(s.x.size(), s.y.size());
+  const double ex = (x1 - x0) * 1e-9, ey = (y1 - y0) * 1e-9;
+  for (size_t i = 0; i < n; ++i) {
+    if (!mx.drawable(s.x[i]) || !my.drawable(s.y[i])) continue;
+    const double x = mx.pos(s.x[i]), y = my.pos(s.y[i]);
+    if (x >= x0 - ex && x <= x1 + ex && y >= y0 - ey && y <= y1 + ey) return true;
+  }
+  return false;
 }
 
 // A rendering target: an image surface for PNG, a PDF or SVG stream into a string.
@@ -1130,6 +1285,87 @@ Rgb category_color(int index) {
   return Rgb{static_cast<std::uint8_t>(base.r * f), static_cast<std::uint8_t>(base.g * f), static_cast<std::uint8_t>(base.b * f)};
 }
 
+Rgb series_color(int index) {
+  // Okabe-Ito without its yellow, then colours picked greedily from an sRGB grid (L* in
+  // [25, 66], chroma <= 65) for the largest smallest CIE76 distance to those before.
+  static const Rgb palette[] = {
+      {0, 0, 0},      {230, 159, 0},  {86, 180, 233},  {0, 158, 115},   {0, 114, 178},  {213, 94, 0},  {204, 121, 167},
+      {105, 90, 30},  {120, 15, 30},  {105, 60, 165},  {120, 165, 45},  {30, 90, 90},   {255, 105, 120}, {90, 60, 90},
+      {180, 150, 135}, {0, 75, 0},    {135, 0, 90},    {135, 150, 255}, {210, 120, 225}, {180, 105, 60},
+  };
+  constexpr int n = sizeof(palette) / sizeof(palette[0]);
+  if (index < 0) index = 0;
+  const Rgb base = palette[index % n];
+  if (index < n) return base;
+  const double f = 0.65;  // further series: darker variants
+  return Rgb{static_cast<std::uint8_t>(base.r * f), static_cast<std::uint8_t>(base.g * f), static_cast<std::uint8_t>(base.b * f)};
+}
+
+Lab to_lab(Rgb c) {
+  auto linear = [](std::uint8_t v) {
+    const double x = v / 255.0;
+    return x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
+  };
+  const double r = linear(c.r), g = linear(c.g), b = linear(c.b);
+  const double X = 0.4124564 * r + 0.3575761 * g + 0.1804375 * b, Y = 0.2126729 * r + 0.7151522 * g + 0.0721750 * b,
+               Z = 0.0193339 * r + 0.1191920 * g + 0.9503041 * b;
+  auto f = [](double t) {
+    constexpr double d = 6.0 / 29;
+    return t > d * d * d ? std::cbrt(t) : t / (3 * d * d) + 4.0 / 29;
+  };
+  const double fx = f(X / 0.95047), fy = f(Y), fz = f(Z / 1.08883);
+  return Lab{116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)};
+}
+
+double delta_e76(Rgb x, Rgb y) {
+  const Lab a = to_lab(x), b = to_lab(y);
+  return std::sqrt((a.l - b.l) * (a.l - b.l) + (a.a - b.a) * (a.a - b.a) + (a.b - b.b) * (a.b - b.b));
+}
+
+std::vector<double> spread_labels(const std::vector<double>& wanted, double size, double lo, double hi) {
+  const size_t n = wanted.size();
+  std::vector<size_t> order(n);
+  for (size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return wanted[a] < wanted[b]; });
+  // Clusters of consecutive labels (in wanted order), each placed as a block of k * size
+  // centred on its members' mean wish, clamped into [lo, hi]; a block that overlaps the one
+  // before merges with it, and the merged block is placed again (pool adjacent violators).
+  struct Block {
+    size_t first, count;
+    double sum;  // of the wanted centres
+    double start = 0;
+  };
+  auto place = [&](Block& b) {
+    const double len = b.count * size;
+    b.start = b.sum / b.count - len / 2;
+    b.start = std::max(lo, std::min(b.start, hi - len));
+  };
+  std::vector<Block> blocks;
+  for (size_t k = 0; k < n; ++k) {
+    Block b{k, 1, wanted[order[k]]};
+    place(b);
+    blocks.push_back(b);
+    while (blocks.size() >= 2) {
+      Block& prev = blocks[blocks.size() - 2];
+      const Block& last = blocks.back();
+      if (prev.start + prev.count * size <= last.start + 1e-9) break;
+      prev.count += last.count;
+      prev.sum += last.sum;
+      blocks.pop_back();
+      place(blocks.back());
+    }
+  }
+  // Blocks too long for [lo, hi] start at lo; the ones after follow without overlap.
+  std::vector<double> out(n);
+  double next = -std::numeric_limits<double>::infinity();
+  for (const Block& b : blocks) {
+    const double start = std::max(b.start, next);
+    for (size_t j = 0; j < b.count; ++j) out[order[b.first + j]] = start + (j + 0.5) * size;
+    next = start + b.count * size;
+  }
+  return out;
+}
+
 // The pixels of a figure drawn with `ro`: --size when given, else the figure's own size
 // (set for kDefaultDpi) scaled to ro.dpi, so that --dpi changes the resolution and not the
 // figure's physical size or layout.
@@ -1140,7 +1376,9 @@ std::pair<int, int> figure_pixels(const RenderOptions& ro, int own_width, int ow
   return {ro.width > 0 ? ro.width : scaled(own_width), ro.height > 0 ? ro.height : scaled(own_height)};
 }
 
-void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, const RenderOptions& ro) {
+namespace {
+
+void draw_figure(std::ostream& out, const Figure& fig, ImageFormat format, const RenderOptions& ro, FigureLayout* lay) {
   const std::pair<int, int> pixels = figure_pixels(ro, fig.width, fig.height);
   const int W = pixels.first, H = pixels.second;
   check_size(W, H);
@@ -1182,20 +1420,28 @@ void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, cons
   }
   const std::string xlabel = axis_title(fig.xlabel, x_offset);
 
+  // The legend: the labelled series that show in the window (a series without points is a
+  // key, e.g. of a line style, and keeps its entry); end-labelled ones are named at their ends.
   std::vector<LegendEntry> legend;
   for (const auto& s : *series)
-    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, true, s.dashed});
+    if (!s.label.empty() && !s.end_label && (s.x.empty() || shows_in(s, mx, my, x0, x1, y0, y1)))
+      legend.push_back({s.label, s.color, s.lines, s.markers, true, s.dashed});
+  const std::vector<EndLabel> ends = end_labels(*series, mx, my, x0, x1, y0, y1);
+  if (lay)
+    for (const auto& e : legend) lay->legend.push_back(e.label);
 
   render(out, format, W, H, ro.dpi, fig.metadata, [&](const Painter& p) {
     const TitleBlock tb = title_block(p, fig.title, fig.subtitle, W, st);
     Frame f{};
-    f.top = tb.height(st) + 0.3 * st.body;
+    f.top = tb.height(st) + 0.3 * st.body + end_label_top_room(ends, st);
     const double below = fig.legend_below ? legend_rows_height(p, legend, st.small, W - 2 * st.body) : 0;
     f.bottom = H - bottom_room(xlabel, st) - below;
     const std::vector<std::string> ylines = y_title_lines(p, fig.ylabel, y_offset, f.bottom - f.top, st.body);
     f.left = left_room(p, axis_ticks(my, y0, y1, 6), ylines, st);
     const Ticks tx0 = axis_ticks(mx, x0, x1, 6);
-    f.right = W - std::max(1.2 * st.body, (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) + 0.5 * st.body);
+    const double end_room = end_label_right_room(p, ends, st);
+    f.right = W - std::max(1.2 * st.body + end_room,
+                           (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) + 0.5 * st.body);
     // The legend: inside the frame, in the corner that hides the fewest points, when it is
     // small beside the frame and that corner is (nearly) empty; else a slim column at the right.
     const Frame base = f;
@@ -1204,7 +1450,7 @@ void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, cons
       f = base;
       if (column) {
         box = legend_box(p, legend, st.small, 0.2 * W);
-        f.right = W - box.w - 1.2 * st.body;
+        f.right = W - box.w - 1.2 * st.body - end_room;
       }
       if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
       if (fig.equal_aspect) {
@@ -1245,9 +1491,11 @@ void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, cons
     const Ticks tx = axis_ticks(mx, f.x0, f.x1, std::max(3, static_cast<int>((f.right - f.left) / (6 * st.body))));
     const Ticks ty = axis_ticks(my, f.y0, f.y1, std::max(3, static_cast<int>((f.bottom - f.top) / (3.5 * st.body))));
     draw_title(p, tb, W / 2.0, st);
-    draw_axes(p, f, tx, ty, mx, my, xlabel, ylines, true, st);
+    draw_axes(p, f, tx, ty, mx, my, xlabel, ylines, true, st, lay);
     draw_series(p, f, *series, mx, my, st);
     p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
+    draw_end_labels(p, f, ends, end_room, st, lay);
+    if (lay) lay->frame = {"", f.left, f.top, f.right, f.bottom};
     if (fig.legend_below) {
       draw_legend_rows(p, st.body, H - below - 0.2 * st.body, W - 2 * st.body, legend, st.small, st);
     } else if (inside) {
@@ -1256,12 +1504,12 @@ void write_figure(std::ostream& out, const Figure& fig, ImageFormat format, cons
       draw_legend(p, c % 2 == 0 ? f.right - m - box.w : f.left + m, c < 2 ? f.top + m : f.bottom - m - box.h, box, legend, st,
                   true);
     } else {
-      draw_legend(p, f.right + 0.8 * st.body, f.top, box, legend, st, false);
+      draw_legend(p, f.right + end_room + 0.8 * st.body, f.top, box, legend, st, false);
     }
   });
 }
 
-void write_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format, const RenderOptions& ro) {
+void draw_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format, const RenderOptions& ro, FigureLayout* lay) {
   const Raster& r = fig.raster;
   const std::pair<int, int> pixels = figure_pixels(ro, fig.width, fig.height);
   const int W = pixels.first, H = pixels.second;
@@ -1278,22 +1526,46 @@ void write_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format,
     throw std::runtime_error("raster window is empty");
   AxisOffset x_offset = r.x_offset, y_offset = r.y_offset;
   std::vector<Series> overlay = fig.overlay;
+  std::vector<Annotation> notes_on = fig.annotations;
   if (!x_offset.active()) {
     const AxisZoom z{mpq_class(x0), mpq_class(x1)};
     x0 = z(x0); x1 = z(x1); x_offset = z.offset();
     for (Series& s : overlay) for (double& x : s.x) x = z(x);
+    for (Annotation& a : notes_on) a.x = z(a.x);
   }
   if (!y_offset.active()) {
     const AxisZoom z{mpq_class(y0), mpq_class(y1)};
     y0 = z(y0); y1 = z(y1); y_offset = z.offset();
     for (Series& s : overlay) for (double& y : s.y) y = z(y);
+    for (Annotation& a : notes_on) a.y = z(a.y);
   }
 
-  std::vector<LegendEntry> legend;
-  for (const auto& [label, color] : r.legend) legend.push_back({label, color, false, true});
-  for (const auto& s : overlay)
-    if (!s.label.empty()) legend.push_back({s.label, s.color, s.lines, s.markers, false, s.dashed});
+  // The legend names only what is drawn: a class whose colour no cell has is left out
+  // (a sticking release in a diagram without one, "not confirmed" where every cell was);
+  // overlay curves only when they show in the window, and not when named at their ends.
   const AxisMap lin;
+  std::vector<Rgb> present;
+  {
+    std::vector<std::uint32_t> keys;
+    keys.reserve(r.pixels.size());
+    for (const Rgb& c : r.pixels) keys.push_back((std::uint32_t{c.r} << 16) | (std::uint32_t{c.g} << 8) | c.b);
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    for (std::uint32_t k : keys) present.push_back(Rgb{static_cast<std::uint8_t>(k >> 16), static_cast<std::uint8_t>(k >> 8), static_cast<std::uint8_t>(k)});
+  }
+  std::vector<LegendEntry> legend;
+  for (const auto& [label, color] : r.legend)
+    if (std::find(present.begin(), present.end(), color) != present.end()) legend.push_back({label, color, false, true});
+  for (const auto& s : overlay)
+    if (!s.label.empty() && !s.end_label && (s.x.empty() || shows_in(s, lin, lin, x0, x1, y0, y1)))
+      legend.push_back({s.label, s.color, s.lines, s.markers, false, s.dashed});
+  if (lay)
+    for (const auto& e : legend) lay->legend.push_back(e.label);
+  for (const std::string& note : r.notes) {
+    legend.push_back({note, kWhite, false, false});  // no swatch
+    if (lay) lay->notes.push_back(note);
+  }
+  const std::vector<EndLabel> ends = end_labels(overlay, lin, lin, x0, x1, y0, y1);
 
   // The raster as an image (at most 2048 cells a side: larger grids are sampled, nearest).
   const int sx = std::min(r.nx, 2048), sy = std::min(r.ny, 2048);
@@ -1313,18 +1585,32 @@ void write_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format,
       box = legend_box(p, legend, st.small, col_max - 2.6 * st.small);
       col = box.w;
     }
-    const Ticks tbar = r.colorbar.empty() ? Ticks{} : nice_ticks(r.colorbar_lo, r.colorbar_hi, 5);
+    Ticks tbar = r.colorbar.empty() ? Ticks{} : nice_ticks(r.colorbar_lo, r.colorbar_hi, 5);
+    if (!r.colorbar.empty() && !r.colorbar_ticks.empty()) {
+      tbar = Ticks{};
+      for (const auto& [v, label] : r.colorbar_ticks) {
+        tbar.values.push_back(v);
+        tbar.labels.push_back(label);
+      }
+    }
     Fitted bar_label{{}, st.small};
     if (!r.colorbar.empty()) {
-      bar_label = fit_text(p, r.colorbar_label, st.small, col_max);
+      // The bar's title wraps at about its own width (two lines rather than a wide column
+      // that narrows the plot).
+      bar_label = fit_text(p, r.colorbar_label, st.small,
+                           std::min(col_max, std::max(9.0 * st.body, 2.4 * st.body + max_label_width(p, tbar, st.small))), true,
+                           {" "}, false);
       double lw = 0;
       for (const auto& l : bar_label.lines) lw = std::max(lw, p.width(l, bar_label.size));
       col = std::max({col, 1.6 * st.body + 0.8 * st.body + max_label_width(p, tbar, st.small), lw});
     }
     const Ticks tx0 = nice_ticks(x0, x1);
-    f.right = W - (col > 0 ? col + 1.6 * st.body
-                           : std::max(1.2 * st.body, (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) +
-                                                         0.5 * st.body));
+    const double end_room = end_label_right_room(p, ends, st);
+    f.top += end_label_top_room(ends, st);
+    f.right = W - end_room -
+              (col > 0 ? col + 1.6 * st.body
+                       : std::max(1.2 * st.body, (tx0.labels.empty() ? 0 : p.width(tx0.labels.back(), st.small) / 2) +
+                                                     0.5 * st.body));
     if (f.right - f.left < 80 || f.bottom - f.top < 60) throw std::runtime_error("figure too small for its labels");
     f.snap();
     f.x0 = x0; f.x1 = x1; f.y0 = y0; f.y1 = y1;
@@ -1364,12 +1650,23 @@ void write_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format,
     const Ticks tx = nice_ticks(f.x0, f.x1, std::max(3, static_cast<int>((f.right - f.left) / (6 * st.body))));
     const Ticks ty = nice_ticks(f.y0, f.y1, std::max(3, static_cast<int>((f.bottom - f.top) / (3.5 * st.body))));
     draw_title(p, tb, W / 2.0, st);
-    draw_axes(p, f, tx, ty, lin, lin, axis_title(fig.xlabel, x_offset), ylines, false, st);
-    draw_series(p, f, overlay, lin, lin, st);
+    draw_axes(p, f, tx, ty, lin, lin, axis_title(fig.xlabel, x_offset), ylines, false, st, lay);
+    draw_series(p, f, overlay, lin, lin, st, true);
+    p.clip(f.left, f.top, f.right, f.bottom);
+    std::vector<TextBox> taken;
+    for (const Annotation& a : notes_on) {
+      // Kept inside the frame: a tag of the first or last column is not cut by the edge.
+      const double half = p.width(a.text, st.small) / 2 + 0.2 * st.small;
+      const double x = f.right - f.left > 2 * half ? std::clamp(f.px(a.x), f.left + half, f.right - half) : f.px(a.x);
+      draw_annotation(p, x, f.py(a.y), a.text, a.color, st, taken, lay);
+    }
+    p.unclip();
     p.rect(f.left, f.top, f.right, f.bottom, kFrame, frame_width(st));
+    draw_end_labels(p, f, ends, end_room, st, lay);
+    if (lay) lay->frame = {"", f.left, f.top, f.right, f.bottom};
 
     double y = f.top;
-    const double x = f.right + 0.8 * st.body;
+    const double x = f.right + end_room + 0.8 * st.body;
     if (r.legend_below) {
       draw_legend_rows(p, st.body, H - below - 0.2 * st.body, W - 2 * st.body, legend, st.small, st);
     } else if (!legend.empty()) {
@@ -1394,9 +1691,93 @@ void write_figure(std::ostream& out, const ImageFigure& fig, ImageFormat format,
           p.line(x + bw, yy, x + bw + 0.3 * st.body, yy, kFrame, 0.8 * st.line);
           p.text(x + bw + 0.5 * st.body, yy + Painter::cap(st.small) / 2, typeset(tbar.labels[i]), st.small, kBlack);
         }
+        if (lay) {
+          lay->colorbar = true;
+          lay->colorbar_ticks = tbar.labels;
+        }
       }
     }
   });
+}
+
+}  // namespace
+
+void write_figure(std::ostream& out, const Figure& f, ImageFormat format, const RenderOptions& r) {
+  draw_figure(out, f, format, r, nullptr);
+}
+void write_figure(std::ostream& out, const ImageFigure& f, ImageFormat format, const RenderOptions& r) {
+  draw_figure(out, f, format, r, nullptr);
+}
+FigureLayout figure_layout(const Figure& f, const RenderOptions& r) {
+  FigureLayout lay;
+  std::ostringstream sink;
+  draw_figure(sink, f, ImageFormat::svg, r, &lay);
+  return lay;
+}
+FigureLayout figure_layout(const ImageFigure& f, const RenderOptions& r) {
+  FigureLayout lay;
+  std::ostringstream sink;
+  draw_figure(sink, f, ImageFormat::svg, r, &lay);
+  return lay;
+}
+
+std::pair<int, int> write_contact_sheet(const std::vector<std::string>& pngs, const std::string& out,
+                                        const ContactSheetOptions& o) {
+  if (pngs.empty()) throw std::invalid_argument("contact sheet: no pictures");
+  if (o.columns < 1 || o.columns > 16 || o.thumb_width < 64 || o.thumb_width > 2000)
+    throw std::invalid_argument("contact sheet: columns in [1, 16], thumb_width in [64, 2000]");
+  // Read every picture first: a missing or broken one is reported before anything is written.
+  std::vector<cairo_surface_t*> images;
+  auto release = [&] {
+    for (cairo_surface_t* s : images) cairo_surface_destroy(s);
+  };
+  for (const std::string& path : pngs) {
+    cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+    if (cairo_surface_status(s) != CAIRO_STATUS_SUCCESS || cairo_image_surface_get_width(s) <= 0) {
+      cairo_surface_destroy(s);
+      release();
+      throw OutputError("contact sheet: cannot read '" + path + "' as a PNG picture");
+    }
+    images.push_back(s);
+  }
+  const int tw = o.thumb_width, cols = std::min<int>(o.columns, static_cast<int>(images.size()));
+  const Style st(tw * cols, tw, kDefaultDpi);
+  const double caption = Painter::leading(st.small) + 0.4 * st.body, gap = 0.8 * st.body;
+  double row_h = 0;
+  for (cairo_surface_t* s : images)
+    row_h = std::max(row_h, static_cast<double>(tw) * cairo_image_surface_get_height(s) / cairo_image_surface_get_width(s));
+  const int rows = static_cast<int>((images.size() + cols - 1) / cols);
+  const int W = static_cast<int>(std::ceil(cols * (tw + gap) + gap));
+  const int H = static_cast<int>(std::ceil(rows * (row_h + caption + gap) + gap));
+  try {
+    check_size(W, H);
+    write_output("out", out, [&](std::ostream& os) {
+      render(os, ImageFormat::png, W, H, kDefaultDpi, {{"Title", "contact sheet"}}, [&](const Painter& p) {
+        for (size_t i = 0; i < images.size(); ++i) {
+          const double x = gap + static_cast<double>(i % cols) * (tw + gap), y = gap + static_cast<double>(i / cols) * (row_h + caption + gap);
+          const std::string name = std::filesystem::path(pngs[i]).filename().string();
+          const Fitted f = fit_text(p, name, st.small, tw, false);
+          if (!f.lines.empty()) p.text(x, y + Painter::cap(f.size), f.lines[0], f.size, kBlack);
+          const double scale = static_cast<double>(tw) / cairo_image_surface_get_width(images[i]);
+          cairo_t* cr = p.cr();
+          cairo_save(cr);
+          cairo_translate(cr, x, y + caption);
+          cairo_scale(cr, scale, scale);
+          cairo_set_source_surface(cr, images[i], 0, 0);
+          cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
+          cairo_paint(cr);
+          cairo_restore(cr);
+          p.rect(x, y + caption, x + tw, y + caption + scale * cairo_image_surface_get_height(images[i]), Rgb{200, 200, 200},
+                 1.0);
+        }
+      });
+    });
+  } catch (...) {
+    release();
+    throw;
+  }
+  release();
+  return {W, H};
 }
 
 void write_figure(const std::string& path, const Figure& f, ImageFormat format, const RenderOptions& r) {

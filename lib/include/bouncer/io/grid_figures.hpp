@@ -18,6 +18,9 @@ namespace bouncer {
 
 // "constant restitution", "velocity-dependent restitution", "elastic" (figure titles).
 std::string model_title(Law law);
+// A parameter's axis title, symbol and meaning: "a (dimensionless gravity)", "ε (restitution)",
+// "c (restitution velocity scale)" (every figure with a parameter axis).
+std::string parameter_label(Parameter p);
 // "a = 23.1, c = 1000" (figure subtitles).
 std::string parameters_text(const ModelSpec& m);
 // Pixel of item i (column i mod nx, row i / nx from the bottom) in a raster (rows from the top).

@@ -83,6 +83,10 @@ struct Series {
   // Vertical error bars: y[i] +- yerr[i] (empty: none; non-finite entries: no bar).
   std::vector<double> yerr = {};
   bool dashed = false;         // the connecting line is dashed (also in the legend)
+  // The label is written at the curve's end (where it leaves the frame: in a column right of
+  // the frame, or a row above it), in the curve's colour, instead of in the legend; labels
+  // that would overlap are moved apart (spread_labels) with a leader line to their curve.
+  bool end_label = false;
 };
 
 struct Figure {
@@ -116,6 +120,11 @@ struct Raster {
   std::vector<Rgb> colorbar;
   double colorbar_lo = 0, colorbar_hi = 1;
   std::string colorbar_label;
+  // The colour bar's ticks at these values in [colorbar_lo, colorbar_hi] with these labels
+  // (e.g. counts on a log scale); empty: nice ticks of [colorbar_lo, colorbar_hi].
+  std::vector<std::pair<double, std::string>> colorbar_ticks;
+  // Lines of text under the legend, without a swatch ("+3 more types").
+  std::vector<std::string> notes;
   bool legend_below = false;  // legend in rows under the image instead of at the right
   // Zoomed axes (AxisZoom): x_min/x_max (y_min/y_max) are t coordinates of these offsets.
   // Inactive: plain values, and a window too narrow for plain tick labels gets an offset.
@@ -127,9 +136,19 @@ struct Raster {
 // values themselves otherwise. Returns the two axes' maps, for drawing over the raster.
 std::pair<AxisZoom, AxisZoom> set_exact_window(Raster& r, const mpq_class& x0, const mpq_class& x1, const mpq_class& y0, const mpq_class& y1);
 
+// Text written over the picture at (x, y) in axis coordinates, centred there, in `color`
+// with a white halo so that it reads on any background (direct labels of regions). One that
+// would overlap an earlier one is left out: put the most important first.
+struct Annotation {
+  double x = 0, y = 0;
+  std::string text;
+  Rgb color{0, 0, 0};
+};
+
 struct ImageFigure {
   std::string title, xlabel, ylabel;
   Raster raster;
+  std::vector<Annotation> annotations;
   // Curves drawn over the raster, clipped to its frame, in the raster's axis coordinates
   // (t coordinates of its offsets); labelled ones join the legend.
   std::vector<Series> overlay;
@@ -192,6 +211,44 @@ Ticks log_ticks(double lo, double hi, double base);
 Rgb ramp_color(double t);
 // A perceptually uniform, colour-blind-safe ramp (viridis: dark purple at 0, yellow at 1).
 Rgb viridis_color(double t);
+// A qualitative palette for curves and point series on white: index 0, 1, ... are
+// told apart by colour (CIE76 delta E >= 25 between any two of the first 20) and none is
+// faint on white (CIE L* <= 72); the first seven are the Okabe-Ito colours without its
+// yellow (colour-blind safe), the rest chosen greedily for the largest smallest delta E at
+// moderate chroma. Beyond 20 the colours repeat darker. Ten or more
+// curves should also carry their labels (Series::end_label): no palette tells ten curves
+// apart for every reader.
+Rgb series_color(int index);
+// CIE L*a*b* of an sRGB colour (D65) and the CIE76 colour difference of two colours.
+struct Lab {
+  double l = 0, a = 0, b = 0;
+};
+Lab to_lab(Rgb c);
+double delta_e76(Rgb x, Rgb y);
+
+// Label placement on one axis: labels of extent `size` wanted at centres `wanted` (any
+// order) inside [lo, hi]; returns centres in the same order, at least `size` apart, each as
+// near its wanted place as that allows (clusters of touching labels are centred on their
+// wanted mean, then pushed inside [lo, hi]; if they do not fit, they are packed from lo).
+std::vector<double> spread_labels(const std::vector<double>& wanted, double size, double lo, double hi);
+
+// What a drawn figure shows, for checks: the legend entries and notes drawn (in order), the
+// colour bar's tick labels (empty: no colour bar) and the boxes (figure pixels) of the
+// direct labels (end labels, annotations), of the tick labels and of the frame.
+struct TextBox {
+  std::string text;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+struct FigureLayout {
+  std::vector<std::string> legend, notes;
+  bool colorbar = false;
+  std::vector<std::string> colorbar_ticks;
+  std::vector<TextBox> direct_labels, tick_labels;
+  TextBox frame;
+};
+FigureLayout figure_layout(const Figure& f, const RenderOptions& r = {});
+FigureLayout figure_layout(const ImageFigure& f, const RenderOptions& r = {});
+
 // Distinct colours for categories (attractors): index 0, 1, ... never red or blue, which
 // are reserved for sticking and unbounded orbits. The first ones are Okabe-Ito colours
 // (distinguishable with the common colour-vision deficiencies).

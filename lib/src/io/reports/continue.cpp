@@ -435,7 +435,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
   if (r.model.law == Law::veldep && r.vary != Parameter::c) fixed += "c = " + r.model.c.text() + ", ";
   fig.subtitle = fixed + "started at " + par + " = " + short_num(s0.param) + "; " + std::to_string(b.points.size()) + " points, " +
                  r.precision.text();
-  fig.xlabel = r.vary == Parameter::eps ? "ε" : par;
+  fig.xlabel = parameter_label(r.vary);
   fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
   fig.metadata = png_metadata(prov, fig.title);
   return fig;

@@ -141,6 +141,15 @@ for l in n.links:
     if l.startswith("#") and l[1:] not in n.ids: errors.append(f"link {l} lands nowhere")
 if len(set(n.ids)) != len(n.ids): errors.append("report.html repeats an id")
 if "--scene data/scenes/" in html: errors.append("a rerun command in report.html names a scene by its checkout path")
+# The contact sheet as one PNG (io/contact_sheet.hpp): written and linked when a panel is drawn.
+done = [q for q in j["panels"] if q.get("status") == "done"]
+sheet = os.path.join(d, "contact-sheet.png")
+if done:
+    import struct
+    head = open(sheet, "rb").read(24) if os.path.exists(sheet) else b""
+    w, h = struct.unpack(">II", head[16:24]) if head[:8] == b"\x89PNG\r\n\x1a\n" else (0, 0)
+    if not (w >= 64 and h >= 64): errors.append(f"contact-sheet.png missing or not a PNG ({w} x {h})")
+    if "contact-sheet.png" not in n.links: errors.append("report.html does not link contact-sheet.png")
 if not html.startswith("<!DOCTYPE html>"):
     errors.append("report.html has no doctype")
 if errors:

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "bouncer/base/output.hpp"
+#include "bouncer/io/contact_sheet.hpp"
 
 namespace bouncer {
 
@@ -159,6 +160,18 @@ std::string fixed(double x, int digits) {
 
 bool drawn(const ItemResult& it) { return it.state == ItemState::done || it.state == ItemState::cached; }
 
+// The drawn panels' PNGs that exist, in the manifest's order: the contact sheet's pictures.
+std::vector<std::string> contact_sheet_panels(const ReproduceResult& r) {
+  std::vector<std::string> pngs;
+  for (const ItemResult& it : r.items) {
+    if (it.kind != ItemKind::panel || !drawn(it)) continue;
+    const fs::path png = fs::path(r.dir) / "panels" / (r.manifest.panels[it.index].name() + ".png");
+    std::error_code ec;
+    if (fs::is_regular_file(png, ec)) pngs.push_back(png.string());
+  }
+  return pngs;
+}
+
 // The parts of a report that depend on the mode: the title, the result line, whether the
 // paper's sections (claims, figures) are shown (not with pictures).
 struct Framing {
@@ -252,6 +265,7 @@ std::string report_markdown(const ReproduceResult& r) {
        << md_cell(c.evidence) << " | " << md_cell(rerun_text(c.rerun, r.proof_prefix)) << " |\n";
   }
   if (f.paper) md << "\n## Figures\n";
+  if (f.paper && !contact_sheet_panels(r).empty()) md << "\nEvery drawn panel in one picture: [contact-sheet.png](contact-sheet.png).\n";
   std::string figure;
   for (const ItemResult& it : r.items) {
     if (it.kind != ItemKind::panel) continue;
@@ -467,6 +481,8 @@ std::string report_html(const ReproduceResult& r) {
       h << "<br>" << html_escape(panel_title(p)) << "</a>\n";
     }
     h << "</div>\n";
+    if (!contact_sheet_panels(r).empty())
+      h << "<p>Every drawn panel in one picture: <a href=\"contact-sheet.png\">contact-sheet.png</a>.</p>\n";
   }
   for (const auto& [figure, its] : figures) {
     h << "<section id=\"" << anchor("figure-", figure) << "\">\n<h3>" << html_escape(figure) << "</h3>\n";
@@ -529,6 +545,10 @@ std::string report_html(const ReproduceResult& r) {
 
 void write_reports(const ReproduceResult& r) {
   const fs::path dir = r.dir;
+  // The contact sheet (one PNG of every drawn panel's thumbnail, io/contact_sheet.hpp), first:
+  // the reports link it.
+  const std::vector<std::string> sheet = contact_sheet_panels(r);
+  if (!sheet.empty()) write_contact_sheet(sheet, (dir / "contact-sheet.png").string());
   const std::string md = report_markdown(r), html = report_html(r), claims = claims_json(r);
   OutputSet set;
   const std::pair<fs::path, const std::string*> files[] = {

@@ -243,6 +243,26 @@ TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
               gap(b.low.bracket_lo, b.low.bracket_hi, c));
 }
 
+// A long-period veldep (c = 1000) branch continued in double from `start` at a over [lo, hi],
+// with its end estimates; one end certified at `bits` and checked against that truth: a knot
+// margin, width <= 1e-30, the double bracket within 1e-9, the widened bracket containing a*.
+void expect_long_period_end(const char* a, long period, State<double> start, double lo, double hi, bool high, long bits) {
+  const ModelSpec s = test_support::spec(Law::veldep, a, "1", "1000");
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, period, start, lo, hi);
+  ASSERT_TRUE(b.started) << b.note;
+  estimate_end_accuracy(s, b);
+  const BranchEnd<double>& e = high ? b.high : b.low;
+  ASSERT_EQ(e.reason, EndReason::border) << e.detail;
+  BorderCollisionQuestion q = question_of(e, high, period);
+  q.bits = bits;
+  const BorderCollisionCertificate c = certify_border_collision(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.margin, Margin::knot) << c.margin_text;
+  EXPECT_LE(c.width, 1e-30);
+  EXPECT_LT(gap(e.bracket_lo, e.bracket_hi, c), 1e-9);
+  expect_estimate_contains(e, c, high ? "high end" : "low end");
+}
+
 TEST(BorderCollision, VeldepPeriod11EndWithACoincidentClearanceAndLongFlights) {
   // The stable period 11 at c = 1000 beside period 3 (attractors at a = 24.5: 13% of the
   // starts). At its high end impact 10 reaches the wall's top theta = 1/2 from above, so the
@@ -253,21 +273,8 @@ TEST(BorderCollision, VeldepPeriod11EndWithACoincidentClearanceAndLongFlights) {
   // independent of the certifier: the double continuation's bracket (bisection on the
   // margin along Newton orbits) within 1e-9, and its widened bracket (the end re-located at
   // 117 bits) contains the enclosure.
-  const ModelSpec s = test_support::spec(Law::veldep, "24.5", "1", "1000");
-  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 11,
-                                     State<double>{0.01685443925323413, 25.227892214860187}, 24.0, 25.0);
-  ASSERT_TRUE(b.started) << b.note;
-  estimate_end_accuracy(s, b);
-  for (const bool high : {false, true}) {
-    const BranchEnd<double>& e = high ? b.high : b.low;
-    ASSERT_EQ(e.reason, EndReason::border) << e.detail;
-    const BorderCollisionCertificate c = certify_border_collision(question_of(e, high, 11));
-    ASSERT_TRUE(c.certified) << c.statement;
-    EXPECT_EQ(c.margin, Margin::knot) << c.margin_text;
-    EXPECT_LE(c.width, 1e-30);
-    EXPECT_LT(gap(e.bracket_lo, e.bracket_hi, c), 1e-9);
-    expect_estimate_contains(e, c, high ? "period 11 high end" : "period 11 low end");
-  }
+  for (const bool high : {false, true})
+    expect_long_period_end("24.5", 11, {0.01685443925323413, 25.227892214860187}, 24.0, 25.0, high, 128);
 }
 
 TEST(BorderCollision, VeldepPeriod66EndsNeedTheSecondPrecision) {
@@ -281,21 +288,7 @@ TEST(BorderCollision, VeldepPeriod66EndsNeedTheSecondPrecision) {
   // certify_branch_ends's retry at twice the bits is what reaches 256 in `continue` and
   // `attractors`). Truth as for period 11: the double bracket within 1e-9, and the widened
   // bracket contains a*.
-  const ModelSpec s = test_support::spec(Law::veldep, "15.2", "1", "1000");
-  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 66,
-                                     State<double>{0.007894477576029256, 43.635535422440235}, 15.0, 15.5);
-  ASSERT_TRUE(b.started) << b.note;
-  estimate_end_accuracy(s, b);
-  const BranchEnd<double>& e = b.low;
-  ASSERT_EQ(e.reason, EndReason::border) << e.detail;
-  BorderCollisionQuestion q = question_of(e, /*high=*/false, 66);
-  q.bits = 256;
-  const BorderCollisionCertificate c = certify_border_collision(q);
-  ASSERT_TRUE(c.certified) << c.statement;
-  EXPECT_EQ(c.margin, Margin::knot) << c.margin_text;
-  EXPECT_LE(c.width, 1e-30);
-  EXPECT_LT(gap(e.bracket_lo, e.bracket_hi, c), 1e-9);
-  expect_estimate_contains(e, c, "period 66 low end");
+  expect_long_period_end("15.2", 66, {0.007894477576029256, 43.635535422440235}, 15.0, 15.5, /*high=*/false, 256);
 }
 
 // Period doubling on the eps = 0.9 period-2 branch (test_continuation.cpp): no closed form

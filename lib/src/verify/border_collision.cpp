@@ -1070,15 +1070,21 @@ Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x, int si
   return J;
 }
 
+// The system of a smooth end on S: (P^Q(x) - x, det(DP^Q(x) + sigma I)) (sigma = +1: period
+// doubling, -1: fold). S must outlive its use (the functions refer to it).
+void smooth_system(Setup& S, const PeriodDoublingQuestion& q, int sigma) {
+  if (!(q.lo.value() < q.hi.value())) throw Fail("the interval holding a* is empty");
+  S.par = q.vary;
+  S.bits = q.bits;
+  S.base = interval_model(with_parameter(q.model, q.vary, q.lo), q.bits);
+  S.value_fn = [&S, &q, sigma](const Mpfi* x) { return pd_value(S.base, S.par, q.period, x, sigma); };
+  S.jet_fn = [&S, &q, sigma](const Mpfi* x) { return pd_jet(S.base, S.par, q.period, x, sigma); };
+}
+
 void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
   const long bits = q.bits;
-  if (!(q.lo.value() < q.hi.value())) throw Fail("the interval holding a* is empty");
   Setup S;
-  S.par = q.vary;
-  S.bits = bits;
-  S.base = interval_model(with_parameter(q.model, q.vary, q.lo), bits);
-  S.value_fn = [&S, &q](const Mpfi* x) { return pd_value(S.base, S.par, q.period, x); };
-  S.jet_fn = [&S, &q](const Mpfi* x) { return pd_jet(S.base, S.par, q.period, x); };
+  smooth_system(S, q, 1);
   const mpq_class mid = (q.lo.value() + q.hi.value()) / 2;
   Mpfr pm(bits);
   mpfr_set_q(pm.get(), mid.get_mpq_t(), MPFR_RNDN);
@@ -1198,13 +1204,8 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
 // fold, two period-Q orbits near x* on one side of p*, none on the other.
 void run_fold(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
   const long bits = q.bits;
-  if (!(q.lo.value() < q.hi.value())) throw Fail("the interval holding a* is empty");
   Setup S;
-  S.par = q.vary;
-  S.bits = bits;
-  S.base = interval_model(with_parameter(q.model, q.vary, q.lo), bits);
-  S.value_fn = [&S, &q](const Mpfi* x) { return pd_value(S.base, S.par, q.period, x, -1); };
-  S.jet_fn = [&S, &q](const Mpfi* x) { return pd_jet(S.base, S.par, q.period, x, -1); };
+  smooth_system(S, q, -1);
   // Newton on the augmented system (regular at a fold, where Newton on the orbit alone is
   // not) from the branch's orbit point given and the middle of the interval.
   const mpq_class mid = (q.lo.value() + q.hi.value()) / 2;

@@ -60,7 +60,7 @@ int run_reproduce(const Options_& o) {
   refuse_nested_reproduce();
   if (o.quick && o.full) throw InputError("quick", "give one of --quick or --full, not both");
   if (o.pictures && (o.quick || o.full))
-    throw InputError("pictures", "draws the README's pictures, the same in every mode: give it without --quick or --full");
+    throw InputError("pictures", "draws the documentation's pictures, the same in every mode: give it without --quick or --full");
   ReproduceRequest request;
   request.mode = o.pictures ? ReproduceMode::pictures : o.full ? ReproduceMode::full : ReproduceMode::quick;
   request.manifest_path = o.manifest;
@@ -115,9 +115,9 @@ CommandRunner setup_reproduce(CLI::App* sub) {
   sub->add_option("--out", o->out, "Output directory (default: reproduction)");
   sub->add_option("--only", o->only, "Comma list of panel labels (fig:basin1 or basin1) and claim ids");
   sub->add_option("--jobs", o->jobs, "Items run at once, integer in [1, 1024] (default: cores)");
-  sub->add_flag("--claims-table", o->claims_table, "Print the README's Markdown claims table from the manifest and exit");
+  sub->add_flag("--claims-table", o->claims_table, "Print the Markdown claims table (docs/claims.md) from the manifest and exit");
   sub->add_flag("--pictures", o->pictures,
-                "Draw the README's pictures (data/pictures/) instead of the paper, into DIR/pictures/; "
+                "Draw the documentation's pictures (data/pictures/) instead of the paper, into DIR/pictures/; "
                 "cp DIR/pictures/*.png data/pictures/ regenerates them");
   sub->add_flag("--check", o->check,
                 "Validate every command of the manifest (quick and full) without running it: one line each; exit 1 if any is refused");

@@ -187,7 +187,7 @@ AuditPlan plan_rerun(const std::string& path, const std::string& text, const std
     throw InputError("file", "'" + path + "' is a proof certificate; rerun its proof (" + proof_prefix(self) + "proof_" +
                                  (j["proof"].is_string() && safe_name(j["proof"].get<std::string>()) ? j["proof"].get<std::string>()
                                                                                                    : std::string("NAME")) +
-                                 " --json) and compare, as the README's proofs section shows");
+                                 " --json) and compare, as docs/guide/reproduce.md shows");
   const std::optional<RecordedRun> rec = read_provenance(text);
   if (!rec) throw InputError("file", "'" + path + "' is not a bouncer result (no provenance with command and inputs)");
   // The trust boundary (README, "Security"): audit reruns only what bouncer itself writes,

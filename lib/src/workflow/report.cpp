@@ -183,7 +183,7 @@ struct Framing {
 Framing framing(const ReproduceResult& r) {
   const bool pictures = r.mode == ReproduceMode::pictures;
   Framing f;
-  f.title = pictures ? "bouncer's README pictures" : "Reproduction of Langer & Miller 2014";
+  f.title = pictures ? "bouncer's documentation pictures" : "Reproduction of Langer & Miller 2014";
   f.result_text = !r.ok     ? (pictures ? "NOT every picture was drawn" : "NOT fully reproduced")
                   : pictures ? "every picture was drawn"
                              : "every item ran and every claim reproduced its expected verdict";

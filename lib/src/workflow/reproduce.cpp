@@ -89,7 +89,7 @@ std::set<std::string> selection(const ReproduceRequest& r, const std::vector<std
       std::string list;
       for (size_t i = 0; i < near.size() && i < 4; ++i) list += (i ? ", " : "") + near[i].second;
       throw InputError("only", "unknown item '" + w + "'" + (list.empty() ? "" : " (close: " + list + ")") +
-                                   (pictures ? "; with --pictures, items are the README pictures (picture:NAME) of data/paper/manifest.toml"
+                                   (pictures ? "; with --pictures, items are the documentation pictures (picture:NAME) of data/paper/manifest.toml"
                                              : "; items are the panel labels (fig:...) and claim ids of data/paper/manifest.toml"));
     }
     only.insert(id);
@@ -394,7 +394,7 @@ ReproduceResult reproduce(const ReproduceRequest& request) {
   r.claims = claim_ids.size();
   r.ok = r.failed_items == 0 && r.not_reproduced == 0;
   r.summary = pictures ? std::to_string(picture_items - r.failed_items) + " of " + std::to_string(picture_items) +
-                             " README pictures drawn; " + std::to_string(r.failed_items) + " items failed"
+                             " documentation pictures drawn; " + std::to_string(r.failed_items) + " items failed"
                        : std::to_string(r.reproduced) + " of " + std::to_string(r.claims) +
                              " claims reproduced their expected verdict" +
                              (r.deferred ? " (" + std::to_string(r.deferred) + " deferred to --full)" : "") + "; " +

@@ -50,7 +50,7 @@ CertifyPeriodicRequest certify_periodic_request(const Options& o) {
     r.lift = parse_decimal("lift", o.get("lift"));
     if (q.model.law != Law::elastic) throw InputError("lift", "needs --model elastic (accelerator modes are elastic)");
     if (q.period != 1)
-      throw InputError("lift", "needs --period 1 (exact accelerator modes are ladders of period 1: README, certify-periodic)");
+      throw InputError("lift", "needs --period 1 (exact accelerator modes are ladders of period 1: docs/guide/certified.md, certify-periodic)");
     if (!q.guess) throw InputError("lift", "needs --guess THETA,V (the start of the ladder)");
     if (range) throw InputError("lift", "cannot be combined with a parameter range");
   }

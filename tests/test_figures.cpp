@@ -175,6 +175,26 @@ TEST(Legend, ArtefactMapNamesTheUncomparedCellsOnlyWhenThereAreAny) {
   EXPECT_FALSE(any_starts_with(part.legend, "differs"));
 }
 
+// The artefact map drawn over another figure's frame (a scan's, which has a colour bar and
+// notes) shows only its own key: the four agreement classes, no colour bar, no notes.
+TEST(Legend, ArtefactMapDropsTheFramesOwnKey) {
+  ImageFigure frame;
+  frame.raster.nx = 2;
+  frame.raster.ny = 1;
+  frame.raster.pixels.assign(2, Rgb{255, 255, 255});
+  frame.raster.colorbar = {Rgb{0, 0, 0}, Rgb{255, 255, 0}};
+  frame.raster.colorbar_label = "share of starts";
+  frame.raster.notes = {"a cell mixes these"};
+  const AgreementWords words{"artefacts", "agrees", "differs", "undecided", "not confirmed"};
+  const FigureLayout with_frame = figure_layout(frame);
+  ASSERT_TRUE(with_frame.colorbar) << "the frame itself must show its colour bar, or this test proves nothing";
+  const FigureLayout lay = figure_layout(agreement_figure(frame, {Agreement::agrees, Agreement::differs}, 2, 1, words, Palette::safe));
+  EXPECT_FALSE(lay.colorbar);
+  EXPECT_TRUE(lay.notes.empty());
+  EXPECT_TRUE(any_starts_with(lay.legend, "agrees"));
+  EXPECT_TRUE(any_starts_with(lay.legend, "differs"));
+}
+
 // A bifurcation result by hand: `columns` columns over a in [20, 21], each with the given
 // points (theta; sticking).
 BifurcationResult bifurcation(int columns, bool with_sticking) {

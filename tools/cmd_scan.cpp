@@ -72,8 +72,16 @@ void write_scan(const ScanResult& res, const ScanGrid& grid, const ScanOptions& 
   for (OrbitClass c : scan_classes()) t[name(c)] = totals[static_cast<size_t>(c)];
   s["totals"] = t;
   s["precision"] = r.precision.text();
-  if (confirm) s["confirm"] = confirm_summary(res, grid);
-  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
+  std::vector<ExtraFigure> extra;
+  ImageFigure art;
+  if (confirm) {
+    s["confirm"] = confirm_summary(res, grid);
+    art = scan_confirm_figure(res, f.picture.palette);
+    art.metadata = png_metadata(prov, art.title);
+    extra.push_back({"artefacts", [&](std::ostream& out, ImageFormat fmt) { write_figure(out, art, fmt, f.picture.render); }});
+  }
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s,
+                extra);
 }
 
 void write_certified_scan(const CertifiedScanResult& res, const RunFlags& f, const Provenance& prov) {

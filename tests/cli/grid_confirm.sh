@@ -90,6 +90,7 @@ audited a12-audit a12.json
 # The scan's only point is (a, eps) = (12, 0.5), 3 x 3 starts in its trapping region.
 run s12 scan --model constant --a-range 11.5:12.5 --eps-range 0.25:0.75 --grid 1x1 --ics 3 --confirm --quiet --out s12 &&
   outputs s12 s12
+[[ -s s12-artefacts.png ]] || fail s12 "no artefact map s12-artefacts.png"
 python3 - <<'PY' || fail s12-content "see above"
 import csv, json, sys
 rows = list(csv.DictReader(l for l in open("s12.csv") if not l.startswith("#")))
@@ -113,6 +114,7 @@ PY
 # single-point classify of the same start says the same.
 run s17 scan --model constant --a-range 16.5:17.5 --eps-range 0.85:0.9 --grid 1x1 --ics 1 --theta-range 0:0.25 \
   --v-range 17:19 --confirm --quiet --out s17 && outputs s17 s17
+[[ -s s17-artefacts.png ]] || fail s17 "no artefact map s17-artefacts.png"
 run s17-classify classify --model constant --eps 0.875 --a 17 --theta 0.125 --v 18 --json
 python3 - <<'PY' || fail s17-content "see above"
 import csv, json

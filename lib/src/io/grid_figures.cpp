@@ -319,6 +319,11 @@ ImageFigure agreement_figure(ImageFigure frame, const std::vector<Agreement>& ce
   ImageFigure art = std::move(frame);
   art.title = words.title;
   art.raster.legend.clear();
+  // The frame's own key (a scan's colour bar and notes) is not this map's.
+  art.raster.colorbar.clear();
+  art.raster.colorbar_ticks.clear();
+  art.raster.colorbar_label.clear();
+  art.raster.notes.clear();
   art.raster.pixels.assign(cells.size(), outside_rgb);
   for (size_t i = 0; i < cells.size(); ++i) {
     const Agreement a = cells[i];
@@ -547,7 +552,8 @@ std::string certified_map_csv(const CertifiedMap& m, const std::vector<Number>& 
 
 ImageFigure basin_confirm_figure(const BasinResult& b, Palette palette) {
   const BasinRequest& r = b.request;
-  const std::string hi = check_precisions(r.precision, r.confirm.bits).first.text();
+  const auto [first, second] = check_precisions(r.precision, r.confirm.bits);
+  const std::string hi = first.text();
   std::vector<Agreement> a;
   a.reserve(b.cells.size());
   for (const AttractorCell& c : b.cells)
@@ -557,9 +563,31 @@ ImageFigure basin_confirm_figure(const BasinResult& b, Palette palette) {
                                                               : Agreement::undecided);
   const std::string own = r.precision.text();
   return agreement_figure(basin_figure(b, palette), a, r.nx, r.ny,
-                          {"Where " + own + " is wrong: its class against " + hi + " and twice its bits",
+                          {"Where " + own + " is wrong: its class against " + hi + " and " + second.text(),
                            hi + " agrees", own + "'s class is an artefact", "precision dependent",
                            "not confirmed (outside the sample or the phase space)"},
+                          palette);
+}
+
+// A parameter point of the sample is "an artefact" where at least one of its confirmed starts
+// is (double's class there is not what mpfr:B and mpfr:2B both give), else "precision
+// dependent" where one is, else "agrees"; points outside the sample are not confirmed.
+ImageFigure scan_confirm_figure(const ScanResult& s, Palette palette) {
+  const ScanRequest& r = s.request;
+  const auto [first, second] = check_precisions(r.precision, r.confirm.bits);
+  const std::string hi = first.text();
+  std::vector<Agreement> a;
+  a.reserve(s.cells.size());
+  for (const ScanCell& c : s.cells)
+    a.push_back(!c.confirmed                                                        ? Agreement::outside
+                : c.verdicts[static_cast<size_t>(PrecisionVerdict::artefact)] > 0            ? Agreement::differs
+                : c.verdicts[static_cast<size_t>(PrecisionVerdict::precision_dependent)] > 0 ? Agreement::undecided
+                                                                                             : Agreement::agrees);
+  const std::string own = r.precision.text();
+  return agreement_figure(scan_figure(s, std::nullopt, false, palette), a, r.p, r.q,
+                          {"Where " + own + " is wrong: each point's starts against " + hi + " and " + second.text(),
+                           "every start agrees", "an artefact at some start", "precision dependent at some start",
+                           "not confirmed (outside the sample)"},
                           palette);
 }
 

@@ -86,6 +86,10 @@ ImageFigure agreement_figure(ImageFigure frame, const std::vector<Agreement>& ce
 // basin --confirm's artefact map: basin_figure's frame, each start of the confirmation
 // sample by its verdict (run/cells.hpp GridConfirm; analysis/classify.hpp check_precision).
 ImageFigure basin_confirm_figure(const BasinResult& b, Palette palette);
+// `scan --confirm`'s map of the parameter points: a point is red where some confirmed start
+// of it is double's artefact, dark grey where one is precision dependent, light grey where
+// all agree, white outside the sample (PREFIX-artefacts.png).
+ImageFigure scan_confirm_figure(const ScanResult& s, Palette palette);
 // A certified map's CSV, without its provenance lines: the header "X,Y,class,period,
 // certified_steps,scalar,double_class,double_period,agreement" (X, Y: the map's x_name,
 // y_name), then one row per cell (cell i at xs[i mod nx], ys[i / nx]).

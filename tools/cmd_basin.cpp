@@ -73,12 +73,9 @@ void write_basin(const BasinResult& b, long stride, const RunFlags& f, const Pro
   s["attractors"] = types;
   s["precision"] = r.precision.text();
   std::vector<ExtraFigure> extra;
-  ImageFigure art;
   if (confirm) {
     s["confirm"] = confirm_summary(b, stride);
-    art = basin_confirm_figure(b, f.picture.palette);
-    art.metadata = png_metadata(prov, art.title);
-    extra.push_back({"artefacts", [&](std::ostream& out, ImageFormat fmt) { write_figure(out, art, fmt, f.picture.render); }});
+    extra.push_back(extra_figure("artefacts", basin_confirm_figure(b, f.picture.palette), prov, f));
   }
   write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s,
                 extra);

@@ -73,12 +73,9 @@ void write_scan(const ScanResult& res, const ScanGrid& grid, const ScanOptions& 
   s["totals"] = t;
   s["precision"] = r.precision.text();
   std::vector<ExtraFigure> extra;
-  ImageFigure art;
   if (confirm) {
     s["confirm"] = confirm_summary(res, grid);
-    art = scan_confirm_figure(res, f.picture.palette);
-    art.metadata = png_metadata(prov, art.title);
-    extra.push_back({"artefacts", [&](std::ostream& out, ImageFormat fmt) { write_figure(out, art, fmt, f.picture.render); }});
+    extra.push_back(extra_figure("artefacts", scan_confirm_figure(res, f.picture.palette), prov, f));
   }
   write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s,
                 extra);

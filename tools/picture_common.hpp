@@ -396,6 +396,13 @@ struct ExtraFigure {
   std::string suffix;
   std::function<void(std::ostream&, ImageFormat)> draw;
 };
+// The ExtraFigure that writes `fig` (with the run's provenance as PNG metadata) in f's
+// formats; it keeps the figure alive. (basin's and scan's --confirm artefact maps.)
+inline ExtraFigure extra_figure(const std::string& suffix, ImageFigure fig, const Provenance& prov, const RunFlags& f) {
+  fig.metadata = png_metadata(prov, fig.title);
+  auto kept = std::make_shared<const ImageFigure>(std::move(fig));
+  return {suffix, [kept, &f](std::ostream& out, ImageFormat fmt) { write_figure(out, *kept, fmt, f.picture.render); }};
+}
 
 inline void write_outputs(const RunFlags& f, const Provenance& p, const std::string& csv_body,
                           const std::function<void(std::ostream&, ImageFormat)>& draw,

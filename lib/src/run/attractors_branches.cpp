@@ -84,6 +84,8 @@ ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, 
   if (!b.started) return cb;
   cb.low_param = text_of(b.points.front().param);
   cb.high_param = text_of(b.points.back().param);
+  cb.low = Tr::to_double(b.points.front().param);
+  cb.high = Tr::to_double(b.points.back().param);
   cb.events_text = event_text(b.points[b.start].events);
   cb.events.push_back(end_info(b.low, false));
   for (const Bifurcation<T>& f : b.bifurcations) {

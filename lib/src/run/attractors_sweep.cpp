@@ -60,11 +60,10 @@ void merge_split_chains(AttractorsSweepResult& r) {
   };
   auto spans = [&](const ContinuedBranch& b, size_t before, size_t after) {
     if (!b.started) return false;
-    const double lo = std::stod(b.low_param), hi = std::stod(b.high_param);
     const double x = r.values[before].approx(), y = r.values[after].approx();
     for (const BranchEventInfo& e : b.events)
       if (!e.end && e.param >= x && e.param <= y) return false;  // a bifurcation in between
-    return lo <= x && y <= hi;
+    return b.low <= x && y <= b.high;
   };
   for (bool merged = true; merged;) {
     merged = false;

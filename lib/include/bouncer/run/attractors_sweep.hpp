@@ -74,7 +74,8 @@ struct ContinuedBranch {
   size_t from_value = 0;      // the sweep value it was started at (the chain's largest share)
   bool started = false;
   std::string note;           // why not started
-  std::string low_param, high_param;  // its span (the continuation's last points)
+  std::string low_param, high_param;  // its span (the continuation's last points), as printed
+  double low = 0, high = 0;           // the same span as doubles (for comparisons)
   std::string events_text;    // event sequence at the start (analysis/continuation.hpp event_text)
   std::vector<BranchEventInfo> events;  // low end, the bifurcations, high end: increasing param
   long corrector_runs = 0;

@@ -856,6 +856,7 @@ class ModelCore {
     d["margin"] = name(t.margin);
     d["margin_text"] = t.margin_text;
     d["events"] = t.events;
+    d["formulation"] = t.certified ? py::object(py::str(t.shooting ? "shooting" : "composed")) : py::object(py::none());
     d["bracket_contains"] = c.bracket_contains;
     d["statement"] = t.statement;
     d["reason"] = t.reason;

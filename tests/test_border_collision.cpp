@@ -246,21 +246,28 @@ TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
 // A long-period veldep (c = 1000) branch continued in double from `start` at a over [lo, hi],
 // with its end estimates; one end certified at `bits` and checked against that truth: a knot
 // margin, width <= 1e-30, the double bracket within 1e-9, the widened bracket containing a*.
-void expect_long_period_end(const char* a, long period, State<double> start, double lo, double hi, bool high, long bits) {
+BorderCollisionCertificate expect_long_period_end(const char* a, long period, State<double> start, double lo, double hi,
+                                                  bool high, long bits,
+                                                  BorderFormulation how = BorderFormulation::automatic) {
   const ModelSpec s = test_support::spec(Law::veldep, a, "1", "1000");
   Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, period, start, lo, hi);
-  ASSERT_TRUE(b.started) << b.note;
+  EXPECT_TRUE(b.started) << b.note;
+  if (!b.started) return {};
   estimate_end_accuracy(s, b);
   const BranchEnd<double>& e = high ? b.high : b.low;
-  ASSERT_EQ(e.reason, EndReason::border) << e.detail;
+  EXPECT_EQ(e.reason, EndReason::border) << e.detail;
+  if (e.reason != EndReason::border) return {};
   BorderCollisionQuestion q = question_of(e, high, period);
   q.bits = bits;
+  q.formulation = how;
   const BorderCollisionCertificate c = certify_border_collision(q);
-  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_TRUE(c.certified) << c.statement;
+  if (!c.certified) return c;
   EXPECT_EQ(c.margin, Margin::knot) << c.margin_text;
   EXPECT_LE(c.width, 1e-30);
   EXPECT_LT(gap(e.bracket_lo, e.bracket_hi, c), 1e-9);
   expect_estimate_contains(e, c, high ? "high end" : "low end");
+  return c;
 }
 
 TEST(BorderCollision, VeldepPeriod11EndWithACoincidentClearanceAndLongFlights) {
@@ -277,18 +284,46 @@ TEST(BorderCollision, VeldepPeriod11EndWithACoincidentClearanceAndLongFlights) {
     expect_long_period_end("24.5", 11, {0.01685443925323413, 25.227892214860187}, 24.0, 25.0, high, 128);
 }
 
-TEST(BorderCollision, VeldepPeriod66EndsNeedTheSecondPrecision) {
+TEST(BorderCollision, ComposedAndShootingFormulationsEncloseTheSameEnd) {
+  // Two different systems for the same a*: the composed map (unknowns x_0, p) and multiple
+  // shooting (all 11 points and p; other Jacobian, other preconditioner, margins over other
+  // boxes). Both must prove it, and their enclosures must intersect.
+  const State<double> start{0.01685443925323413, 25.227892214860187};
+  const BorderCollisionCertificate composed =
+      expect_long_period_end("24.5", 11, start, 24.0, 25.0, true, 128, BorderFormulation::composed);
+  const BorderCollisionCertificate shot =
+      expect_long_period_end("24.5", 11, start, 24.0, 25.0, true, 128, BorderFormulation::shooting);
+  ASSERT_TRUE(composed.certified && shot.certified);
+  EXPECT_FALSE(composed.shooting);
+  EXPECT_TRUE(shot.shooting);
+  EXPECT_NE(shot.statement.find("multiple shooting"), std::string::npos) << shot.statement;
+  EXPECT_LE(composed.lo, shot.hi);
+  EXPECT_LE(shot.lo, composed.hi);
+  EXPECT_EQ(composed.events, shot.events);
+  EXPECT_EQ(composed.step, shot.step);
+}
+
+TEST(BorderCollision, VeldepLongPeriodEndsByMultipleShooting) {
   // The stable period 66 at c = 1000, a = 15.2 (every start of a 32 x 32 grid reaches it)
-  // lives on a = 15.1876..15.2031 and ends at both sides where an impact reaches theta = 1/2
-  // (the low end is certified here: 5 s; `continue --certify` proves both).
-  // Sixty-six interval steps widen a box by about 2^66: at 128 bits the parameter interval
-  // cannot be both narrow enough for the Krawczyk operator and wide enough for the margins'
-  // signs at its ends (bench_border: not certified at 128, certified at 256); at 256 bits it
-  // is proved (asked at 256 directly: the failing 128-bit attempt would add 3 s to the suite;
-  // certify_branch_ends's retry at twice the bits is what reaches 256 in `continue` and
-  // `attractors`). Truth as for period 11: the double bracket within 1e-9, and the widened
+  // lives on a = 15.1876..15.2031 and ends at both sides where an impact reaches theta = 1/2.
+  // Composed, sixty-six interval steps widen a box by about 2^66: at 128 bits no parameter
+  // interval is both narrow enough for the Krawczyk operator and wide enough for the margins'
+  // signs at its ends (bench_border: that needs 256 bits). Multiple shooting never composes:
+  // proved at 128. Truth as for period 11: the double bracket within 1e-9, and the widened
   // bracket contains a*.
-  expect_long_period_end("15.2", 66, {0.007894477576029256, 43.635535422440235}, 15.0, 15.5, /*high=*/false, 256);
+  const BorderCollisionCertificate c66 =
+      expect_long_period_end("15.2", 66, {0.007894477576029256, 43.635535422440235}, 15.0, 15.5, /*high=*/false, 128);
+  EXPECT_TRUE(c66.shooting);
+  EXPECT_EQ(c66.bits, 128);
+  // The stable period 100 at a = 19.5 (62% of a 32 x 32 grid), on a = 19.4979..19.5005: its
+  // low end, where even 256 bits composed left the border margin's sign at the ends of Z
+  // undecided (the high end: bench_border).
+  {
+    const BorderCollisionCertificate c100 =
+        expect_long_period_end("19.5", 100, {0.014057849515324, 23.970073801684368}, 19.45, 19.55, /*high=*/false, 128);
+    EXPECT_TRUE(c100.shooting);
+    EXPECT_EQ(c100.orbit.size(), 100u);
+  }
 }
 
 // Period doubling on the eps = 0.9 period-2 branch (test_continuation.cpp): no closed form

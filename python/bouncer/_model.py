@@ -705,7 +705,8 @@ class Model(_core.Model):
             classify (defaults 5000, 500, min(64, steps/2), 20)
         certify: True: the proofs of ``continue --certify``: each border end's a* enclosed on
             both sides (low/high ``certified``: kind "border", certified, bits, enclosure (an
-            Interval), width, margin, margin_text, events, bracket_contains, statement,
+            Interval), width, margin, margin_text, events, formulation ("composed": the
+            first orbit point unknown; "shooting": all of them), bracket_contains, statement,
             reason, one_sided_certified, one_sided_bound), each period doubling and fold, on
             the branch (each bifurcation's "certified") or at a fold end (kind "smooth":
             certified, bits, enclosure, width, other_multiplier (an Interval), events,

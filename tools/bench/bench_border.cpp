@@ -1,8 +1,11 @@
 // bench_border: the cost of a certified two-sided border collision (issue 23: < 1 s at
-// mpfr:128), of long periods (11, 66: the second needs 256 bits), a period doubling and a fold. For each case: the double continuation that locates the end (not timed), then
-// certify_border_collision at 128 (and 256) bits, wall-clock, best of three; a table with
-// the enclosure's width and the double bracket's distance to it. Timings are printed,
-// never checked.
+// mpfr:128), of long periods (11, 66, 100), a period doubling and a fold. For each case: the
+// double continuation that locates the end (not timed), then certify_border_collision in
+// both formulations (composed: the first point unknown; shooting: all Q points; period 1
+// composed only) at 128 (and 256) bits, wall-clock, best of three (a proof that fails runs
+// once); a table with the enclosure's width and the double bracket's distance to it. The
+// trade it measures: composed is quicker for short periods, and fails for long ones where
+// the interval steps' wrapping grows like 2^Q. Timings are printed, never checked.
 //
 // Usage: bench_border [--quick]   (--quick: one run per case, 128 bits only)
 #include <chrono>
@@ -56,8 +59,10 @@ int main(int argc, char** argv) {
       {"veldep c 1000 unstable P7 (grazing 1/2)", spec(Law::veldep, "25", "1", "1000"), 7, 0.016124178545083214, 10.063538832537404, 22, 28, false},
       {"veldep c 1000 P11 high end (knot 1/2)", spec(Law::veldep, "24.5", "1", "1000"), 11, 0.01685443925323413, 25.227892214860187, 24, 25, true},
       {"veldep c 1000 P66 low end (knot 1/2)", spec(Law::veldep, "15.2", "1", "1000"), 66, 0.007894477576029256, 43.635535422440235, 15, 15.5, false},
+      {"veldep c 1000 P100 low end (knot 0)", spec(Law::veldep, "19.5", "1", "1000"), 100, 0.014057849515324, 23.970073801684368, 19.45, 19.55, false},
+      {"veldep c 1000 P100 high end (knot 1/2)", spec(Law::veldep, "19.5", "1", "1000"), 100, 0.014057849515324, 23.970073801684368, 19.45, 19.55, true},
   };
-  std::printf("%-44s %5s %10s %12s %12s  %s\n", "border collision", "bits", "seconds", "width", "double off", "margin");
+  std::printf("%-44s %-9s %5s %10s %12s %12s  %s\n", "border collision", "form", "bits", "seconds", "width", "double off", "margin");
   for (const Case& k : cases) {
     const Model<double> m = make_model<double>(k.model, 53);
     const Branch<double> b = continue_branch(m, Parameter::a, k.period, State<double>{k.theta, k.v}, k.lo, k.hi);
@@ -77,23 +82,30 @@ int main(int argc, char** argv) {
     q.end.hi = *Decimal::parse(hi);
     q.end.high_end = k.high;
     if (end.margin >= 0) q.margin = static_cast<Margin>(end.margin);
-    for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
-      q.bits = bits;
-      double best = 1e300;
-      BorderCollisionCertificate c;
-      for (int run = 0; run < (quick ? 1 : 3); ++run) {
-        const auto t0 = std::chrono::steady_clock::now();
-        c = certify_border_collision(q);
-        best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    for (const BorderFormulation form : {BorderFormulation::composed, BorderFormulation::shooting}) {
+      if (form == BorderFormulation::shooting && k.period == 1) continue;
+      const char* form_name = form == BorderFormulation::composed ? "composed" : "shooting";
+      q.formulation = form;
+      for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
+        q.bits = bits;
+        double best = 1e300;
+        BorderCollisionCertificate c;
+        for (int run = 0; run < (quick ? 1 : 3); ++run) {
+          const auto t0 = std::chrono::steady_clock::now();
+          c = certify_border_collision(q);
+          best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+          if (!c.certified) break;
+        }
+        if (!c.certified) {
+          std::printf("%-44s %-9s %5ld %10.4f  NOT CERTIFIED: %.150s\n", k.name, form_name, bits, best, c.reason.c_str());
+          continue;
+        }
+        std::printf("%-44s %-9s %5ld %10.4f %12.3g %12.3g  %s\n", k.name, form_name, bits, best, c.width,
+                    distance(end.bracket_lo, end.bracket_hi, c), c.margin_text.c_str());
+        if (bits == 128)
+          std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
+                      c.parameter.hi.c_str(), end.bracket_lo, end.bracket_hi);
       }
-      if (!c.certified) {
-        std::printf("%-44s %5ld %10.4f  NOT CERTIFIED: %s\n", k.name, bits, best, c.reason.c_str());
-        continue;
-      }
-      std::printf("%-44s %5ld %10.4f %12.3g %12.3g  %s\n", k.name, bits, best, c.width,
-                  distance(end.bracket_lo, end.bracket_hi, c), c.margin_text.c_str());
-      std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
-                  c.parameter.hi.c_str(), end.bracket_lo, end.bracket_hi);
     }
   }
   // Smooth ends: a period doubling (eps = 0.9 period 2) and a fold (eps = 0.9 period 11),
@@ -110,12 +122,12 @@ int main(int argc, char** argv) {
         best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       }
       if (!c.certified) {
-        std::printf("%-44s %5ld %10.4f  NOT CERTIFIED: %s\n", name, bits, best, c.reason.c_str());
+        std::printf("%-44s %-9s %5ld %10.4f  NOT CERTIFIED: %s\n", name, "composed", bits, best, c.reason.c_str());
         continue;
       }
       const mpq_class blo(blo_d), bhi(bhi_d);
       const double off = bhi < c.lo ? mpq_class(c.lo - bhi).get_d() : c.hi < blo ? mpq_class(blo - c.hi).get_d() : 0.0;
-      std::printf("%-44s %5ld %10.4f %12.3g %12.3g  other multiplier [%s, %s]\n", name, bits, best, c.width, off,
+      std::printf("%-44s %-9s %5ld %10.4f %12.3g %12.3g  other multiplier [%s, %s]\n", name, "composed", bits, best, c.width, off,
                   c.other.lo.c_str(), c.other.hi.c_str());
       std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
                   c.parameter.hi.c_str(), blo_d, bhi_d);

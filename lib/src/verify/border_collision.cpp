@@ -14,6 +14,8 @@
 #include "bouncer/model/impact_map_impl.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 
+#include <Eigen/Dense>
+
 namespace bouncer {
 
 namespace {
@@ -166,24 +168,63 @@ struct Setup {
   int border = -1;             // index of the margin that vanishes
   bool release = false;        // an orbit through a sticking step: the start R is exact
   State<Mpfi> R;
-  // Another system on the same unknowns (period doubling): its values at a thin point and
-  // its Jacobian over a box; unset for the border collision.
-  std::function<std::array<Mpfi, 3>(const Mpfi*)> value_fn;
-  std::function<Jet(const Mpfi*)> jet_fn;
+  // The orbit's unknowns: m points x_0 .. x_{m-1} (2m numbers theta_i, v_i), then the
+  // parameter, index 2m. m = 1: the composed map, P_E^Q(x_0) = x_0 (the first point alone).
+  // m = Q (multiple shooting, long periods): step i's piece maps x_i to x_{i+1 mod Q}, each
+  // step evaluated over its own point's box. The composed map's interval evaluation widens a
+  // box by the product of the Q steps' derivative norms (2^66 over a period-66 orbit);
+  // shooting never composes, so its boxes stay as narrow as each point's own uncertainty.
+  int m = 1;
+  // Another system on the same unknowns (period doubling, m = 1): its values at a thin point
+  // and its Jacobian over a box; unset for the border collision.
+  std::function<std::vector<Mpfi>(const std::vector<Mpfi>&)> value_fn;
+  std::function<Jet(const std::vector<Mpfi>&)> jet_fn;
 };
+
+// The number of unknowns (and of rows): the m points and the parameter.
+size_t dim(const Setup& S) { return static_cast<size_t>(2 * S.m + 1); }
 
 Model<Mpfi> at(const Setup& S, const Mpfi& p) { return with_parameter(S.base, S.par, p); }
 
+// The orbit rows at (x, p): g = (P_E^Q(x_0) - x_0) for m = 1, (piece_i(x_i) - x_{i+1 mod Q})_i
+// for m = Q, and every margin of every step, in the order of S.ids. x holds the 2m point
+// coordinates (ignored for an orbit through the release state, whose start is exact).
 struct Eval {
-  State<Mpfi> end;
+  std::vector<Mpfi> g;
   std::vector<Mpfi> margins;
 };
 
-Eval evaluate(const Setup& S, const State<Mpfi>& x, const Mpfi& p) {
+Eval evaluate(const Setup& S, const std::vector<Mpfi>& x, const Mpfi& p) {
   const ImpactMap<Mpfi> map(at(S, p));
   Eval e;
-  e.end = piece_orbit(map, S.release ? S.R : x, S.pieces, &e.margins);
+  if (S.release) {
+    const State<Mpfi> end = piece_orbit(map, S.R, S.pieces, &e.margins);
+    e.g = {Mpfi(end.theta - S.R.theta), Mpfi(end.v - S.R.v)};
+  } else if (S.m == 1) {
+    const State<Mpfi> end = piece_orbit(map, State<Mpfi>{x[0], x[1]}, S.pieces, &e.margins);
+    e.g = {Mpfi(end.theta - x[0]), Mpfi(end.v - x[1])};
+  } else {
+    const size_t q = S.pieces.size();
+    for (size_t i = 0; i < q; ++i) {
+      const State<Mpfi> end = piece_step(map, State<Mpfi>{x[2 * i], x[2 * i + 1]}, S.pieces[i], static_cast<long>(i),
+                                         &e.margins, static_cast<std::vector<MarginId>*>(nullptr));
+      const size_t k = (i + 1) % q;
+      e.g.push_back(Mpfi(end.theta - x[2 * k]));
+      e.g.push_back(Mpfi(end.v - x[2 * k + 1]));
+    }
+  }
   return e;
+}
+
+// The orbit's points as unknowns (2m numbers) from the start state of a reference orbit and
+// its steps' images.
+std::vector<Mpfr> point_unknowns(const Setup& S, const State<Mpfr>& start, const std::vector<State<Mpfr>>& next) {
+  std::vector<Mpfr> y = {start.theta, start.v};
+  for (int i = 0; i + 1 < S.m; ++i) {
+    y.push_back(next[static_cast<size_t>(i)].theta);
+    y.push_back(next[static_cast<size_t>(i)].v);
+  }
+  return y;
 }
 
 // Orbits through the release state: every margin with its derivative in p, over P.
@@ -242,55 +283,99 @@ bool coincident_clearance(const Setup& S, const std::vector<Mpfi>& mv, size_t i,
 // The border margin, oriented (> 0 on the branch side).
 Mpfi oriented(const Setup& S, const std::vector<Mpfi>& mv, size_t i) { return S.sign[i] > 0 ? mv[i] : Mpfi(-mv[i]); }
 
-// Variables: 0 = theta, 1 = v, 2 = p. Rows: 0, 1 = P_E^Q(x) - x, 2 = the border margin.
+// Values and Jacobian of the system over a box. Variables: the 2m point coordinates, then p
+// (index 2m); rows: the 2m orbit rows of Eval::g, then the border margin (index 2m). The
+// Jacobian is kept by columns, with only its structurally nonzero entries (shooting: each
+// step's row pair depends on its own point, the next point and p), so that C A costs
+// n^2 times a few products, not n^3.
 struct Jet {
-  Mpfi f[3];
-  Mpfi D[3][3];
+  std::vector<Mpfi> f;
+  std::vector<std::vector<std::pair<size_t, Mpfi>>> col;
+  explicit Jet(size_t n) : f(n), col(n) {}
+  void set(size_t r, size_t c, Mpfi v) { col[c].emplace_back(r, std::move(v)); }
 };
 
-Jet jet(const Setup& S, const Mpfi x[3]) {
-  Jet J;
-  for (int run = S.release ? 1 : 0; run < 2; ++run) {
-    Model<IDual> dm = convert_model<IDual>(S.base, [](const Mpfi& y) { return IDual(y); });
-    dm = with_parameter(dm, S.par, run == 1 ? IDual::variable(x[2], 0) : IDual(x[2]));
-    State<IDual> s = S.release ? State<IDual>{IDual(S.R.theta), IDual(S.R.v), S.R.knot}
-                     : run == 0 ? State<IDual>{IDual::variable(x[0], 0), IDual::variable(x[1], 1)}
-                                : State<IDual>{IDual(x[0]), IDual(x[1])};
-    const ImpactMap<IDual> map(std::move(dm));
-    std::vector<IDual> mv;
-    const State<IDual> end = piece_orbit(map, s, S.pieces, &mv);
-    // (Before the border is known, only the orbit rows: Newton for the orbit alone.)
-    const IDual* rows[3] = {&end.theta, &end.v, S.border >= 0 ? &mv[S.border] : &end.v};
-    for (int r = S.release ? 2 : 0; r < (S.border >= 0 ? 3 : 2); ++r) {
-      if (!ScalarTraits<IDual>::derivatives_finite(*rows[r]))
-        throw Fail("the derivative enclosure over the box is not finite (a square root at 0: a touchdown)");
-      if (run == 0) {
-        J.f[r] = rows[r]->v;
-        J.D[r][0] = rows[r]->d[0];
-        J.D[r][1] = rows[r]->d[1];
-      } else {
-        J.f[r] = rows[r]->v;
-        J.D[r][2] = rows[r]->d[0];
+Jet jet(const Setup& S, const std::vector<Mpfi>& x) {
+  const size_t N = dim(S), P = N - 1;
+  Jet J(N);
+  const bool margin_row = S.border >= 0;
+  const bool flip = margin_row && S.sign[S.border] < 0;
+  auto check = [](const IDual& y) {
+    if (!ScalarTraits<IDual>::derivatives_finite(y))
+      throw Fail("the derivative enclosure over the box is not finite (a square root at 0: a touchdown)");
+  };
+  // One step (or the composed period, m = 1) from a start: run 0 differentiates along the
+  // start (theta, v), run 1 along p. Returns the end and the margins with their derivatives.
+  const size_t steps = S.m == 1 ? 1 : S.pieces.size();
+  for (size_t i = 0; i < steps; ++i) {
+    for (int run = S.release ? 1 : 0; run < 2; ++run) {
+      Model<IDual> dm = convert_model<IDual>(S.base, [](const Mpfi& y) { return IDual(y); });
+      dm = with_parameter(dm, S.par, run == 1 ? IDual::variable(x[P], 0) : IDual(x[P]));
+      const ImpactMap<IDual> map(std::move(dm));
+      const State<IDual> s = S.release ? State<IDual>{IDual(S.R.theta), IDual(S.R.v), S.R.knot}
+                             : run == 0 ? State<IDual>{IDual::variable(x[2 * i], 0), IDual::variable(x[2 * i + 1], 1)}
+                                        : State<IDual>{IDual(x[2 * i]), IDual(x[2 * i + 1])};
+      std::vector<IDual> mv;
+      std::vector<MarginId> ids;
+      const State<IDual> end = S.m == 1 ? piece_orbit(map, s, S.pieces, &mv)
+                                        : piece_step(map, s, S.pieces[i], static_cast<long>(i), &mv, &ids);
+      // The border margin's row, where it belongs to this step (m = 1: the only one).
+      const IDual* border = nullptr;
+      if (margin_row) {
+        if (S.m == 1) {
+          border = &mv[S.border];
+        } else if (S.ids[S.border].step == static_cast<long>(i)) {
+          // This step's margins are the ones of S.ids with step i, in the same order.
+          size_t first = 0;
+          while (S.ids[first].step != static_cast<long>(i)) ++first;
+          border = &mv[static_cast<size_t>(S.border) - first];
+        }
+      }
+      if (!S.release) {
+        check(end.theta);
+        check(end.v);
+        const IDual* rows[2] = {&end.theta, &end.v};
+        for (size_t r = 0; r < 2; ++r) {
+          J.f[2 * i + r] = rows[r]->v;
+          if (run == 0) {
+            J.set(2 * i + r, 2 * i, rows[r]->d[0]);
+            J.set(2 * i + r, 2 * i + 1, rows[r]->d[1]);
+          } else {
+            J.set(2 * i + r, P, rows[r]->d[0]);
+          }
+        }
+      }
+      if (border) {
+        check(*border);
+        const Mpfi v = flip ? Mpfi(-border->v) : border->v;
+        J.f[P] = v;
+        if (run == 0) {
+          J.set(P, 2 * i, flip ? Mpfi(-border->d[0]) : border->d[0]);
+          J.set(P, 2 * i + 1, flip ? Mpfi(-border->d[1]) : border->d[1]);
+        } else {
+          J.set(P, P, flip ? Mpfi(-border->d[0]) : border->d[0]);
+        }
       }
     }
   }
   if (!S.release) {
-    J.f[0] -= x[0];
-    J.f[1] -= x[1];
-    J.D[0][0] = J.D[0][0] - 1;
-    J.D[1][1] = J.D[1][1] - 1;
-  }
-  if (S.border >= 0 && S.sign[S.border] < 0) {
-    for (int c = 0; c < 3; ++c) J.D[2][c] = -J.D[2][c];
-    J.f[2] = -J.f[2];
+    // g_i = end_i - x_{i+1 mod m}: the -I blocks (m = 1: on the diagonal, where run 0 put
+    // d end / d x_0; the sparse sum adds both).
+    for (size_t i = 0; i < steps; ++i) {
+      const size_t k = (i + 1) % steps;
+      J.f[2 * i] -= x[2 * k];
+      J.f[2 * i + 1] -= x[2 * k + 1];
+      J.set(2 * i, 2 * k, Mpfi(-1, S.bits));
+      J.set(2 * i + 1, 2 * k + 1, Mpfi(-1, S.bits));
+    }
   }
   return J;
 }
 
-// A Krawczyk problem: the unknowns yi (indices into theta, v, p), the rows, and optionally
-// the free parameter (z = p in Z: the orbit alone, for every p in Z).
+// A Krawczyk problem: the unknowns yi and the rows (indices into the variables and rows of
+// Jet), and optionally the free parameter (z = p in Z: the orbit alone, for every p in Z).
 struct Problem {
-  std::vector<int> rows, yi;
+  std::vector<size_t> rows, yi;
   bool free_p = false;
   Mpfi Z;
   Mpfr zhat;
@@ -298,34 +383,76 @@ struct Problem {
 
 Problem augmented(const Setup& S) {
   Problem P;
+  const size_t N = dim(S);
   if (S.release) {
-    P.rows = {2};
-    P.yi = {2};
+    P.rows = {N - 1};
+    P.yi = {N - 1};
   } else {
-    P.rows = {0, 1, 2};
-    P.yi = {0, 1, 2};
+    for (size_t i = 0; i < N; ++i) {
+      P.rows.push_back(i);
+      P.yi.push_back(i);
+    }
   }
   return P;
 }
 
-Problem orbit_problem(const Mpfi& Z) {
+Problem orbit_problem(const Setup& S, const Mpfi& Z) {
   Problem P;
-  P.rows = {0, 1};
-  P.yi = {0, 1};
+  for (size_t i = 0; i + 1 < dim(S); ++i) {
+    P.rows.push_back(i);
+    P.yi.push_back(i);
+  }
   P.free_p = true;
   P.Z = Z;
   P.zhat = Z.mid();
   return P;
 }
 
-// The inverse of a point matrix (n <= 3), Gauss-Jordan in thin intervals, as points.
-std::vector<std::vector<Mpfi>> inverse_mid(std::vector<std::vector<Mpfi>> A, long bits) {
-  const size_t n = A.size();
-  std::vector<std::vector<Mpfi>> B(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
-  for (size_t i = 0; i < n; ++i) {
-    for (size_t k = 0; k < n; ++k) A[i][k] = thin(A[i][k].mid());
-    B[i][i] = Mpfi(1, bits);
+// An approximate inverse C of the midpoint matrix of A (any point matrix C keeps the
+// Krawczyk operator sound; a good one makes it contract). n <= 3 (the composed map, whose
+// entries grow like the product of Q steps' derivatives): Gauss-Jordan at the working
+// precision, C in thin intervals. Larger n (shooting: each entry one step's derivative, the
+// matrix well conditioned for a hyperbolic orbit): LU in double, C a double matrix (exact
+// point values; the products with intervals are MPFI's, outward rounded).
+struct Preconditioner {
+  std::vector<std::vector<Mpfi>> precise;  // n <= 3
+  std::vector<Mpfr> fast;                  // n > 3: the double entries (exact at 53 bits), row-major
+  size_t n = 0;
+  // out = C[r][c] * x, enclosed.
+  void mul(size_t r, size_t c, const Mpfi& x, Mpfi& out) const {
+    if (!fast.empty())
+      mpfi_mul_fr(out.get(), x.get(), fast[r * n + c].get());
+    else
+      mpfi_mul(out.get(), precise[r][c].get(), x.get());
   }
+};
+
+Preconditioner inverse_mid(const std::vector<std::vector<std::pair<size_t, Mpfi>>>& cols, long bits) {
+  const size_t n = cols.size();
+  Preconditioner C;
+  if (n > 3) {
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    for (size_t c = 0; c < n; ++c)
+      for (const auto& [r, v] : cols[c]) M(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) += v.mid().to_double();
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+    const Eigen::MatrixXd inv = lu.inverse();
+    if (!inv.allFinite()) throw Fail("the midpoint Jacobian of the system is singular");
+    // Partial pivoting does not detect singularity: its condition estimate must leave digits.
+    if (!(lu.rcond() > 1e-12)) throw Fail("the midpoint Jacobian of the system is singular (or too ill-conditioned for a double inverse)");
+    C.n = n;
+    C.fast.reserve(n * n);
+    for (size_t r = 0; r < n; ++r)
+      for (size_t c = 0; c < n; ++c) {
+        C.fast.emplace_back(53);
+        mpfr_set_d(C.fast.back().get(), inv(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)), MPFR_RNDN);
+      }
+    return C;
+  }
+  std::vector<std::vector<Mpfi>> A(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
+  for (size_t c = 0; c < n; ++c)
+    for (const auto& [r, v] : cols[c]) A[r][c] = thin(v.mid());
+  std::vector<std::vector<Mpfi>> B(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
+  for (size_t i = 0; i < n; ++i) B[i][i] = Mpfi(1, bits);
   for (size_t c = 0; c < n; ++c) {
     size_t piv = c;
     for (size_t r = c + 1; r < n; ++r)
@@ -349,31 +476,33 @@ std::vector<std::vector<Mpfi>> inverse_mid(std::vector<std::vector<Mpfi>> A, lon
   }
   for (auto& row : B)
     for (Mpfi& x : row) x = thin(x.mid());
-  return B;
+  C.precise = std::move(B);
+  return C;
 }
 
-// The full variable vector (theta, v, p) from the unknowns and the free parameter.
-void assemble(const Problem& P, const std::vector<Mpfi>& y, const Mpfi& z, Mpfi x[3], long bits) {
-  x[0] = x[1] = x[2] = Mpfi(0, bits);
+// The full variable vector (the points, p) from the unknowns and the free parameter.
+std::vector<Mpfi> assemble(const Setup& S, const Problem& P, const std::vector<Mpfi>& y, const Mpfi& z) {
+  std::vector<Mpfi> x(dim(S), Mpfi(0, S.bits));
   for (size_t k = 0; k < P.yi.size(); ++k) x[P.yi[k]] = y[k];
-  if (P.free_p) x[2] = z;
+  if (P.free_p) x.back() = z;
+  return x;
 }
 
 // f at the centre (thin), in intervals.
 std::vector<Mpfi> residual(const Setup& S, const Problem& P, const std::vector<Mpfr>& yhat) {
   std::vector<Mpfi> y;
   for (const Mpfr& v : yhat) y.push_back(thin(v));
-  Mpfi x[3];
-  assemble(P, y, thin(P.zhat), x, S.bits);
-  std::array<Mpfi, 3> all;
+  const std::vector<Mpfi> x = assemble(S, P, y, thin(P.zhat));
+  std::vector<Mpfi> all;
   if (S.value_fn) {
     all = S.value_fn(x);
   } else {
-    const Eval e = evaluate(S, State<Mpfi>{x[0], x[1]}, x[2]);
-    all = {e.end.theta - x[0], e.end.v - x[1], S.border >= 0 ? oriented(S, e.margins, S.border) : Mpfi(0, S.bits)};
+    const Eval e = evaluate(S, x, x.back());
+    all = e.g;
+    all.push_back(S.border >= 0 ? oriented(S, e.margins, S.border) : Mpfi(0, S.bits));
   }
   std::vector<Mpfi> f;
-  for (int r : P.rows) f.push_back(all[r]);
+  for (size_t r : P.rows) f.push_back(all[r]);
   return f;
 }
 
@@ -387,29 +516,62 @@ std::vector<Mpfi> krawczyk(const Setup& S, const Problem& P, const std::vector<M
   // on the segments from y^ to every point of Y, also when tightening has moved Y off y^.
   std::vector<Mpfi> H;
   for (size_t c = 0; c < n; ++c) H.push_back(hull(Y[c], thin(yhat[c])));
-  Mpfi x[3];
-  assemble(P, H, P.Z, x, S.bits);
-  const Jet J = S.jet_fn ? S.jet_fn(x) : jet(S, x);
-  std::vector<std::vector<Mpfi>> A(n, std::vector<Mpfi>(n));
+  const Jet J = S.jet_fn ? S.jet_fn(assemble(S, P, H, P.Z)) : jet(S, assemble(S, P, H, P.Z));
+  // The problem's rows and columns of the Jacobian (entries of one row summed), sparse by
+  // columns, and F_z, the free parameter's column.
+  std::vector<long> row_of(J.f.size(), -1);
+  for (size_t r = 0; r < n; ++r) row_of[P.rows[r]] = static_cast<long>(r);
+  auto column = [&](size_t var) {
+    std::vector<std::pair<size_t, Mpfi>> out;
+    for (const auto& [row, v] : J.col[var]) {
+      if (row_of[row] < 0) continue;
+      const size_t r = static_cast<size_t>(row_of[row]);
+      auto it = std::find_if(out.begin(), out.end(), [&](const auto& e) { return e.first == r; });
+      if (it == out.end()) {
+        out.emplace_back(r, v);
+      } else {
+        it->second += v;
+      }
+    }
+    return out;
+  };
+  std::vector<std::vector<std::pair<size_t, Mpfi>>> A;
+  for (size_t c = 0; c < n; ++c) A.push_back(column(P.yi[c]));
   std::vector<Mpfi> Fz(n, Mpfi(0, S.bits));
-  for (size_t r = 0; r < n; ++r) {
-    for (size_t c = 0; c < n; ++c) A[r][c] = J.D[P.rows[r]][P.yi[c]];
-    if (P.free_p) Fz[r] = J.D[P.rows[r]][2];
+  if (P.free_p)
+    for (const auto& [r, v] : column(J.f.size() - 1)) Fz[r] = v;
+  const Preconditioner C = inverse_mid(A, S.bits);
+  std::vector<Mpfi> D;  // Y - y^
+  bool thin_box = true;  // Y = y^ (Newton): (I - C A) (Y - y^) = 0
+  for (size_t c = 0; c < n; ++c) {
+    D.push_back(Mpfi(Y[c] - thin(yhat[c])));
+    if (!mpfi_is_zero(D.back().get())) thin_box = false;
   }
-  const std::vector<std::vector<Mpfi>> C = inverse_mid(A, S.bits);
+  const Mpfi dz = P.free_p ? Mpfi(P.Z - thin(P.zhat)) : Mpfi(0, S.bits);
   std::vector<Mpfi> K;
+  Mpfi t(S.bits), M(S.bits);  // scratch
   for (size_t r = 0; r < n; ++r) {
     Mpfi k = thin(yhat[r]);
-    for (size_t c = 0; c < n; ++c) k -= C[r][c] * f[c];
+    for (size_t c = 0; c < n; ++c) {
+      C.mul(r, c, f[c], t);
+      mpfi_sub(k.get(), k.get(), t.get());
+    }
     if (P.free_p) {
       Mpfi cz(0, S.bits);
-      for (size_t c = 0; c < n; ++c) cz += C[r][c] * Fz[c];
-      k -= cz * (P.Z - thin(P.zhat));
+      for (size_t c = 0; c < n; ++c) {
+        C.mul(r, c, Fz[c], t);
+        mpfi_add(cz.get(), cz.get(), t.get());
+      }
+      k -= cz * dz;
     }
-    for (size_t c = 0; c < n; ++c) {
-      Mpfi M = Mpfi(r == c ? 1 : 0, S.bits);
-      for (size_t l = 0; l < n; ++l) M -= C[r][l] * A[l][c];
-      k += M * (Y[c] - thin(yhat[c]));
+    for (size_t c = 0; c < n && !thin_box; ++c) {
+      mpfi_set_si(M.get(), r == c ? 1 : 0);
+      for (const auto& [l, v] : A[c]) {
+        C.mul(r, l, v, t);
+        mpfi_sub(M.get(), M.get(), t.get());
+      }
+      mpfi_mul(t.get(), M.get(), D[c].get());
+      mpfi_add(k.get(), k.get(), t.get());
     }
     if (k.has_nan() || !k.bounded()) throw Fail("the Krawczyk image is not finite");
     K.push_back(k);
@@ -417,8 +579,9 @@ std::vector<Mpfi> krawczyk(const Setup& S, const Problem& P, const std::vector<M
   return K;
 }
 
-// The box B, proved to hold the one zero of the system, tightened by B <- K(B) n B until it
-// no longer shrinks (at most `rounds` times): the zero stays in every B.
+// The box B, proved to hold the one zero of the system, tightened by B <- K(B) n B until no
+// component's width halves any more (at most `rounds` times; rounds that shave the last ulps
+// cost a Krawczyk evaluation each and change nothing printed): the zero stays in every B.
 std::vector<Mpfi> tighten(const Setup& S, const Problem& A, const std::vector<Mpfr>& u, std::vector<Mpfi> B, int rounds = 40) {
   const std::vector<Mpfi> f = residual(S, A, u);
   for (int t = 0; t < rounds; ++t) {
@@ -427,7 +590,9 @@ std::vector<Mpfi> tighten(const Setup& S, const Problem& A, const std::vector<Mp
     for (size_t i = 0; i < B.size(); ++i) {
       const Mpfi N = intersect(K[i], B[i]);
       if (N.has_nan()) throw Fail("K(B) n B is empty while tightening (an enclosure is inconsistent)");
-      if (mpfr_less_p(N.width().get(), B[i].width().get())) shrank = true;
+      Mpfr half = B[i].width();
+      mpfr_div_2ui(half.get(), half.get(), 1, MPFR_RNDN);
+      if (mpfr_less_p(N.width().get(), half.get())) shrank = true;
       B[i] = N;
     }
     if (!shrank) break;
@@ -438,20 +603,27 @@ std::vector<Mpfi> tighten(const Setup& S, const Problem& A, const std::vector<Mp
 // Newton: y <- y - C f(y), the Krawczyk operator on the thin centre (free p held at z^).
 std::vector<Mpfr> newton(const Setup& S, Problem P, std::vector<Mpfr> y) {
   P.Z = thin(P.zhat);
+  double last_move = std::numeric_limits<double>::infinity();
   for (int it = 0; it < 60; ++it) {
     std::vector<Mpfi> Y;
     for (const Mpfr& v : y) Y.push_back(thin(v));
     const std::vector<Mpfi> K = krawczyk(S, P, y, residual(S, P, y), Y);
-    // Converged when every component moved by at most a few ulps (the last bits may cycle).
+    // Converged when every component moved by at most a few ulps, or when the moves stop
+    // shrinking (the last bits cycle: shooting's double preconditioner times the residual's
+    // rounding can exceed a few ulps). The proofs never rely on this point being accurate.
     bool same = true;
+    double move = 0;
     for (size_t i = 0; i < y.size(); ++i) {
       const Mpfr nx = K[i].mid();
       Mpfr tol = abs(y[i]) + 1;
+      const Mpfr d = abs(Mpfr(nx - y[i]));
+      move = std::max(move, Mpfr(d / tol).to_double());
       mpfr_mul_2si(tol.get(), tol.get(), -(S.bits - 6), MPFR_RNDN);
-      if (abs(Mpfr(nx - y[i])) > tol) same = false;
+      if (d > tol) same = false;
       y[i] = nx;
     }
-    if (same) break;
+    if (same || (it >= 2 && move > last_move / 16)) break;
+    last_move = move;
   }
   return y;
 }
@@ -496,7 +668,7 @@ std::vector<Mpfi> prove_tight(const Setup& S, const Problem& P, const std::vecto
 
 // The period-Q point x(p) at one parameter value p (thin), enclosed tightly.
 std::vector<Mpfi> orbit_at(const Setup& S, const Mpfi& p, const std::vector<Mpfr>& guess) {
-  Problem P = orbit_problem(p);
+  Problem P = orbit_problem(S, p);
   return prove_tight(S, P, newton(S, P, guess));
 }
 
@@ -591,11 +763,13 @@ std::optional<Reference> newton_reference(const BranchEndQuestion& e, const Deci
 // The ImpactMap's own interval steps from x at parameter p: true when every branch is
 // decided and the events are those of the pieces (kind, segment, corner), false when some
 // branch is undecided; throws when decided otherwise.
-bool step_confirms(const Setup& S, const State<Mpfi>& x, const Mpfi& p) {
+// With shooting (m > 1) each step starts from its own point's box x_i.
+bool step_confirms(const Setup& S, const std::vector<Mpfi>& x, const Mpfi& p) {
   const ImpactMap<Mpfi> map(at(S, p));
-  State<Mpfi> s = S.release ? S.R : x;
+  State<Mpfi> s = S.release ? S.R : State<Mpfi>{x[0], x[1]};
   try {
     for (size_t i = 0; i < S.pieces.size(); ++i) {
+      if (S.m > 1) s = State<Mpfi>{x[2 * i], x[2 * i + 1]};
       const StepResult<Mpfi> r = map.step(s);
       const int seg = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
       if (r.kind != S.events[i].kind || seg != S.events[i].segment || r.corner != S.events[i].corner)
@@ -616,7 +790,9 @@ struct Proved {
   std::vector<Mpfi> xstar;
 };
 
-void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::vector<State<Mpfi>>& orbit_out) {
+// shooting: the unknowns are all Q points (Setup::m = Q) instead of the first alone.
+void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::vector<State<Mpfi>>& orbit_out,
+         bool shooting) {
   const BranchEndQuestion& e = q.end;
   const long bits = q.bits;
   if (e.model.law == Law::veldep && e.model.veldep_collapse)
@@ -651,6 +827,15 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     }
   }
   S.release = S.pieces.back().sticks;
+  c.through_release = S.release;
+  if (shooting && S.release) throw Fail("an orbit through the release state has no points to shoot from (its start is exact)");
+  S.m = shooting ? static_cast<int>(S.pieces.size()) : 1;
+  // The reference orbit's points after the first (the start of step i + 1 is step i's image).
+  auto nexts = [](const Reference& r) {
+    std::vector<State<Mpfr>> out;
+    for (const StepResult<Mpfr>& st : r.steps) out.push_back(st.next);
+    return out;
+  };
   S.base = interval_model(with_parameter(e.model, e.vary, pf), bits);
   if (S.release) {
     const Wall<Mpfi>& w = S.base.wall;
@@ -662,7 +847,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     // Newton on the piece at pf, then the step itself from its solution: the same events.
     State<Mpfr> x = ref.start;
     if (!S.release) {
-      const std::vector<Mpfr> y = newton(S, orbit_problem(parameter_of(S.base, S.par)), {ref.start.theta, ref.start.v});
+      const std::vector<Mpfr> y = newton(S, orbit_problem(S, parameter_of(S.base, S.par)), point_unknowns(S, ref.start, nexts(ref)));
       x = State<Mpfr>{y[0], y[1]};
     }
     const Reference at_pf = steps_from(e, mref, x);
@@ -682,7 +867,6 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
                  std::to_string(S.pieces[i].from_segment) + ", the impact before it is on segment " + std::to_string(landed));
   }
   c.events = event_text(S.events);
-  c.through_release = S.release;
 
   // The margins at the reference and at a second branch-side value pf2 = pf + (pf - pb),
   // farther from a*: their orientation, and the border (the margin given, or the one whose
@@ -693,12 +877,23 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   std::vector<Mpfi> mf;
   {
     const ImpactMap<Mpfi> map(at(S, Pf));
-    const State<Mpfi> end = piece_orbit(map, S.release ? S.R : xf, S.pieces, &mf, &S.ids);
-    // The closed-form piece against the step: the same orbit end.
-    const State<Mpfr>& want = ref.steps.back().next;
-    const double d = std::max(std::fabs(Mpfr(end.theta.mid() - want.theta).to_double()),
-                              std::fabs(Mpfr(end.v.mid() - want.v).to_double()) / std::max(1.0, std::fabs(want.v.to_double())));
-    if (!(d < std::ldexp(1.0, -static_cast<int>(bits) / 2))) throw Fail("the closed-form piece does not reproduce the step's orbit (off by " + std::to_string(d) + ")");
+    // The closed-form piece against the step: the same orbit end (shooting: every step's).
+    auto compare = [&](const State<Mpfi>& end, const State<Mpfr>& want) {
+      const double d = std::max(std::fabs(Mpfr(end.theta.mid() - want.theta).to_double()),
+                                std::fabs(Mpfr(end.v.mid() - want.v).to_double()) / std::max(1.0, std::fabs(want.v.to_double())));
+      if (!(d < std::ldexp(1.0, -static_cast<int>(bits) / 2)))
+        throw Fail("the closed-form piece does not reproduce the step's orbit (off by " + std::to_string(d) + ")");
+    };
+    if (S.m == 1) {
+      compare(piece_orbit(map, S.release ? S.R : xf, S.pieces, &mf, &S.ids), ref.steps.back().next);
+    } else {
+      State<Mpfr> from = ref.start;
+      for (size_t i = 0; i < S.pieces.size(); ++i) {
+        compare(piece_step(map, State<Mpfi>{thin(from.theta), thin(from.v)}, S.pieces[i], static_cast<long>(i), &mf, &S.ids),
+                ref.steps[i].next);
+        from = ref.steps[i].next;
+      }
+    }
   }
   for (const Mpfi& x : mf) S.sign.push_back(x.mid().to_double() >= 0 ? 1 : -1);
   {
@@ -707,10 +902,12 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     std::vector<Mpfi> m2;
     const Mpfi P2 = parameter_interval_of(d2, bits);
     if (S.release) {
-      m2 = evaluate(S, S.R, P2).margins;
+      m2 = evaluate(S, {}, P2).margins;
     } else {
-      const std::vector<Mpfr> y2 = newton(S, orbit_problem(P2), {ref.start.theta, ref.start.v});
-      m2 = evaluate(S, State<Mpfi>{thin(y2[0]), thin(y2[1])}, P2).margins;
+      const std::vector<Mpfr> y2 = newton(S, orbit_problem(S, P2), point_unknowns(S, ref.start, nexts(ref)));
+      std::vector<Mpfi> x2;
+      for (const Mpfr& y : y2) x2.push_back(thin(y));
+      m2 = evaluate(S, x2, P2).margins;
     }
     const double dp = mpq_class(pf.value() - pb.value()).get_d();
     std::vector<double> dist(mf.size(), std::numeric_limits<double>::infinity());
@@ -743,7 +940,8 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   // Newton on the augmented system from the branch side's orbit at pf.
   const Problem A = augmented(S);
   const Mpfr pbr = Pb.mid(), pfr = Pf.mid();
-  std::vector<Mpfr> u = S.release ? std::vector<Mpfr>{pfr} : std::vector<Mpfr>{ref.start.theta, ref.start.v, pfr};
+  std::vector<Mpfr> u = S.release ? std::vector<Mpfr>{} : point_unknowns(S, ref.start, nexts(ref));
+  u.push_back(pfr);
   u = newton(S, A, u);
   const Mpfr phat = u.back();
   const Mpfr w0 = abs(Mpfr(pbr - pfr));
@@ -787,12 +985,13 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
         }
         pr.pstar = B[0];
       } else {
-        const std::vector<Mpfr> xg = {u[0], u[1]};
+        const std::vector<Mpfr> xg(u.begin(), u.end() - 1);
+        const size_t ny = xg.size();
         const std::vector<Mpfi> ylo = orbit_at(S, thin(zlo), xg), yhi = orbit_at(S, thin(zhi), xg);
         // Y: the hull of the two ends' orbits and the centre, inflated until both proofs hold.
-        std::vector<Mpfi> Y(2);
-        Mpfr rad[2], mid[2];
-        for (int i = 0; i < 2; ++i) {
+        std::vector<Mpfi> Y(ny);
+        std::vector<Mpfr> rad(ny), mid(ny);
+        for (size_t i = 0; i < ny; ++i) {
           const Mpfi h = hull(hull(ylo[i], yhi[i]), thin(u[i]));
           mid[i] = h.mid();
           rad[i] = h.width();
@@ -802,22 +1001,24 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
         }
         bool ok = false;
         for (int t = 0; t < 6 && !ok; ++t) {
-          for (int i = 0; i < 2; ++i) Y[i] = Mpfi(Mpfr(mid[i] - rad[i]), Mpfr(mid[i] + rad[i]));
-          Problem O = orbit_problem(pr.Z);
+          for (size_t i = 0; i < ny; ++i) Y[i] = Mpfi(Mpfr(mid[i] - rad[i]), Mpfr(mid[i] + rad[i]));
+          Problem O = orbit_problem(S, pr.Z);
           O.zhat = phat;
-          const std::vector<Mpfr> yc = {u[0], u[1]};
-          const std::vector<Mpfi> KO = krawczyk(S, O, yc, residual(S, O, yc), Y);
-          std::vector<Mpfi> B = {Y[0], Y[1], pr.Z};
+          const std::vector<Mpfi> KO = krawczyk(S, O, xg, residual(S, O, xg), Y);
+          std::vector<Mpfi> B = Y;
+          B.push_back(pr.Z);
           const std::vector<Mpfi> KA = krawczyk(S, A, u, residual(S, A, u), B);
           ok = all_inside(KO, Y) && all_inside(KA, B);
           if (!ok)
-            for (int i = 0; i < 2; ++i) rad[i] = rad[i] * 4;
+            for (size_t i = 0; i < ny; ++i) rad[i] = rad[i] * 4;
         }
         if (!ok) throw Fail("the Krawczyk operators did not map the box Y x Z into itself");
         pr.Y = Y;
-        const std::vector<Mpfi> B = tighten(S, A, u, {Y[0], Y[1], pr.Z});
-        pr.pstar = B[2];
-        pr.xstar = {B[0], B[1]};
+        std::vector<Mpfi> B0 = Y;
+        B0.push_back(pr.Z);
+        const std::vector<Mpfi> B = tighten(S, A, u, B0);
+        pr.pstar = B.back();
+        pr.xstar.assign(B.begin(), B.end() - 1);
       }
       proved = pr;
     } catch (const Fail& f) {
@@ -840,15 +1041,21 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   // of 1-2 and continuity it then has one sign on each side of a*: an interval evaluation
   // over a whole side would straddle 0 next to a*).
   // x(p) enclosed at one p: its box must lie in Y, where x(p) is the unique orbit.
+  const std::vector<Mpfr> xg(u.begin(), u.end() - 1);  // the orbit's unknowns at the augmented Newton point
+  auto inside_Y = [&](const std::vector<Mpfi>& x) {
+    for (size_t i = 0; i < x.size(); ++i)
+      if (!pr.Y[i].contains(x[i])) return false;
+    return true;
+  };
   auto orbit_in_Y = [&](const Mpfi& p) {
-    const std::vector<Mpfi> x = orbit_at(S, p, {u[0], u[1]});
-    if (!pr.Y[0].contains(x[0]) || !pr.Y[1].contains(x[1])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
+    const std::vector<Mpfi> x = orbit_at(S, p, xg);
+    if (!inside_Y(x)) throw Fail("an orbit enclosed at one parameter value lies outside Y");
     return x;
   };
   auto border_sign = [&](const Mpfr& p) {
     std::vector<Mpfi> x;
     if (!S.release) x = orbit_in_Y(thin(p));
-    const Eval ev = evaluate(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, thin(p));
+    const Eval ev = evaluate(S, x, thin(p));
     return oriented(S, ev.margins, S.border);
   };
   const Mpfi zero(0, bits);
@@ -866,7 +1073,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   {
     // The first margin (other than the border) not certainly of its branch-side sign over
     // the orbit box X and parameters P, or -1.
-    auto undecided_margin = [&](const State<Mpfi>& X, const Mpfi& P) -> long {
+    auto undecided_margin = [&](const std::vector<Mpfi>& X, const Mpfi& P) -> long {
       const Eval ev = evaluate(S, X, P);
       std::optional<std::vector<IDual>> slopes;
       for (size_t i = 0; i < ev.margins.size(); ++i) {
@@ -882,7 +1089,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
           const Mpfi& d = (*slopes)[i].d[0];
           const bool monotone = Tr::lt(zero, d) == Truth::yes || Tr::lt(d, zero) == Truth::yes;
           if (monotone) {
-            const Eval e1 = evaluate(S, S.R, thin(P.lower())), e2 = evaluate(S, S.R, thin(P.upper()));
+            const Eval e1 = evaluate(S, {}, thin(P.lower())), e2 = evaluate(S, {}, thin(P.upper()));
             ok = Tr::lt(zero, oriented(S, e1.margins, i)) == Truth::yes && Tr::lt(zero, oriented(S, e2.margins, i)) == Truth::yes;
           }
         }
@@ -892,11 +1099,11 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     };
     // x(P) in a small box inside Y, or Y itself.
     auto orbit_over = [&](const Mpfi& P) {
-      State<Mpfi> X{pr.Y[0], pr.Y[1]};
+      std::vector<Mpfi> X = pr.Y;
       try {
-        Problem O = orbit_problem(P);
-        const std::vector<Mpfi> T = prove_tight(S, O, newton(S, O, {u[0], u[1]}));
-        if (pr.Y[0].contains(T[0]) && pr.Y[1].contains(T[1])) X = State<Mpfi>{T[0], T[1]};
+        Problem O = orbit_problem(S, P);
+        const std::vector<Mpfi> T = prove_tight(S, O, newton(S, O, xg));
+        if (inside_Y(T)) X = T;
       } catch (const Fail&) {
       } catch (const Undecided&) {
       }
@@ -907,7 +1114,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     while (!todo.empty()) {
       const Mpfi P = todo.back();
       todo.pop_back();
-      const long i = S.release ? undecided_margin(S.R, P) : undecided_margin(orbit_over(P), P);
+      const long i = undecided_margin(S.release ? std::vector<Mpfi>{} : orbit_over(P), P);
       if (i < 0) continue;
       if (S.release || ++evaluations > 511)
         throw Fail("on the branch side, " + margin_words(S.ids[static_cast<size_t>(i)]) +
@@ -941,7 +1148,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
           continue;
         }
       }
-      if (step_confirms(S, S.release ? S.R : State<Mpfi>{x[0], x[1]}, Pc)) {
+      if (step_confirms(S, x, Pc)) {
         checked = dec;
         break;
       }
@@ -951,6 +1158,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
 
   // The certificate.
   c.certified = true;
+  c.shooting = S.m > 1;
   c.lo = to_q(alo);
   c.hi = to_q(ahi);
   c.parameter = enclosure(pr.pstar);
@@ -958,7 +1166,9 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   c.z_lo = to_q(zlo);
   c.z_hi = to_q(zhi);
   c.checked_at = Decimal::parse(*checked)->value();
-  {
+  if (S.m > 1) {
+    for (size_t i = 0; i + 1 < pr.xstar.size(); i += 2) orbit_out.push_back(State<Mpfi>{pr.xstar[i], pr.xstar[i + 1]});
+  } else {
     const ImpactMap<Mpfi> map(at(S, pr.pstar));
     std::vector<State<Mpfi>> pts;
     piece_orbit(map, S.release ? S.R : State<Mpfi>{pr.xstar[0], pr.xstar[1]}, S.pieces, static_cast<std::vector<Mpfi>*>(nullptr),
@@ -981,8 +1191,9 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     << beyond_text << " that margin is < 0 on the branch's piece: no period-" << e.period << " orbit with events " << c.events
     << (S.release ? " through the release state" : " in the box")
     << ". Proved by the Krawczyk operator on the augmented system (the orbit equations of the branch side's piece, "
-       "extended analytically across the border, and the margin = 0) at "
-    << bits << " bits.";
+       "extended analytically across the border, and the margin = 0"
+    << (S.m > 1 ? "; multiple shooting: the unknowns are all " + std::to_string(S.m) + " orbit points and the parameter" : "")
+    << ") at " << bits << " bits.";
   c.statement = s.str();
 }
 
@@ -1024,14 +1235,14 @@ State<IDual> orbit_dual(const Model<Mpfi>& base, Parameter par, const Mpfi x[3],
 // (P^Q(x) - x, det(DP^Q(x) + I)) at a point, in intervals.
 // sigma = +1: det(DP^q + I) (a multiplier -1, period doubling); -1: det(DP^q - I) (a
 // multiplier +1, fold).
-std::array<Mpfi, 3> pd_value(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x, int sigma = 1) {
-  const State<IDual> e = orbit_dual(base, par, x, q, nullptr);
+std::vector<Mpfi> pd_value(const Model<Mpfi>& base, Parameter par, long q, const std::vector<Mpfi>& x, int sigma = 1) {
+  const State<IDual> e = orbit_dual(base, par, x.data(), q, nullptr);
   const Mpfi J00 = e.theta.d[0] + sigma, J01 = e.theta.d[1], J10 = e.v.d[0], J11 = e.v.d[1] + sigma;
   return {e.theta.v - x[0], e.v.v - x[1], J00 * J11 - J01 * J10};
 }
 
-Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x, int sigma = 1) {
-  Jet J;
+Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const std::vector<Mpfi>& x, int sigma = 1) {
+  Jet J(3);
   const long bits = x[0].bits();
   for (int var = 0; var < 3; ++var) {
     auto lift = [&](const Mpfi& y) { return IDual2(IDual(y)); };
@@ -1056,7 +1267,7 @@ Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x, int si
           !ScalarTraits<IDual>::derivatives_finite(y.d[0]))
         throw Fail("the second-derivative enclosure over the box is not finite");
       J.f[r] = y.v.v - x[r];
-      J.D[r][var] = var == r ? Mpfi(y.d[0].v - 1) : y.d[0].v;
+      J.set(static_cast<size_t>(r), static_cast<size_t>(var), var == r ? Mpfi(y.d[0].v - 1) : y.d[0].v);
       for (int k = 0; k < 2; ++k) {
         Jm[r][k] = y.v.d[k];
         dJ[r][k] = y.d[0].d[k];
@@ -1065,7 +1276,7 @@ Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const Mpfi* x, int si
     Jm[0][0] += Mpfi(sigma, bits);
     Jm[1][1] += Mpfi(sigma, bits);
     J.f[2] = Jm[0][0] * Jm[1][1] - Jm[0][1] * Jm[1][0];
-    J.D[2][var] = dJ[0][0] * Jm[1][1] + Jm[0][0] * dJ[1][1] - dJ[0][1] * Jm[1][0] - Jm[0][1] * dJ[1][0];
+    J.set(2, static_cast<size_t>(var), dJ[0][0] * Jm[1][1] + Jm[0][0] * dJ[1][1] - dJ[0][1] * Jm[1][0] - Jm[0][1] * dJ[1][0]);
   }
   return J;
 }
@@ -1077,8 +1288,8 @@ void smooth_system(Setup& S, const PeriodDoublingQuestion& q, int sigma) {
   S.par = q.vary;
   S.bits = q.bits;
   S.base = interval_model(with_parameter(q.model, q.vary, q.lo), q.bits);
-  S.value_fn = [&S, &q, sigma](const Mpfi* x) { return pd_value(S.base, S.par, q.period, x, sigma); };
-  S.jet_fn = [&S, &q, sigma](const Mpfi* x) { return pd_jet(S.base, S.par, q.period, x, sigma); };
+  S.value_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_value(S.base, S.par, q.period, x, sigma); };
+  S.jet_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_jet(S.base, S.par, q.period, x, sigma); };
 }
 
 void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
@@ -1127,7 +1338,7 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
       bool ok = false;
       for (int t = 0; t < 6 && !ok; ++t) {
         for (int i = 0; i < 2; ++i) Y[i] = Mpfi(Mpfr(mid2[i] - rad[i]), Mpfr(mid2[i] + rad[i]));
-        Problem O = orbit_problem(Z);
+        Problem O = orbit_problem(S, Z);
         O.zhat = phat;
         const std::vector<Mpfi> KO = krawczyk(S, O, xg, residual(S, O, xg), {Y[0], Y[1]});
         const std::vector<Mpfi> box = {Y[0], Y[1], Z};
@@ -1153,8 +1364,7 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
     const Mpfr p = end == 0 ? Z.lower() : Z.upper();
     const std::vector<Mpfi> x = orbit_at(S, thin(p), {u[0], u[1]});
     if (!Y[0].contains(x[0]) || !Y[1].contains(x[1])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
-    const Mpfi xs[3] = {x[0], x[1], thin(p)};
-    sides[end] = Tr::lt(zero, pd_value(S.base, S.par, q.period, xs)[2]);
+    sides[end] = Tr::lt(zero, pd_value(S.base, S.par, q.period, {x[0], x[1], thin(p)})[2]);
     if (sides[end] == Truth::unknown || sides[end] == Truth::invalid)
       throw Fail("det(DP^Q + I) has no certain sign at an end of Z");
   }
@@ -1293,11 +1503,32 @@ Certificate attempt(long bits, const char* what, Proof&& proof) {
 BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestion& q) {
   const auto t0 = std::chrono::steady_clock::now();
   BorderCollisionQuestion at = q;
+  // Both formulations at each precision: the composed map (one point) first for short
+  // periods, multiple shooting (every point) first from kShootFirst steps on, where the
+  // composed map's wrapping makes it slow to fail; an orbit through the release state has
+  // only the composed form (its start is exact).
+  constexpr long kShootFirst = 12;
   for (;;) {
-    BorderCollisionCertificate c = attempt<BorderCollisionCertificate>(at.bits, " about a*", [&](BorderCollisionCertificate& r) {
-      std::vector<State<Mpfi>> orbit;
-      run(at, r, orbit);
-    });
+    auto one = [&](bool shooting) {
+      return attempt<BorderCollisionCertificate>(at.bits, " about a*", [&](BorderCollisionCertificate& r) {
+        std::vector<State<Mpfi>> orbit;
+        run(at, r, orbit, shooting);
+      });
+    };
+    const bool shoot_first = q.formulation == BorderFormulation::shooting ||
+                             (q.formulation == BorderFormulation::automatic && q.end.period >= kShootFirst);
+    BorderCollisionCertificate c = one(shoot_first);
+    if (!c.certified && q.formulation == BorderFormulation::automatic && q.end.period > 1 && !c.through_release) {
+      BorderCollisionCertificate other = one(!shoot_first);
+      if (other.certified) {
+        c = other;
+      } else if (other.reason != c.reason) {
+        const std::string& composed = shoot_first ? other.reason : c.reason;
+        const std::string& shot = shoot_first ? c.reason : other.reason;
+        c.reason = "the composed map: " + composed + "; multiple shooting: " + shot;
+        c.statement = "Not certified at " + std::to_string(at.bits) + " bits: " + c.reason + ". Nothing is claimed about a*.";
+      }
+    }
     if (c.certified || 2 * at.bits > q.max_bits) {
       c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // every attempt
       return c;

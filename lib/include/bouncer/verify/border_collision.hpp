@@ -57,6 +57,10 @@
 // Krawczyk operator fails (reported as not certified). Any other margin that vanishes at a*
 // makes step 4 fail: nothing is claimed.
 //
+// Long periods (BorderFormulation): the same proof with all Q orbit points as unknowns, Y a
+// box per point, G_i = piece_i(x_i; p) - x_{i+1 mod Q}; every margin of step i is evaluated
+// over x_i's own box, and the step's own check (5) runs each step from its point's box.
+//
 // The question's interval [lo, hi] (verify/branch_end.hpp branch_end_interval) lies on the
 // branch side of a double bracket, which may itself lie past a* (issue 23): the branch
 // side's orbit is found at its far end (the step's Newton; for unstable orbits, Newton on
@@ -78,6 +82,14 @@
 
 namespace bouncer {
 
+// The unknowns of the proof: the first orbit point and p (composed: P_E^Q(x_0) = x_0, the
+// Q steps composed in one interval evaluation), or all Q points and p (multiple shooting:
+// piece_i(x_i) = x_{i+1 mod Q}, each step over its own point's box). The composed map widens
+// a box by the product of the Q steps' derivative norms (about 2^66 over a period-66 orbit),
+// so long periods need shooting; short ones are quicker composed. automatic: shooting first
+// from period 12 on, composed first below, the other where the first fails.
+enum class BorderFormulation { automatic, composed, shooting };
+
 struct BorderCollisionQuestion {
   // The end as `continue` reports it (verify/branch_end.hpp): the model, the varied
   // parameter, the period, the last orbit point on the branch side, the interval next to a*
@@ -88,12 +100,14 @@ struct BorderCollisionQuestion {
   std::optional<Margin> margin;
   long bits = 128;  // MPFI precision of every interval evaluation
   // If > bits: when the proof fails, it is tried again at twice the bits, up to max_bits.
-  // Long periods need it: q interval steps widen a box by up to the product of the steps'
-  // derivative norms (about 2^66 over a period-66 orbit), and the parameter interval Z must
-  // be wide against that growth times the precision's ulp (the margins' signs at Z's ends,
-  // the step's own events next to a*) yet narrow against the margins divided by it (the
-  // Krawczyk operator over Y x Z): at 128 bits that window can be empty.
+  // The composed formulation of long periods needs it: q interval steps widen a box by up to
+  // the product of the steps' derivative norms (about 2^66 over a period-66 orbit), and the
+  // parameter interval Z must be wide against that growth times the precision's ulp (the
+  // margins' signs at Z's ends, the step's own events next to a*) yet narrow against the
+  // margins divided by it (the Krawczyk operator over Y x Z): at 128 bits that window can be
+  // empty. Multiple shooting (BorderFormulation) does not compose, and proves them at 128.
   long max_bits = 0;
+  BorderFormulation formulation = BorderFormulation::automatic;
 };
 
 struct BorderCollisionCertificate {
@@ -111,6 +125,7 @@ struct BorderCollisionCertificate {
   std::string margin_text;
   std::string events;      // E, the branch side's event sequence (analysis/continuation.hpp event_text)
   bool through_release = false;
+  bool shooting = false;   // proved by multiple shooting (all Q points unknowns), else composed
   // The parameter interval Z = [z_lo, z_hi] of the proof, as exact rationals: the orbit with
   // events E exists for p in [z_lo, lo] (high end; [hi, z_hi] at a low end) and the border
   // margin is < 0 (the piece is left) beyond a*, up to z_hi (down to z_lo).

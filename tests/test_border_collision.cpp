@@ -326,6 +326,47 @@ TEST(BorderCollision, VeldepLongPeriodEndsByMultipleShooting) {
   }
 }
 
+TEST(BorderCollision, APeriod10EndIsNotMistakenForItsPeriod2Orbit) {
+  // The stable period 10 at c = 1000, a = 18 (68% of a 32 x 32 grid), continued over
+  // [15, 31] as `attractors --vary` does, ends at 18.1578 where an impact reaches theta =
+  // 1/2. Newton for a fixed point of P^10 from the branch's last point converged to the
+  // period-2 orbit (also a fixed point of P^10), and the proof followed that orbit to its
+  // own border collision at 24.595: the reference orbit must have minimal period 10. Truth:
+  // the double continuation's bracket within 1e-9 (24.595 is 6.4 away), and the enclosed
+  // orbit has 10 points.
+  const BorderCollisionCertificate c =
+      expect_long_period_end("18", 10, {0.12741130263003148, 23.09769702060354}, 15.0, 31.0, /*high=*/true, 128);
+  EXPECT_EQ(c.orbit.size(), 10u);
+}
+
+TEST(Fold, VeldepPeriod64FoldNeedsTheSecondPrecision) {
+  // The stable period 64 at c = 1000 lives on a = 16.89986..16.90042 and ends at its high end
+  // in a fold. Sixty-four composed interval steps with second derivatives left step 7's
+  // impact undecided over the proof's box at 128 bits; certify_fold retries at twice the bits
+  // (max_bits) and proves it at 256. Truth: the double bracket within 1e-8, a multiplier
+  // exactly 1 (the trace is 1 + det, both enclosed: checked as trace - det contains 1).
+  const ModelSpec s = test_support::spec(Law::veldep, "16.9", "1", "1000");
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 64,
+                                     State<double>{0.00560367855987808, 15.194708996376361}, 16.89, 16.91);
+  ASSERT_TRUE(b.started) << b.note;
+  ASSERT_EQ(b.high.reason, EndReason::fold) << b.high.detail;
+  PeriodDoublingQuestion q = smooth_event_question(s, Parameter::a, 64, b, b.high.param,
+                                                   ScalarTraits<double>::to_string(b.high.bracket_lo),
+                                                   ScalarTraits<double>::to_string(b.high.bracket_hi), 53);
+  EXPECT_EQ(q.bits, 128);
+  EXPECT_EQ(q.max_bits, 256);
+  const PeriodDoublingCertificate c = certify_fold(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.bits, 256);
+  EXPECT_LE(c.width, 1e-30);
+  EXPECT_LT(gap(b.high.bracket_lo, b.high.bracket_hi, c.lo, c.hi), 1e-8);
+  // trace - det = 1 + mu - mu = 1 with the multipliers 1 and mu (det = mu).
+  const mpq_class tlo = parse_decimal("lo", c.trace.lo).value(), thi = parse_decimal("hi", c.trace.hi).value();
+  const mpq_class dlo = parse_decimal("lo", c.det.lo).value(), dhi = parse_decimal("hi", c.det.hi).value();
+  EXPECT_LE(tlo - dhi, 1);
+  EXPECT_GE(thi - dlo, 1);
+}
+
 // Period doubling on the eps = 0.9 period-2 branch (test_continuation.cpp): no closed form
 // for a*, but truth independent of the certifier: the constant-eps map contracts area by
 // eps^2 per impact, so det DP^2 = eps^4 and at a multiplier -1 the other is exactly

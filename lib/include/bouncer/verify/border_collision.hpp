@@ -156,6 +156,7 @@ struct PeriodDoublingQuestion {
   InitialCondition point;           // an orbit point near a* (continuation: the nearest branch point)
   Decimal lo, hi;                   // an interval holding a* (e.g. Bifurcation's bracket)
   long bits = 128;
+  long max_bits = 0;                // as BorderCollisionQuestion::max_bits: retried at twice the bits up to it
 };
 
 struct PeriodDoublingCertificate {
@@ -230,6 +231,7 @@ PeriodDoublingQuestion smooth_event_question(const ModelSpec& model, Parameter v
   q.lo = parse_decimal("lo", lo);
   q.hi = parse_decimal("hi", hi);
   q.bits = std::max<long>(bits, 128);
+  q.max_bits = 2 * q.bits;
   return q;
 }
 

@@ -75,11 +75,11 @@ def edits(lines):
         ("a row with a cell too few", "cells for", edit(set_line(r, lines[r][:lines[r].rstrip(" |").rfind("|") + 1]))),
         ("a renamed column", "header row", edit(set_line(header, lines[header].replace("| ", "| my ", 1)))),
         ("a command that is no benchmark's", "is not one of",
-         edit(set_line(prov, re.sub(r"^Recorded by `\S+", "Recorded by `bench_nothing", lines[prov])))),
+         edit(set_line(prov, re.sub(r"^Recorded by `[^\s`]+", "Recorded by `bench_nothing", lines[prov])))),
         ("the provenance line removed", "provenance line", edit(lambda new: new.__delitem__(prov))),
         ("one block of a run with another provenance", "differs",
          edit(set_line(cprov, re.sub(r"\d{4}-\d\d-\d\d \d\d:\d\d:\d\d UTC", "1999-01-01 00:00:00 UTC", lines[cprov])))),
-        ("an end marker lost", "end marker", edit(lambda new: new.__delitem__(e))),
+        ("an end marker lost", "end marker|begins inside", edit(lambda new: new.__delitem__(e))),
         ("a table line after the notes", "after the notes", edit(lambda new: new.insert(e, "| x |"))),
     ]
 
@@ -104,7 +104,7 @@ def main():
         code, out = run_check("\n".join(new), build)
         if code == 0:
             failures.append(f"{what}: accepted by the check")
-        elif expect not in out:
+        elif not re.search(expect, out):
             failures.append(f"{what}: rejected, but without naming it ({expect!r} not in: {out.strip()[:300]})")
         else:
             print(f"check_bench_tables: {what}: rejected")

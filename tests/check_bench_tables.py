@@ -6,7 +6,10 @@ reject copies of it edited by hand, each in one way a person editing a table wou
 a cell too many, a row with a cell too few, a renamed column, a command that is no benchmark's,
 a provenance line removed, the provenance of one block of a run changed, an end marker lost,
 a table line after the notes. Each edit is checked to change the page (so that no case passes
-by editing nothing), and the check's message must name the problem. Nothing is timed.
+by editing nothing), and the check's message must name the problem. And the recorder's own
+output passes the check and leaves the prose alone: every block rewritten from a made-up record
+(the tools' columns from `--columns`, cells with characters Markdown would read: | * _ < >)
+is accepted, and the lines outside the blocks are unchanged. Nothing is timed.
 
     python3 tests/check_bench_tables.py --build-dir build
 """
@@ -20,6 +23,9 @@ import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RECORDER = os.path.join(ROOT, "tools", "bench", "record_tables.py")
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.dirname(RECORDER))
+import record_tables  # noqa: E402
 PAGE = os.path.join(ROOT, "docs", "guide", "benchmarks.md")
 
 
@@ -84,6 +90,36 @@ def edits(lines):
     ]
 
 
+def outside(lines):
+    """The lines outside the bench blocks."""
+    blocks, _ = record_tables.find_blocks(lines)
+    spans = sorted(blocks.values())
+    out, k = [], 0
+    for b, e in spans:
+        out += lines[k:b]
+        k = e + 1
+    return out + lines[k:]
+
+
+def rewritten(lines, build):
+    """The page with every block rewritten by the recorder from a made-up record of its tool."""
+    blocks, problems = record_tables.find_blocks(lines)
+    if problems:
+        raise SystemExit(f"check_bench_tables: the page's markers: {problems}")
+    new = {}
+    for name in blocks:
+        key, _, table = name.partition("/")
+        columns = record_tables.columns_of(key, build)[table]
+        rec = {"command": record_tables.BENCHMARKS[key]["tool"] + " --quick", "version": "9.9.9", "commit": "0" * 40,
+               "date": "2000-01-01 00:00:00 UTC",
+               "machine": {"cpus": 2, "cpu": "Test CPU(R) (2 cores)", "load_at_start": "0.50 1.00 1.50 1/99 123"}}
+        t = {"name": table, "columns": columns,
+             "rows": [[f"a|b*c_d <{i}>" for i in range(len(columns))], ["" for _ in columns]],
+             "notes": ["a note | with * and _", "a second note"]}
+        new[name] = record_tables.block(name, rec, t)
+    return record_tables.replace_blocks(lines, blocks, new)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build-dir", default=os.path.join(ROOT, "build"))
@@ -97,6 +133,17 @@ def main():
     code, out = run_check(text, build)
     if code != 0:
         failures.append(f"the committed page fails the check:\n{out}")
+    regenerated = rewritten(lines, build)
+    if regenerated == lines:
+        failures.append("the recorder's rewrite changed nothing (the test would prove nothing)")
+    elif outside(regenerated) != outside(lines):
+        failures.append("the recorder's rewrite changed lines outside the blocks")
+    else:
+        code, out = run_check("\n".join(regenerated), build)
+        if code != 0:
+            failures.append(f"the recorder's own output fails the check:\n{out}")
+        else:
+            print("check_bench_tables: the recorder's own output passes, the prose unchanged")
     for what, expect, new in edits(lines):
         if new == lines:
             failures.append(f"{what}: the edit changed nothing (the test would prove nothing)")

@@ -223,6 +223,17 @@ def check(page, build):
     return 1 if problems else 0
 
 
+def replace_blocks(lines, blocks, new_blocks):
+    """The page's lines with the blocks named in new_blocks ({name: lines}) replaced; the
+    lines outside them unchanged."""
+    lines = list(lines)
+    # From the last block up, so that the indices of the earlier ones stay valid.
+    for name, (b, e) in sorted(blocks.items(), key=lambda kv: -kv[1][0]):
+        if name in new_blocks:
+            lines[b:e + 1] = new_blocks[name]
+    return lines
+
+
 def record(page, build, keys):
     with open(page) as f:
         lines = f.read().split("\n")
@@ -253,10 +264,7 @@ def record(page, build, keys):
                       file=sys.stderr)
                 continue
             new_blocks[name] = block(name, rec, t)
-    # Replace from the last block up, so that the indices of the earlier ones stay valid.
-    for name, (b, e) in sorted(blocks.items(), key=lambda kv: -kv[1][0]):
-        if name in new_blocks:
-            lines[b:e + 1] = new_blocks[name]
+    lines = replace_blocks(lines, blocks, new_blocks)
     with open(page, "w") as f:
         f.write("\n".join(lines))
     print(f"record_tables: {len(new_blocks)} blocks written to {os.path.relpath(page, ROOT)}")

@@ -4,13 +4,15 @@
 //   2. constant eps = 0.5, a = 24 (eq. 5 fixed points beside a sticking cycle), double;
 // each at 1 and 2 threads (the results compared start by start: they must be identical).
 // Timings are printed, never checked (not a test).
-//   bench_attractors [--starts N] (N x N starts, default 100)
+//   bench_attractors [--starts N] [--json FILE] (N x N starts, default 100)
+//   bench_attractors --columns   (the table's columns as JSON, nothing run; bench_record.hpp)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <string>
 
+#include "bench_record.hpp"
 #include "bouncer/run/attractors.hpp"
 
 using namespace bouncer;
@@ -31,11 +33,15 @@ ModelSpec model(Law law, const char* a, const char* eps, const char* c) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bench::Run run = bench::Run::start("bench_attractors", argc, argv);
+  bench::Table table{"attractors", "`bouncer attractors` at one point: N x N starts at 1 and 2 threads",
+                     {"point", "starts", "threads", "seconds", "steps/s", "found"}, {-24, 8, 7, 9, 10, -1}, {}, {}};
+  if (run.columns_only) return run.print_columns({&table});
   long n = 100;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--starts") && i + 1 < argc) n = std::atol(argv[++i]);
     else {
-      std::fprintf(stderr, "usage: bench_attractors [--starts N]\n");
+      std::fprintf(stderr, "usage: bench_attractors [--starts N] [--json FILE]\n       bench_attractors --columns\n");
       return 2;
     }
   }
@@ -44,9 +50,12 @@ int main(int argc, char** argv) {
     ModelSpec m;
   } cases[] = {{"veldep c=1000 a=23.1", model(Law::veldep, "23.1", "1", "1000")},
                {"constant eps=0.5 a=24", model(Law::constant, "24", "0.5", "1000")}};
-  std::printf("| %-24s | %8s | %7s | %9s | %10s | %-40s |\n", "point", "starts", "threads", "seconds", "steps/s", "found");
-  std::printf("|%s|%s|%s|%s|%s|%s|\n", std::string(26, '-').c_str(), std::string(10, '-').c_str(), std::string(9, '-').c_str(),
-              std::string(11, '-').c_str(), std::string(12, '-').c_str(), std::string(42, '-').c_str());
+  if (n < 1) {
+    std::fprintf(stderr, "bench_attractors: --starts must be >= 1\n");
+    return 2;
+  }
+  run.print_provenance();
+  table.print_header();
   for (const Case& c : cases) {
     AttractorsResult first;
     for (unsigned threads : {1u, 2u}) {
@@ -64,10 +73,11 @@ int main(int argc, char** argv) {
                  (a.certificate && a.certificate->certified ? "*" : "");
       if (threads == 1) first = res;
       else found += first.label == res.label ? " (identical)" : " (DIFFERENT)";
-      std::printf("| %-24s | %8ld | %7u | %9.2f | %10.3g | %-40s |\n", c.what, n * n, threads, s,
-                  static_cast<double>(res.steps) / res.seconds, found.c_str());
+      table.add_and_print({c.what, std::to_string(n * n), std::to_string(threads), bench::fmt("%.2f", s),
+                           bench::fmt("%.3g", static_cast<double>(res.steps) / res.seconds), found});
     }
   }
-  std::printf("(* certified by Krawczyk; seconds include the certificates)\n");
-  return 0;
+  table.notes.push_back("*: certified by Krawczyk; the seconds include the certificates.");
+  std::printf("%s\n", table.notes.back().c_str());
+  return run.finish({&table}) ? 0 : 1;
 }

@@ -1,6 +1,7 @@
 """bench_audit: `bouncer audit DIR` against the `bouncer reproduce` it reruns, measured in one run.
 
-    python3 tools/bench/bench_audit.py --cli build/tools/bouncer [--rounds N] [--only IDS] [--quick]
+    python3 tools/bench/bench_audit.py --cli build/tools/bouncer [--rounds N] [--only IDS] [--quick] [--json FILE]
+    python3 tools/bench/bench_audit.py --columns    (the table's columns as JSON; nothing run)
     cmake --build build --target bench_audit      (the same, with the build's executable)
 
 Each round runs `bouncer reproduce --quick --out T/rK` and then `bouncer audit T/rK` (the
@@ -14,7 +15,8 @@ clock), and audit / run per round. The target (issue 24, item 7): the audit take
 plus the comparison's. The machine is shared: the run and the audit of one round follow each
 other, so that both see about the same load; absolute times vary from run to run. Timings
 are printed, never checked; --quick is a smoke run (two items, one round) that checks only
-that the audit says identical.
+that the audit says identical. --json FILE also writes the table with the run's provenance
+(tools/bench/bench_record.py, for tools/bench/record_tables.py).
 """
 
 import argparse
@@ -27,6 +29,9 @@ import subprocess
 import sys
 import tempfile
 import time
+
+sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
+import bench_record  # noqa: E402 (tools/bench/bench_record.py, beside this script)
 
 QUICK_ONLY = "elastic-period2,fig:arnold"
 
@@ -50,7 +55,14 @@ def main():
     ap.add_argument("--rounds", type=int, default=1, help="run + audit pairs (default 1; each about 2 x 40-90 s)")
     ap.add_argument("--only", help="reproduce --only LIST (default: every item of --quick)")
     ap.add_argument("--quick", action="store_true", help=f"smoke run: --only {QUICK_ONLY}, one round")
+    ap.add_argument("--json", metavar="FILE", help="also write the table and the run's provenance as JSON")
+    ap.add_argument("--columns", action="store_true", help="print the table's columns as JSON and exit (nothing run)")
     args = ap.parse_args()
+    run = bench_record.Run("bench_audit.py", sys.argv[1:])
+    table = bench_record.Table("audit", "bouncer audit DIR against the bouncer reproduce --quick it reruns",
+                               ["what", "best s", "median s"])
+    if args.columns:
+        return run.print_columns([table])
     only = QUICK_ONLY if args.quick else args.only
     rounds = 1 if args.quick else max(1, args.rounds)
     cli = os.path.abspath(args.cli)
@@ -80,22 +92,23 @@ def main():
     print(f"bench_audit: {platform.node()}, {os.cpu_count()} cores, load {load:.1f} at the end; "
           f"reproduce --quick{' --only ' + only if only else ''}, {rounds} round(s)")
     print()
-    print("| what | best s | median s |")
-    print("|---|---|---|")
     for name, label in (("run", "bouncer reproduce --quick (the run)"), ("audit", "bouncer audit DIR (the audit)"),
-                        ("rerun", "  of which the rerun of reproduce"), ("comparison", "  of which the comparison")):
+                        ("rerun", "  of which the rerun of reproduce"), ("comparison", "  of which the comparison"),
+                        ("run_cpu", "CPU of the run (user + sys, every process)"),
+                        ("audit_cpu", "CPU of the audit (user + sys, every process)")):
         v = rows[name]
-        print(f"| {label} | {min(v):.2f} | {statistics.median(v):.2f} |")
-    for name, label in (("run_cpu", "CPU of the run (user + sys, every process)"), ("audit_cpu", "CPU of the audit (user + sys, every process)")):
-        v = rows[name]
-        print(f"| {label} | {min(v):.2f} | {statistics.median(v):.2f} |")
+        table.add(label, f"{min(v):.2f}", f"{statistics.median(v):.2f}")
     ratios = ", ".join(f"{a / r:.2f}" for a, r in zip(rows["audit"], rows["run"]))
     cpu_ratios = ", ".join(f"{a / r:.2f}" for a, r in zip(rows["audit_cpu"], rows["run_cpu"]))
-    print()
-    print(f"audit / run per round: {ratios} wall clock, {cpu_ratios} CPU (target: about 1, the comparison's "
-          f"{statistics.median(rows['comparison']):.2f} s on top; the wall clock follows the machine's load, "
-          f"the CPU time the work done)")
+    table.notes.append(f"audit / run per round: {ratios} wall clock, {cpu_ratios} CPU (target: about 1, the comparison's "
+                       f"{statistics.median(rows['comparison']):.2f} s on top; the wall clock follows the machine's load, "
+                       f"the CPU time the work done); {rounds} round(s), load average {load:.1f} at the end.")
+    table.print_text()
+    version = subprocess.run([cli, "--version"], stdout=subprocess.PIPE, text=True).stdout
+    m = re.match(r"bouncer (\S+) \(commit ([^)]*)\)", version)
+    run.finish(args.json, [table], m.group(1) if m else "unknown", m.group(2) if m else "unknown")
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(main())

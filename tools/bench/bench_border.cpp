@@ -7,7 +7,8 @@
 // trade it measures: composed is quicker for short periods, and fails for long ones where
 // the interval steps' wrapping grows like 2^Q. Timings are printed, never checked.
 //
-// Usage: bench_border [--quick]   (--quick: one run per case, 128 bits only)
+// Usage: bench_border [--quick] [--json FILE]   (--quick: one run per case, 128 bits only)
+//        bench_border --columns   (the tables' columns as JSON, nothing run; bench_record.hpp)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_record.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/verify/border_collision.hpp"
 
@@ -47,10 +49,33 @@ double distance(double blo, double bhi, const BorderCollisionCertificate& c) {
   return 0;
 }
 
+// The two tables: their columns (and text widths) in one place, for the text and the JSON.
+struct Tables {
+  bench::Table border{"border", "certified border collisions, period doubling and fold: best wall-clock seconds",
+                      {"end", "form", "bits", "seconds", "width", "double off", "margin"}, {-44, -9, 5, 10, 12, 12, -1}, {}, {}};
+  bench::Table enclosures{"enclosures", "the enclosures of a* at 128 bits, and double's bracket",
+                          {"end", "form", "a* in", "double bracket"}, {-44, -9, -1, -1}, {}, {}};
+  std::vector<const bench::Table*> all() const { return {&border, &enclosures}; }
+};
+
+std::string bracket(double lo, double hi) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "[%.17g, %.17g]", lo, hi);
+  return buf;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bench::Run run = bench::Run::start("bench_border", argc, argv);
+  Tables t;
+  if (run.columns_only) return run.print_columns(t.all());
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  if (argc > 2 || (argc > 1 && !quick)) {
+    std::printf("usage: bench_border [--quick] [--json FILE]\n       bench_border --columns\n");
+    return argc > 1 && std::strcmp(argv[1], "--help") == 0 ? 0 : 2;
+  }
+  run.print_provenance();
   const std::vector<Case> cases = {
       {"sticking threshold 200/9 (release, eps 1/4)", spec(Law::constant, "24", "0.25", "1000"), 1, 0.5, 4, 20, 31, false},
       {"knot theta = 0 at 32 (release, eps 1/4)", spec(Law::constant, "26", "0.25", "1000"), 1, 0.5, 4, 24, 33.5, true},
@@ -62,13 +87,13 @@ int main(int argc, char** argv) {
       {"veldep c 1000 P100 low end (knot 0)", spec(Law::veldep, "19.5", "1", "1000"), 100, 0.014057849515324, 23.970073801684368, 19.45, 19.55, false},
       {"veldep c 1000 P100 high end (knot 1/2)", spec(Law::veldep, "19.5", "1", "1000"), 100, 0.014057849515324, 23.970073801684368, 19.45, 19.55, true},
   };
-  std::printf("%-44s %-9s %5s %10s %12s %12s  %s\n", "border collision", "form", "bits", "seconds", "width", "double off", "margin");
+  t.border.print_header();
   for (const Case& k : cases) {
     const Model<double> m = make_model<double>(k.model, 53);
     const Branch<double> b = continue_branch(m, Parameter::a, k.period, State<double>{k.theta, k.v}, k.lo, k.hi);
     const BranchEnd<double>& end = k.high ? b.high : b.low;
     if (end.reason != EndReason::border) {
-      std::printf("%-44s  (continuation did not end by a border collision: %s)\n", k.name, end.detail.c_str());
+      t.border.add_and_print({k.name, "-", "-", "-", "-", "-", "continuation did not end by a border collision: " + end.detail});
       continue;
     }
     BorderCollisionQuestion q;
@@ -97,14 +122,15 @@ int main(int argc, char** argv) {
           if (!c.certified) break;
         }
         if (!c.certified) {
-          std::printf("%-44s %-9s %5ld %10.4f  NOT CERTIFIED: %.150s\n", k.name, form_name, bits, best, c.reason.c_str());
+          t.border.add_and_print({k.name, form_name, std::to_string(bits), bench::fmt("%.4f", best), "-", "-",
+                                  "NOT CERTIFIED: " + c.reason.substr(0, 150)});
           continue;
         }
-        std::printf("%-44s %-9s %5ld %10.4f %12.3g %12.3g  %s\n", k.name, form_name, bits, best, c.width,
-                    distance(end.bracket_lo, end.bracket_hi, c), c.margin_text.c_str());
+        t.border.add_and_print({k.name, form_name, std::to_string(bits), bench::fmt("%.4f", best), bench::fmt("%.3g", c.width),
+                                bench::fmt("%.3g", distance(end.bracket_lo, end.bracket_hi, c)), c.margin_text});
         if (bits == 128)
-          std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
-                      c.parameter.hi.c_str(), end.bracket_lo, end.bracket_hi);
+          t.enclosures.add({k.name, form_name, "[" + c.parameter.lo + ", " + c.parameter.hi + "]",
+                            bracket(end.bracket_lo, end.bracket_hi)});
       }
     }
   }
@@ -122,15 +148,16 @@ int main(int argc, char** argv) {
         best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
       }
       if (!c.certified) {
-        std::printf("%-44s %-9s %5ld %10.4f  NOT CERTIFIED: %s\n", name, "composed", bits, best, c.reason.c_str());
+        t.border.add_and_print({name, "composed", std::to_string(bits), bench::fmt("%.4f", best), "-", "-",
+                                "NOT CERTIFIED: " + c.reason.substr(0, 150)});
         continue;
       }
       const mpq_class blo(blo_d), bhi(bhi_d);
       const double off = bhi < c.lo ? mpq_class(c.lo - bhi).get_d() : c.hi < blo ? mpq_class(blo - c.hi).get_d() : 0.0;
-      std::printf("%-44s %-9s %5ld %10.4f %12.3g %12.3g  other multiplier [%s, %s]\n", name, "composed", bits, best, c.width, off,
-                  c.other.lo.c_str(), c.other.hi.c_str());
-      std::printf("%-44s a* in [%s, %s]; double bracket [%.17g, %.17g]\n", "", c.parameter.lo.c_str(),
-                  c.parameter.hi.c_str(), blo_d, bhi_d);
+      t.border.add_and_print({name, "composed", std::to_string(bits), bench::fmt("%.4f", best), bench::fmt("%.3g", c.width),
+                              bench::fmt("%.3g", off), "other multiplier [" + c.other.lo + ", " + c.other.hi + "]"});
+      if (bits == 128)
+        t.enclosures.add({name, "composed", "[" + c.parameter.lo + ", " + c.parameter.hi + "]", bracket(blo_d, bhi_d)});
     }
   };
   auto question = [](const ModelSpec& ms, long period, const State<double>& x, double lo, double hi) {
@@ -163,5 +190,7 @@ int main(int argc, char** argv) {
       smooth("eps 0.9 P11 fold (multiplier +1)", question(ms, 11, b.low.last_point, b.low.bracket_lo, b.low.bracket_hi),
              b.low.bracket_lo, b.low.bracket_hi, [](const PeriodDoublingQuestion& q) { return certify_fold(q); });
   }
-  return 0;
+  std::printf("\n");
+  t.enclosures.print_all();
+  return run.finish(t.all()) ? 0 : 1;
 }

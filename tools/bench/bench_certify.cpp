@@ -14,7 +14,7 @@
 //      run (thread CPU time).
 // Wall-clock timings on a shared machine: indicative only; nothing is asserted.
 //
-// Usage: bench_certify [--quick]
+// Usage: bench_certify [--quick] [--json FILE] | --columns   (bench_record.hpp)
 #include <time.h>
 
 #include <cstdio>
@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_record.hpp"
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
 #include "bouncer/verify/sticking.hpp"
@@ -73,27 +74,54 @@ double lohner_ns(const ModelSpec& spec, long bits, long n) {
   return 1e9 * (thread_seconds() - t0) / static_cast<double>(n);
 }
 
+// The five tables: their columns (and text widths) in one place, for the text and the JSON.
+struct Tables {
+  bench::Table sticking{"sticking", "certify the sticking question at eps = 0.96, a = 28.82 (from (1/2, 4))",
+                        {"max_steps", "outcome", "bits", "seconds", "statement"}, {-10, -14, -8, -10, -1}, {}, {}};
+  bench::Table growth{"growth",
+                      "bits needed and cost per certified step as the orbit grows (eps = 0.96, a = 31, Lohner)",
+                      {"steps", "bits", "seconds", "us/step", "escalation (bits:steps certified)"},
+                      {-8, -8, -12, -14, -1}, {}, {}};
+  bench::Table horizon{"horizon", "certified horizon per bit: naive boxes vs Lohner (from (1/2, 4), eps = 0.96)",
+                       {"a", "bits", "naive steps", "lohner steps", "ratio", "lohner s", "steps/bit"},
+                       {-7, -6, -14, -14, -10, -14, -10}, {}, {}};
+  bench::Table periodic{"periodic", "certified periodic orbits (Krawczyk, escalation from 64 bits)",
+                        {"case", "outcome", "certified", "bits", "pieces", "seconds"}, {-44, -10, -9, -6, -8, -1}, {}, {}};
+  bench::Table step{"step",
+                    "the certified step per precision (eps = 0.96, a = 28.82 from (1/2, 4); thread CPU time)",
+                    {"scalar", "interval step ns", "/double", "Lohner step ns", "/double"}, {-18, -16, -10, -16, -1}, {}, {}};
+  std::vector<const bench::Table*> all() const { return {&sticking, &growth, &horizon, &periodic, &step}; }
+};
+
+void section(const char* number, const bench::Table& t) {
+  std::printf("%s== %s. %s ==\n", *number == '1' ? "" : "\n", number, t.title.c_str());
+  t.print_header();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bench::Run run = bench::Run::start("bench_certify", argc, argv);
+  Tables t;
+  if (run.columns_only) return run.print_columns(t.all());
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-  if (argc > 1 && !quick) {
-    std::printf("usage: bench_certify [--quick]\n");
-    return std::strcmp(argv[1], "--help") == 0 ? 0 : 2;
+  if (argc > 2 || (argc > 1 && !quick)) {
+    std::printf("usage: bench_certify [--quick] [--json FILE]\n       bench_certify --columns\n");
+    return argc > 1 && std::strcmp(argv[1], "--help") == 0 ? 0 : 2;
   }
+  run.print_provenance();
 
-  std::printf("== 1. certify the sticking question at eps = 0.96, a = 28.82 (from (1/2, 4)) ==\n");
-  std::printf("%-10s %-14s %-8s %-10s %s\n", "max_steps", "outcome", "bits", "seconds", "statement");
+  section("1", t.sticking);
   for (long long n : quick ? std::vector<long long>{20000} : std::vector<long long>{20000, 100000}) {
     StickingQuestion q;
     q.model = model("28.82");
     q.max_steps = n;
     const StickingCertificate c = certify_sticking(q);
-    std::printf("%-10lld %-14s %-8ld %-10.3f %s\n", n, name(c.outcome), c.bits, c.seconds, describe(c, n).c_str());
+    t.sticking.add_and_print({std::to_string(n), name(c.outcome), std::to_string(c.bits), bench::fmt("%.3f", c.seconds),
+                              describe(c, n)});
   }
 
-  std::printf("\n== 2. bits needed and cost per certified step as the orbit grows (eps = 0.96, a = 31, Lohner) ==\n");
-  std::printf("%-8s %-8s %-12s %-14s %s\n", "steps", "bits", "seconds", "us/step", "escalation (bits:steps certified)");
+  section("2", t.growth);
   const std::vector<long long> lengths =
       quick ? std::vector<long long>{1000, 4000} : std::vector<long long>{1000, 2000, 4000, 8000, 16000, 25000};
   for (long long n : lengths) {
@@ -106,31 +134,30 @@ int main(int argc, char** argv) {
     std::string esc;
     double last = 0;
     for (const Attempt& a : c.attempts) {
-      esc += std::to_string(a.bits) + ":" + std::to_string(a.steps) + " ";
+      esc += std::string(esc.empty() ? "" : " ") + std::to_string(a.bits) + ":" + std::to_string(a.steps);
       last = a.seconds;
     }
-    std::printf("%-8lld %-8ld %-12.3f %-14.2f %s\n", n, c.bits, c.seconds, 1e6 * last / static_cast<double>(n),
-                esc.c_str());
+    t.growth.add_and_print({std::to_string(n), std::to_string(c.bits), bench::fmt("%.3f", c.seconds),
+                            bench::fmt("%.2f", 1e6 * last / static_cast<double>(n)), esc});
   }
 
-  std::printf("\n== 3. certified horizon per bit: naive boxes vs Lohner (from (1/2, 4), eps = 0.96) ==\n");
-  std::printf("%-7s %-6s %-14s %-14s %-10s %-14s %-10s\n", "a", "bits", "naive steps", "lohner steps", "ratio",
-              "lohner s", "steps/bit");
+  section("3", t.horizon);
   const long long cap = quick ? 20000 : 100000;
   for (const char* a : {"28.82", "31"}) {
     for (long bits : quick ? std::vector<long>{64, 256, 1024} : std::vector<long>{64, 128, 256, 512, 1024, 2048}) {
       const Horizon h0 = certified_horizon(model(a), release(), bits, EnclosureMethod::naive, cap);
       const Horizon h1 = certified_horizon(model(a), release(), bits, EnclosureMethod::lohner, cap);
-      std::printf("%-7s %-6ld %-14lld %-14s %-10.1f %-14.3f %.2f\n", a, bits, h0.steps,
-                  (std::to_string(h1.steps) + (h1.reached_max ? "+" : "")).c_str(),
-                  static_cast<double>(h1.steps) / static_cast<double>(std::max(1LL, h0.steps)), h1.seconds,
-                  static_cast<double>(h1.steps) / static_cast<double>(bits));
+      t.horizon.add_and_print({a, std::to_string(bits), std::to_string(h0.steps),
+                               std::to_string(h1.steps) + (h1.reached_max ? "+" : ""),
+                               bench::fmt("%.1f", static_cast<double>(h1.steps) / static_cast<double>(std::max(1LL, h0.steps))),
+                               bench::fmt("%.3f", h1.seconds),
+                               bench::fmt("%.2f", static_cast<double>(h1.steps) / static_cast<double>(bits))});
     }
   }
-  std::printf("('+': the cap of %lld steps was reached, the horizon is longer)\n", cap);
+  t.horizon.notes.push_back("'+': the cap of " + std::to_string(cap) + " steps was reached, the horizon is longer.");
+  std::printf("%s\n", t.horizon.notes.back().c_str());
 
-  std::printf("\n== 4. certified periodic orbits (Krawczyk, escalation from 64 bits) ==\n");
-  std::printf("%-44s %-10s %-9s %-6s %-8s %s\n", "case", "outcome", "certified", "bits", "pieces", "seconds");
+  section("4", t.periodic);
   struct Case {
     const char* label;
     const char* eps;
@@ -160,27 +187,26 @@ int main(int argc, char** argv) {
       const PeriodicRangeReport r = certify_periodic_range(q);
       long bits = 0;
       for (const PeriodicPiece& p : r.pieces) bits = std::max(bits, p.cert.bits);
-      std::printf("%-44s %-10s %-9s %-6ld %-8zu %.3f\n", k.label, "isolated", r.uncertified_length == 0 ? "yes" : "no", bits,
-                  r.pieces.size(), r.seconds);
+      t.periodic.add_and_print({k.label, "isolated", r.uncertified_length == 0 ? "yes" : "no", std::to_string(bits),
+                                std::to_string(r.pieces.size()), bench::fmt("%.3f", r.seconds)});
     } else {
       const PeriodicCertificate c = certify_periodic(q);
-      std::printf("%-44s %-10s %-9s %-6ld %-8d %.3f\n", k.label, name(c.outcome), c.certified ? "yes" : "no", c.bits, 1,
-                  c.seconds);
+      t.periodic.add_and_print({k.label, name(c.outcome), c.certified ? "yes" : "no", std::to_string(c.bits), "1",
+                                bench::fmt("%.3f", c.seconds)});
     }
   }
 
-  std::printf("\n== 5. the certified step per precision (eps = 0.96, a = 28.82 from (1/2, 4); thread CPU time) ==\n");
+  section("5", t.step);
   const long n = quick ? 2000 : 20000;
   const ModelSpec m = model("28.82");
   const double dbl = step_ns<double>(m, 53, n * 20);
-  std::printf("%-18s %-16s %-10s %-16s %s\n", "scalar", "interval step ns", "/double", "Lohner step ns", "/double");
-  std::printf("%-18s %-16.1f %-10s %-16s %s\n", "double (point)", dbl, "1.00x", "-", "-");
+  t.step.add_and_print({"double (point)", bench::fmt("%.1f", dbl), "1.00x", "-", "-"});
   auto row = [&](const char* label, double iv, double lo) {
-    std::printf("%-18s %-16.1f %-10s %-16.1f %.1fx\n", label, iv, (std::to_string(iv / dbl).substr(0, 5) + "x").c_str(), lo,
-                lo / dbl);
+    t.step.add_and_print({label, bench::fmt("%.1f", iv), bench::fmt("%.2fx", iv / dbl), bench::fmt("%.1f", lo),
+                          bench::fmt("%.1fx", lo / dbl)});
   };
   row("interval:double", step_ns<DoubleInterval>(m, 53, n * 5), lohner_ns<DoubleInterval>(m, 53, n));
   for (long bits : quick ? std::vector<long>{64, 256} : std::vector<long>{53, 64, 128, 256, 1024})
     row(("interval:" + std::to_string(bits)).c_str(), step_ns<Mpfi>(m, bits, n), lohner_ns<Mpfi>(m, bits, n / 2));
-  return 0;
+  return run.finish(t.all()) ? 0 : 1;
 }

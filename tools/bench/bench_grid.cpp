@@ -15,7 +15,8 @@
 // text per point), never with the number of steps. Results at 1 and 2 threads are compared
 // byte for byte. Timings are printed, never checked (not a test).
 //   bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only]
-//              [--continue-only]
+//              [--continue-only] [--json FILE]
+//   bench_grid --columns    (the table's columns as JSON, nothing run; bench_record.hpp)
 #include <sys/resource.h>
 
 #include <chrono>
@@ -24,6 +25,7 @@
 #include <string>
 #include <thread>
 
+#include "bench_record.hpp"
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/continuation.hpp"
 #include "bouncer/run/grid.hpp"
@@ -82,20 +84,24 @@ struct Row {
   std::string unit, note;
 };
 
-void print(const std::vector<Row>& rows) {
-  std::printf("\n| %-52s | %7s | %10s | %18s | %-50s |\n", "workload", "threads", "seconds", "rate", "note");
-  std::printf("|%s|%s|%s|%s|%s|\n", std::string(54, '-').c_str(), std::string(9, '-').c_str(), std::string(12, '-').c_str(),
-              std::string(20, '-').c_str(), std::string(52, '-').c_str());
-  for (const Row& r : rows) {
-    char rate[64];
-    std::snprintf(rate, sizeof rate, "%.3g %s", r.rate, r.unit.c_str());
-    std::printf("| %-52s | %7ld | %10.2f | %18s | %-50s |\n", r.what.c_str(), r.threads, r.seconds, rate, r.note.c_str());
-  }
+// The table: its columns (and text widths) in one place, for the text and the JSON.
+bench::Table grid_table() {
+  return {"grid", "grid workloads: wall-clock seconds and throughput",
+          {"workload", "threads", "seconds", "rate", "note"}, {-52, 7, 10, 18, -1}, {}, {}};
+}
+
+void fill(bench::Table& table, const std::vector<Row>& rows) {
+  for (const Row& r : rows)
+    table.add({r.what, std::to_string(r.threads), bench::fmt("%.2f", r.seconds), bench::fmt("%.3g", r.rate) + " " + r.unit,
+               r.note});
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bench::Run run = bench::Run::start("bench_grid", argc, argv);
+  bench::Table table = grid_table();
+  if (run.columns_only) return run.print_columns({&table});
   long n = 512, steps = 5000, mn = 48, bits = 128, samples = 1000;
   bool curve_only = false;     // only workload 5 (the others take minutes)
   bool continue_only = false;  // only workload 6
@@ -110,7 +116,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--curve-only")) curve_only = true;
     else if (!std::strcmp(argv[i], "--continue-only")) continue_only = true;
     else {
-      std::fprintf(stderr, "usage: bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only] [--continue-only]\n");
+      std::fprintf(stderr, "usage: bench_grid [--size N] [--steps S] [--mpfr-size M] [--bits B] [--samples K] [--quick] [--curve-only] [--continue-only] [--json FILE]\n       bench_grid --columns\n");
       return 2;
     }
   }
@@ -118,6 +124,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bench_grid: need size >= 1, steps > 500, mpfr-size >= 1, bits >= 16, samples >= 2\n");
     return 2;
   }
+  run.print_provenance();
   std::printf("bench_grid: %u hardware threads; basin %ld x %ld, %ld steps per point\n", std::thread::hardware_concurrency(),
               n, n, steps);
   std::vector<Row> rows;
@@ -292,7 +299,10 @@ int main(int argc, char** argv) {
     run(0.0, 53, "double");
     run(Mpfr(128), 128, "mpfr:128");
   }
-  print(rows);
-  std::printf("\npeak RSS at the end: %ld MB (grid of %ld points)\n", peak_rss_mb(), n * n);
-  return 0;
+  fill(table, rows);
+  table.notes.push_back("Peak RSS at the end: " + std::to_string(peak_rss_mb()) + " MB (grid of " + std::to_string(n * n) +
+                        " points).");
+  std::printf("\n");
+  table.print_all();
+  return run.finish({&table}) ? 0 : 1;
 }

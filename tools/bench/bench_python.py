@@ -1,6 +1,7 @@
 """bench_python: the cost of the Python layer over the library, measured in one run.
 
-    PYTHONPATH=build/python python3 tools/bench/bench_python.py [--quick] [--cli build/tools/bouncer]
+    PYTHONPATH=build/python python3 tools/bench/bench_python.py [--quick] [--cli build/tools/bouncer] [--json FILE]
+    python3 tools/bench/bench_python.py --columns    (the table's columns as JSON; nothing run)
     cmake --build build --target bench_python      (the same, with the build's paths)
 
 Rows (double precision, constant restitution eps = 0.96, a = 28.82, from (0.3, 7.5): a
@@ -15,7 +16,8 @@ chaotic orbit without sticking):
 Targets (issue 22): step <= 2 us per call; orbit to numpy <= 1.5 x the CLI's in-process orbit.
 Each time is the best of several rounds (thread CPU time is not used: orbit runs on a worker
 thread); the machine is shared, so absolute numbers vary from run to run. Timings are
-printed, never checked; --quick is a smoke run (small N, one round).
+printed, never checked; --quick is a smoke run (small N, one round). --json FILE also writes
+the table with the run's provenance (tools/bench/bench_record.py, for tools/bench/record_tables.py).
 """
 
 import argparse
@@ -25,7 +27,8 @@ import subprocess
 import sys
 import time
 
-import bouncer
+sys.dont_write_bytecode = True  # no __pycache__ beside the scripts
+import bench_record  # noqa: E402 (tools/bench/bench_record.py, beside this script)
 
 PARAMS = dict(model="constant", a="28.82", eps="0.96")
 START = (0.3, 7.5)
@@ -44,7 +47,16 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="smoke run: small N, one round")
     ap.add_argument("--cli", help="the bouncer executable, to time `bouncer orbit` as a process too")
+    ap.add_argument("--json", metavar="FILE", help="also write the table and the run's provenance as JSON")
+    ap.add_argument("--columns", action="store_true", help="print the table's columns as JSON and exit (nothing run)")
     args = ap.parse_args()
+    run = bench_record.Run("bench_python.py", sys.argv[1:])
+    table = bench_record.Table("python", "the Python layer over the library (double, eps = 0.96, a = 28.82, start (0.3, 7.5))",
+                               ["measurement", "value", "target"])
+    if args.columns:
+        return run.print_columns([table])
+    global bouncer
+    import bouncer
     n_orbit = 20000 if args.quick else 10**6
     n_step = 20000 if args.quick else 300000
     rounds = 1 if args.quick else 5
@@ -99,19 +111,21 @@ def main():
     print("# bench_python: the Python layer over the library (double, eps = 0.96, a = 28.82, start (0.3, 7.5))")
     print(f"# bouncer {bouncer.__version__} (commit {bouncer._core.commit}), Python {platform.python_version()}, "
           f"{os.cpu_count()} cpus, load average at start {os.getloadavg()[0]:.2f}")
-    print(f"# best of {rounds} rounds{' (--quick)' if args.quick else ''}; wall-clock time")
-    print(f"{'measurement':52s} {'value':>14s} {'target':>10s}")
-    print(f"{'Model.step per call from Python':52s} {t_step * 1e6:11.3f} us {'<= 2 us':>10s}")
-    print(f"{'  the same step in the library loop (floor)':52s} {t_floor_step * 1e6:11.3f} us")
-    print(f"{'  a Python loop of the same shape, no step':52s} {t_empty * 1e6:11.3f} us")
-    print(f"{'Model.orbit, %d steps to numpy' % n_orbit:52s} {t_orbit:12.3f} s")
-    print(f"{'  the CLI orbit in this process (bouncer.run)':52s} {t_cli:12.3f} s")
-    print(f"{'  the library loop without rows (floor)':52s} {t_floor:12.3f} s")
+    table.add("Model.step per call from Python", f"{t_step * 1e6:.3f} us", "<= 2 us")
+    table.add("  the same step in the library loop (floor)", f"{t_floor_step * 1e6:.3f} us", "")
+    table.add("  a Python loop of the same shape, no step", f"{t_empty * 1e6:.3f} us", "")
+    table.add(f"Model.orbit, {n_orbit} steps to numpy", f"{t_orbit:.3f} s", "")
+    table.add("  the CLI orbit in this process (bouncer.run)", f"{t_cli:.3f} s", "")
+    table.add("  the library loop without rows (floor)", f"{t_floor:.3f} s", "")
     if t_exe is not None:
-        print(f"{'  the bouncer executable, CSV to /dev/null':52s} {t_exe:12.3f} s")
-    print(f"{'ratio Model.orbit / CLI in-process orbit':52s} {t_orbit / t_cli:13.3f}x {'<= 1.5x':>10s}")
-    print(f"{'ratio Model.orbit / floor':52s} {t_orbit / t_floor:13.3f}x")
-    print(f"{'ratio Model.step per call / floor per step':52s} {t_step / t_floor_step:13.1f}x")
+        table.add("  the bouncer executable, CSV to /dev/null", f"{t_exe:.3f} s", "")
+    table.add("ratio Model.orbit / CLI in-process orbit", f"{t_orbit / t_cli:.3f}x", "<= 1.5x")
+    table.add("ratio Model.orbit / floor", f"{t_orbit / t_floor:.3f}x", "")
+    table.add("ratio Model.step per call / floor per step", f"{t_step / t_floor_step:.1f}x", "")
+    table.notes.append(f"Best of {rounds} rounds{' (--quick)' if args.quick else ''}; wall-clock time; "
+                       f"Python {platform.python_version()}.")
+    table.print_text()
+    run.finish(args.json, [table], bouncer.__version__, bouncer._core.commit)
     return 0
 
 

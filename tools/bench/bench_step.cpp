@@ -49,11 +49,13 @@
 #include <type_traits>
 #include <vector>
 
+#include "bench_record.hpp"
 #include "bouncer/io/provenance.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"
 
 using namespace bouncer;
+using bench::fmt;
 
 
 namespace {
@@ -1436,37 +1438,6 @@ double paired_ratio(const Timing& row, const Timing& floor) {
 // Output
 // ---------------------------------------------------------------------------------------
 
-std::string read_cpu_model() {
-  std::ifstream f("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(f, line))
-    if (line.rfind("model name", 0) == 0) {
-      const auto p = line.find(':');
-      return p == std::string::npos ? line : line.substr(p + 2);
-    }
-  return "unknown";
-}
-
-std::string read_first_line(const char* path) {
-  std::ifstream f(path);
-  std::string line;
-  std::getline(f, line);
-  return line;
-}
-
-std::string utc_now() {
-  const std::time_t t = std::time(nullptr);
-  char buf[64];
-  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&t));
-  return buf;
-}
-
-std::string fmt(const char* f, double x) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, x);
-  return buf;
-}
-
 struct Row {
   std::string model, scalar;
   long bits;
@@ -1475,19 +1446,22 @@ struct Row {
   std::string floor_name;
 };
 
-void print_header_row() {
-  std::printf("%-19s %-15s %5s %10s %6s %10s %-16s %7s %5s %8s\n", "model", "scalar", "bits", "ns/step", "spread",
-              "floor ns", "floor", "ratio", "cpu%", "resets/k");
+// The timing table: its columns (and text widths) in one place, for the text and the JSON.
+bench::Table step_table() {
+  bench::Table t;
+  t.name = "step";
+  t.title = "ns per impact-map step, ImpactMap<T> vs hand-written floors";
+  t.columns = {"model", "scalar", "bits", "ns/step", "spread", "floor ns", "floor", "ratio", "cpu%", "resets/k"};
+  t.widths = {-19, -15, 5, 10, 6, 10, -16, 7, 5, 8};
+  return t;
 }
 
-void print_row(const Row& r) {
+void add_row(bench::Table& table, const Row& r) {
   const double spread = r.t.median_ns > 0 ? 100.0 * (r.t.max_ns - r.t.min_ns) / r.t.median_ns : 0;
-  std::printf("%-19s %-15s %5ld %10.1f %5.0f%% %10s %-16s %7s %4.0f%% %8s\n", r.model.c_str(), r.scalar.c_str(),
-              r.bits, r.t.median_ns, spread, r.floor ? fmt("%.1f", r.floor->median_ns).c_str() : "-",
-              r.floor ? r.floor_name.c_str() : "(floor)",
-              r.floor ? fmt("%.2fx", paired_ratio(r.t, *r.floor)).c_str() : "-", 100 * r.t.cpu_share,
-              fmt("%.3g", r.t.resets_per_k).c_str());
-  std::fflush(stdout);
+  table.add_and_print({r.model, r.scalar, std::to_string(r.bits), fmt("%.1f", r.t.median_ns), fmt("%.0f%%", spread),
+                       r.floor ? fmt("%.1f", r.floor->median_ns) : "-", r.floor ? r.floor_name : "(floor)",
+                       r.floor ? fmt("%.2fx", paired_ratio(r.t, *r.floor)) : "-", fmt("%.0f%%", 100 * r.t.cpu_share),
+                       fmt("%.3g", r.t.resets_per_k)});
 }
 
 struct Options {
@@ -1503,7 +1477,8 @@ struct Options {
 
 [[noreturn]] void usage(int code) {
   std::printf(
-      "usage: bench_step [--quick | --check] [--time SECONDS] [--reps N] [--model SUBSTRING]\n"
+      "usage: bench_step [--quick | --check] [--time SECONDS] [--reps N] [--model SUBSTRING] [--json FILE]\n"
+      "       bench_step --columns   (the table's columns as JSON; nothing is run)\n"
       "       bench_step --profile plain|double|raw|mpfr|rawi|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
       "         (runs one runner N steps without timing, for valgrind --tool=callgrind;\n"
       "          raw = raw-MPFR floor, rawi = raw-MPFI floor, interval = ImpactMap<Mpfi>)\n"
@@ -1512,6 +1487,7 @@ struct Options {
       "  bitwise that the floors compute the same orbits (and, for MPFI, are undecided at the\n"
       "  same steps). --quick: a small subset, short runs (smoke test). --check: the --quick\n"
       "  checks only, no timing (registered with ctest as bench.step_floors_match).\n"
+      "  --json FILE: also write the table and the run's provenance as JSON (tools/bench/record_tables.py).\n"
       "  Exit code 1 if a floor does not reproduce ImpactMap bitwise; timings are never checked.\n");
   std::exit(code);
 }
@@ -1547,12 +1523,10 @@ Options parse_args(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bench::Run run = bench::Run::start("bench_step", argc, argv);
+  bench::Table table = step_table();
+  if (run.columns_only) return run.print_columns({&table});
   const Options opt = parse_args(argc, argv);
-  std::string cmdline;
-  for (int i = 0; i < argc; ++i) {
-    if (i) cmdline += ' ';
-    cmdline += argv[i];
-  }
 
   if (!opt.profile.empty()) {
     Case k = all_cases()[1];
@@ -1572,14 +1546,8 @@ int main(int argc, char** argv) {
                 r->resets);
     return 0;
   }
-  const BuildInfo& b = build_info();
   std::printf("# bench_step: ns per impact-map step, ImpactMap<T> vs hand-written floors\n");
-  std::printf("# command: %s\n", cmdline.c_str());
-  std::printf("# date: %s\n", utc_now().c_str());
-  std::printf("# machine: %ld cpus online, %s; load average at start: %s\n", sysconf(_SC_NPROCESSORS_ONLN),
-              read_cpu_model().c_str(), read_first_line("/proc/loadavg").c_str());
-  std::printf("# bouncer %s (commit %s), compiler %s %s, flags: %s\n", b.version.c_str(), b.commit.c_str(),
-              b.compiler.c_str(), b.build_type.c_str(), b.flags.c_str());
+  run.print_provenance();
   std::printf("# libraries: %s\n", library_versions().c_str());
   std::printf("# timing: thread CPU time; %d rounds, each running the floor and its rows once for ~%.3g s each\n"
               "#   (same step count in every round, each run from the initial condition). ns/step = median over\n"
@@ -1589,6 +1557,10 @@ int main(int argc, char** argv) {
   std::printf("# NOTE: the machine is shared (other people compile), so absolute ns vary from run to run;\n"
               "#   quote the ratios from one run, where a row and its floor were timed minutes apart.\n");
   std::printf("# resets/k: state resets per 1000 steps (undecided interval step, or v > 1e4).\n");
+  table.notes.push_back("Thread CPU time; " + std::to_string(opt.reps) + " interleaved rounds of ~" + bench::fmt("%.3g", opt.time_s) +
+                        " s per runner; ns/step: median over rounds; spread: (max - min) / median; ratio: median over "
+                        "rounds of row / floor in the same round; cpu%: CPU / wall time (below 100% the process was "
+                        "preempted); resets/k: state resets per 1000 steps (undecided interval step, or v > 1e4).");
 
   std::vector<Case> cases;
   for (Case& k : all_cases())
@@ -1629,7 +1601,7 @@ int main(int argc, char** argv) {
   }
   // --- timing --------------------------------------------------------------------------
   std::printf("#\n");
-  print_header_row();
+  table.print_header();
   for (const Case& k : cases) {
     {
       // Double family, timed in rounds with the plain-double floor.
@@ -1647,14 +1619,14 @@ int main(int argc, char** argv) {
         g.push_back(qd.get());
       }
       const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
-      print_row({k.name, "plain", 53, t[0], nullptr, ""});
-      print_row({k.name, "double", 53, t[1], &t[0], "plain-double"});
-      print_row({k.name, "interval:double", 53, t[2], &t[0], "plain-double"});
-      print_row({k.name, "dd", 106, t[3], &t[1], "double"});
+      add_row(table, {k.name, "plain", 53, t[0], nullptr, ""});
+      add_row(table, {k.name, "double", 53, t[1], &t[0], "plain-double"});
+      add_row(table, {k.name, "interval:double", 53, t[2], &t[0], "plain-double"});
+      add_row(table, {k.name, "dd", 106, t[3], &t[1], "double"});
       size_t i = 4;
       if (!opt.quick) {
-        print_row({k.name, "long", 64, t[i++], &t[0], "plain-double"});
-        print_row({k.name, "quad", 113, t[i++], &t[0], "plain-double"});
+        add_row(table, {k.name, "long", 64, t[i++], &t[0], "plain-double"});
+        add_row(table, {k.name, "quad", 113, t[i++], &t[0], "plain-double"});
       }
     }
     for (long bits : bit_list) {
@@ -1665,13 +1637,14 @@ int main(int argc, char** argv) {
       MapRunner<Mpfi> i(k, bits);
       std::vector<Runner*> g{&floor, &m, &ifloor, &i};
       const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
-      print_row({k.name, "raw-mpfr", bits, t[0], nullptr, ""});
-      print_row({k.name, "mpfr", bits, t[1], &t[0], "raw-mpfr"});
-      print_row({k.name, "raw-mpfi", bits, t[2], nullptr, ""});
-      print_row({k.name, "interval", bits, t[3], &t[2], "raw-mpfi"});
+      add_row(table, {k.name, "raw-mpfr", bits, t[0], nullptr, ""});
+      add_row(table, {k.name, "mpfr", bits, t[1], &t[0], "raw-mpfr"});
+      add_row(table, {k.name, "raw-mpfi", bits, t[2], nullptr, ""});
+      add_row(table, {k.name, "interval", bits, t[3], &t[2], "raw-mpfi"});
     }
   }
-  std::printf("# load average at end: %s\n", read_first_line("/proc/loadavg").c_str());
+  std::printf("# load average at end: %s\n", bench::read_first_line("/proc/loadavg").c_str());
+  if (!run.finish({&table})) return 1;
   if (!all_ok) std::printf("# FAILED: a floor does not reproduce ImpactMap bitwise (see the checks above)\n");
   return all_ok ? 0 : 1;
 }

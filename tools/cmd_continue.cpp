@@ -88,7 +88,7 @@ CommandRunner setup_continue(CLI::App* sub) {
   auto json_flag = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
-  opts->add("period", "Period q, integer in [1, 100] (required)");
+  opts->add("period", "Period q, integer in [1, " + std::to_string(kMaxBranchPeriod) + "] (required)");
   opts->add_list("guess", "Starting point theta,v near the orbit at the start value (required)");
   opts->add("vary", "Parameter to continue in: a (default) | eps (constant model) | c (veldep model)");
   opts->add("range", "Interval LO:HI of the parameter (required); the start is the model's value (default LO)");

@@ -122,7 +122,8 @@ void merge_split_chains(AttractorsSweepResult& r);
 // With r.continue_branches, also continue_chains (r.certify_ends: certify).
 AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const GridOptions& run = {});
 
-// Each periodic or sticking chain of period <= kMaxBranchPeriod (`continue`'s limit) has its
+// Each periodic or sticking chain of period <= kMaxBranchPeriod (analysis/continuation.hpp,
+// `continue`'s limit) has its
 // branch continued (in the sweep's precision) from the
 // chain's orbit at the value of its largest share, over the sweep's range; a chain whose
 // orbit at that value lies on a branch already continued (same period, Newton from the
@@ -131,7 +132,6 @@ AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const Gr
 // with certify, the events so tied (and only they) are proved: border ends on both sides of
 // a* (verify/border_collision.hpp certify_branch_ends), period doublings
 // (certify_period_doubling) and folds (certify_fold); the other ends are reported, not proved.
-constexpr long kMaxBranchPeriod = 100;
 // The proofs run on `threads` workers (GridOptions::threads); the result does not depend on it.
 ChainBranches continue_chains(const AttractorsSweepResult& r, bool certify, int threads = 1);
 

@@ -14,7 +14,7 @@ ContinueRequest continue_request(const Options& given) {
   if (vary != "a" && vary != "eps" && vary != "c") throw InputError("vary", "must be a, eps or c (got '" + vary + "')");
   r.vary = parse_parameter("vary", vary);
   if (!given.has("range")) throw InputError("range", "is required (LO:HI, the interval of " + vary + ")");
-  if (!given.has("period")) throw InputError("period", "is required (an integer in [1, 100])");
+  if (!given.has("period")) throw InputError("period", "is required (an integer in [1, " + std::to_string(kMaxBranchPeriod) + "])");
   if (!given.has("guess")) throw InputError("guess", "is required (theta,v of a point near the period-q orbit)");
   // The varied parameter must belong to the model (checked before the model is built, so
   // that the message names --vary rather than the parameter filled in below).
@@ -31,7 +31,7 @@ ContinueRequest continue_request(const Options& given) {
   if (start < r.lo || r.hi < start)
     throw InputError(vary, "the start value " + start.text() + " must lie in the range [" + r.lo.text() + ", " +
                                r.hi.text() + "]");
-  r.period = integer_from(o, "period", 1, 100, 0);
+  r.period = integer_from(o, "period", 1, kMaxBranchPeriod, 0);
   r.guess = *guess_from(o, r.model);
   r.precision = analysis_precision(o, "continue");
   if (o.has("step")) {

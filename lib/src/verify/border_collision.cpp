@@ -316,9 +316,9 @@ Jet jet(const Setup& S, const std::vector<Mpfi>& x) {
                              : run == 0 ? State<IDual>{IDual::variable(x[2 * i], 0), IDual::variable(x[2 * i + 1], 1)}
                                         : State<IDual>{IDual(x[2 * i]), IDual(x[2 * i + 1])};
       std::vector<IDual> mv;
-      std::vector<MarginId> ids;
       const State<IDual> end = S.m == 1 ? piece_orbit(map, s, S.pieces, &mv)
-                                        : piece_step(map, s, S.pieces[i], static_cast<long>(i), &mv, &ids);
+                                        : piece_step(map, s, S.pieces[i], static_cast<long>(i), &mv,
+                                                     static_cast<std::vector<MarginId>*>(nullptr));
       // The border margin's row, where it belongs to this step (m = 1: the only one).
       const IDual* border = nullptr;
       if (margin_row) {

@@ -437,8 +437,7 @@ Preconditioner inverse_mid(const std::vector<std::vector<std::pair<size_t, Mpfi>
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
     const Eigen::MatrixXd inv = lu.inverse();
     if (!inv.allFinite()) throw Fail("the midpoint Jacobian of the system is singular");
-    // Partial pivoting does not detect singularity: its condition estimate must leave digits.
-    if (!(lu.rcond() > 1e-12)) throw Fail("the midpoint Jacobian of the system is singular (or too ill-conditioned for a double inverse)");
+    // (An ill-conditioned C is not unsound: the Krawczyk operator then fails to contract.)
     C.n = n;
     C.fast.reserve(n * n);
     for (size_t r = 0; r < n; ++r)
@@ -1284,21 +1283,203 @@ Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const std::vector<Mpf
   return J;
 }
 
+// Multiple shooting for the smooth systems (long periods, where the composed steps' box
+// straddles a knot): unknowns the Q points and p; rows F(x_i) - x_{i+1 mod Q} and
+// h = det(M_{Q-1} ... M_0 + sigma I), M_i = DF(x_i; p), every step over its own point's box.
+// Jacobian of h: d det(A) = tr(adj(A) dA), and along a variable t of step i,
+// dA/dt = L_i (dM_i/dt) R_i with L_i = M_{Q-1} ... M_{i+1}, R_i = M_{i-1} ... M_0, so
+// dh/dt = tr(W_i dM_i/dt), W_i = R_i adj(A) L_i.
+using Mat2I = std::array<std::array<Mpfi, 2>, 2>;
+
+Mat2I mat_mul(const Mat2I& a, const Mat2I& b) {
+  Mat2I r;
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j];
+  return r;
+}
+
+Mat2I identity2(long bits) { return {{{Mpfi(1, bits), Mpfi(0, bits)}, {Mpfi(0, bits), Mpfi(1, bits)}}}; }
+
+// One step's image and Jacobian over the box x_i at p (every branch decided over the box).
+void step_jacobian(const Model<Mpfi>& base, Parameter par, const Mpfi& th, const Mpfi& v, const Mpfi& p, long i,
+                   std::array<Mpfi, 2>& F, Mat2I& M, StepEvent* event = nullptr) {
+  Model<IDual> dm = convert_model<IDual>(base, [](const Mpfi& y) { return IDual(y); });
+  dm = with_parameter(dm, par, IDual(p));
+  const ImpactMap<IDual> map(std::move(dm));
+  StepResult<IDual> r;
+  try {
+    r = map.step(State<IDual>{IDual::variable(th, 0), IDual::variable(v, 1)});
+  } catch (const Undecided& u) {
+    throw Fail("step " + std::to_string(i) + " of the period is undecided over its box: " + u.what());
+  }
+  if (r.kind != EventKind::impact) throw Fail("the orbit sticks: no multiplier -1 or +1 (superstable)");
+  if (event) {
+    event->kind = r.kind;
+    event->segment = r.segment;
+    event->corner = r.corner;
+    event->indirect = r.indirect == Truth::yes;
+  }
+  const IDual* rows[2] = {&r.next.theta, &r.next.v};
+  for (int a = 0; a < 2; ++a) {
+    F[a] = rows[a]->v;
+    for (int k = 0; k < 2; ++k) M[a][k] = rows[a]->d[k];
+  }
+}
+
+std::vector<Mpfi> pd_value_shoot(const Model<Mpfi>& base, Parameter par, long q, const std::vector<Mpfi>& x, int sigma) {
+  const long bits = x[0].bits();
+  const Mpfi& p = x.back();
+  std::vector<Mpfi> out;
+  Mat2I P = identity2(bits);
+  for (long i = 0; i < q; ++i) {
+    std::array<Mpfi, 2> F;
+    Mat2I M;
+    step_jacobian(base, par, x[2 * i], x[2 * i + 1], p, i, F, M);
+    const long k = (i + 1) % q;
+    out.push_back(Mpfi(F[0] - x[2 * k]));
+    out.push_back(Mpfi(F[1] - x[2 * k + 1]));
+    P = mat_mul(M, P);
+  }
+  out.push_back(Mpfi((P[0][0] + sigma) * (P[1][1] + sigma) - P[0][1] * P[1][0]));
+  return out;
+}
+
+Jet pd_jet_shoot(const Model<Mpfi>& base, Parameter par, long q, const std::vector<Mpfi>& x, int sigma) {
+  const long bits = x[0].bits();
+  const size_t N = x.size(), PI = N - 1;
+  Jet J(N);
+  std::vector<Mat2I> M(static_cast<size_t>(q));
+  std::vector<std::array<Mat2I, 3>> dM(static_cast<size_t>(q));  // along theta_i, v_i, p
+  for (long i = 0; i < q; ++i) {
+    const size_t ii = static_cast<size_t>(i);
+    for (int var = 0; var < 3; ++var) {
+      auto lift = [&](const Mpfi& y) { return IDual2(IDual(y)); };
+      Model<IDual2> dm = convert_model<IDual2>(base, lift);
+      const IDual one(Mpfi(1, bits)), zero(Mpfi(0, bits));
+      dm = with_parameter(dm, par, IDual2(IDual(x[PI]), var == 2 ? one : zero, zero));
+      const ImpactMap<IDual2> map(std::move(dm));
+      State<IDual2> s{IDual2(IDual::variable(x[2 * ii], 0), var == 0 ? one : zero, zero),
+                      IDual2(IDual::variable(x[2 * ii + 1], 1), var == 1 ? one : zero, zero)};
+      try {
+        s = map.step(s).next;
+      } catch (const Undecided& u) {
+        throw Fail("step " + std::to_string(i) + " of the period is undecided over its box: " + u.what());
+      }
+      const IDual2* rows[2] = {&s.theta, &s.v};
+      for (size_t r = 0; r < 2; ++r) {
+        const IDual2& y = *rows[r];
+        if (!ScalarTraits<IDual>::derivatives_finite(y.v) || !ScalarTraits<IDual>::is_finite(y.d[0]) ||
+            !ScalarTraits<IDual>::derivatives_finite(y.d[0]))
+          throw Fail("the second-derivative enclosure over the box is not finite");
+        for (size_t k = 0; k < 2; ++k) {
+          M[ii][r][k] = y.v.d[k];
+          dM[ii][static_cast<size_t>(var)][r][k] = y.d[0].d[k];
+        }
+        if (var == 0) {
+          const size_t next = static_cast<size_t>((i + 1) % q);
+          J.f[2 * ii + r] = y.v.v - x[2 * next + r];
+          for (size_t k = 0; k < 2; ++k) J.set(2 * ii + r, 2 * ii + k, y.v.d[k]);
+          J.set(2 * ii + r, 2 * next + r, Mpfi(-1, bits));
+        }
+        if (var == 2) J.set(2 * ii + r, PI, y.d[0].v);
+      }
+    }
+  }
+  // Prefix R_i = M_{i-1} ... M_0, suffix L_i = M_{Q-1} ... M_{i+1}.
+  std::vector<Mat2I> R(static_cast<size_t>(q) + 1), L(static_cast<size_t>(q));
+  R[0] = identity2(bits);
+  for (size_t i = 0; i < static_cast<size_t>(q); ++i) R[i + 1] = mat_mul(M[i], R[i]);
+  L[static_cast<size_t>(q) - 1] = identity2(bits);
+  for (size_t i = static_cast<size_t>(q) - 1; i > 0; --i) L[i - 1] = mat_mul(L[i], M[i]);
+  const Mat2I& P = R[static_cast<size_t>(q)];
+  const Mpfi a00 = P[0][0] + sigma, a11 = P[1][1] + sigma;
+  J.f[PI] = a00 * a11 - P[0][1] * P[1][0];
+  const Mat2I adj = {{{a11, Mpfi(-P[0][1])}, {Mpfi(-P[1][0]), a00}}};
+  Mpfi dp(0, bits);
+  for (size_t i = 0; i < static_cast<size_t>(q); ++i) {
+    const Mat2I W = mat_mul(mat_mul(R[i], adj), L[i]);
+    for (size_t var = 0; var < 3; ++var) {
+      Mpfi t(0, bits);
+      for (size_t j = 0; j < 2; ++j)
+        for (size_t k = 0; k < 2; ++k) t += W[j][k] * dM[i][var][k][j];
+      if (var < 2)
+        J.set(PI, 2 * i + var, t);
+      else
+        dp += t;
+    }
+  }
+  J.set(PI, PI, dp);
+  return J;
+}
+
 // The system of a smooth end on S: (P^Q(x) - x, det(DP^Q(x) + sigma I)) (sigma = +1: period
 // doubling, -1: fold). S must outlive its use (the functions refer to it).
-void smooth_system(Setup& S, const PeriodDoublingQuestion& q, int sigma) {
+// shooting: the unknowns are all Q points (S.m = Q), else the first.
+void smooth_system(Setup& S, const PeriodDoublingQuestion& q, int sigma, bool shooting) {
   if (!(q.lo.value() < q.hi.value())) throw Fail("the interval holding a* is empty");
   S.par = q.vary;
   S.bits = q.bits;
   S.base = interval_model(with_parameter(q.model, q.vary, q.lo), q.bits);
-  S.value_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_value(S.base, S.par, q.period, x, sigma); };
-  S.jet_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_jet(S.base, S.par, q.period, x, sigma); };
+  S.m = shooting ? static_cast<int>(q.period) : 1;
+  if (shooting) {
+    S.value_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_value_shoot(S.base, S.par, q.period, x, sigma); };
+    S.jet_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_jet_shoot(S.base, S.par, q.period, x, sigma); };
+  } else {
+    S.value_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_value(S.base, S.par, q.period, x, sigma); };
+    S.jet_fn = [&S, &q, sigma](const std::vector<Mpfi>& x) { return pd_jet(S.base, S.par, q.period, x, sigma); };
+  }
 }
 
-void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
+// The orbit's Q points at parameter p (Mpfr steps of the map from x), as shooting unknowns
+// (only x for the composed form).
+std::vector<Mpfr> smooth_unknowns(const Setup& S, const PeriodDoublingQuestion& q, const Mpfr& th, const Mpfr& v,
+                                  const Mpfr& p) {
+  std::vector<Mpfr> y = {th, v};
+  if (S.m == 1) return y;
+  const Model<Mpfr> m = make_model<Mpfr>(with_parameter(q.model, q.vary, *Decimal::parse(exact_decimal(to_q(p)))), q.bits);
+  const ImpactMap<Mpfr> map(m);
+  State<Mpfr> s{th, v};
+  for (long i = 0; i + 1 < q.period; ++i) {
+    s = map.step(s).next;
+    y.push_back(s.theta);
+    y.push_back(s.v);
+  }
+  return y;
+}
+
+// Trace, det and events of DP^Q over the box B (the points, then p).
+struct Multipliers {
+  Mpfi trace, det;
+  std::vector<StepEvent> events;
+};
+
+Multipliers multipliers_over(const Setup& S, const PeriodDoublingQuestion& q, const std::vector<Mpfi>& B) {
+  Multipliers r;
+  if (S.m == 1) {
+    const Mpfi xb[3] = {B[0], B[1], B.back()};
+    const State<IDual> e = orbit_dual(S.base, S.par, xb, q.period, &r.events);
+    r.trace = e.theta.d[0] + e.v.d[1];
+    r.det = e.theta.d[0] * e.v.d[1] - e.theta.d[1] * e.v.d[0];
+    return r;
+  }
+  Mat2I P = identity2(S.bits);
+  for (long i = 0; i < q.period; ++i) {
+    std::array<Mpfi, 2> F;
+    Mat2I M;
+    StepEvent ev;
+    step_jacobian(S.base, S.par, B[2 * i], B[2 * i + 1], B.back(), i, F, M, &ev);
+    r.events.push_back(ev);
+    P = mat_mul(M, P);
+  }
+  r.trace = P[0][0] + P[1][1];
+  r.det = P[0][0] * P[1][1] - P[0][1] * P[1][0];
+  return r;
+}
+
+void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c, bool shooting) {
   const long bits = q.bits;
   Setup S;
-  smooth_system(S, q, 1);
+  smooth_system(S, q, 1, shooting);
   const mpq_class mid = (q.lo.value() + q.hi.value()) / 2;
   Mpfr pm(bits);
   mpfr_set_q(pm.get(), mid.get_mpq_t(), MPFR_RNDN);
@@ -1307,11 +1488,11 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
   const PeriodicOrbit<Mpfr> o = find_periodic(mm, q.period, make_state<Mpfr>(mm, q.point));
   if (!o.converged || o.points.empty() || o.minimal_period != q.period)
     throw Fail("Newton found no orbit of minimal period " + std::to_string(q.period) + " in the interval");
-  Problem A;
-  A.rows = {0, 1, 2};
-  A.yi = {0, 1, 2};
-  std::vector<Mpfr> u = newton(S, A, {o.points[0].theta, o.points[0].v, pm});
-  const Mpfr phat = u[2];
+  const Problem A = augmented(S);
+  std::vector<Mpfr> u = smooth_unknowns(S, q, o.points[0].theta, o.points[0].v, pm);
+  u.push_back(pm);
+  u = newton(S, A, u);
+  const Mpfr phat = u.back();
   Mpfr w0(bits);
   {
     const double width = std::max(mpq_class(q.hi.value() - q.lo.value()).get_d(), 1e-6 * std::max(1.0, std::fabs(phat.to_double())));
@@ -1321,7 +1502,10 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
                  ", far from the interval given (no multiplier -1 next to it)");
   }
   std::optional<std::vector<Mpfi>> B;
-  Mpfi Z, Y[2];
+  const std::vector<Mpfr> xg(u.begin(), u.end() - 1);
+  const size_t ny = xg.size();
+  Mpfi Z;
+  std::vector<Mpfi> Y(ny);
   std::string why;
   for (int k = 0; k < 6 && !B; ++k) {
     Mpfr w(bits);
@@ -1329,10 +1513,9 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
     const Mpfr zlo = phat - w, zhi = phat + w;
     Z = Mpfi(zlo, zhi);
     try {
-      const std::vector<Mpfr> xg = {u[0], u[1]};
       const std::vector<Mpfi> ylo = orbit_at(S, thin(zlo), xg), yhi = orbit_at(S, thin(zhi), xg);
-      Mpfr rad[2], mid2[2];
-      for (int i = 0; i < 2; ++i) {
+      std::vector<Mpfr> rad(ny), mid2(ny);
+      for (size_t i = 0; i < ny; ++i) {
         const Mpfi h = hull(hull(ylo[i], yhi[i]), thin(u[i]));
         mid2[i] = h.mid();
         Mpfi ulps = abs(thin(mid2[i])) + 1;
@@ -1341,19 +1524,21 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
       }
       bool ok = false;
       for (int t = 0; t < 6 && !ok; ++t) {
-        for (int i = 0; i < 2; ++i) Y[i] = Mpfi(Mpfr(mid2[i] - rad[i]), Mpfr(mid2[i] + rad[i]));
+        for (size_t i = 0; i < ny; ++i) Y[i] = Mpfi(Mpfr(mid2[i] - rad[i]), Mpfr(mid2[i] + rad[i]));
         Problem O = orbit_problem(S, Z);
         O.zhat = phat;
-        const std::vector<Mpfi> KO = krawczyk(S, O, xg, residual(S, O, xg), {Y[0], Y[1]});
-        const std::vector<Mpfi> box = {Y[0], Y[1], Z};
+        const std::vector<Mpfi> KO = krawczyk(S, O, xg, residual(S, O, xg), Y);
+        std::vector<Mpfi> box = Y;
+        box.push_back(Z);
         const std::vector<Mpfi> KA = krawczyk(S, A, u, residual(S, A, u), box);
-        ok = all_inside(KO, {Y[0], Y[1]}) && all_inside(KA, box);
+        ok = all_inside(KO, Y) && all_inside(KA, box);
         if (!ok)
-          for (int i = 0; i < 2; ++i) rad[i] = rad[i] * 4;
+          for (size_t i = 0; i < ny; ++i) rad[i] = rad[i] * 4;
       }
       if (!ok) throw Fail("the Krawczyk operators did not map the box Y x Z into itself");
-      const std::vector<Mpfi> T = tighten(S, A, u, {Y[0], Y[1], Z});
-      B = T;
+      std::vector<Mpfi> box = Y;
+      box.push_back(Z);
+      B = tighten(S, A, u, box);
     } catch (const Fail& f) {
       why = f.what();
     } catch (const Undecided& un) {
@@ -1366,26 +1551,28 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
   Truth sides[2];
   for (int end = 0; end < 2; ++end) {
     const Mpfr p = end == 0 ? Z.lower() : Z.upper();
-    const std::vector<Mpfi> x = orbit_at(S, thin(p), {u[0], u[1]});
-    if (!Y[0].contains(x[0]) || !Y[1].contains(x[1])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
-    sides[end] = Tr::lt(zero, pd_value(S.base, S.par, q.period, {x[0], x[1], thin(p)})[2]);
+    std::vector<Mpfi> x = orbit_at(S, thin(p), xg);
+    for (size_t i = 0; i < ny; ++i)
+      if (!Y[i].contains(x[i])) throw Fail("an orbit enclosed at one parameter value lies outside Y");
+    x.push_back(thin(p));
+    sides[end] = Tr::lt(zero, S.value_fn(x).back());
     if (sides[end] == Truth::unknown || sides[end] == Truth::invalid)
       throw Fail("det(DP^Q + I) has no certain sign at an end of Z");
   }
   if (sides[0] == sides[1]) throw Fail("det(DP^Q + I) has the same sign at both ends of Z");
   // The multipliers at p*: trace and det over the tight box.
-  std::vector<StepEvent> events;
-  const Mpfi xb[3] = {(*B)[0], (*B)[1], (*B)[2]};
-  const State<IDual> e = orbit_dual(S.base, S.par, xb, q.period, &events);
-  const Mpfi tr = e.theta.d[0] + e.v.d[1], det = e.theta.d[0] * e.v.d[1] - e.theta.d[1] * e.v.d[0];
+  const Multipliers mu = multipliers_over(S, q, *B);
+  const Mpfi& tr = mu.trace;
+  const Mpfi& det = mu.det;
   // The other multiplier is det / (-1); it must not be -1 too (a simple multiplier -1).
   if (Tr::is_zero(Mpfi(det - 1)) != Truth::no) throw Fail("the other multiplier may be -1 as well");
+  const Mpfi& pstar = B->back();
   c.certified = true;
-  c.lo = to_q((*B)[2].lower());
-  c.hi = to_q((*B)[2].upper());
-  c.parameter = enclosure((*B)[2]);
-  c.width = Mpfr((*B)[2].upper() - (*B)[2].lower()).to_double();
-  c.events = event_text(events);
+  c.lo = to_q(pstar.lower());
+  c.hi = to_q(pstar.upper());
+  c.parameter = enclosure(pstar);
+  c.width = Mpfr(pstar.upper() - pstar.lower()).to_double();
+  c.events = event_text(mu.events);
   c.z_lo = to_q(Z.lower());
   c.z_hi = to_q(Z.upper());
   c.trace = enclosure(tr);
@@ -1401,8 +1588,9 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
      << "] (width " << c.width << ") it has a multiplier exactly -1 (the other is " << c.other.lo << " .. " << c.other.hi
      << "), and det(DP^" << q.period << " + I) changes sign there: a real multiplier crosses -1 (period doubling; "
      << "the direction of the doubled branch is not certified). Proved by the Krawczyk operator on (P^" << q.period
-     << "(x) - x, det(DP^" << q.period << "(x) + I)) with second derivatives from nested interval duals, at " << bits
-     << " bits.";
+     << "(x) - x, det(DP^" << q.period << "(x) + I)) with second derivatives from nested interval duals"
+     << (S.m > 1 ? " (multiple shooting: all " + std::to_string(S.m) + " orbit points unknowns, the box above the first's)" : "")
+     << ", at " << bits << " bits.";
   c.statement = st.str();
 }
 
@@ -1416,12 +1604,16 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
 // be two-dimensional): the curve turns at p*, and d det/dv = c <w, D^2F(v, v)> != 0 (adj of
 // a rank-1 2x2 matrix is c v w^T, w the left kernel) makes p'' != 0 along it: a quadratic
 // fold, two period-Q orbits near x* on one side of p*, none on the other.
-void run_fold(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
+// With shooting, the Jacobian of the shooting system reduces to the composed one by
+// eliminating x_1 .. x_{Q-1} along the chain x_{i+1} = F(x_i) (block elimination with the -I
+// blocks as pivots): one is regular exactly where the other is, and the argument above holds.
+void run_fold(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c, bool shooting) {
   const long bits = q.bits;
   Setup S;
-  smooth_system(S, q, -1);
+  smooth_system(S, q, -1, shooting);
   // Newton on the augmented system (regular at a fold, where Newton on the orbit alone is
-  // not) from the branch's orbit point given and the middle of the interval.
+  // not) from the branch's orbit point given and the middle of the interval; with shooting,
+  // from the composed Newton's point and its orbit.
   const mpq_class mid = (q.lo.value() + q.hi.value()) / 2;
   std::vector<Mpfr> u;
   {
@@ -1429,34 +1621,36 @@ void run_fold(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
     const State<Mpfr> x0 = make_state<Mpfr>(mm, q.point);
     Mpfr p(bits);
     mpfr_set_q(p.get(), mid.get_mpq_t(), MPFR_RNDN);
-    Problem A;
-    A.rows = {0, 1, 2};
-    A.yi = {0, 1, 2};
-    u = newton(S, A, {x0.theta, x0.v, p});
+    Setup S1;
+    smooth_system(S1, q, -1, false);
+    u = newton(S1, augmented(S1), {x0.theta, x0.v, p});
+    if (shooting) {
+      const Mpfr pu = u.back();
+      u = smooth_unknowns(S, q, u[0], u[1], pu);
+      u.push_back(pu);
+      u = newton(S, augmented(S), u);
+    }
   }
   {
-    const Mpfr& phat = u[2];
+    const Mpfr& phat = u.back();
     const double width = std::max(mpq_class(q.hi.value() - q.lo.value()).get_d(), 1e-6 * std::max(1.0, std::fabs(phat.to_double())));
     if (!mpfr_number_p(phat.get()) || std::fabs(phat.to_double() - mid.get_d()) > 100 * width)
       throw Fail("Newton on the augmented system goes to " + std::string(name(q.vary)) + " = " + text(phat) +
                  ", far from the interval given (no multiplier +1 next to it)");
   }
-  Problem A;
-  A.rows = {0, 1, 2};
-  A.yi = {0, 1, 2};
-  const std::vector<Mpfi> B = prove_tight(S, A, u);
-  std::vector<StepEvent> events;
-  const Mpfi xb[3] = {B[0], B[1], B[2]};
-  const State<IDual> e = orbit_dual(S.base, S.par, xb, q.period, &events);
-  const Mpfi tr = e.theta.d[0] + e.v.d[1], det = e.theta.d[0] * e.v.d[1] - e.theta.d[1] * e.v.d[0];
+  const std::vector<Mpfi> B = prove_tight(S, augmented(S), u);
+  const Multipliers mu = multipliers_over(S, q, B);
+  const Mpfi& tr = mu.trace;
+  const Mpfi& det = mu.det;
   // One multiplier is exactly +1, so the other is det; it must not be +1 too.
   if (Tr::is_zero(Mpfi(det - 1)) != Truth::no) throw Fail("the other multiplier may be +1 as well");
+  const Mpfi& pstar = B.back();
   c.certified = true;
-  c.lo = to_q(B[2].lower());
-  c.hi = to_q(B[2].upper());
-  c.parameter = enclosure(B[2]);
-  c.width = Mpfr(B[2].upper() - B[2].lower()).to_double();
-  c.events = event_text(events);
+  c.lo = to_q(pstar.lower());
+  c.hi = to_q(pstar.upper());
+  c.parameter = enclosure(pstar);
+  c.width = Mpfr(pstar.upper() - pstar.lower()).to_double();
+  c.events = event_text(mu.events);
   c.z_lo = c.lo;
   c.z_hi = c.hi;
   c.trace = enclosure(tr);
@@ -1473,7 +1667,9 @@ void run_fold(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c) {
      << q.period << " orbits form one curve that turns back at " << p
      << "*: two orbits on one side, none on the other (the size of that neighbourhood is not certified). Proved by the "
      << "Krawczyk operator on (P^" << q.period << "(x) - x, det(DP^" << q.period
-     << "(x) - I)) with second derivatives from nested interval duals, at " << bits << " bits.";
+     << "(x) - I)) with second derivatives from nested interval duals"
+     << (S.m > 1 ? " (multiple shooting: all " + std::to_string(S.m) + " orbit points unknowns, the box above the first's)" : "")
+     << ", at " << bits << " bits.";
   c.statement = st.str();
 }
 }  // namespace
@@ -1543,13 +1739,25 @@ BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestio
 
 namespace {
 
-// One smooth proof at q.bits, then at twice the bits while it fails, up to q.max_bits.
+// One smooth proof at q.bits, composed and then (period > 1) by multiple shooting, then at
+// twice the bits while both fail, up to q.max_bits.
 template <class Proof>
 PeriodDoublingCertificate smooth_attempts(const PeriodDoublingQuestion& q, Proof&& proof) {
   const auto t0 = std::chrono::steady_clock::now();
   PeriodDoublingQuestion at = q;
   for (;;) {
-    PeriodDoublingCertificate c = attempt<PeriodDoublingCertificate>(at.bits, "", [&](PeriodDoublingCertificate& r) { proof(at, r); });
+    PeriodDoublingCertificate c =
+        attempt<PeriodDoublingCertificate>(at.bits, "", [&](PeriodDoublingCertificate& r) { proof(at, r, false); });
+    if (!c.certified && q.period > 1) {
+      PeriodDoublingCertificate shot =
+          attempt<PeriodDoublingCertificate>(at.bits, "", [&](PeriodDoublingCertificate& r) { proof(at, r, true); });
+      if (shot.certified) {
+        c = shot;
+      } else if (shot.reason != c.reason) {
+        c.reason = "the composed map: " + c.reason + "; multiple shooting: " + shot.reason;
+        c.statement = "Not certified at " + std::to_string(at.bits) + " bits: " + c.reason + ". Nothing is claimed.";
+      }
+    }
     if (c.certified || 2 * at.bits > q.max_bits) {
       c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // every attempt
       return c;
@@ -1561,11 +1769,11 @@ PeriodDoublingCertificate smooth_attempts(const PeriodDoublingQuestion& q, Proof
 }  // namespace
 
 PeriodDoublingCertificate certify_period_doubling(const PeriodDoublingQuestion& q) {
-  return smooth_attempts(q, [](const PeriodDoublingQuestion& a, PeriodDoublingCertificate& c) { run_pd(a, c); });
+  return smooth_attempts(q, [](const PeriodDoublingQuestion& a, PeriodDoublingCertificate& c, bool shoot) { run_pd(a, c, shoot); });
 }
 
 PeriodDoublingCertificate certify_fold(const PeriodDoublingQuestion& q) {
-  return smooth_attempts(q, [](const PeriodDoublingQuestion& a, PeriodDoublingCertificate& c) { run_fold(a, c); });
+  return smooth_attempts(q, [](const PeriodDoublingQuestion& a, PeriodDoublingCertificate& c, bool shoot) { run_fold(a, c, shoot); });
 }
 
 }  // namespace bouncer

@@ -74,9 +74,15 @@ struct Grid final : GridBase {
 
   AttractorCell cell(long i) const override {
     const T theta = theta_at(i % r.nx), v = v_at(i / r.nx);
-    if (outside(theta, v)) return {OrbitClass::outside, 0};
+    AttractorCell out;
+    if (outside(theta, v)) {
+      out.cls = OrbitClass::outside;
+      return out;
+    }
     const Classification c = classify<T>(map, State<T>{theta, v}, r.classify);
-    return {c.cls, c.period};
+    out.cls = c.cls;
+    out.period = c.period;
+    return out;
   }
 
   CertifiedCell certified_cell(long i) const override {
@@ -115,7 +121,7 @@ struct BasinGrid::Impl {
   std::unique_ptr<GridBase> check[2];
 };
 
-BasinGrid::BasinGrid(const BasinRequest& r, bool certified) : impl_(new Impl{r, certified, nullptr}) {
+BasinGrid::BasinGrid(const BasinRequest& r, bool certified) : impl_(new Impl{r, certified, nullptr, 1, {}, {}}) {
   check_basin(r, certified);
   impl_->request.v_range = basin_v_range(r);
   impl_->grid = make_grid(impl_->request);

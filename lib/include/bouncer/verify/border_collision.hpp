@@ -149,6 +149,9 @@ BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestio
 // [lo, hi] where det(DP^Q + I) = 0, i.e. a multiplier of x(p*) is exactly -1; that
 // determinant changes sign across p*, so a real multiplier crosses -1. Which way the doubled
 // orbit branches (the normal form's coefficient) is not certified. Folds: certify_fold below.
+// Long periods: where that composed form fails, the same proof with all Q orbit points as
+// unknowns (multiple shooting; the determinant's derivatives from prefix and suffix
+// products of the steps' Jacobians), then both again at twice the bits, up to max_bits.
 struct PeriodDoublingQuestion {
   ModelSpec model;                  // any value of the varied parameter
   Parameter vary = Parameter::a;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bouncer/analysis/jacobian.hpp"
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/model/impact_map_impl.hpp"
 #include "bouncer/verify/interval_dual.hpp"
@@ -1289,16 +1290,11 @@ Jet pd_jet(const Model<Mpfi>& base, Parameter par, long q, const std::vector<Mpf
 // Jacobian of h: d det(A) = tr(adj(A) dA), and along a variable t of step i,
 // dA/dt = L_i (dM_i/dt) R_i with L_i = M_{Q-1} ... M_{i+1}, R_i = M_{i-1} ... M_0, so
 // dh/dt = tr(W_i dM_i/dt), W_i = R_i adj(A) L_i.
-using Mat2I = std::array<std::array<Mpfi, 2>, 2>;
+// analysis/jacobian.hpp's 2x2 matrix and product, entries by index here.
+using Mat2I = Mat2<Mpfi>;
 
-Mat2I mat_mul(const Mat2I& a, const Mat2I& b) {
-  Mat2I r;
-  for (int i = 0; i < 2; ++i)
-    for (int j = 0; j < 2; ++j) r[i][j] = a[i][0] * b[0][j] + a[i][1] * b[1][j];
-  return r;
-}
-
-Mat2I identity2(long bits) { return {{{Mpfi(1, bits), Mpfi(0, bits)}, {Mpfi(0, bits), Mpfi(1, bits)}}}; }
+Mpfi& el(Mat2I& m, size_t r, size_t k) { return r == 0 ? (k == 0 ? m.a11 : m.a12) : (k == 0 ? m.a21 : m.a22); }
+const Mpfi& el(const Mat2I& m, size_t r, size_t k) { return el(const_cast<Mat2I&>(m), r, k); }
 
 // One step's image and Jacobian over the box x_i at p (every branch decided over the box).
 void step_jacobian(const Model<Mpfi>& base, Parameter par, const Mpfi& th, const Mpfi& v, const Mpfi& p, long i,
@@ -1322,7 +1318,7 @@ void step_jacobian(const Model<Mpfi>& base, Parameter par, const Mpfi& th, const
   const IDual* rows[2] = {&r.next.theta, &r.next.v};
   for (int a = 0; a < 2; ++a) {
     F[a] = rows[a]->v;
-    for (int k = 0; k < 2; ++k) M[a][k] = rows[a]->d[k];
+    for (int k = 0; k < 2; ++k) el(M, static_cast<size_t>(a), static_cast<size_t>(k)) = rows[a]->d[k];
   }
 }
 
@@ -1330,7 +1326,7 @@ std::vector<Mpfi> pd_value_shoot(const Model<Mpfi>& base, Parameter par, long q,
   const long bits = x[0].bits();
   const Mpfi& p = x.back();
   std::vector<Mpfi> out;
-  Mat2I P = identity2(bits);
+  Mat2I P = identity2<Mpfi>(bits);
   for (long i = 0; i < q; ++i) {
     std::array<Mpfi, 2> F;
     Mat2I M;
@@ -1338,9 +1334,9 @@ std::vector<Mpfi> pd_value_shoot(const Model<Mpfi>& base, Parameter par, long q,
     const long k = (i + 1) % q;
     out.push_back(Mpfi(F[0] - x[2 * k]));
     out.push_back(Mpfi(F[1] - x[2 * k + 1]));
-    P = mat_mul(M, P);
+    P = M * P;
   }
-  out.push_back(Mpfi((P[0][0] + sigma) * (P[1][1] + sigma) - P[0][1] * P[1][0]));
+  out.push_back(Mpfi((P.a11 + sigma) * (P.a22 + sigma) - P.a12 * P.a21));
   return out;
 }
 
@@ -1372,8 +1368,8 @@ Jet pd_jet_shoot(const Model<Mpfi>& base, Parameter par, long q, const std::vect
             !ScalarTraits<IDual>::derivatives_finite(y.d[0]))
           throw Fail("the second-derivative enclosure over the box is not finite");
         for (size_t k = 0; k < 2; ++k) {
-          M[ii][r][k] = y.v.d[k];
-          dM[ii][static_cast<size_t>(var)][r][k] = y.d[0].d[k];
+          el(M[ii], r, k) = y.v.d[k];
+          el(dM[ii][static_cast<size_t>(var)], r, k) = y.d[0].d[k];
         }
         if (var == 0) {
           const size_t next = static_cast<size_t>((i + 1) % q);
@@ -1387,21 +1383,21 @@ Jet pd_jet_shoot(const Model<Mpfi>& base, Parameter par, long q, const std::vect
   }
   // Prefix R_i = M_{i-1} ... M_0, suffix L_i = M_{Q-1} ... M_{i+1}.
   std::vector<Mat2I> R(static_cast<size_t>(q) + 1), L(static_cast<size_t>(q));
-  R[0] = identity2(bits);
-  for (size_t i = 0; i < static_cast<size_t>(q); ++i) R[i + 1] = mat_mul(M[i], R[i]);
-  L[static_cast<size_t>(q) - 1] = identity2(bits);
-  for (size_t i = static_cast<size_t>(q) - 1; i > 0; --i) L[i - 1] = mat_mul(L[i], M[i]);
+  R[0] = identity2<Mpfi>(bits);
+  for (size_t i = 0; i < static_cast<size_t>(q); ++i) R[i + 1] = M[i] * R[i];
+  L[static_cast<size_t>(q) - 1] = identity2<Mpfi>(bits);
+  for (size_t i = static_cast<size_t>(q) - 1; i > 0; --i) L[i - 1] = L[i] * M[i];
   const Mat2I& P = R[static_cast<size_t>(q)];
-  const Mpfi a00 = P[0][0] + sigma, a11 = P[1][1] + sigma;
-  J.f[PI] = a00 * a11 - P[0][1] * P[1][0];
-  const Mat2I adj = {{{a11, Mpfi(-P[0][1])}, {Mpfi(-P[1][0]), a00}}};
+  const Mpfi a00 = P.a11 + sigma, a11 = P.a22 + sigma;
+  J.f[PI] = a00 * a11 - P.a12 * P.a21;
+  const Mat2I adj{a11, Mpfi(-P.a12), Mpfi(-P.a21), a00};
   Mpfi dp(0, bits);
   for (size_t i = 0; i < static_cast<size_t>(q); ++i) {
-    const Mat2I W = mat_mul(mat_mul(R[i], adj), L[i]);
+    const Mat2I W = R[i] * adj * L[i];
     for (size_t var = 0; var < 3; ++var) {
       Mpfi t(0, bits);
       for (size_t j = 0; j < 2; ++j)
-        for (size_t k = 0; k < 2; ++k) t += W[j][k] * dM[i][var][k][j];
+        for (size_t k = 0; k < 2; ++k) t += el(W, j, k) * el(dM[i][var], k, j);
       if (var < 2)
         J.set(PI, 2 * i + var, t);
       else
@@ -1476,17 +1472,17 @@ Multipliers multipliers_over(const Setup& S, const PeriodDoublingQuestion& q, co
     r.det = e.theta.d[0] * e.v.d[1] - e.theta.d[1] * e.v.d[0];
     return r;
   }
-  Mat2I P = identity2(S.bits);
+  Mat2I P = identity2<Mpfi>(S.bits);
   for (long i = 0; i < q.period; ++i) {
     std::array<Mpfi, 2> F;
     Mat2I M;
     StepEvent ev;
     step_jacobian(S.base, S.par, B[2 * i], B[2 * i + 1], B.back(), i, F, M, &ev);
     r.events.push_back(ev);
-    P = mat_mul(M, P);
+    P = M * P;
   }
-  r.trace = P[0][0] + P[1][1];
-  r.det = P[0][0] * P[1][1] - P[0][1] * P[1][0];
+  r.trace = P.a11 + P.a22;
+  r.det = P.a11 * P.a22 - P.a12 * P.a21;
   return r;
 }
 

@@ -51,7 +51,7 @@ TEST(Grids, BasinCellAtTheEq5FixedPointIsFixed) {
   ASSERT_EQ(b.cells.size(), 1u);
   EXPECT_EQ(b.theta[0].digits, "0.25");
   EXPECT_EQ(b.v[0].digits, "12");
-  EXPECT_EQ(b.cells[0], (AttractorCell{OrbitClass::fixed, 1}));
+  EXPECT_EQ(b.cells[0], attractor_cell(OrbitClass::fixed, 1));
 }
 
 TEST(Grids, BasinMarksStartsBelowTheWallOutside) {
@@ -207,7 +207,7 @@ TEST(Grids, CancelledRunThrows) {
 
 TEST(GridCells, TileTextsReadBack) {
   for (int k = 0; k < kOrbitClassCount; ++k) {
-    const AttractorCell c{static_cast<OrbitClass>(k), 3 * k};
+    const AttractorCell c = attractor_cell(static_cast<OrbitClass>(k), 3 * k);
     EXPECT_EQ(decode_cell<AttractorCell>(encode(c)), c);
     EXPECT_EQ(orbit_class_named(name(c.cls)), c.cls);
   }
@@ -238,7 +238,7 @@ TEST(GridCells, TileTextsReadBack) {
 }
 
 TEST(GridCells, ConfirmedCellsReadBack) {
-  AttractorCell c{OrbitClass::quasiperiodic, 0};
+  AttractorCell c = attractor_cell(OrbitClass::quasiperiodic, 0);
   c.confirm = PrecisionVerdict::artefact;
   c.check_cls = OrbitClass::unbounded;
   c.check_period = 0;

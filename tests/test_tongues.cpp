@@ -172,7 +172,9 @@ TEST(Tongues, PointsLieOnTheCurvesInsideTheWindow) {
       EXPECT_EQ(q.full, lower_end(q.eps, p) == 0);  // solid iff the family is all of (0, 1/2)
       EXPECT_EQ(q.at_switch, q.eps == mpq_class(1, 4 * p - 1));
       switches += q.at_switch;
-      if (i > 0) EXPECT_LT(c.points[i - 1].a, q.a);
+      if (i > 0) {
+        EXPECT_LT(c.points[i - 1].a, q.a);
+      }
     }
     EXPECT_EQ(switches, switch_inside ? 1 : 0);
     total += static_cast<long>(c.points.size());
@@ -182,7 +184,9 @@ TEST(Tongues, PointsLieOnTheCurvesInsideTheWindow) {
   const TongueCurve& c1 = t.curves[0];
   long i = 0;
   for (const TonguePoint& q : c1.points)
-    if (!q.at_switch) EXPECT_EQ(q.a, c1.points.front().a + (c1.points.back().a - c1.points.front().a) * i++ / 40);
+    if (!q.at_switch) {
+      EXPECT_EQ(q.a, c1.points.front().a + (c1.points.back().a - c1.points.front().a) * i++ / 40);
+    }
 }
 
 TEST(Tongues, CurvesOutsideTheWindowAreEmpty) {

@@ -12,15 +12,22 @@ int main() {
   model.law = Law::constant, model.a = *Decimal::parse("24"), model.eps = *Decimal::parse("0.5");
   model.wall = parse_wall("wall", "triangle");
 
-  BasinRequest b{.model = model, .nx = 40, .ny = 30};  // starts over the trapping region, double
+  BasinRequest b;  // starts over the trapping region, double
+  b.model = model;
+  b.nx = 40;
+  b.ny = 30;
   const BasinResult basins = basin(b);
   std::ofstream basin_csv("basin.csv");
   for (size_t i = 0; i < basins.cells.size(); ++i)
     basin_csv << basins.theta[i % 40].digits << ',' << basins.v[i / 40].digits << ',' << name(basins.cells[i].cls) << '\n';
 
   // (a, eps) in [20, 30] x [0.3, 0.7]: 12 x 8 points, 4 x 4 starts each; chaotic starts counted
-  const ScanResult scans = scan({.model = model, .a_lo = *Decimal::parse("20"), .a_hi = *Decimal::parse("30"),
-                                 .y_lo = *Decimal::parse("0.3"), .y_hi = *Decimal::parse("0.7"), .p = 12, .q = 8, .k = 4});
+  ScanRequest s;
+  s.model = model;
+  s.a_lo = *Decimal::parse("20"), s.a_hi = *Decimal::parse("30");
+  s.y_lo = *Decimal::parse("0.3"), s.y_hi = *Decimal::parse("0.7");
+  s.p = 12, s.q = 8, s.k = 4;
+  const ScanResult scans = scan(s);
   std::ofstream scan_csv("scan.csv");
   for (size_t i = 0; i < scans.cells.size(); ++i)
     scan_csv << scans.a[i % 12].digits << ',' << scans.y_values[i / 12].digits << ',' << scans.cells[i][OrbitClass::chaotic] << '\n';

@@ -53,7 +53,7 @@ template <>
 AttractorCell decode_cell<AttractorCell>(std::string_view text) {
   const auto f = fields(text);
   if (f.size() != 2 && f.size() != 5) bad_cell(text);
-  AttractorCell c{named(orbit_class_named(f[0]), text), whole<long>(f[1], text)};
+  AttractorCell c = attractor_cell(named(orbit_class_named(f[0]), text), whole<long>(f[1], text));
   if (f.size() == 5) {
     for (PrecisionVerdict v : {PrecisionVerdict::agrees, PrecisionVerdict::artefact, PrecisionVerdict::precision_dependent})
       if (f[2] == name(v)) c.confirm = v;
@@ -92,7 +92,7 @@ bool in_confirm_sample(long x, long y, long ux, long uy, long stride) {
 long confirm_sample_units(long ux, long uy, long stride) { return lattice_count(ux, stride) * lattice_count(uy, stride); }
 
 AttractorCell confirmed_cell(const CheckedClassification& check) {
-  AttractorCell c{check.result.cls, check.result.period};
+  AttractorCell c = attractor_cell(check.result.cls, check.result.period);
   c.confirm = check.verdict;
   c.check_cls = check.checks.at(0).result.cls;
   c.check_period = check.checks.at(0).result.period;

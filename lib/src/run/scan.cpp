@@ -165,12 +165,23 @@ long ScanCell::total() const {
 }
 
 std::string encode(const ScanCell& c) {
+  // Appended piece by piece: GCC 12 reports a false -Wrestrict on `"," + std::to_string(...)`.
   std::string s;
-  for (OrbitClass k : scan_classes()) s += (s.empty() ? "" : ",") + std::to_string(c[k]);
+  for (OrbitClass k : scan_classes()) {
+    if (!s.empty()) s += ',';
+    s += std::to_string(c[k]);
+  }
   if (c.confirmed) {
     // "|agrees,artefact,precision_dependent|j j ..."
-    s += '|' + std::to_string(c.verdicts[0]) + ',' + std::to_string(c.verdicts[1]) + ',' + std::to_string(c.verdicts[2]) + '|';
-    for (size_t n = 0; n < c.artefacts.size(); ++n) s += (n ? " " : "") + std::to_string(c.artefacts[n]);
+    for (int i = 0; i < 3; ++i) {
+      s += i ? ',' : '|';
+      s += std::to_string(c.verdicts[i]);
+    }
+    s += '|';
+    for (size_t n = 0; n < c.artefacts.size(); ++n) {
+      if (n) s += ' ';
+      s += std::to_string(c.artefacts[n]);
+    }
   }
   return s;
 }
@@ -243,7 +254,7 @@ struct ScanGrid::Impl {
   std::unique_ptr<GridBase> check[2];
 };
 
-ScanGrid::ScanGrid(const ScanRequest& r, bool certified) : impl_(new Impl{r, certified, scan_parameter(r.model), nullptr}) {
+ScanGrid::ScanGrid(const ScanRequest& r, bool certified) : impl_(new Impl{r, certified, scan_parameter(r.model), nullptr, 1, {}, {}}) {
   check_scan(r, certified);
   impl_->grid = make_grid(impl_->request);
   if (r.confirm.on) {

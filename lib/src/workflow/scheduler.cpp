@@ -131,8 +131,11 @@ int run_jobs(std::vector<Job>& jobs, const std::string& dir, unsigned n, const J
       auto files = std::make_unique<OutputSet>();
       files->reserve("out", job.stdout_path);
       files->reserve("out", job.stderr_path);
+      // The environment entry as a named string: GCC 12 reports a false -Warray-bounds on a
+      // temporary `std::string(...) + "=1"` inside the braced list.
+      const std::string in_reproduce = std::string(kInReproduceVariable) + "=1";
       const pid_t pid = start_child(job.exec, files->descriptor(job.stdout_path), files->descriptor(job.stderr_path), "",
-                                    {std::string(kInReproduceVariable) + "=1"});
+                                    {in_reproduce});
       if (pid < 0) {
         job.state = ItemState::failed;
         job.problem = "could not start " + job.exec[0];

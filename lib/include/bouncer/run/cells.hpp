@@ -31,6 +31,13 @@ struct AttractorCell {
   long check_period = 0;
   friend bool operator==(const AttractorCell&, const AttractorCell&) = default;
 };
+// A cell with its class and period and no --confirm verdict.
+inline AttractorCell attractor_cell(OrbitClass cls, long period) {
+  AttractorCell c;
+  c.cls = cls;
+  c.period = period;
+  return c;
+}
 
 // --confirm of a grid of starts (basin, scan): the starts of a sample classified again at
 // mpfr:B, B = max(bits, 2 x the run's bits), and at mpfr:2B when they differ, as a single-point

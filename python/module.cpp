@@ -832,7 +832,7 @@ class ModelCore {
         for (const bool high : {false, true}) {
           py::dict end = d[high ? "high" : "low"];
           const auto& border = high ? cert.high : cert.low;
-          const auto& fold = high ? cert.high_fold : cert.low_fold;
+          const auto& fold = high ? cert.high_smooth : cert.low_smooth;
           end["certified"] = border ? border_dict(*border) : fold ? smooth_dict(*fold) : py::object(py::none());
         }
         py::list bif = d["bifurcations"];

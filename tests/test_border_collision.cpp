@@ -362,6 +362,52 @@ TEST(Fold, VeldepPeriod64FoldByMultipleShooting) {
   EXPECT_GE(thi - dlo, 1);
 }
 
+// A doubling end: the stable period 62 at c = 1000 (a = 28.7, found by `attractors`) is
+// born going up in a at the period doubling of a period-31 orbit; its multiplier +1 there is
+// the period-31 orbit's -1 counted twice, which the multiplier test alone took for a fold
+// (and a fold proof cannot succeed: two orbits, the period 62 and the period 31 traversed
+// twice, meet in the box). Truth from a second computation: the period-31 branch, continued
+// on its own from below, has a period doubling whose double bracket lies within 1e-8 of the
+// period-62 end's; the certified enclosure of the period-31 doubling lies within 1e-8 of both.
+TEST(PeriodDoubling, VeldepPeriod62IsBornAtThePeriod31Doubling) {
+  const ModelSpec s = test_support::spec(Law::veldep, "28.7", "1", "1000");
+  Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 62,
+                                           State<double>{0.02863575971809439, 15.428624909128757}, 28.699, 28.701);
+  ASSERT_TRUE(b.started) << b.note;
+  ASSERT_EQ(b.low.reason, EndReason::doubling) << b.low.detail;
+  EXPECT_EQ(b.low.mother_period, 31);
+  EXPECT_NE(b.low.detail.find("period-31"), std::string::npos) << b.low.detail;
+  // Beyond the end Newton falls onto the period-31 orbit, named as the branch's mother.
+  EXPECT_EQ(b.low.beyond_orbit_period, 31);
+  EXPECT_EQ(b.low.beyond_relation, BeyondRelation::mother);
+  // The period 62's own doubling (to 124) further up stays a bifurcation on the branch.
+  ASSERT_FALSE(b.bifurcations.empty());
+  EXPECT_EQ(b.bifurcations.front().kind, SmoothKind::period_doubling);
+
+  const ModelSpec s31 = test_support::spec(Law::veldep, "28.6995", "1", "1000");
+  const Branch<double> m = continue_branch(make_model<double>(s31, 53), Parameter::a, 31,
+                                           State<double>{0.02863575971809439, 15.428624909128757}, 28.699, 28.7001);
+  ASSERT_TRUE(m.started) << m.note;
+  const Bifurcation<double>* pd = nullptr;
+  for (const Bifurcation<double>& x : m.bifurcations)
+    if (x.kind == SmoothKind::period_doubling) pd = &x;
+  ASSERT_NE(pd, nullptr) << "the period-31 branch shows no period doubling";
+  EXPECT_LT(std::fabs(pd->param - b.low.param), 1e-10);
+
+  const std::optional<PeriodDoublingCertificate> c = certify_smooth_end(s, Parameter::a, 62, b, b.low, 53);
+  ASSERT_TRUE(c.has_value());
+  ASSERT_TRUE(c->certified) << c->statement;
+  EXPECT_LE(c->width, 1e-30);
+  EXPECT_LT(gap(b.low.bracket_lo, b.low.bracket_hi, c->lo, c->hi), 1e-8);
+  EXPECT_LT(gap(pd->bracket_lo, pd->bracket_hi, c->lo, c->hi), 1e-8);
+  EXPECT_NE(c->statement.find("period-31"), std::string::npos) << c->statement;
+  // The end's error estimate (a* re-located on the period-31 orbit at 117 bits) contains it.
+  estimate_end_accuracy(s, b);
+  ASSERT_EQ(b.low.estimate.kind, EndEstimate::Kind::estimate) << b.low.estimate.note;
+  EXPECT_LE(b.low.estimate.lo, c->lo);
+  EXPECT_GE(b.low.estimate.hi, c->hi);
+}
+
 // Period doubling on the eps = 0.9 period-2 branch (test_continuation.cpp): no closed form
 // for a*, but truth independent of the certifier: the constant-eps map contracts area by
 // eps^2 per impact, so det DP^2 = eps^4 and at a multiplier -1 the other is exactly

@@ -1,6 +1,6 @@
 // bouncer continue: follow a period-q orbit (Newton) in a, eps or c in both directions from
 // the guess's parameter value, locate where the branch ends (border collision, grazing,
-// touchdown, sticking threshold, fold) and the smooth bifurcations on the way (period
+// touchdown, sticking threshold, fold, the period doubling it is born from) and the smooth bifurcations on the way (period
 // doubling, Neimark-Sacker), and classify what the map does just beyond each end.
 // Outputs: PREFIX.csv (one row per branch point), PREFIX.json (branch summary), PREFIX.png
 // (branch diagram); without --out a text summary, or the JSON summary with --json.
@@ -62,7 +62,8 @@ int run_typed(const Request& req, const Provenance& prov, bool print_json, Outpu
   // The digits of each located end that an error estimate backs (analysis/end_estimate.hpp).
   estimate_end_accuracy(r.model, b, r.opt);
   // --certify: Krawczyk on the branch side of each border end (verify/branch_end.hpp).
-  // --certify: also every period doubling and fold, on the branch or at an end.
+  // --certify: also every period doubling and fold, on the branch or at an end (a doubling
+  // end: the period-q/2 orbit's period doubling).
   CertifiedBranchEnds certified = r.certify ? certify_branch_ends(r.model, r.vary, r.period, b, bits) : CertifiedBranchEnds{};
   if (r.certify) certify_smooth_events(r.model, r.vary, r.period, b, bits, certified);
   const std::string doc = branch_json(r, m, b, certified, prov);

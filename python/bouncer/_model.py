@@ -160,7 +160,9 @@ class PeriodicOrbit:
 class BranchEnd:
     """Where a continued branch ends (one side).
 
-    reason: range_end | border | fold | event_change | period_collapse | lost | max_points
+    reason: range_end | border | fold | doubling | event_change | period_collapse | lost |
+        max_points (doubling: the branch is born at the period doubling of the period-q/2
+        orbit it closes onto, which detail names)
     param: a* (the bracket's midpoint); bracket: (lo, hi)
     margin: knot | clearance | speed | sticking for a border end, else None; impact: its step
         (1-based), knot: the wall knot involved (exact rational text), detail: one phrase
@@ -172,7 +174,8 @@ class BranchEnd:
         a_star_plus_minus (the digits it backs), a_star_digits, bracket_estimate (lo, hi),
         error_estimate, refined_param, refined_bits; otherwise note. An estimate, not a proof.
     certified: with continue_branch(certify=True), the end's proof (a border end's two-sided
-        enclosure of a*, or a fold's), else None
+        enclosure of a*, a fold's, or a doubling end's: the period-q/2 orbit's period
+        doubling), else None
     """
     reason: str
     param: Real
@@ -708,7 +711,7 @@ class Model(_core.Model):
             Interval), width, margin, margin_text, events, formulation ("composed": the
             first orbit point unknown; "shooting": all of them), bracket_contains, statement,
             reason, one_sided_certified, one_sided_bound), each period doubling and fold, on
-            the branch (each bifurcation's "certified") or at a fold end (kind "smooth":
+            the branch (each bifurcation's "certified") or at a fold or doubling end (kind "smooth":
             certified, bits, enclosure, width, other_multiplier (an Interval), events,
             statement, reason); None where an end has no certifier
         """

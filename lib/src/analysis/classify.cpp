@@ -83,17 +83,6 @@ bool same_state(const State<T>& x, const State<T>& y) {
   return x.theta == y.theta && x.v == y.v;
 }
 
-// Distance of two states with theta compared modulo 1 (theta in [0, 1)).
-template <class T>
-double state_distance(const State<T>& x, const State<T>& y) {
-  using Tr = ScalarTraits<T>;
-  double dt = std::fabs(Tr::to_double(x.theta - y.theta));
-  dt = std::min(dt, std::fabs(1.0 - dt));
-  const double scale = std::max(1.0, std::fabs(Tr::to_double(x.v)));
-  const double dv = std::fabs(Tr::to_double(x.v - y.v)) / scale;
-  return std::max(dt, dv);
-}
-
 std::string fmt(double x, int digits = 3) {
   std::ostringstream os;
   os << std::setprecision(digits) << x;

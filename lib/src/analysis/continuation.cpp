@@ -25,6 +25,7 @@ const char* name(BeyondRelation r) {
     case BeyondRelation::none: return "none";
     case BeyondRelation::continuation: return "continuation";
     case BeyondRelation::other_branch: return "other_branch";
+    case BeyondRelation::mother: return "mother";
     case BeyondRelation::unrelated: return "unrelated";
   }
   return "?";
@@ -35,6 +36,7 @@ const char* name(EndReason r) {
     case EndReason::range_end: return "range_end";
     case EndReason::border: return "border";
     case EndReason::fold: return "fold";
+    case EndReason::doubling: return "doubling";
     case EndReason::event_change: return "event_change";
     case EndReason::period_collapse: return "period_collapse";
     case EndReason::lost: return "lost";
@@ -205,6 +207,16 @@ struct Trial {
   enum class Why { none, no_convergence, period, events, jump, undecided } why = Why::none;
 };
 
+// How far the orbit is from its own shift by half a period: max_i |x_i - x_{i+q/2}| (the
+// metric of state_distance); 0 for an orbit of period q/2 traversed twice.
+template <class T>
+double half_period_gap(const PeriodicOrbit<T>& o) {
+  const size_t q = o.points.size(), h = q / 2;
+  double gap = 0;
+  for (size_t i = 0; i < q; ++i) gap = std::max(gap, state_distance(o.points[i], o.points[(i + h) % q]));
+  return gap;
+}
+
 template <class T>
 struct Continuer {
   const Model<T>& base;
@@ -351,6 +363,55 @@ struct Continuer {
 
   std::string knot_text(int k) const { return base.wall.knot_exact[k].get_str(); }
 
+  // A doubling end's a* from the period-q/2 orbit, where it is a simple zero of det(DP^{q/2} + I)
+  // on an orbit that exists on both sides. Next to a* the period-q corrector cannot tell its
+  // orbit from the period-q/2 one traversed twice (the residual there is ~ (mu - 1) x gap, under
+  // Newton's tolerance for gaps up to ~1e-3), so the bisection on the period-q branch stops up
+  // to ~1e-8 short of a* or past it. Here: the test function on the mother orbit (Newton from
+  // the branch's last orbit) at windows around the end, 4x wider each, until its sign
+  // changes; then bisection to the working precision. False (e unchanged) where this fails.
+  bool locate_mother_doubling(BranchEnd<T>& e, const T& p0, const State<T>& x0) {
+    const long h = q / 2;
+    State<T> guess = x0;
+    const auto test = [&](const T& p) -> std::optional<double> {
+      try {
+        const Model<T> m = at(p);
+        const PeriodicOrbit<T> o = find_periodic(m, h, guess, opt.newton);
+        ++runs;
+        if (!o.converged || o.minimal_period != h) return std::nullopt;
+        guess = o.points[0];
+        return analyse_orbit(m, par, o).test_pd;
+      } catch (const Undecided&) {
+        return std::nullopt;
+      }
+    };
+    const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(p0)));
+    const std::optional<double> f0 = test(p0);
+    if (!f0 || *f0 == 0) return false;
+    std::optional<T> lo, hi;  // lo: the test's sign is f0's; hi: the other sign
+    for (double w = 1e-9 * scale; w <= opt.beyond * scale && !hi; w *= 4)
+      for (const int side : {-1, 1}) {
+        const T p = p0 + from_double<T>(side * w, bits);
+        const std::optional<double> f = test(p);
+        if (f && (*f > 0) != (*f0 > 0)) {
+          hi = p;
+          lo = p0;
+          break;
+        }
+      }
+    if (!hi) return false;
+    for (long it = 0; it < max_bisections() && wide(*lo, *hi); ++it) {
+      const T mid = *lo + (*hi - *lo) / 2;
+      const std::optional<double> f = test(mid);
+      if (!f) return false;
+      (*f > 0) == (*f0 > 0) ? lo = mid : hi = mid;
+    }
+    e.bracket_lo = *lo < *hi ? *lo : *hi;
+    e.bracket_hi = *lo < *hi ? *hi : *lo;
+    e.param = e.bracket_lo + (e.bracket_hi - e.bracket_lo) / 2;
+    return true;
+  }
+
   // Locates the end between the accepted point `good` (with its predecessor) and the
   // refused value `bad`, names its cause and looks beyond it.
   // `first` is the branch's start point: the margins are compared with their values there
@@ -428,6 +489,21 @@ struct Continuer {
                  : why == Trial<T>::Why::events ? EndReason::event_change
                                                 : EndReason::lost;
     }
+    // A period-2k orbit next to a period-k orbit traversed twice (its points q/2 apart
+    // within kDoublingGap, where they are O(1) apart on an ordinary orbit) is at the period
+    // doubling it is born from: near the doubling the gap shrinks like the square root of the
+    // distance to a*, ~1e-6 where the end is located. The multiplier test sees a fold there
+    // (the period-k orbit's -1 is the period-2k orbit's +1), or the corrector past a* falls
+    // onto the period-k orbit (a period collapse to q/2).
+    constexpr double kDoublingGap = 1e-3;
+    bool on_mother = false;
+    const bool onto_half = e.reason == EndReason::fold ||
+                           (e.reason == EndReason::period_collapse && last_bad.point && 2 * last_bad.point->orbit.minimal_period == q);
+    if (onto_half && q % 2 == 0 && half_period_gap(good.orbit) < kDoublingGap) {
+      e.reason = EndReason::doubling;
+      e.mother_period = q / 2;
+      on_mother = locate_mother_doubling(e, good.param, good.orbit.points[0]);
+    }
     const std::string i1 = std::to_string(e.impact + 1);
     switch (e.reason) {
       case EndReason::border:
@@ -439,6 +515,11 @@ struct Continuer {
         }
         break;
       case EndReason::fold: e.detail = "a multiplier reaches +1 where the orbit meets another and disappears"; break;
+      case EndReason::doubling:
+        e.detail = "the orbit closes onto a period-" + std::to_string(e.mother_period) +
+                   " orbit traversed twice, whose multiplier reaches -1: the branch is born at its period doubling" +
+                   (on_mother ? " (a* located on the period-" + std::to_string(e.mother_period) + " orbit)" : std::string());
+        break;
       case EndReason::period_collapse:
         e.detail = "the orbit falls onto one of minimal period " +
                    std::to_string(last_bad.point ? last_bad.point->orbit.minimal_period : 0);
@@ -461,20 +542,19 @@ struct Continuer {
   // the branch side is not decided ("unrelated"); one that stays next to the branch's last
   // orbit is a continuation (the events changed, the orbit did not jump).
   BeyondRelation relation_of(const PeriodicOrbit<T>& o, const std::vector<StepEvent>& events, const BranchPoint<T>& good,
-                             int dir, double scale) const {
-    const auto distance = [](const State<T>& x, const State<T>& y) {
-      double dt = std::fabs(Tr<T>::to_double(x.theta) - Tr<T>::to_double(y.theta));
-      dt = std::min(dt - std::floor(dt), 1 - (dt - std::floor(dt)));
-      const double dv = std::fabs(Tr<T>::to_double(x.v) - Tr<T>::to_double(y.v)) / std::max(1.0, std::fabs(Tr<T>::to_double(y.v)));
-      return std::max(dt, dv);
-    };
+                             int dir, double scale, bool doubling_end) const {
     // The nearest point of the branch's orbit to the orbit found (the rotation may differ).
     const auto nearest = [&](const State<T>& y) {
       double d = std::numeric_limits<double>::infinity();
-      for (const State<T>& x : good.orbit.points) d = std::min(d, distance(y, x));
+      for (const State<T>& x : good.orbit.points) d = std::min(d, state_distance(x, y));
       return d;
     };
     constexpr double kJump = 1e-4;  // the ends are located to ~1e-12; a continuation moves ~ beyond
+    // Beyond a doubling end Newton falls onto the orbit the branch was born from (the
+    // period-q/2 orbit exists on both sides of its period doubling).
+    // It moves faster than a continuation: kMother, looser than kJump.
+    constexpr double kMother = 1e-2;
+    if (doubling_end && o.minimal_period == q / 2 && nearest(o.points[0]) <= kMother) return BeyondRelation::mother;
     if (nearest(o.points[0]) <= kJump) return BeyondRelation::continuation;
     // On the branch side: the same orbit (its events) away from the branch's own orbit.
     const T back = good.param - from_double<T>(dir * opt.beyond * scale, bits);
@@ -504,7 +584,7 @@ struct Continuer {
         const std::vector<StepEvent> events = analyse_orbit(m, par, o).events;
         e.beyond_orbit = event_text(events);
         e.beyond_orbit_period = o.minimal_period;
-        e.beyond_relation = relation_of(o, events, good, dir, scale);
+        e.beyond_relation = relation_of(o, events, good, dir, scale, e.reason == EndReason::doubling);
       }
     } catch (const Undecided&) {
     }
@@ -678,6 +758,19 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
       return std::nullopt;
     }
   };
+  // A doubling end: a* re-located on the period-q/2 orbit at hb bits, as in T (next to a*
+  // the period-q orbit is not a reference: see locate_mother_doubling).
+  if (e.reason == EndReason::doubling) {
+    BranchEnd<Mpfr> r;
+    if (!c.locate_mother_doubling(r, up(edge.param), up_state(edge.orbit.points[0]))) {
+      out.note = "at " + std::to_string(hb) + " bits the period-" + std::to_string(e.mother_period) +
+                 " orbit's multiplier -1 is not bracketed next to the end";
+      return out;
+    }
+    widen(out, r.param, Mpfr(r.bracket_hi - r.bracket_lo), Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)),
+          std::max(1.0, std::fabs(Tr<T>::to_double(e.param))), p);
+    return out;
+  }
   const std::optional<BranchPoint<Mpfr>> ref0 = reference(edge);
   if (!ref0) {
     out.note = "at " + std::to_string(hb) + " bits Newton does not find the branch's last orbit";

@@ -57,15 +57,6 @@ constexpr double kOverlap = 0.5;     // two aperiodic sets are one: this share o
 constexpr size_t kSample = 64;       // points kept of an aperiodic set
 constexpr long kMaxPoints = 1000;    // points kept of a sticking cycle (its period may be 10^4)
 
-template <class T>
-double state_distance(const State<T>& x, const State<T>& y) {
-  using Tr = ScalarTraits<T>;
-  double dt = std::fabs(Tr::to_double(x.theta - y.theta));
-  dt = std::min(dt, std::fabs(1.0 - dt));
-  const double scale = std::max(1.0, std::fabs(Tr::to_double(x.v)));
-  return std::max(dt, std::fabs(Tr::to_double(x.v - y.v)) / scale);
-}
-
 std::string fmt(double x, int digits = 4) {
   std::ostringstream os;
   os << std::setprecision(digits) << x;

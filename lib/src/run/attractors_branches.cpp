@@ -116,11 +116,16 @@ void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, Continu
   take_certificate(cb.events.back(), c.high);
   for (size_t e = 0; e < cb.events.size(); ++e) {
     BranchEventInfo& i = cb.events[e];
-    const bool pd = !i.end && i.kind == name(SmoothKind::period_doubling);
-    const bool fold = i.end ? i.kind == name(EndReason::fold) : i.kind == name(SmoothKind::fold);
-    if (!needed[e] || !(pd || fold)) continue;
-    const PeriodDoublingQuestion q = smooth_event_question(s.point.model, s.vary, cb.period, b, i.param, i.bracket_lo, i.bracket_hi, bits);
-    const PeriodDoublingCertificate c = pd ? certify_period_doubling(q) : certify_fold(q);
+    if (!needed[e]) continue;
+    std::optional<PeriodDoublingCertificate> smooth;
+    if (i.end) {
+      smooth = certify_smooth_end(s.point.model, s.vary, cb.period, b, i.high ? b.high : b.low, bits);
+    } else if (i.kind == name(SmoothKind::period_doubling) || i.kind == name(SmoothKind::fold)) {
+      const PeriodDoublingQuestion q = smooth_event_question(s.point.model, s.vary, cb.period, b, i.param, i.bracket_lo, i.bracket_hi, bits);
+      smooth = i.kind == name(SmoothKind::fold) ? certify_fold(q) : certify_period_doubling(q);
+    }
+    if (!smooth) continue;
+    const PeriodDoublingCertificate& c = *smooth;
     i.tried = true;
     i.certified = c.certified;
     if (c.certified)

@@ -2,6 +2,8 @@
 // (Implemented in lib/src/analysis/classify.cpp for double and Mpfr.)
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -68,6 +70,19 @@ struct ClassifyOptions {
 
 template <class T>
 Classification classify(const ImpactMap<T>& map, State<T> start, const ClassifyOptions& opt);
+
+// The distance of two states of the section, the one metric of the recurrence tests
+// (classify, attractors) and of continuation's orbit comparisons: theta compared modulo 1
+// (in wall periods), v relative to max(1, |x.v|); the larger of the two.
+template <class T>
+double state_distance(const State<T>& x, const State<T>& y) {
+  using Tr = ScalarTraits<T>;
+  double dt = std::fabs(Tr::to_double(x.theta - y.theta));
+  dt -= std::floor(dt);
+  dt = std::min(dt, 1.0 - dt);
+  const double scale = std::max(1.0, std::fabs(Tr::to_double(x.v)));
+  return std::max(dt, std::fabs(Tr::to_double(x.v - y.v)) / scale);
+}
 
 // One start of a model point at a precision (an analysis precision: double, long, dd, quad,
 // mpfr:BITS), in the scalar type it names.

@@ -2,8 +2,10 @@
 // (DESIGN.md sec. 6). The map is piecewise smooth; on a region of the parameter where the
 // orbit's event sequence (which wall segment each impact is on, corner impacts, sticking or
 // not) is fixed, the orbit moves smoothly. A branch therefore ends at a border collision,
-// where one of the margins below reaches 0, or at a fold (multiplier +1), where the orbit
-// meets another and disappears. Period doubling (-1) and Neimark-Sacker (a complex pair on
+// where one of the margins below reaches 0, at a fold (multiplier +1), where the orbit
+// meets another and disappears, or at the period doubling of a period-q/2 orbit it is born
+// from (also a multiplier +1 of the period-q orbit, told from a fold by the orbit closing
+// onto its half-period shift). Period doubling (-1) and Neimark-Sacker (a complex pair on
 // the unit circle) are located on the way; the branch goes on through them.
 //
 // Method: natural-parameter continuation. Predictor: the secant through the last two
@@ -95,6 +97,10 @@ enum class EndReason {
   range_end,        // the range's end was reached
   border,           // a margin reached 0 (border collision, grazing, touchdown, sticking)
   fold,             // det(J - I) -> 0 where the corrector stops converging
+  doubling,         // det(J - I) -> 0 as the orbit closes onto a period-q/2 orbit traversed
+                    // twice: the branch is born at that orbit's period doubling (its
+                    // multiplier -1 is the doubled orbit's +1, so the multiplier test alone
+                    // would call it a fold)
   event_change,     // the event sequence changes without an identified margin at 0
   period_collapse,  // the orbit falls onto one of smaller minimal period
   lost,             // the corrector stops converging, no margin or multiplier explains it
@@ -107,6 +113,7 @@ enum class BeyondRelation {
   none,          // no period-q orbit found beyond
   continuation,  // next to the branch's last orbit: the branch goes on with other events
   other_branch,  // another orbit, which already exists on the branch side of a*
+  mother,        // at a doubling end: the period-q/2 orbit the branch is born from
   unrelated,     // away from the branch, and not found on the branch side: not decided
 };
 const char* name(BeyondRelation);
@@ -119,6 +126,7 @@ struct BranchEnd {
   int margin = -1;    // Margin that reached 0 (border)
   int impact = -1;    // its step
   int knot = -1;      // the knot involved (knot, clearance)
+  long mother_period = 0;  // doubling: q/2, the period of the orbit the branch is born from
   std::string detail; // one phrase, e.g. "impact 3 reaches the knot theta = 1/2"
   State<T> last_point;  // the orbit's first point at the branch side of the bracket
   // Just beyond a*: a period-q orbit Newton finds there from the last orbit (if any), and

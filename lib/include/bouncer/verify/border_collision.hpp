@@ -210,9 +210,10 @@ struct CertifiedBranchEnds {
   std::optional<CertifiedBranchEnd> low, high;
   // certify_smooth_events: per bifurcation of the branch (aligned with Branch::bifurcations)
   // the period doubling's or fold's certificate (a Neimark-Sacker is not offered: not
-  // certified, with the reason), and a fold end's.
+  // certified, with the reason), and a fold end's or a doubling end's (the period doubling
+  // of the period-q/2 orbit the branch is born from).
   std::vector<PeriodDoublingCertificate> bifurcations;
-  std::optional<PeriodDoublingCertificate> low_fold, high_fold;
+  std::optional<PeriodDoublingCertificate> low_smooth, high_smooth;
 };
 
 // The question for a smooth event of b (a period doubling or a fold, on the branch or at an
@@ -238,8 +239,22 @@ PeriodDoublingQuestion smooth_event_question(const ModelSpec& model, Parameter v
   return q;
 }
 
+// The proof of a smooth end of b (a fold, or a doubling: then the period doubling of the
+// period-q/2 orbit it is born from, started from b's orbit there, which is next to that orbit
+// traversed twice); nullopt at the other ends.
+template <class T>
+std::optional<PeriodDoublingCertificate> certify_smooth_end(const ModelSpec& model, Parameter vary, long period,
+                                                            const Branch<T>& b, const BranchEnd<T>& e, long bits) {
+  using Tr = ScalarTraits<T>;
+  if (e.reason != EndReason::fold && e.reason != EndReason::doubling) return std::nullopt;
+  const bool doubling = e.reason == EndReason::doubling;
+  const PeriodDoublingQuestion q = smooth_event_question(model, vary, doubling ? e.mother_period : period, b, Tr::to_double(e.param),
+                                                         Tr::to_string(e.bracket_lo), Tr::to_string(e.bracket_hi), bits);
+  return doubling ? certify_period_doubling(q) : certify_fold(q);
+}
+
 // `continue --certify`: proves every period doubling and fold of b (certify_period_doubling,
-// certify_fold) and its fold ends, into c.
+// certify_fold) and its fold and doubling ends, into c.
 template <class T>
 void certify_smooth_events(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b, long bits,
                            CertifiedBranchEnds& c) {
@@ -258,13 +273,8 @@ void certify_smooth_events(const ModelSpec& model, Parameter vary, long period, 
                                                            Tr::to_string(x.bracket_lo), Tr::to_string(x.bracket_hi), bits);
     c.bifurcations.push_back(x.kind == SmoothKind::period_doubling ? certify_period_doubling(q) : certify_fold(q));
   }
-  for (const bool high : {false, true}) {
-    const BranchEnd<T>& e = high ? b.high : b.low;
-    if (e.reason != EndReason::fold) continue;
-    const PeriodDoublingQuestion q = smooth_event_question(model, vary, period, b, Tr::to_double(e.param),
-                                                           Tr::to_string(e.bracket_lo), Tr::to_string(e.bracket_hi), bits);
-    (high ? c.high_fold : c.low_fold) = certify_fold(q);
-  }
+  c.low_smooth = certify_smooth_end(model, vary, period, b, b.low, bits);
+  c.high_smooth = certify_smooth_end(model, vary, period, b, b.high, bits);
 }
 
 // Certifies each border end of `b`: its branch side (model: the branch's, any value of the

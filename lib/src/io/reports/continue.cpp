@@ -64,6 +64,7 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const W
   j["impact"] = e.impact >= 0 ? json(e.impact + 1) : json(nullptr);
   j["knot"] = e.knot >= 0 ? json(wall.knot_exact[e.knot].get_str()) : json(nullptr);
   j["detail"] = e.detail;
+  if (e.reason == EndReason::doubling) j["mother_period"] = e.mother_period;
   add_accuracy(j, e.estimate);
   if (e.beyond_done) {
     json by;
@@ -171,6 +172,7 @@ std::string cause_words(EndReason r, int margin) {
       }
       return "a border collision";
     case EndReason::fold: return "a fold";
+    case EndReason::doubling: return "the period doubling it is born from";
     case EndReason::event_change: return "a change of the event sequence";
     case EndReason::period_collapse: return "a period collapse";
     case EndReason::lost: return "loss of the corrector";
@@ -192,7 +194,8 @@ std::string branch_end_sentence(const Branch<T>& b, const BranchEnd<T>& e, Param
     if (!e.beyond_orbit.empty())
       s += "; Newton finds a period-" + std::to_string(b.period) + " orbit there with events " + e.beyond_orbit +
            (e.beyond_orbit_period != b.period ? " (minimal period " + std::to_string(e.beyond_orbit_period) + ")" : "") +
-           (e.beyond_relation == BeyondRelation::continuation   ? ", the branch's continuation"
+           (e.beyond_relation == BeyondRelation::mother         ? ", the orbit the branch is born from"
+            : e.beyond_relation == BeyondRelation::continuation ? ", the branch's continuation"
             : e.beyond_relation == BeyondRelation::other_branch ? ", another orbit, which already exists before a* (not a continuation)"
             : e.beyond_relation == BeyondRelation::unrelated    ? ", not the branch's continuation (away from it; not found before a*)"
                                                                 : "");
@@ -273,8 +276,8 @@ std::string branch_json(const ContinueRequest& r, const Model<T>& m, const Branc
   json low = end_json(b, b.low, r.vary, m.wall), high = end_json(b, b.high, r.vary, m.wall);
   if (certified.low) low["certified"] = certified_json(*certified.low, b.low.estimate, r.period, r.vary);
   if (certified.high) high["certified"] = certified_json(*certified.high, b.high.estimate, r.period, r.vary);
-  if (certified.low_fold) low["certified"] = smooth_json(*certified.low_fold, b.low.estimate);
-  if (certified.high_fold) high["certified"] = smooth_json(*certified.high_fold, b.high.estimate);
+  if (certified.low_smooth) low["certified"] = smooth_json(*certified.low_smooth, b.low.estimate);
+  if (certified.high_smooth) high["certified"] = smooth_json(*certified.high_smooth, b.high.estimate);
   low["events_at_end"] = event_text(b.points.front().events);
   high["events_at_end"] = event_text(b.points.back().events);
   sum["low"] = low;
@@ -320,8 +323,9 @@ std::string branch_text(const ContinueRequest& r, const Branch<T>& b, const Cert
                                       : "; the error estimate's widened bracket does NOT contain it (the estimate failed)")
          << "\n";
   }
-  for (const auto* f : {&certified.low_fold, &certified.high_fold})
-    if (*f) text << (f == &certified.low_fold ? "low end" : "high end") << " fold: " << (*f)->statement << "\n";
+  for (const bool high : {false, true})
+    if (const auto& f = high ? certified.high_smooth : certified.low_smooth)
+      text << (high ? "high end " : "low end ") << cause_words((high ? b.high : b.low).reason, -1) << ": " << f->statement << "\n";
   for (size_t i = 0; i < b.bifurcations.size(); ++i) {
     const Bifurcation<T>& x = b.bifurcations[i];
     text << name(x.kind) << " at " << par << "* = " << end_value_text(x.estimate, Tr::to_string(x.param)) << "\n";
@@ -406,6 +410,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     const std::string i = std::to_string(e.impact + 1);
     const std::string knot = e.knot >= 0 ? m.wall.knot_exact[e.knot].get_str() : "";
     std::string what = cause_words(e.reason, e.margin);
+    if (e.reason == EndReason::doubling) what = "born at the period-" + std::to_string(e.mother_period) + " doubling";
     if (e.reason == EndReason::border) {
       switch (static_cast<Margin>(e.margin)) {
         case Margin::knot: what = "border collision, impact " + i + " at θ = " + knot; break;
@@ -418,7 +423,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
   };
   for (const BranchEnd<T>* e : {&b.low, &b.high})
     if (e->reason != EndReason::range_end && e->reason != EndReason::max_points)
-      vline(e->param, end_label(*e), e->reason == EndReason::fold ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
+      vline(e->param, end_label(*e), e->reason == EndReason::fold || e->reason == EndReason::doubling ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
   for (const Bifurcation<T>& x : b.bifurcations)
     vline(x.param, par + "* = " + backed_short(x.param, x.estimate) + ": " +
                        (x.kind == SmoothKind::fold ? "fold (+1)" : x.kind == SmoothKind::period_doubling ? "period doubling (-1)" : "Neimark-Sacker"),

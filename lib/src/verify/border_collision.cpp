@@ -435,8 +435,22 @@ Preconditioner inverse_mid(const std::vector<std::vector<std::pair<size_t, Mpfi>
     Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
     for (size_t c = 0; c < n; ++c)
       for (const auto& [r, v] : cols[c]) M(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) += v.mid().to_double();
+    // Equilibrated by powers of two (exact): rows, then columns, to largest entry in [1, 2).
+    // The determinant row of a period doubling or fold carries the product of Q steps'
+    // derivatives (1e-14 beside the orbit rows' O(1) for a contracting period 82), which
+    // alone makes LU in double lose the inverse. inv(M) = T inv(S M T) S for diagonal S, T.
+    Eigen::VectorXd S = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(n)), T = S;
+    const auto power = [](double largest) { return largest > 0 && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0; };
+    for (Eigen::Index r = 0; r < M.rows(); ++r) {
+      S(r) = power(M.row(r).cwiseAbs().maxCoeff());
+      M.row(r) *= S(r);
+    }
+    for (Eigen::Index c = 0; c < M.cols(); ++c) {
+      T(c) = power(M.col(c).cwiseAbs().maxCoeff());
+      M.col(c) *= T(c);
+    }
     const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
-    const Eigen::MatrixXd inv = lu.inverse();
+    const Eigen::MatrixXd inv = T.asDiagonal() * lu.inverse() * S.asDiagonal();
     if (!inv.allFinite()) throw Fail("the midpoint Jacobian of the system is singular");
     // (An ill-conditioned C is not unsound: the Krawczyk operator then fails to contract.)
     C.n = n;
@@ -1517,9 +1531,17 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c, bool 
   Mpfi Z;
   std::vector<Mpfi> Y(ny);
   std::string why;
-  for (int k = 0; k < 6 && !B; ++k) {
+  // Z shrinks as for a border collision (run_border): by 16 per try, then by 2^12, down to
+  // about 2^(48 - bits) |p*|. The determinant row's second derivatives over Y are large
+  // for long contracting periods (the period-82 doubling at a = 30.00005, veldep c = 1000:
+  // K(Y x Z)'s parameter component about 1e18 rad(Y)^2 wide), so Z must be far smaller
+  // than the 1e-11 a double bracket gives.
+  Mpfr w_floor = abs(phat) + 1;
+  mpfr_mul_2si(w_floor.get(), w_floor.get(), 48 - bits, MPFR_RNDN);
+  for (int k = 0; !B; ++k) {
     Mpfr w(bits);
-    mpfr_div_2si(w.get(), w0.get(), 4 * k, MPFR_RNDN);
+    mpfr_div_2si(w.get(), w0.get(), k < 6 ? 4 * k : 24 + 12 * (k - 6), MPFR_RNDN);
+    if (k >= 6 && w < w_floor) break;
     const Mpfr zlo = phat - w, zhi = phat + w;
     Z = Mpfi(zlo, zhi);
     try {

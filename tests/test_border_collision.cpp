@@ -367,8 +367,10 @@ TEST(Fold, VeldepPeriod64FoldByMultipleShooting) {
 // the period-31 orbit's -1 counted twice, which the multiplier test alone took for a fold
 // (and a fold proof cannot succeed: two orbits, the period 62 and the period 31 traversed
 // twice, meet in the box). Truth from a second computation: the period-31 branch, continued
-// on its own from below, has a period doubling whose double bracket lies within 1e-8 of the
-// period-62 end's; the certified enclosure of the period-31 doubling lies within 1e-8 of both.
+// on its own from below, has a period doubling (regula falsi along that branch) within 1e-10
+// of the period-62 end (bisection on the period-31 orbit from the period-62 branch's last
+// orbit); the certified enclosure of the period-31 doubling lies within 1e-8 of both, and the
+// end's error estimate (re-located at 117 bits) contains it.
 TEST(PeriodDoubling, VeldepPeriod62IsBornAtThePeriod31Doubling) {
   const ModelSpec s = test_support::spec(Law::veldep, "28.7", "1", "1000");
   Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 62,
@@ -401,6 +403,9 @@ TEST(PeriodDoubling, VeldepPeriod62IsBornAtThePeriod31Doubling) {
   EXPECT_LT(gap(b.low.bracket_lo, b.low.bracket_hi, c->lo, c->hi), 1e-8);
   EXPECT_LT(gap(pd->bracket_lo, pd->bracket_hi, c->lo, c->hi), 1e-8);
   EXPECT_NE(c->statement.find("period-31"), std::string::npos) << c->statement;
+  // A period doubling proved by multiple shooting (automatic from period 12): the unit test
+  // of that path (pd_value_shoot, pd_jet_shoot).
+  EXPECT_NE(c->statement.find("multiple shooting"), std::string::npos) << c->statement;
   // The end's error estimate (a* re-located on the period-31 orbit at 117 bits) contains it.
   estimate_end_accuracy(s, b);
   ASSERT_EQ(b.low.estimate.kind, EndEstimate::Kind::estimate) << b.low.estimate.note;

@@ -134,6 +134,15 @@ check(pc.get("certified") and lo <= -F(9, 10) ** 4 <= hi, f"period doubling: oth
 done()
 PY
 
+# --- a doubling end: the period 62 (veldep, c = 1000) born at a period-31 orbit's doubling --
+# (tests/test_border_collision.cpp proves it; here the JSON and the sentence say so)
+"$BOUNCER" continue --model veldep --c 1000 --a 28.7 --period 62 --guess 0.02863575971809439,15.428624909128757 \
+  --range 28.699:28.701 --json > "$TMP/p62.json" 2> "$TMP/p62.err" || fail doubling.run "exit $?: $(tail -n 3 "$TMP/p62.err")"
+jq_is doubling.reason '.summary.low.reason' doubling "$TMP/p62.json"
+jq_is doubling.mother '.summary.low.mother_period' 31 "$TMP/p62.json"
+jq_is doubling.beyond '.summary.low.beyond.newton_orbit_relation' mother "$TMP/p62.json"
+jq_is doubling.sentence '.summary.low.sentence | test("by the period doubling it is born from")' true "$TMP/p62.json"
+
 # --- bad input: exit 2, one line naming the option, nothing on stdout -----------------
 bad_input() {  # bad_input NAME FIELD ARGS...
   local name=$1 field=$2

@@ -364,6 +364,7 @@ std::string short_enclosure(const Enclosure& e) {
 std::string event_words(const BranchEventInfo& e) {
   if (e.kind == "border") return "border collision";
   if (e.kind == "period_doubling") return "period doubling";
+  if (e.kind == "doubling") return "birth at a period doubling";  // a doubling end (continuation.hpp)
   if (e.kind == "neimark_sacker") return "Neimark-Sacker bifurcation";
   if (e.kind == "event_change") return "change of the event sequence";
   if (e.kind == "period_collapse") return "collapse onto a smaller period";
@@ -668,7 +669,7 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
           line.y.insert(line.y.end(), {0.0, 1.0, NAN});
           dots.x.insert(dots.x.end(), {x, x});
           dots.y.insert(dots.y.end(), {0.99, 0.01});
-          at.push_back(g(e.param, 5) + (e.kind == "border" ? "" : e.kind == "period_doubling" ? " PD" : " " + e.kind));
+          at.push_back(g(e.param, 5) + (e.kind == "border" ? "" : e.kind == "period_doubling" || e.kind == "doubling" ? " PD" : " " + e.kind));
           all_certified = all_certified && e.certified;
         }
       if (!at.empty()) {

@@ -374,7 +374,7 @@ TEST(Fold, VeldepPeriod64FoldByMultipleShooting) {
 TEST(PeriodDoubling, VeldepPeriod62IsBornAtThePeriod31Doubling) {
   const ModelSpec s = test_support::spec(Law::veldep, "28.7", "1", "1000");
   Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, 62,
-                                           State<double>{0.02863575971809439, 15.428624909128757}, 28.699, 28.701);
+                                     State<double>{0.02863575971809439, 15.428624909128757}, 28.699, 28.701);
   ASSERT_TRUE(b.started) << b.note;
   ASSERT_EQ(b.low.reason, EndReason::doubling) << b.low.detail;
   EXPECT_EQ(b.low.mother_period, 31);

@@ -518,7 +518,7 @@ struct Continuer {
       case EndReason::doubling:
         e.detail = "the orbit closes onto a period-" + std::to_string(e.mother_period) +
                    " orbit traversed twice, whose multiplier reaches -1: the branch is born at its period doubling" +
-                   (on_mother ? " (a* located on the period-" + std::to_string(e.mother_period) + " orbit)" : std::string());
+                   (on_mother ? "; a* located on the period-" + std::to_string(e.mother_period) + " orbit" : std::string());
         break;
       case EndReason::period_collapse:
         e.detail = "the orbit falls onto one of minimal period " +

@@ -800,6 +800,22 @@ bool step_confirms(const Setup& S, const std::vector<Mpfi>& x, const Mpfi& p) {
   return true;
 }
 
+// The half width of the parameter box Z = [phat - w, phat + w] at the k-th try of a proof,
+// from w0 (the interval given): smaller by 16 per try, then by 2^12 from the seventh (each try
+// of a long period costs q interval steps with derivatives), down to about
+// 2^(48 - bits) (|phat| + 1); nullopt below that. One schedule for the border-collision and
+// period-doubling proofs.
+std::optional<Mpfr> z_half_width(const Mpfr& w0, const Mpfr& phat, long bits, int k) {
+  Mpfr w(bits);
+  mpfr_div_2si(w.get(), w0.get(), k < 6 ? 4 * k : 24 + 12 * (k - 6), MPFR_RNDN);
+  if (k >= 6) {
+    Mpfr least = abs(phat) + 1;
+    mpfr_mul_2si(least.get(), least.get(), 48 - bits, MPFR_RNDN);
+    if (w < least) return std::nullopt;
+  }
+  return w;
+}
+
 struct Proved {
   std::vector<Mpfi> Y;   // the orbit box (isolated)
   Mpfi Z;                // the parameter interval
@@ -969,21 +985,16 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
                  ", far from the interval given (no border collision of this margin next to it)");
   }
 
-  // The proof over Y x Z, Z = [phat - w, phat + w], w from the interval given, shrinking by
-  // 16 per try (then by 2^12: each try of a long period costs q interval steps with
-  // derivatives, six times) down to about 2^(48 - bits) |a*|. Long periods need the small Z: the interval
-  // evaluation of q steps over Y widens it by up to the product of the steps' derivative
-  // norms (a period-66 end's impact speeds straddled 0 over the box of a 1e-12 wide Z), and
-  // Y is as wide as the orbit moves across Z.
+  // The proof over Y x Z, Z = [phat - w, phat + w], w shrinking (z_half_width). Long periods
+  // need the small Z: the interval evaluation of q steps over Y widens it by up to the
+  // product of the steps' derivative norms (a period-66 end's impact speeds straddled 0 over
+  // the box of a 1e-12 wide Z), and Y is as wide as the orbit moves across Z.
   std::optional<Proved> proved;
   std::string why;
-  Mpfr w_floor = abs(phat) + 1;
-  mpfr_mul_2si(w_floor.get(), w_floor.get(), 48 - bits, MPFR_RNDN);
   for (int k = 0; !proved; ++k) {
-    Mpfr w(bits);
-    mpfr_div_2si(w.get(), w0.get(), k < 6 ? 4 * k : 24 + 12 * (k - 6), MPFR_RNDN);
-    if (k >= 6 && w < w_floor) break;
-    const Mpfr zlo = phat - w, zhi = phat + w;
+    const std::optional<Mpfr> w = z_half_width(w0, phat, bits, k);
+    if (!w) break;
+    const Mpfr zlo = phat - *w, zhi = phat + *w;
     Proved pr;
     pr.Z = Mpfi(zlo, zhi);
     try {
@@ -1531,18 +1542,14 @@ void run_pd(const PeriodDoublingQuestion& q, PeriodDoublingCertificate& c, bool 
   Mpfi Z;
   std::vector<Mpfi> Y(ny);
   std::string why;
-  // Z shrinks as for a border collision (run_border): by 16 per try, then by 2^12, down to
-  // about 2^(48 - bits) |p*|. The determinant row's second derivatives over Y are large
-  // for long contracting periods (the period-82 doubling at a = 30.00005, veldep c = 1000:
-  // K(Y x Z)'s parameter component about 1e18 rad(Y)^2 wide), so Z must be far smaller
-  // than the 1e-11 a double bracket gives.
-  Mpfr w_floor = abs(phat) + 1;
-  mpfr_mul_2si(w_floor.get(), w_floor.get(), 48 - bits, MPFR_RNDN);
+  // Z shrinks as for a border collision (z_half_width). The determinant row's second
+  // derivatives over Y are large for long contracting periods (the period-82 doubling at
+  // a = 30.00005, veldep c = 1000: K(Y x Z)'s parameter component about 1e18 rad(Y)^2 wide),
+  // so Z must be far smaller than the 1e-11 a double bracket gives.
   for (int k = 0; !B; ++k) {
-    Mpfr w(bits);
-    mpfr_div_2si(w.get(), w0.get(), k < 6 ? 4 * k : 24 + 12 * (k - 6), MPFR_RNDN);
-    if (k >= 6 && w < w_floor) break;
-    const Mpfr zlo = phat - w, zhi = phat + w;
+    const std::optional<Mpfr> w = z_half_width(w0, phat, bits, k);
+    if (!w) break;
+    const Mpfr zlo = phat - *w, zhi = phat + *w;
     Z = Mpfi(zlo, zhi);
     try {
       const std::vector<Mpfi> ylo = orbit_at(S, thin(zlo), xg), yhi = orbit_at(S, thin(zhi), xg);

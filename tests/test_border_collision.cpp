@@ -248,7 +248,7 @@ TEST(BorderCollision, VeldepUnstablePeriod7GrazingEnd) {
 // margin, width <= 1e-30, the double bracket within 1e-9, the widened bracket containing a*.
 BorderCollisionCertificate expect_long_period_end(const char* a, long period, State<double> start, double lo, double hi,
                                                   bool high, long bits,
-                                                  BorderFormulation how = BorderFormulation::automatic) {
+                                                  Formulation how = Formulation::automatic) {
   const ModelSpec s = test_support::spec(Law::veldep, a, "1", "1000");
   Branch<double> b = continue_branch(make_model<double>(s, 53), Parameter::a, period, start, lo, hi);
   EXPECT_TRUE(b.started) << b.note;
@@ -290,9 +290,9 @@ TEST(BorderCollision, ComposedAndShootingFormulationsEncloseTheSameEnd) {
   // boxes). Both must prove it, and their enclosures must intersect.
   const State<double> start{0.01685443925323413, 25.227892214860187};
   const BorderCollisionCertificate composed =
-      expect_long_period_end("24.5", 11, start, 24.0, 25.0, true, 128, BorderFormulation::composed);
+      expect_long_period_end("24.5", 11, start, 24.0, 25.0, true, 128, Formulation::composed);
   const BorderCollisionCertificate shot =
-      expect_long_period_end("24.5", 11, start, 24.0, 25.0, true, 128, BorderFormulation::shooting);
+      expect_long_period_end("24.5", 11, start, 24.0, 25.0, true, 128, Formulation::shooting);
   ASSERT_TRUE(composed.certified && shot.certified);
   EXPECT_FALSE(composed.shooting);
   EXPECT_TRUE(shot.shooting);

@@ -189,6 +189,53 @@ TEST(CertifyPeriodic, ThePeriod103AttractorAtEps096A2882IsProvedStable) {
   EXPECT_TRUE(interval(c.multipliers.det, 1024).contains(p));
 }
 
+TEST(CertifyPeriodic, MultipleShootingProvesALongPeriodThatTheComposedMapCannotAt128Bits) {
+  // The stable period 100 of the veldep model at c = 1000, a = 19.5 (the orbit of
+  // tools/bench/bench_border's P100 ends). Shooting proves it at 64 bits; the composed P^100
+  // is undecided at 64 and 128 (its interval evaluation widens the box by the product of
+  // 100 steps' derivative norms). Independent truth: a 256-bit Newton orbit of P^100 (the
+  // composed map in MPFR, no intervals) lies in every one of the 100 point boxes, and its
+  // multipliers in the enclosures from the Lohner-form product.
+  PeriodicQuestion q;
+  q.model.law = Law::veldep;
+  q.model.a = *Decimal::parse("19.5");
+  q.model.c = Decimal::from_int(1000);
+  q.model.wall = parse_wall("wall", "triangle");
+  q.period = 100;
+  q.guess = InitialCondition{*Decimal::parse("0.014057849515324"), *Decimal::parse("23.970073801684368")};
+  q.schedule = EscalationSchedule{64, 128, false};
+  const PeriodicCertificate c = certify_periodic(q);
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_TRUE(c.shooting);
+  EXPECT_EQ(c.bits, 64);
+  EXPECT_EQ(c.minimal_period, 100);
+  EXPECT_EQ(c.stability, "stable");
+  ASSERT_EQ(c.points.size(), 100u);
+  ASSERT_EQ(c.events.size(), 100u);
+
+  const Model<Mpfr> m = make_model<Mpfr>(q.model, 256);
+  const PeriodicOrbit<Mpfr> o = find_periodic(m, 100, make_state<Mpfr>(*q.guess, 256));
+  ASSERT_TRUE(o.converged);
+  ASSERT_EQ(o.points.size(), 100u);
+  // The certified orbit starts at the box Newton's first point lies in; compare cyclically.
+  size_t shift = 100;
+  for (size_t k = 0; k < 100 && shift == 100; ++k)
+    if (contains(c.points[k].theta, o.points[0].theta) && contains(c.points[k].v, o.points[0].v)) shift = k;
+  ASSERT_LT(shift, 100u) << "the 256-bit Newton point is in no certified box";
+  for (size_t i = 0; i < 100; ++i) {
+    EXPECT_TRUE(contains(c.points[(shift + i) % 100].theta, o.points[i].theta)) << "point " << i;
+    EXPECT_TRUE(contains(c.points[(shift + i) % 100].v, o.points[i].v)) << "point " << i;
+  }
+  ASSERT_EQ(c.multipliers.kind, "real");
+  ASSERT_FALSE(o.multipliers.complex);
+  EXPECT_TRUE(contains(c.multipliers.mu[0], o.multipliers.re[0]));
+
+  q.formulation = Formulation::composed;
+  const PeriodicCertificate composed = certify_periodic(q);
+  EXPECT_FALSE(composed.certified) << composed.statement;
+  EXPECT_EQ(composed.outcome, PeriodicOutcome::undecided);
+}
+
 TEST(CertifyPeriodic, ElasticOrbitsPreserveArea) {
   PeriodicQuestion q;
   q.model.law = Law::elastic;

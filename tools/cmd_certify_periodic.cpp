@@ -18,7 +18,7 @@ namespace {
 const std::set<std::string>& certify_periodic_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
-    k.insert({"period", "guess", "family", "lift", "max-bits", "start-bits", "max-depth", "max-pieces", "max-iter", "grid", "json",
+    k.insert({"period", "guess", "family", "formulation", "lift", "max-bits", "start-bits", "max-depth", "max-pieces", "max-iter", "grid", "json",
               "out", "a-range", "eps-range", "c-range", "vary"});
     return k;
   }();
@@ -49,7 +49,7 @@ CommandRunner setup_certify_periodic(CLI::App* sub) {
   auto as_json = std::make_shared<bool>(false);
   sub->add_option("--scene", *scene, "TOML scene file with the same options (command line overrides)");
   add_model_options(*opts);
-  opts->add("period", "Period Q, integer in [1, 1000] (required)");
+  opts->add("period", "Period Q, integer in [1, " + std::to_string(kMaxCertifiedPeriod) + "] (required)");
   opts->add_list("guess", "Starting point theta,v for Newton (default: a grid of guesses in the trapping region)");
   opts->add("a-range", "A0:A1: certify for every a in [A0, A1] (adaptive bisection), instead of --a");
   opts->add("eps-range", "E0:E1: the same for eps (--model constant)");
@@ -57,6 +57,8 @@ CommandRunner setup_certify_periodic(CLI::App* sub) {
   opts->add("vary", "The parameter of a family (its unknown) or of a range: a (default) | eps | c");
   opts->add("family", "auto (default: when Newton finds a multiplier 1) | on | off: certify a neutral family on the "
                       "quotient by theta, with the parameter as an unknown");
+  opts->add("formulation", "auto (default: the first point's P^Q below period 12, every point an unknown from 12 on, the "
+                           "other where the first fails) | composed | shooting: the unknowns of an isolated orbit's proof");
   opts->add("lift", "D: prove an accelerator mode P(x) = x + (0, D) forever, in exact arithmetic (--model elastic, "
                     "--period 1, --guess)");
   opts->add("max-bits", "Largest interval precision of the escalation schedule (default 1024)");

@@ -755,7 +755,7 @@ class Model(_core.Model):
         model's parameter values; over a parameter range: ``bouncer.certify_periodic(...,
         a_range=...)``). Interval arithmetic with precision escalation.
 
-        period: Q, an integer in [1, 1000]
+        period: Q, an integer in [1, 2000]
         guess: (theta, v) for Newton (default: a grid of guesses in the trapping region)
         vary: the parameter of a family, its unknown: "a" (default) | "eps" | "c"
         family: "auto" (default: when Newton finds a multiplier 1) | "on" | "off"

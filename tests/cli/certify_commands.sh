@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# End-to-end: certify-sticking, sweep and audit.
+# End-to-end: certify-sticking, certify-periodic's longest case, sweep and audit.
 #   certify-sticking --json: the documented fields; period 1 above the analytic threshold
 #     a >= 32/(1-eps) (eps = 0.5: a >= 64, derived in tests/test_sticking.cpp) and not 1
 #     below it; --a-range: the theorem, pieces tiling the range, L = 0 above the threshold;
@@ -38,6 +38,19 @@ if run text certify-sticking --eps 0.5 --a 24 --max-steps 500; then
   grep -q '^# bouncer .* certify-sticking$' "$TMP/text.out" || fail text "no provenance line"
   grep -q '^outcome: sticks$' "$TMP/text.out" || fail text "no outcome line"
   grep -q '^note: Decimal inputs are enclosed exactly' "$TMP/text.out" || fail text "no decimal note"
+fi
+
+# --- certify-periodic, period 1096 ------------------------------------------------------------
+# The stable period 1096 that `attractors` finds at veldep c = 1000, a = 21 (53% of a 32 x 32
+# grid of starts): the composed P^1096 is undecided at its 689th step at every precision;
+# multiple shooting (2192 unknowns) proves it at 64 bits in about 20 s. Agreement with
+# double: the attractor search's double Newton multiplier (0.004581667845498367, from the
+# composed Jacobian in double) lies in the enclosure of mu1 (from the Lohner-form product).
+if run p1096 certify-periodic --model veldep --c 1000 --a 21 --period 1096 \
+    --guess 2.4250358356353804e-05,22.812185821199588 --max-bits 64 --json; then
+  json_holds p1096 'j["certified"] and j["krawczyk"]["formulation"] == "shooting" and j["minimal_period"] == 1096
+               and j["stability"] == "stable" and len(j["points"]) == 1096 and j["double_distance"] is not None
+               and j["double_distance"] < 1e-12 and inside("0.004581667845498367", j["multipliers"]["mu1"])'
 fi
 
 # --- sweep ----------------------------------------------------------------------------------

@@ -27,6 +27,30 @@ run range certify-periodic --model constant --eps 0.8 --a-range 18.9:19.1 --peri
   json_holds range 'j["certified"] and j["pieces"][0]["lo"] == "18.9" and j["pieces"][-1]["hi"] == "19.1"
                and all(F(a["hi"]) == F(b["lo"]) for a, b in zip(j["pieces"], j["pieces"][1:])) and "Theorem" in j["theorem"]'
 
+# A long period: the stable period 100 of the veldep model (c = 1000, a = 19.5). Multiple
+# shooting (every point an unknown, the default from period 12 on) proves it at 64 bits,
+# stable, with the determinant equal to the product of the steps' (the composed form's own
+# enclosure of it, at the precision it needs, must overlap); the composed P^100 alone is
+# not certified at 128 bits (the interval evaluation of 100 composed steps widens the box
+# by the product of their derivative norms).
+P100=(--model veldep --c 1000 --a 19.5 --period 100 --guess 0.014057849515324,23.970073801684368)
+run p100 certify-periodic "${P100[@]}" --json &&
+  json_holds p100 'j["certified"] and j["krawczyk"]["formulation"] == "shooting" and j["bits"] == 64 and j["minimal_period"] == 100
+              and j["stability"] == "stable" and len(j["points"]) == 100 and "multiple shooting" in j["statement"]
+              and abs(F(j["multipliers"]["mu1"][0])) < 1 and F(j["multipliers"]["det"][0]) > 0'
+run p100c certify-periodic "${P100[@]}" --formulation composed --max-bits 128 --json &&
+  json_holds p100c 'not j["certified"] and j["outcome"] == "undecided" and [a["bits"] for a in j["attempts"]] == [64, 128]'
+run p100c512 certify-periodic "${P100[@]}" --formulation composed --start-bits 512 --max-bits 512 --json &&
+  json_holds p100c512 'j["certified"] and j["krawczyk"]["formulation"] == "composed" and j["minimal_period"] == 100'
+python3 - "$TMP/p100.out" "$TMP/p100c512.out" <<'PY' || fail p100 "the shooting and composed certificates of the period 100 do not overlap"
+import json, sys
+from fractions import Fraction as F
+s, c = (json.load(open(f)) for f in sys.argv[1:3])
+def meets(x, y): return F(x[0]) <= F(y[1]) and F(y[0]) <= F(x[1])
+assert meets(s["multipliers"]["det"], c["multipliers"]["det"]) and meets(s["multipliers"]["trace"], c["multipliers"]["trace"])
+assert all(meets(p["theta"], q["theta"]) and meets(p["v"], q["v"]) for p, q in zip(s["points"], c["points"]))
+PY
+
 # Text output: key: value lines with the provenance comment header.
 run text certify-periodic --model constant --eps 0.8 --a 19 --period 2 --guess 0.944,-0.345 &&
   { grep -q '^certified: true$' "$TMP/text.out" && grep -q '^# bouncer .* certify-periodic$' "$TMP/text.out" &&
@@ -81,6 +105,7 @@ bad eps_veldep eps-range --model veldep --c 10 --a 3 --eps-range 0.1:0.2 --perio
 bad reversed a-range --model constant --eps 0.5 --a-range 2:1 --period 1
 bad family_range family --model constant --eps 0.5 --a-range 1:2 --period 1 --family on
 bad family_word family --model constant --eps 0.5 --a 24 --period 1 --family maybe
+bad formulation_word formulation --model constant --eps 0.5 --a 24 --period 1 --formulation both
 bad guess guess --model constant --eps 0.5 --a 24 --period 1 --guess 0.3
 bad inside_wall guess --model constant --eps 0.5 --a 24 --period 1 --guess 0.3,-10
 bad bits max-bits --model constant --eps 0.5 --a 24 --period 1 --max-bits 5

@@ -107,9 +107,9 @@ int main(int argc, char** argv) {
     q.end.hi = *Decimal::parse(hi);
     q.end.high_end = k.high;
     if (end.margin >= 0) q.margin = static_cast<Margin>(end.margin);
-    for (const BorderFormulation form : {BorderFormulation::composed, BorderFormulation::shooting}) {
-      if (form == BorderFormulation::shooting && k.period == 1) continue;
-      const char* form_name = form == BorderFormulation::composed ? "composed" : "shooting";
+    for (const Formulation form : {Formulation::composed, Formulation::shooting}) {
+      if (form == Formulation::shooting && k.period == 1) continue;
+      const char* form_name = form == Formulation::composed ? "composed" : "shooting";
       q.formulation = form;
       for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
         q.bits = bits;

@@ -14,8 +14,7 @@
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/model/impact_map_impl.hpp"
 #include "bouncer/verify/interval_dual.hpp"
-
-#include <Eigen/Dense>
+#include "sparse_krawczyk.hpp"
 
 namespace bouncer {
 
@@ -409,91 +408,6 @@ Problem orbit_problem(const Setup& S, const Mpfi& Z) {
   return P;
 }
 
-// An approximate inverse C of the midpoint matrix of A (any point matrix C keeps the
-// Krawczyk operator sound; a good one makes it contract). n <= 3 (the composed map, whose
-// entries grow like the product of Q steps' derivatives): Gauss-Jordan at the working
-// precision, C in thin intervals. Larger n (shooting: each entry one step's derivative, the
-// matrix well conditioned for a hyperbolic orbit): LU in double, C a double matrix (exact
-// point values; the products with intervals are MPFI's, outward rounded).
-struct Preconditioner {
-  std::vector<std::vector<Mpfi>> precise;  // n <= 3
-  std::vector<Mpfr> fast;                  // n > 3: the double entries (exact at 53 bits), row-major
-  size_t n = 0;
-  // out = C[r][c] * x, enclosed.
-  void mul(size_t r, size_t c, const Mpfi& x, Mpfi& out) const {
-    if (!fast.empty())
-      mpfi_mul_fr(out.get(), x.get(), fast[r * n + c].get());
-    else
-      mpfi_mul(out.get(), precise[r][c].get(), x.get());
-  }
-};
-
-Preconditioner inverse_mid(const std::vector<std::vector<std::pair<size_t, Mpfi>>>& cols, long bits) {
-  const size_t n = cols.size();
-  Preconditioner C;
-  if (n > 3) {
-    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    for (size_t c = 0; c < n; ++c)
-      for (const auto& [r, v] : cols[c]) M(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) += v.mid().to_double();
-    // Equilibrated by powers of two (exact): rows, then columns, to largest entry in [1, 2).
-    // The determinant row of a period doubling or fold carries the product of Q steps'
-    // derivatives (1e-14 beside the orbit rows' O(1) for a contracting period 82), which
-    // alone makes LU in double lose the inverse. inv(M) = T inv(S M T) S for diagonal S, T.
-    Eigen::VectorXd S = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(n)), T = S;
-    const auto power = [](double largest) { return largest > 0 && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0; };
-    for (Eigen::Index r = 0; r < M.rows(); ++r) {
-      S(r) = power(M.row(r).cwiseAbs().maxCoeff());
-      M.row(r) *= S(r);
-    }
-    for (Eigen::Index c = 0; c < M.cols(); ++c) {
-      T(c) = power(M.col(c).cwiseAbs().maxCoeff());
-      M.col(c) *= T(c);
-    }
-    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
-    const Eigen::MatrixXd inv = T.asDiagonal() * lu.inverse() * S.asDiagonal();
-    if (!inv.allFinite()) throw Fail("the midpoint Jacobian of the system is singular");
-    // (An ill-conditioned C is not unsound: the Krawczyk operator then fails to contract.)
-    C.n = n;
-    C.fast.reserve(n * n);
-    for (size_t r = 0; r < n; ++r)
-      for (size_t c = 0; c < n; ++c) {
-        C.fast.emplace_back(53);
-        mpfr_set_d(C.fast.back().get(), inv(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)), MPFR_RNDN);
-      }
-    return C;
-  }
-  std::vector<std::vector<Mpfi>> A(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
-  for (size_t c = 0; c < n; ++c)
-    for (const auto& [r, v] : cols[c]) A[r][c] = thin(v.mid());
-  std::vector<std::vector<Mpfi>> B(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
-  for (size_t i = 0; i < n; ++i) B[i][i] = Mpfi(1, bits);
-  for (size_t c = 0; c < n; ++c) {
-    size_t piv = c;
-    for (size_t r = c + 1; r < n; ++r)
-      if (std::fabs(A[r][c].mid().to_double()) > std::fabs(A[piv][c].mid().to_double())) piv = r;
-    std::swap(A[c], A[piv]);
-    std::swap(B[c], B[piv]);
-    if (Tr::is_zero(A[c][c]) != Truth::no) throw Fail("the midpoint Jacobian of the system is singular");
-    const Mpfi d = A[c][c];
-    for (size_t k = 0; k < n; ++k) {
-      A[c][k] /= d;
-      B[c][k] /= d;
-    }
-    for (size_t r = 0; r < n; ++r) {
-      if (r == c) continue;
-      const Mpfi f = A[r][c];
-      for (size_t k = 0; k < n; ++k) {
-        A[r][k] -= f * A[c][k];
-        B[r][k] -= f * B[c][k];
-      }
-    }
-  }
-  for (auto& row : B)
-    for (Mpfi& x : row) x = thin(x.mid());
-  C.precise = std::move(B);
-  return C;
-}
-
 // The full variable vector (the points, p) from the unknowns and the free parameter.
 std::vector<Mpfi> assemble(const Setup& S, const Problem& P, const std::vector<Mpfi>& y, const Mpfi& z) {
   std::vector<Mpfi> x(dim(S), Mpfi(0, S.bits));
@@ -549,48 +463,18 @@ std::vector<Mpfi> krawczyk(const Setup& S, const Problem& P, const std::vector<M
     }
     return out;
   };
-  std::vector<std::vector<std::pair<size_t, Mpfi>>> A;
+  detail::SparseColumns A;
   for (size_t c = 0; c < n; ++c) A.push_back(column(P.yi[c]));
   std::vector<Mpfi> Fz(n, Mpfi(0, S.bits));
   if (P.free_p)
     for (const auto& [r, v] : column(J.f.size() - 1)) Fz[r] = v;
-  const Preconditioner C = inverse_mid(A, S.bits);
-  std::vector<Mpfi> D;  // Y - y^
-  bool thin_box = true;  // Y = y^ (Newton): (I - C A) (Y - y^) = 0
-  for (size_t c = 0; c < n; ++c) {
-    D.push_back(Mpfi(Y[c] - thin(yhat[c])));
-    if (!mpfi_is_zero(D.back().get())) thin_box = false;
+  try {
+    const detail::Preconditioner C(A, S.bits);
+    return detail::krawczyk_image(C, yhat, f, A, P.free_p ? &Fz : nullptr, P.free_p ? Mpfi(P.Z - thin(P.zhat)) : Mpfi(0, S.bits), Y,
+                                  S.bits);
+  } catch (const detail::KrawczykFailure& e) {
+    throw Fail(e.what());
   }
-  const Mpfi dz = P.free_p ? Mpfi(P.Z - thin(P.zhat)) : Mpfi(0, S.bits);
-  std::vector<Mpfi> K;
-  Mpfi t(S.bits), M(S.bits);  // scratch
-  for (size_t r = 0; r < n; ++r) {
-    Mpfi k = thin(yhat[r]);
-    for (size_t c = 0; c < n; ++c) {
-      C.mul(r, c, f[c], t);
-      mpfi_sub(k.get(), k.get(), t.get());
-    }
-    if (P.free_p) {
-      Mpfi cz(0, S.bits);
-      for (size_t c = 0; c < n; ++c) {
-        C.mul(r, c, Fz[c], t);
-        mpfi_add(cz.get(), cz.get(), t.get());
-      }
-      k -= cz * dz;
-    }
-    for (size_t c = 0; c < n && !thin_box; ++c) {
-      mpfi_set_si(M.get(), r == c ? 1 : 0);
-      for (const auto& [l, v] : A[c]) {
-        C.mul(r, l, v, t);
-        mpfi_sub(M.get(), M.get(), t.get());
-      }
-      mpfi_mul(t.get(), M.get(), D[c].get());
-      mpfi_add(k.get(), k.get(), t.get());
-    }
-    if (k.has_nan() || !k.bounded()) throw Fail("the Krawczyk image is not finite");
-    K.push_back(k);
-  }
-  return K;
 }
 
 // The box B, proved to hold the one zero of the system, tightened by B <- K(B) n B until no
@@ -1738,10 +1622,9 @@ BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestio
   const auto t0 = std::chrono::steady_clock::now();
   BorderCollisionQuestion at = q;
   // Both formulations at each precision: the composed map (one point) first for short
-  // periods, multiple shooting (every point) first from kShootFirst steps on, where the
+  // periods, multiple shooting (every point) first from kShootingFrom steps on, where the
   // composed map's wrapping makes it slow to fail; an orbit through the release state has
   // only the composed form (its start is exact).
-  constexpr long kShootFirst = 12;
   for (;;) {
     auto one = [&](bool shooting) {
       return attempt<BorderCollisionCertificate>(at.bits, " about a*", [&](BorderCollisionCertificate& r) {
@@ -1749,10 +1632,10 @@ BorderCollisionCertificate certify_border_collision(const BorderCollisionQuestio
         run(at, r, orbit, shooting);
       });
     };
-    const bool shoot_first = q.formulation == BorderFormulation::shooting ||
-                             (q.formulation == BorderFormulation::automatic && q.end.period >= kShootFirst);
+    const bool shoot_first = q.formulation == Formulation::shooting ||
+                             (q.formulation == Formulation::automatic && q.end.period >= kShootingFrom);
     BorderCollisionCertificate c = one(shoot_first);
-    if (!c.certified && q.formulation == BorderFormulation::automatic && q.end.period > 1 && !c.through_release) {
+    if (!c.certified && q.formulation == Formulation::automatic && q.end.period > 1 && !c.through_release) {
       BorderCollisionCertificate other = one(!shoot_first);
       if (other.certified) {
         c = other;

@@ -2,6 +2,7 @@
 #include "bouncer/verify/periodic_certify.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 #include "bouncer/verify/enclosure.hpp"
 #include "bouncer/verify/interval_dual.hpp"
 #include "bouncer/verify/sticking.hpp"
+#include "sparse_krawczyk.hpp"
 
 namespace bouncer {
 
@@ -22,6 +24,13 @@ FamilyMode parse_family_mode(const std::string& field, const std::string& text) 
   if (text == "off") return FamilyMode::isolated;
   if (text == "on") return FamilyMode::family;
   throw InputError(field, "must be auto, on or off (got '" + text + "')");
+}
+
+Formulation parse_formulation(const std::string& field, const std::string& text) {
+  if (text == "auto") return Formulation::automatic;
+  if (text == "composed") return Formulation::composed;
+  if (text == "shooting") return Formulation::shooting;
+  throw InputError(field, "must be auto, composed or shooting (got '" + text + "')");
 }
 
 const char* name(PeriodicOutcome o) {
@@ -297,11 +306,10 @@ KrawczykResult prove(const Problem& P) {
 // Eigenvalues (multipliers) of every matrix of an interval 2x2 Jacobian, and stability by
 // the Jury conditions on trace and determinant: both |mu| < 1 iff |det| < 1 and
 // |tr| < 1 + det.
-MultiplierEnclosure multipliers(const Mpfi J[2][2], std::string& stability, bool family) {
+// Given enclosures of the trace and the determinant of the period map's Jacobian.
+MultiplierEnclosure multipliers(const Mpfi& tr, const Mpfi& det, std::string& stability, bool family) {
   MultiplierEnclosure e;
-  const long bits = J[0][0].bits();
-  const Mpfi tr = J[0][0] + J[1][1];
-  const Mpfi det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  const long bits = tr.bits();
   const Mpfi disc = tr * tr - 4 * det;
   const Mpfi zero(0, bits), one(1, bits);
   e.trace = enclosure(tr);
@@ -351,6 +359,225 @@ std::vector<long> proper_divisors(long q) {
     if (q % k == 0) d.push_back(k);
   return d;
 }
+
+// Multiple shooting (long periods). The composed map's interval evaluation widens a box by
+// the product of the Q steps' derivative norms: a period-1096 attractor of the veldep model
+// (c = 1000, a = 21) is undecided at its 689th step at any precision the schedule tries.
+// Shooting never composes. Unknowns: all Q points y = (x_0, ..., x_{Q-1}); rows
+//     G_i(y; z) = P(x_i; z) - x_{i+1 mod Q},
+// each step over its own point's box Y_i, the parameter z over Z inside the model (an
+// interval: F(y^; Z) and the Jacobian over Y x Z enclose those of every z in Z, so K(Y) in
+// the interior of Y proves, for every z in Z, exactly one zero in Y). The interval step and
+// the interval-dual step decide every branch over Y_i x Z or throw, so on each box P is one
+// smooth piece and the zero is a period-Q orbit of the map, unique among orbits whose i-th
+// point lies in Y_i for every i. The Jacobian is sparse (J_i and -I blocks); C is
+// sparse_krawczyk.hpp's double LU inverse, computed once at the thin Newton point.
+class Shooting {
+ public:
+  Shooting(const Model<Mpfi>& m, long q) : model_(m), q_(static_cast<size_t>(q)), bits_(m.bits) {}
+
+  // Every step from its box (thin boxes: the residual), the event of each step.
+  std::vector<StepResult<Mpfi>> steps(const std::vector<Mpfi>& y) const {
+    const ImpactMap<Mpfi> map(model_);
+    std::vector<StepResult<Mpfi>> out;
+    out.reserve(q_);
+    for (size_t i = 0; i < q_; ++i) {
+      try {
+        out.push_back(map.step(State<Mpfi>{y[2 * i], y[2 * i + 1]}));
+      } catch (const Undecided& u) {
+        throw NotCertified("step " + std::to_string(i + 1) + " of the period is undecided over its box: " + u.what());
+      }
+    }
+    return out;
+  }
+
+  std::vector<Mpfi> residual(const std::vector<Mpfr>& yhat) const {
+    std::vector<Mpfi> y;
+    for (const Mpfr& v : yhat) y.push_back(thin(v));
+    const std::vector<StepResult<Mpfi>> r = steps(y);
+    std::vector<Mpfi> f;
+    for (size_t i = 0; i < q_; ++i) {
+      const size_t k = (i + 1) % q_;
+      f.push_back(Mpfi(r[i].next.theta - y[2 * k]));
+      f.push_back(Mpfi(r[i].next.v - y[2 * k + 1]));
+    }
+    return f;
+  }
+
+  // Each step's 2x2 Jacobian over its box (rows theta', v'; columns theta, v).
+  std::vector<std::array<Mpfi, 4>> step_jacobians(const std::vector<Mpfi>& Y) const {
+    Model<IDual> dm = convert_model<IDual>(model_, [](const Mpfi& x) { return IDual(x); });
+    const ImpactMap<IDual> map(std::move(dm));
+    std::vector<std::array<Mpfi, 4>> J;
+    J.reserve(q_);
+    for (size_t i = 0; i < q_; ++i) {
+      State<IDual> s{IDual::variable(Y[2 * i], 0), IDual::variable(Y[2 * i + 1], 1)};
+      try {
+        s = map.step(s).next;
+      } catch (const Undecided& u) {
+        throw NotCertified("step " + std::to_string(i + 1) + " of the period is undecided over its box: " + u.what());
+      }
+      for (const IDual* x : {&s.theta, &s.v})
+        if (!ScalarTraits<IDual>::derivatives_finite(*x))
+          throw NotCertified("the Jacobian enclosure of step " + std::to_string(i + 1) +
+                             " over its box is not finite (a square root at 0: grazing or touchdown)");
+      J.push_back({s.theta.d[0], s.theta.d[1], s.v.d[0], s.v.d[1]});
+    }
+    return J;
+  }
+
+  detail::SparseColumns jacobian(const std::vector<Mpfi>& Y) const {
+    const std::vector<std::array<Mpfi, 4>> J = step_jacobians(Y);
+    detail::SparseColumns A(2 * q_);
+    for (size_t i = 0; i < q_; ++i) {
+      const size_t prev = (i + q_ - 1) % q_;
+      for (size_t c = 0; c < 2; ++c) {
+        auto& col = A[2 * i + c];
+        col.emplace_back(2 * i, J[i][c]);
+        col.emplace_back(2 * i + 1, J[i][2 + c]);
+        col.emplace_back(2 * prev + c, Mpfi(-1, bits_));  // G_prev = P(x_prev) - x_i
+      }
+    }
+    return A;
+  }
+
+  std::vector<Mpfi> image(const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f, const std::vector<Mpfi>& Y) const {
+    std::vector<Mpfi> H;  // the mean value form needs the derivatives over hull(Y, y^)
+    for (size_t c = 0; c < Y.size(); ++c) H.push_back(hull(Y[c], thin(yhat[c])));
+    try {
+      return detail::krawczyk_image(C_, yhat, f, jacobian(H), nullptr, Mpfi(0, bits_), Y, bits_);
+    } catch (const detail::KrawczykFailure& e) {
+      throw NotCertified(e.what());
+    }
+  }
+
+  // Chord Newton at the working precision, y <- y - C G(y) with C from the first point,
+  // until the moves stop shrinking: the points of a long unstable orbit stepped from x_0
+  // drift by the product of the steps' growth; the proof never relies on this being accurate.
+  std::vector<Mpfr> refine(std::vector<Mpfr> y) {
+    std::vector<Mpfi> Y;
+    for (const Mpfr& v : y) Y.push_back(thin(v));
+    try {
+      C_ = detail::Preconditioner(jacobian(Y), bits_);
+    } catch (const detail::KrawczykFailure& e) {
+      throw NotCertified(e.what());
+    }
+    double last = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < 20; ++it) {
+      std::vector<Mpfi> T;
+      for (const Mpfr& v : y) T.push_back(thin(v));
+      const std::vector<Mpfi> K = image(y, residual(y), T);
+      double move = 0;
+      for (size_t i = 0; i < y.size(); ++i) {
+        const Mpfr nx = K[i].mid();
+        move = std::max(move, Mpfr(abs(Mpfr(nx - y[i])) / (abs(y[i]) + 1)).to_double());
+        y[i] = nx;
+      }
+      if (move == 0 || move > last / 16) break;
+      last = move;
+    }
+    return y;
+  }
+
+  struct Proof {
+    std::vector<Mpfi> Y0, K0;  // K(Y0) in the interior of Y0
+    std::vector<Mpfi> Y;       // the zero, enclosed: K(Y) n Y, tightened
+    int inflations = 0;
+  };
+
+  // Epsilon inflation around y^ (refined first), then Y <- K(Y) n Y.
+  Proof prove(const std::vector<Mpfr>& start) {
+    const std::vector<Mpfr> yhat = refine(start);
+    const std::vector<Mpfi> f = residual(yhat);
+    Mpfi fsum(0, bits_);
+    for (const Mpfi& x : f) fsum += abs(x);
+    std::vector<Mpfr> r;
+    for (const Mpfr& v : yhat) {
+      Mpfi ulps = abs(thin(v)) + 1;
+      mpfi_mul_2si(ulps.get(), ulps.get(), -(bits_ - 8));
+      r.push_back(Mpfi(ulps + fsum).upper());
+    }
+    for (int it = 0; it < 24; ++it) {
+      throw_if_cancelled();
+      std::vector<Mpfi> Y;
+      for (size_t i = 0; i < yhat.size(); ++i) Y.push_back(Mpfi(Mpfr(yhat[i] - r[i]), Mpfr(yhat[i] + r[i])));
+      const std::vector<Mpfi> K = image(yhat, f, Y);
+      bool in = true;
+      for (size_t i = 0; i < K.size() && in; ++i) in = strictly_inside(K[i], Y[i]);
+      if (in) {
+        Proof p{Y, K, {}, it};
+        for (size_t i = 0; i < K.size(); ++i) p.Y.push_back(intersect(K[i], Y[i]));
+        for (int t = 0; t < 6; ++t) {
+          const std::vector<Mpfi> KT = image(yhat, f, p.Y);
+          bool shrank = false;
+          for (size_t i = 0; i < KT.size(); ++i) {
+            const Mpfi N = intersect(KT[i], p.Y[i]);
+            if (N.has_nan()) throw NotCertified("K(Y) n Y is empty while tightening the proved box (an enclosure is inconsistent)");
+            Mpfr half = p.Y[i].width();
+            mpfr_div_2ui(half.get(), half.get(), 1, MPFR_RNDN);
+            if (mpfr_less_p(N.width().get(), half.get())) shrank = true;
+            p.Y[i] = N;
+          }
+          if (!shrank) break;
+        }
+        return p;
+      }
+      for (size_t i = 0; i < yhat.size(); ++i) {
+        Mpfr grown(bits_);
+        grown = abs(K[i] - thin(yhat[i])).upper() * 2;
+        Mpfr doubled(bits_);
+        doubled = r[i] * 2;
+        r[i] = mpfr_greater_p(grown.get(), doubled.get()) ? grown : doubled;
+      }
+    }
+    throw NotCertified("multiple shooting: the Krawczyk operator did not map any box around the Newton orbit into itself");
+  }
+
+  // Trace and determinant of the period map's Jacobian J_{Q-1} ... J_0 over the boxes Y.
+  // The determinant is the product of the steps' determinants (scalars: no wrapping). The
+  // product of 2x2 interval matrices is kept in Lohner's form B R (B a point rotation, R an
+  // interval matrix), B_{k+1} the Q factor of mid(J_k B_k), R_{k+1} = (B_{k+1}^-1 J_k B_k) R_k
+  // with B^-1 enclosed: R stays nearly triangular, so the wrapping of a plain product
+  // (which grows like the product of the steps' norms, 1e500 over the period 1096) is avoided.
+  std::pair<Mpfi, Mpfi> trace_det(const std::vector<Mpfi>& Y) const {
+    const std::vector<std::array<Mpfi, 4>> J = step_jacobians(Y);
+    const Mpfi zero(0, bits_), one(1, bits_);
+    Mpfi B[2][2] = {{one, zero}, {zero, one}}, R[2][2] = {{one, zero}, {zero, one}};
+    Mpfi det = one;
+    for (const auto& j : J) {
+      det *= j[0] * j[3] - j[1] * j[2];
+      Mpfi T[2][2];
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) T[r][c] = j[2 * r] * B[0][c] + j[2 * r + 1] * B[1][c];
+      // The rotation of mid(T)'s first column onto e_1 (any cos, sin are valid).
+      const Mpfr t0 = T[0][0].mid(), t1 = T[1][0].mid();
+      Mpfr n = sqrt(Mpfr(t0 * t0 + t1 * t1));
+      if (n.to_double() == 0) n = Mpfr(1, bits_);
+      const Mpfi cs = thin(Mpfr(t0 / n)), sn = thin(Mpfr(t1 / n));
+      const Mpfi Bn[2][2] = {{cs, -sn}, {sn, cs}};
+      const Mpfi d = cs * cs + sn * sn;  // B^-1 = B^T / d, enclosed
+      const Mpfi Bi[2][2] = {{cs / d, sn / d}, {-sn / d, cs / d}};
+      Mpfi U[2][2], Rn[2][2];
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) U[r][c] = Bi[r][0] * T[0][c] + Bi[r][1] * T[1][c];
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) Rn[r][c] = U[r][0] * R[0][c] + U[r][1] * R[1][c];
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) {
+          B[r][c] = Bn[r][c];
+          R[r][c] = Rn[r][c];
+        }
+    }
+    const Mpfi tr = B[0][0] * R[0][0] + B[0][1] * R[1][0] + B[1][0] * R[0][1] + B[1][1] * R[1][1];
+    return {tr, det};
+  }
+
+ private:
+  const Model<Mpfi>& model_;
+  size_t q_;
+  long bits_;
+  detail::Preconditioner C_;
+};
 
 // One certification at `bits` for the parameter in [zlo, zhi] (equal for one value).
 class Attempt1 {
@@ -451,7 +678,68 @@ class Attempt1 {
     c.minimal_period_certified = true;
   }
 
+  // Composed or shooting, in the order of kShootingFrom; the other where the first fails
+  // (the reason reported is the first formulation's, with the second's).
   PeriodicCertificate isolated(const PeriodicOrbit<Mpfr>& newton, PeriodicCertificate& c) {
+    const bool points = newton.points.size() == static_cast<size_t>(q_.period);
+    if (q_.formulation == Formulation::composed) return composed(newton, c);
+    if (q_.formulation == Formulation::shooting) {
+      if (!points) throw NotCertified("multiple shooting: Newton's orbit has no points to start from");
+      return shooting(newton, c);
+    }
+    const bool shooting_first = q_.period >= kShootingFrom && points;
+    const PeriodicCertificate blank = c;
+    try {
+      return shooting_first ? shooting(newton, c) : composed(newton, c);
+    } catch (const NotCertified& first) {
+      if (q_.period == 1 || !points) throw;
+      c = blank;
+      try {
+        return shooting_first ? composed(newton, c) : shooting(newton, c);
+      } catch (const NotCertified& second) {
+        throw NotCertified(std::string(shooting_first ? "multiple shooting: " : "") + first.what() + "; " +
+                           (shooting_first ? "" : "multiple shooting: ") + second.what());
+      } catch (const Undecided& second) {
+        throw NotCertified(std::string(first.what()) + "; undecided: " + second.what());
+      }
+    }
+  }
+
+  PeriodicCertificate shooting(const PeriodicOrbit<Mpfr>& newton, PeriodicCertificate& c) {
+    Shooting S(model_, q_.period);
+    std::vector<Mpfr> start;
+    for (const State<Mpfr>& x : newton.points) {
+      start.push_back(at_bits(x.theta, bits_));
+      start.push_back(at_bits(x.v, bits_));
+    }
+    const Shooting::Proof p = S.prove(start);
+    c.outcome = PeriodicOutcome::isolated;
+    c.shooting = true;
+    c.unknowns = "theta, v (of every point: multiple shooting)";
+    c.free_name = name(q_.vary);
+    for (int i = 0; i < 2; ++i) {
+      c.box[i] = enclosure(p.Y0[i]);
+      c.image[i] = enclosure(p.K0[i]);
+    }
+    c.free_range = enclosure(Z_);
+    c.inflations = p.inflations;
+    const std::vector<StepResult<Mpfi>> steps = S.steps(p.Y);
+    boxes_.clear();
+    for (long i = 0; i < q_.period; ++i) {
+      const size_t k = static_cast<size_t>(2 * i);
+      c.points.push_back({enclosure(p.Y[k]), enclosure(p.Y[k + 1])});
+      boxes_.push_back(State<Mpfi>{p.Y[k], p.Y[k + 1]});
+      c.events.push_back(event_text(steps[static_cast<size_t>(i)]));
+      c.wall_periods.push_back(steps[static_cast<size_t>(i)].periods);
+    }
+    const auto [tr, det] = S.trace_det(p.Y);
+    c.multipliers = multipliers(tr, det, c.stability, false);
+    c.certified = true;
+    minimal_period(c, std::nullopt);
+    return c;
+  }
+
+  PeriodicCertificate composed(const PeriodicOrbit<Mpfr>& newton, PeriodicCertificate& c) {
     Problem P{model_, q_.vary, q_.period, {0, 1}, 2, Z_, {newton.points[0].theta, newton.points[0].v}, Z_.mid()};
     const KrawczykResult k = prove(P);
     c.outcome = PeriodicOutcome::isolated;
@@ -511,8 +799,8 @@ class Attempt1 {
     c.free_range = enclosure(P.Z);
     c.inflations = k.inflations;
     fill_orbit(c, start, m);
-    const Mpfi J[2][2] = {{k.d.D[0][0], k.d.D[0][1]}, {k.d.D[1][0], k.d.D[1][1]}};
-    c.multipliers = multipliers(J, c.stability, family);
+    const Mpfi(&J)[2][3] = k.d.D;
+    c.multipliers = multipliers(Mpfi(J[0][0] + J[1][1]), Mpfi(J[0][0] * J[1][1] - J[0][1] * J[1][0]), c.stability, family);
     c.certified = true;
   }
 
@@ -567,6 +855,7 @@ std::string statement(const PeriodicQuestion& q, const PeriodicCertificate& c, c
         << point_text(c.points[0]) << "; its minimal period is "
         << (c.minimal_period_certified ? std::to_string(c.minimal_period) : "undecided") << ", it is " << c.stability
         << " (multipliers " << c.multipliers.kind << ")";
+      if (c.shooting) s << "; proved by multiple shooting, with every one of the " << Q << " points an unknown";
       break;
     case PeriodicOutcome::family: {
       const std::string p = name(q.vary);

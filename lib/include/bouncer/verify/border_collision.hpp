@@ -57,7 +57,7 @@
 // Krawczyk operator fails (reported as not certified). Any other margin that vanishes at a*
 // makes step 4 fail: nothing is claimed.
 //
-// Long periods (BorderFormulation): the same proof with all Q orbit points as unknowns, Y a
+// Long periods (Formulation): the same proof with all Q orbit points as unknowns, Y a
 // box per point, G_i = piece_i(x_i; p) - x_{i+1 mod Q}; every margin of step i is evaluated
 // over x_i's own box, and the step's own check (5) runs each step from its point's box.
 //
@@ -82,14 +82,6 @@
 
 namespace bouncer {
 
-// The unknowns of the proof: the first orbit point and p (composed: P_E^Q(x_0) = x_0, the
-// Q steps composed in one interval evaluation), or all Q points and p (multiple shooting:
-// piece_i(x_i) = x_{i+1 mod Q}, each step over its own point's box). The composed map widens
-// a box by the product of the Q steps' derivative norms (about 2^66 over a period-66 orbit),
-// so long periods need shooting; short ones are quicker composed. automatic: shooting first
-// from period 12 on, composed first below, the other where the first fails.
-enum class BorderFormulation { automatic, composed, shooting };
-
 struct BorderCollisionQuestion {
   // The end as `continue` reports it (verify/branch_end.hpp): the model, the varied
   // parameter, the period, the last orbit point on the branch side, the interval next to a*
@@ -105,9 +97,9 @@ struct BorderCollisionQuestion {
   // parameter interval Z must be wide against that growth times the precision's ulp (the
   // margins' signs at Z's ends, the step's own events next to a*) yet narrow against the
   // margins divided by it (the Krawczyk operator over Y x Z): at 128 bits that window can be
-  // empty. Multiple shooting (BorderFormulation) does not compose, and proves them at 128.
+  // empty. Multiple shooting (Formulation) does not compose, and proves them at 128.
   long max_bits = 0;
-  BorderFormulation formulation = BorderFormulation::automatic;
+  Formulation formulation = Formulation::automatic;
 };
 
 struct BorderCollisionCertificate {

@@ -23,6 +23,15 @@
 // derivative enclosures over Y x Z come from two interval-dual runs of Q steps (seeds
 // (theta, v) and then p), through the same step as every other scalar type.
 //
+// Long periods (multiple shooting, from period 12 on, or where P^Q fails): the unknowns are
+// all Q points, the rows P(x_i; z) - x_{i+1 mod Q}, each step over its own point's box (the
+// composed map widens a box by the product of the Q steps' derivative norms); the same
+// Krawczyk argument in 2Q dimensions, with a double LU preconditioner
+// (src/verify/sparse_krawczyk.hpp). Its multipliers: the determinant as the product of the
+// steps' determinants, the trace from the product of the steps' Jacobians kept in Lohner's
+// form (a point rotation times an interval matrix), which avoids the wrapping of a plain
+// interval product.
+//
 // Families (a multiplier exactly 1, e.g. the paper's eq. 5 fixed points, for which
 // F_(theta, v) is singular) are certified on the quotient by the free direction theta: for
 // every theta in Z there is exactly one (v, p) in Y. That proves a curve of period-Q points
@@ -62,6 +71,22 @@ enum class PeriodicOutcome {
 };
 const char* name(PeriodicOutcome o);
 
+// The unknowns of a proof about a period-Q orbit (here, and the border-collision, period
+// doubling and fold proofs of verify/border_collision.hpp): the first orbit point (composed:
+// P^Q(x_0) = x_0, the Q steps composed in one interval evaluation), or all Q points
+// (multiple shooting: P(x_i) = x_{i+1 mod Q}, each step over its own point's box). The
+// composed map widens a box by the product of the Q steps' derivative norms (about 2^66 over
+// a period-66 orbit), so long periods need shooting; short ones are quicker composed.
+// automatic: shooting first from period kShootingFrom = 12 on, composed first below, the
+// other where the first fails.
+enum class Formulation { automatic, composed, shooting };
+constexpr long kShootingFrom = 12;
+Formulation parse_formulation(const std::string& field, const std::string& text);
+
+// The longest period certify-periodic takes: 2000. Shooting's preconditioner is a dense
+// (2Q)^2 double matrix (128 MB) with an LU of (2Q)^3 flops (about 20 s at Q = 2000).
+constexpr long kMaxCertifiedPeriod = 2000;
+
 struct PeriodicQuestion {
   ModelSpec model;
   long period = 1;
@@ -69,6 +94,7 @@ struct PeriodicQuestion {
   Parameter vary = Parameter::a;          // the parameter of `range` (and of families)
   std::optional<std::pair<mpq_class, mpq_class>> range;  // certify for every value in it
   FamilyMode family = FamilyMode::automatic;
+  Formulation formulation = Formulation::automatic;  // of isolated orbits
   EscalationSchedule schedule{64, 1024, false};
   int max_depth = 8;      // parameter ranges: bisection depth
   int max_pieces = 256;   // parameter ranges: at most this many pieces
@@ -98,6 +124,9 @@ struct MultiplierEnclosure {
 struct PeriodicCertificate {
   PeriodicOutcome outcome = PeriodicOutcome::undecided;
   bool certified = false;
+  // Proved with every orbit point an unknown (multiple shooting: periods >= 12 first, or
+  // where the composed map P^Q failed), else with the first point alone.
+  bool shooting = false;
   long period = 0;
   long minimal_period = 0;             // certified divisor structure, 0 if undecided
   bool minimal_period_certified = false;

@@ -46,6 +46,7 @@ json certificate_json(const PeriodicCertificate& c) {
     if (c.outcome != PeriodicOutcome::through_release) {
       json k;
       k["unknowns"] = c.unknowns;
+      k["formulation"] = c.shooting ? "shooting" : "composed";
       k["box"] = json::array({enclosure_json(c.box[0]), enclosure_json(c.box[1])});
       k["image"] = json::array({enclosure_json(c.image[0]), enclosure_json(c.image[1])});
       k["free"] = c.free_name;
@@ -108,8 +109,10 @@ json head(const CertifyPeriodicRequest& r) {
       "decimal values. Enclosure ends are printed rounded outward.";
   body["inputs"] = inputs_json(r.question);
   body["method"] =
-      "Krawczyk operator on F(x) = P^Q(x) - x in mean-value form over the box and the parameter interval; interval "
-      "Jacobian by Dual<Mpfi> through the same step; every branch decided for the whole box";
+      "Krawczyk operator on F(x) = P^Q(x) - x (composed) or on the Q equations P(x_i) - x_{i+1 mod Q} with every orbit "
+      "point an unknown (multiple shooting: periods >= 12, or where P^Q fails) in mean-value form over the box and the "
+      "parameter interval; interval Jacobian by Dual<Mpfi> through the same step; every branch decided for the whole box; "
+      "shooting's multipliers from the product of the steps' Jacobians in Lohner's form";
   return body;
 }
 

@@ -111,7 +111,7 @@ json certified_json(const CertifiedBranchEnd& c, const EndEstimate& est, long pe
   two["margin"] = name(bc.margin);
   two["margin_text"] = bc.margin_text;
   two["events"] = bc.events;
-  // Which unknowns the proof used (verify/border_collision.hpp BorderFormulation).
+  // Which unknowns the proof used (verify/border_collision.hpp Formulation).
   two["formulation"] = bc.certified ? json(bc.shooting ? "shooting" : "composed") : json(nullptr);
   two["proof_interval"] = bc.certified ? json{exact_decimal(bc.z_lo), exact_decimal(bc.z_hi)} : json(nullptr);
   two["bracket_contains"] = c.bracket_contains;

@@ -42,10 +42,11 @@ CertifyPeriodicRequest certify_periodic_request(const Options& o) {
     validate_range_ends(q.model, q.vary, *range_key, range->first, range->second);
     q.range = std::make_pair(range->first.value(), range->second.value());
   }
-  if (!o.has("period")) throw InputError("period", "is required (an integer in [1, 1000])");
-  q.period = integer_from(o, "period", 1, 1000, 1);
+  if (!o.has("period")) throw InputError("period", "is required (an integer in [1, " + std::to_string(kMaxCertifiedPeriod) + "])");
+  q.period = integer_from(o, "period", 1, kMaxCertifiedPeriod, 1);
   q.guess = guess_from(o, q.model);
   q.family = parse_family_mode("family", o.get_or("family", "auto"));
+  q.formulation = parse_formulation("formulation", o.get_or("formulation", "auto"));
   if (o.has("lift")) {
     r.lift = parse_decimal("lift", o.get("lift"));
     if (q.model.law != Law::elastic) throw InputError("lift", "needs --model elastic (accelerator modes are elastic)");

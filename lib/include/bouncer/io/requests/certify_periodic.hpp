@@ -13,7 +13,7 @@
 namespace bouncer {
 
 struct CertifyPeriodicRequest {
-  // model, period (--period Q, required, in [1, 1000]), guess, vary (--vary, or the
+  // model, period (--period Q, required, in [1, kMaxCertifiedPeriod = 2000]), guess, vary (--vary, or the
   // parameter of --a-range | --eps-range | --c-range, at most one, instead of its value),
   // range, family, schedule (--max-bits, --start-bits), max_depth and max_pieces (with a
   // range only), newton (--max-iter, --grid).

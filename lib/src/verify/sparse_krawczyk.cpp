@@ -1,0 +1,128 @@
+// The Krawczyk operator for sparse systems (sparse_krawczyk.hpp).
+#include "sparse_krawczyk.hpp"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "bouncer/scalar/traits.hpp"
+
+namespace bouncer::detail {
+
+namespace {
+Mpfi thin(const Mpfr& x) { return Mpfi(x, x); }
+}  // namespace
+
+Preconditioner::Preconditioner(const SparseColumns& cols, long bits) : n_(cols.size()) {
+  const size_t n = n_;
+  if (n > 3) {
+    const auto N = static_cast<Eigen::Index>(n);
+    Eigen::MatrixXd M = Eigen::MatrixXd::Zero(N, N);
+    for (size_t c = 0; c < n; ++c)
+      for (const auto& [r, v] : cols[c]) M(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) += v.mid().to_double();
+    // Equilibrated by powers of two (exact): rows, then columns, to largest entry in [1, 2).
+    // The determinant row of a period doubling or fold carries the product of Q steps'
+    // derivatives (1e-14 beside the orbit rows' O(1) for a contracting period 82), which
+    // alone makes LU in double lose the inverse. inv(M) = T inv(S M T) S for diagonal S, T.
+    Eigen::VectorXd S = Eigen::VectorXd::Ones(N), T = S;
+    const auto power = [](double largest) { return largest > 0 && std::isfinite(largest) ? std::ldexp(1.0, -std::ilogb(largest)) : 1.0; };
+    for (Eigen::Index r = 0; r < N; ++r) {
+      S(r) = power(M.row(r).cwiseAbs().maxCoeff());
+      M.row(r) *= S(r);
+    }
+    for (Eigen::Index c = 0; c < N; ++c) {
+      T(c) = power(M.col(c).cwiseAbs().maxCoeff());
+      M.col(c) *= T(c);
+    }
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(M);
+    const Eigen::MatrixXd inv = T.asDiagonal() * lu.inverse() * S.asDiagonal();
+    if (!inv.allFinite()) throw KrawczykFailure("the midpoint Jacobian of the system is singular");
+    // (An ill-conditioned C is not unsound: the Krawczyk operator then fails to contract.)
+    fast_.resize(n * n);
+    for (size_t r = 0; r < n; ++r)
+      for (size_t c = 0; c < n; ++c) fast_[r * n + c] = inv(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+    return;
+  }
+  std::vector<std::vector<Mpfi>> A(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
+  for (size_t c = 0; c < n; ++c)
+    for (const auto& [r, v] : cols[c]) A[r][c] += v;
+  for (auto& row : A)
+    for (Mpfi& x : row) x = thin(x.mid());
+  std::vector<std::vector<Mpfi>> B(n, std::vector<Mpfi>(n, Mpfi(0, bits)));
+  for (size_t i = 0; i < n; ++i) B[i][i] = Mpfi(1, bits);
+  for (size_t c = 0; c < n; ++c) {
+    size_t piv = c;
+    for (size_t r = c + 1; r < n; ++r)
+      if (std::fabs(A[r][c].mid().to_double()) > std::fabs(A[piv][c].mid().to_double())) piv = r;
+    std::swap(A[c], A[piv]);
+    std::swap(B[c], B[piv]);
+    if (ScalarTraits<Mpfi>::is_zero(A[c][c]) != Truth::no) throw KrawczykFailure("the midpoint Jacobian of the system is singular");
+    const Mpfi d = A[c][c];
+    for (size_t k = 0; k < n; ++k) {
+      A[c][k] /= d;
+      B[c][k] /= d;
+    }
+    for (size_t r = 0; r < n; ++r) {
+      if (r == c) continue;
+      const Mpfi f = A[r][c];
+      for (size_t k = 0; k < n; ++k) {
+        A[r][k] -= f * A[c][k];
+        B[r][k] -= f * B[c][k];
+      }
+    }
+  }
+  for (auto& row : B)
+    for (Mpfi& x : row) x = thin(x.mid());
+  precise_ = std::move(B);
+}
+
+void Preconditioner::mul(size_t r, size_t c, const Mpfi& x, Mpfi& out) const {
+  if (!fast_.empty())
+    mpfi_mul_d(out.get(), x.get(), fast_[r * n_ + c]);
+  else
+    mpfi_mul(out.get(), precise_[r][c].get(), x.get());
+}
+
+std::vector<Mpfi> krawczyk_image(const Preconditioner& C, const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
+                                 const SparseColumns& A, const std::vector<Mpfi>* Fz, const Mpfi& dz,
+                                 const std::vector<Mpfi>& Y, long bits) {
+  const size_t n = yhat.size();
+  std::vector<Mpfi> D;  // Y - y^
+  bool thin_box = true;  // Y = y^ (Newton): (I - C A) (Y - y^) = 0
+  for (size_t c = 0; c < n; ++c) {
+    D.push_back(Mpfi(Y[c] - thin(yhat[c])));
+    if (!mpfi_is_zero(D.back().get())) thin_box = false;
+  }
+  std::vector<Mpfi> K;
+  K.reserve(n);
+  Mpfi t(bits), M(bits);  // scratch
+  for (size_t r = 0; r < n; ++r) {
+    Mpfi k = thin(yhat[r]);
+    for (size_t c = 0; c < n; ++c) {
+      C.mul(r, c, f[c], t);
+      mpfi_sub(k.get(), k.get(), t.get());
+    }
+    if (Fz) {
+      Mpfi cz(0, bits);
+      for (size_t c = 0; c < n; ++c) {
+        C.mul(r, c, (*Fz)[c], t);
+        mpfi_add(cz.get(), cz.get(), t.get());
+      }
+      k -= cz * dz;
+    }
+    for (size_t c = 0; c < n && !thin_box; ++c) {
+      mpfi_set_si(M.get(), r == c ? 1 : 0);
+      for (const auto& [l, v] : A[c]) {
+        C.mul(r, l, v, t);
+        mpfi_sub(M.get(), M.get(), t.get());
+      }
+      mpfi_mul(t.get(), M.get(), D[c].get());
+      mpfi_add(k.get(), k.get(), t.get());
+    }
+    if (k.has_nan() || !k.bounded()) throw KrawczykFailure("the Krawczyk image is not finite");
+    K.push_back(k);
+  }
+  return K;
+}
+
+}  // namespace bouncer::detail

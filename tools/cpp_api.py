@@ -82,11 +82,24 @@ def _indent(line):
     return len(line) - len(line.lstrip(" "))
 
 
-def _is_list(lines):
-    """A block of lines (all indented at least as its first) whose first-indent lines all
-    start with a list marker."""
-    ind0 = _indent(lines[0])
-    return all(MARKER.match(l.strip(" ")) for l in lines if l.strip() and _indent(l) <= ind0)
+def _segments(block):
+    """An indented block split into lists and text blocks: a line with a list marker starts
+    a list, which goes on while its lines are indented more than the marker or start the
+    next item at the marker's indentation; other lines are text (formulas, tables), up to
+    a marker as little indented as the text's first line."""
+    out = []
+    for line in block:
+        ind, marked = _indent(line), MARKER.match(line.strip(" ")) is not None
+        if out:
+            is_list, lines, ind0 = out[-1]
+            if is_list and (ind > ind0 or (ind == ind0 and marked)):
+                lines.append(line)
+                continue
+            if not is_list and not (marked and ind <= ind0):
+                lines.append(line)
+                continue
+        out.append((marked, [line], ind))
+    return [(is_list, lines) for is_list, lines, _ in out]
 
 
 def _list_md(lines, nested):
@@ -143,12 +156,12 @@ def _blocks_md(lines, base, nested):
         j = i  # an indented block: up to the next blank line or prose line
         while j < len(lines) and lines[j].strip() and _indent(lines[j]) > base:
             j += 1
-        block = lines[i:j]
-        if _is_list(block):
-            emit(_list_md(block, nested))
-        else:
-            text = textwrap.dedent("\n".join(l.rstrip() for l in block)).split("\n")
-            emit(["    " + t if t else "" for t in text] if nested else ["```text", *text, "```"])
+        for is_list, block in _segments(lines[i:j]):
+            if is_list:
+                emit(_list_md(block, nested))
+            else:
+                text = textwrap.dedent("\n".join(l.rstrip() for l in block)).split("\n")
+                emit(["    " + t if t else "" for t in text] if nested else ["```text", *text, "```"])
         i = j
     return out
 
@@ -311,6 +324,9 @@ class Header:
                             break
                         continue
                     elif t.text == "}" and depth == 0:  # belongs to the enclosing scope
+                        if i == start:  # a stray '}' (preprocessor branches?): passed over
+                            i += 1
+                            kind = "skip"
                         break
                 macro_call = macro_call and (i == start or t.kind in ("ws", "nl") or depth > 0 or t.text == "(")
                 i += 1
@@ -461,6 +477,9 @@ class Reader(Header):
                     pending = []
                 continue
             s = item
+            if s.kind in ("namespace", "extern") and s.body is None:  # namespace a = b; (an alias)
+                pending = []
+                continue
             if s.kind in ("namespace", "extern"):
                 name = re.sub(r"^(inline\s+)?namespace\s*", "", self.code(s.start, s.body[0])) if s.kind == "namespace" else "x"
                 if pending and not hidden and s.kind == "namespace" and not HIDDEN_NAMESPACE.match(name):

@@ -9,7 +9,8 @@ description, usage and options (CLI11's format: a description line, `Usage: ...`
     tools/gen_docs.py --bouncer build/tools/bouncer \
         [--docs DIR]            DIR/reference/index.md, DIR/reference/CMD.md,
                                 DIR/reference/python.md (the package's __all__, from its
-                                sources), DIR/reference/cpp.md (the public headers),
+                                sources), DIR/reference/cpp.md (the public headers:
+                                their comments and declarations, tools/cpp_api.py),
                                 DIR/pictures/*.png (copied from data/pictures/)
         [--man DIR]             DIR/bouncer.1, DIR/bouncer-CMD.1 (roff, section 1)
         [--completion FILE]     a bash completion script for bouncer

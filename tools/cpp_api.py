@@ -317,6 +317,13 @@ class Header:
                     elif t.text == "{" and depth == 0:
                         close = self.match_brace(i, end)
                         kind = kind or self.classify(start, i)
+                        if kind == "function" and body is None and self.init_colon(start, i) is not None:
+                            k = i - 1
+                            while k > start and toks[k].kind in TRIVIA:
+                                k -= 1
+                            if toks[k].kind == "ident" or toks[k].text == ">":  # a member initializer x{...}
+                                i = close + 1
+                                continue
                         if body is None:
                             body = (i, close)
                         i = close + 1

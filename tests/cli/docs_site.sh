@@ -172,6 +172,11 @@ intro = di.split("\n**Declares:**")[0]
 paragraphs = [p for p in intro.split("\n\n")[1:] if p and not p.startswith(("```", "- ", "#"))]
 if len(paragraphs) < 6 or "```text\na + b:  TwoSum" not in intro or intro.count("\n- ") < 4:
     problems.append(f"interval_double.hpp: {len(paragraphs)} paragraphs, want >= 6, the a + b table in a text block and 4 list items")
+# no function bodies: no `return` in the code of any C++ block (comments aside)
+for b in re.findall(r"```cpp\n(.*?)\n```", cpp, re.S):
+    for l in b.split("\n"):
+        if re.search(r"\breturn\b", re.sub(r"//.*", "", l)):
+            problems.append(f"a function body in a C++ block: {l.strip()[:60]!r}")
 for name in ["next_up", "round_to", "PointGuards", "contract_detail", "interval_double_detail::"]:
     if re.search(rf"^#### .*{name}", cpp, re.M) or re.search(rf"^\S*{name}\b.*\(", cpp, re.M):
         problems.append(f"{name}: from a detail namespace, but on the page")

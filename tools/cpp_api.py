@@ -20,7 +20,6 @@ tools/gen_docs.py (cpp_api_page).
 
     tools/cpp_api.py HEADER...     print the Markdown of these headers' sections (a preview)
 """
-import html
 import os
 import re
 import sys
@@ -189,7 +188,7 @@ TOKEN = re.compile(r"""
 | (?P<raw>R"(?P<delim>[^()\s\\]{0,16})\(.*?\)(?P=delim)")
 | (?P<string>"(?:\\.|[^"\\\n])*")
 | (?P<char>'(?:\\.|[^'\\\n])*')
-| (?P<number>\.?\d(?:[eEpP][+-]|[\w.']|)*)
+| (?P<number>\.?\d(?:[eEpP][+-]|[\w.'])*)
 | (?P<ident>[A-Za-z_]\w*)
 | (?P<nl>\n)
 | (?P<ws>[ \t\r\f\v]+)
@@ -361,7 +360,8 @@ class Header:
             return "class"
         if re.match(r"enum\b", h):
             return "enum"
-        if "(" in top_level(h) and "=" not in top_level(h.split("(")[0]) or "operator" in h.split("(")[0]:
+        before = h.split("(")[0]
+        if "(" in top_level(h) and "=" not in top_level(before) or re.search(r"\boperator\b", before):
             return "function"
         return "variable"
 

@@ -715,7 +715,8 @@ def page(src, version):
     anchors.add("C++ API")
     intro = (f"# C++ API\n\n*Generated from the headers by tools/gen_docs.py ({version}).* The library "
              "(`find_package(bouncer)` or `pkg-config bouncer`; [Using the library from CMake](../guide/cmake.md)) "
-             "is layered: each layer includes only the ones before it (tests/check_layers.py checks). "
+             "is layered: each layer includes only the ones before it (tests/check_layers.py checks; what each "
+             "holds: [Layout and development](../guide/development.md)). "
              "One section per public header: the comment it opens with, then its declarations at namespace "
              "scope, each with the comment above it in the header (class bodies with their public members; "
              "`detail` namespaces, private members and function bodies left out).\n")

@@ -379,6 +379,7 @@ def cpp_api_page(src, version):
     layer: the comment that opens it, with its layout, and its public declarations with their
     comments (tools/cpp_api.py reads them)."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    sys.dont_write_bytecode = True  # no tools/__pycache__ in the source tree
     import cpp_api
     return cpp_api.page(src, version)
 

@@ -9,7 +9,8 @@ description, usage and options (CLI11's format: a description line, `Usage: ...`
     tools/gen_docs.py --bouncer build/tools/bouncer \
         [--docs DIR]            DIR/reference/index.md, DIR/reference/CMD.md,
                                 DIR/reference/python.md (the package's __all__, from its
-                                sources), DIR/reference/cpp.md (the public headers),
+                                sources), DIR/reference/cpp.md (the public headers:
+                                their comments and declarations, tools/cpp_api.py),
                                 DIR/pictures/*.png (copied from data/pictures/)
         [--man DIR]             DIR/bouncer.1, DIR/bouncer-CMD.1 (roff, section 1)
         [--completion FILE]     a bash completion script for bouncer
@@ -375,40 +376,12 @@ def python_api_page(src, version):
 
 def cpp_api_page(src, version):
     """docs/reference/cpp.md: every public header of the library (lib/include/bouncer), by
-    layer, with the comment that opens it (each header starts with what it is for)."""
-    root = os.path.join(src, "lib", "include", "bouncer")
-    layers = ["base", "scalar", "model", "analysis", "verify", "run", "io", "workflow"]
-    out = [f"# C++ API\n\n*Generated from the headers by tools/gen_docs.py ({version}).* The library "
-           "(`find_package(bouncer)` or `pkg-config bouncer`; [Using the library from CMake](../guide/cmake.md)) "
-           "is layered: each layer includes only the ones before it (tests/check_layers.py checks). "
-           "One section per public header, with the comment it opens with; the declarations and their "
-           "comments are in the header itself.\n"]
-    seen = set()
-    for layer in layers + sorted(d for d in os.listdir(root) if os.path.isdir(os.path.join(root, d)) and d not in layers):
-        d = os.path.join(root, layer)
-        if not os.path.isdir(d):
-            continue
-        headers = []
-        for dirpath, _, files in os.walk(d):
-            headers += [os.path.join(dirpath, f) for f in files if f.endswith(".hpp")]
-        if not headers:
-            continue
-        out.append(f"\n## {layer}\n")
-        for h in sorted(headers):
-            rel = os.path.relpath(h, os.path.join(src, "lib", "include"))
-            seen.add(rel)
-            comment = []
-            for line in open(h, encoding="utf-8"):
-                t = line.strip()
-                if t.startswith("//"):
-                    comment.append(t[2:].strip())
-                elif t == "" and not comment:
-                    continue
-                else:
-                    break
-            out.append(f"\n### `{rel}`\n\n")
-            out.append(" ".join(comment).strip() + "\n" if comment else "(no opening comment)\n")
-    return "".join(out)
+    layer: the comment that opens it, with its layout, and its public declarations with their
+    comments (tools/cpp_api.py reads them)."""
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    sys.dont_write_bytecode = True  # no tools/__pycache__ in the source tree
+    import cpp_api
+    return cpp_api.page(src, version)
 
 
 def write(path, text, written):

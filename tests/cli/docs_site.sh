@@ -4,7 +4,13 @@
 #     each page holds every option of that command's --help (read here with grep);
 #   - mkdocs.yml's nav lists every generated reference page (a new command needs its line);
 #   - the Python API page has a section for every name of bouncer.__all__, the C++ API page
-#     one for every public header;
+#     one for every public header; that page (tools/cpp_api.py) against the headers, read
+#     here line by line: every word of each header's opening comment, its formula and table
+#     lines kept as lines, every type at namespace scope (outside detail namespaces) under a
+#     heading, every one-line function declaration there in a C++ block followed by its
+#     comment, no function bodies, ImpactMap's public members without
+#     bodies; the check fails on a planted flattened formula and a dropped comment; a small
+#     header by hand (what is shown, what is left out) and a broken one (its comment, a note);
 #   - `mkdocs build --strict` succeeds (a warning, e.g. a link to a missing page, is an error);
 #   - tools/check_site_links.py finds every internal link, anchor and file of the built site,
 #     and no script, stylesheet or image loaded from the network (the site works offline);
@@ -53,6 +59,44 @@ if len(names) < 20 or len(headers) < 20 or missing:
     sys.exit(1)
 PY
 
+# The C++ API page against the headers (tests/cli/lib/check_cpp_page.py: every word of each
+# opening comment, formula lines kept, types and one-line declarations with their comments,
+# no function bodies, ImpactMap's public members) ...
+CHECK_CPP=$SRC/tests/cli/lib/check_cpp_page.py
+"$PY" "$CHECK_CPP" "$SRC" "$TMP/docs/reference" >"$TMP/cpp.log" 2>&1 || fail cpp.md "$(head -12 "$TMP/cpp.log")"
+# ... and it can fail: the DoubleInterval header's first formula block run into its paragraph,
+# the comment of certify_periodic left out
+mkdir -p "$TMP/bad_ref"
+"$PY" - "$TMP/docs/reference/cpp.md" "$TMP/bad_ref/cpp.md" <<'PY'
+import re, sys
+md = open(sys.argv[1], encoding="utf-8").read()
+at = md.index("### `bouncer/scalar/interval_double.hpp`")
+block = re.compile(r"\n\n```text\n(.*?)\n```\n", re.S).search(md, at)
+md = md[:block.start()] + " " + " ".join(block.group(1).split()) + "\n" + md[block.end():]
+md = re.sub(r"\nOne certification at one parameter value[^\n]*\n", "\n", md)
+open(sys.argv[2], "w", encoding="utf-8").write(md)
+PY
+if "$PY" "$CHECK_CPP" "$SRC" "$TMP/bad_ref" >"$TMP/cpp_bad.log" 2>&1; then
+  fail cpp.md "the check passes a page with a formula block run into prose and a comment left out"
+fi
+grep -q "interval_double.hpp: the indented comment line" "$TMP/cpp_bad.log" && grep -q "certify_periodic" "$TMP/cpp_bad.log" ||
+  fail cpp.md "the check does not name the planted faults: $(head -5 "$TMP/cpp_bad.log")"
+# A header tools/cpp_api.py cannot follow (an unmatched brace) still gets its comment; a
+# small one, by hand: what is shown and what is left out.
+printf '// Opening line.\n//\n// Second paragraph:\n//     x = 1 + 2\n//   * item one\n//     continued\n//   * item two\n#pragma once\n#include <vector>\nnamespace bouncer {\nnamespace detail {\ninline int hidden_fn() { return 1; }\n}\nnamespace {\nint anon_fn();\n}\n// A documented function.\nint visible_fn(int x);\nextern template class Foo<int>;\n// A struct.\nstruct S {\n  int a = 1;  // field a\n  void f() const { body_marker(); }\n\n private:\n  int secret_;\n};\n}  // namespace bouncer\n' >"$TMP/small.hpp"
+"$PY" "$SRC/tools/cpp_api.py" "$TMP/small.hpp" >"$TMP/small.md" 2>&1 || fail cpp_api.py "exited $? on a small header: $(head -5 "$TMP/small.md")"
+for want in 'Opening line.' 'x = 1 + 2' '- item one continued' '- item two' '#### `visible_fn()`' 'int visible_fn(int x);' \
+            'A documented function.' '#### `S`' '  int a = 1;  // field a' '  void f() const;' 'A struct.'; do
+  grep -qxF -- "$want" "$TMP/small.md" || fail cpp_api.py "the small header's page lacks the line '$want': $(head -40 "$TMP/small.md")"
+done
+for unwanted in hidden_fn anon_fn 'Foo<int>' body_marker secret_ private include pragma; do
+  ! grep -qF -- "$unwanted" "$TMP/small.md" || fail cpp_api.py "the small header's page shows $unwanted"
+done
+printf '// Still documented.\nnamespace bouncer {\nstruct Broken {\n  int x;\n' >"$TMP/broken.hpp"
+"$PY" "$SRC/tools/cpp_api.py" "$TMP/broken.hpp" >"$TMP/broken.md" 2>"$TMP/broken.err" || fail cpp_api.py "exited $? on a broken header"
+grep -qx 'Still documented.' "$TMP/broken.md" && grep -q 'could not be read' "$TMP/broken.md" ||
+  fail cpp_api.py "a header it cannot follow does not get its comment and a note: $(cat "$TMP/broken.md" "$TMP/broken.err")"
+
 if ! (cd "$TMP" && mkdocs build --strict -q -d "$TMP/site") >"$TMP/mkdocs.log" 2>&1; then
   fail "mkdocs build --strict" "$(grep -E 'WARNING|ERROR|Error' "$TMP/mkdocs.log" | head -5)"
 fi
@@ -93,4 +137,4 @@ for target in links:
 if bad or len(links) < 10:
     sys.exit(f"README.md links to missing files: {bad}" if bad else f"only {len(links)} links in README.md")
 PY
-finish "docs_site: ${#cmds[@]} reference pages; mkdocs --strict builds; $(tail -1 "$TMP/links.log" | sed 's/^check_site_links: //')"
+finish "docs_site: ${#cmds[@]} reference pages; $(tail -1 "$TMP/cpp.log"); mkdocs --strict builds; $(tail -1 "$TMP/links.log" | sed 's/^check_site_links: //')"

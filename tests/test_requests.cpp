@@ -84,9 +84,9 @@ TEST(ContinueRequest, TheVariedParameterStartsAtTheRangesLowEnd) {
 
 TEST(ContinueRequest, Bounds) {
   Options o = continue_opts();
-  o.set("period", "200");
-  EXPECT_EQ(continue_request(o).period, 200);
-  o.set("period", "201");
+  o.set("period", "2000");  // kMaxBranchPeriod
+  EXPECT_EQ(continue_request(o).period, 2000);
+  o.set("period", "2001");
   refused("period", [&] { continue_request(o); });
   o = continue_opts();
   o.set("max-points", "2");

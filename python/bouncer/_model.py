@@ -693,7 +693,7 @@ class Model(_core.Model):
         model's own value of that parameter, and locates where the branch ends
         (``bouncer continue``, without its pictures).
 
-        period: q, an integer in [1, 200]
+        period: q, an integer in [1, 2000]
         guess: (theta, v) near the orbit at the model's parameter value
         range: (lo, hi), decimals with lo < hi, both valid for the model, containing the
             model's value of the parameter

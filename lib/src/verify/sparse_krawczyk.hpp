@@ -41,6 +41,8 @@ class Preconditioner {
   size_t size() const { return n_; }
   // out = C[r][c] * x, enclosed.
   void mul(size_t r, size_t c, const Mpfi& x, Mpfi& out) const;
+  // The double matrix, row-major (n > 3), or null (n <= 3).
+  const std::vector<double>* doubles() const { return fast_.empty() ? nullptr : &fast_; }
 
  private:
   size_t n_ = 0;

@@ -52,10 +52,13 @@ namespace bouncer {
 enum class Margin { knot, clearance, speed, sticking };
 constexpr int kMargins = 4;
 
-// The longest period continued (`continue --period`, `attractors --vary`'s branches): 200.
-// The border ends of such branches are proved by multiple shooting (verify/border_collision.hpp;
-// the period-193 ends at a = 26.799 and 26.8001, veldep c = 1000, a few seconds each).
-constexpr long kMaxBranchPeriod = 200;
+// The longest period continued (`continue --period`, `attractors --vary`'s branches): 2000,
+// as certify-periodic's (verify/periodic_certify.hpp kMaxCertifiedPeriod: the proofs' dense
+// preconditioner has (2Q)^2 entries). The border ends of such branches are proved by
+// multiple shooting (verify/border_collision.hpp; the period-193 ends at a = 26.799 and
+// 26.8001, veldep c = 1000, a few seconds each; the period-1096 ends around a = 21, about
+// two minutes each).
+constexpr long kMaxBranchPeriod = 2000;
 const char* name(Margin);
 
 // What one step of the orbit was: the smooth piece of the map it went through.

@@ -122,7 +122,7 @@ void merge_split_chains(AttractorsSweepResult& r);
 // With r.continue_branches, also continue_chains (r.certify_ends: certify).
 AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const GridOptions& run = {});
 
-// Each periodic or sticking chain of period <= kMaxBranchPeriod (analysis/continuation.hpp,
+// Each periodic or sticking chain of period <= kMaxBranchPeriod = 2000 (analysis/continuation.hpp,
 // `continue`'s limit) has its
 // branch continued (in the sweep's precision) from the
 // chain's orbit at the value of its largest share, over the sweep's range; a chain whose

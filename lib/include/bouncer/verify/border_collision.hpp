@@ -277,6 +277,8 @@ template <class T>
 CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, long period, const Branch<T>& b, long bits,
                                         bool one_sided = true) {
   using Tr = ScalarTraits<T>;
+  // The branch's length (each end's param: a* where located, else the last point).
+  const double span = Tr::to_double(b.high.param) - Tr::to_double(b.low.param);
   auto one = [&](const BranchEnd<T>& e, bool high) -> std::optional<CertifiedBranchEnd> {
     if (e.reason != EndReason::border) return std::nullopt;
     BranchEndQuestion c;
@@ -287,7 +289,7 @@ CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, 
                     parse_decimal("certify", Tr::to_string(e.last_point.v))};
     CertifiedBranchEnd r;
     r.high_end = high;
-    std::tie(r.lo, r.hi) = branch_end_interval(e.bracket_lo, e.bracket_hi, high, bits);
+    std::tie(r.lo, r.hi) = branch_end_interval(e.bracket_lo, e.bracket_hi, high, bits, span);
     c.lo = parse_decimal("certify", r.lo);
     c.hi = parse_decimal("certify", r.hi);
     c.high_end = high;

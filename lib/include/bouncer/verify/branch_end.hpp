@@ -43,12 +43,17 @@ struct BranchEndCertificate {
 
 // The interval next to an end located in the bracket (bracket_lo, bracket_hi): width
 // 1e-6 max(1, |g|) on the branch side of g, the bracket's end on the branch side (bracket_lo
-// at a high end, bracket_hi at a low end), as the round-trip texts of T (lo, hi).
+// at a high end, bracket_hi at a low end), as the round-trip texts of T (lo, hi). span > 0:
+// the branch's length, and the width at most span / 4, so that the interval stays on the
+// branch (the period 1096 at veldep c = 1000 lives on a window of 8.9e-6 around a = 21;
+// 1e-6 |a| would reach past its other end, where the orbit's events differ).
 template <class T>
-std::pair<std::string, std::string> branch_end_interval(const T& bracket_lo, const T& bracket_hi, bool high_end, long bits) {
+std::pair<std::string, std::string> branch_end_interval(const T& bracket_lo, const T& bracket_hi, bool high_end, long bits,
+                                                        double span = 0) {
   using Tr = ScalarTraits<T>;
   const T& g = high_end ? bracket_lo : bracket_hi;
-  const double width = std::max(1.0, std::fabs(Tr::to_double(g))) * 1e-6;
+  double width = std::max(1.0, std::fabs(Tr::to_double(g))) * 1e-6;
+  if (span > 0) width = std::min(width, span / 4);
   const T w = Tr::from_decimal(ScalarTraits<double>::to_string(width), bits);
   const T far = high_end ? T(g - w) : T(g + w);
   return {Tr::to_string(high_end ? far : g), Tr::to_string(high_end ? g : far)};

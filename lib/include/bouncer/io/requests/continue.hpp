@@ -14,7 +14,7 @@ struct ContinueRequest {
   ModelSpec model;               // at the start value of the varied parameter
   Parameter vary = Parameter::a; // --vary a (default) | eps (constant law) | c (veldep law)
   Decimal lo, hi;                // --range LO:HI (required), both valid models, start inside
-  long period = 0;               // --period Q (required), in [1, kMaxBranchPeriod = 200]
+  long period = 0;               // --period Q (required), in [1, kMaxBranchPeriod = 2000]
   InitialCondition guess;        // --guess THETA,V (required), a valid state of the model
   Precision precision;           // --precision: an analysis scalar (default double)
   ContinuationOptions opt;       // --step, --max-points, --max-iter, --beyond, the classifier

@@ -37,6 +37,18 @@ TEST(BranchEnd, IntervalIsOnTheBranchSideOfTheBracket) {
   EXPECT_NEAR(parse_decimal("hi", hi2).approx(), 0.5 + 1e-6, 1e-15);  // max(1, |g|) = 1
 }
 
+TEST(BranchEnd, IntervalStaysOnAShortBranch) {
+  // A branch of length 8e-6 (the period 1096 at veldep c = 1000 around a = 21): the width is
+  // a quarter of it, 2e-6, not 1e-6 |a| = 2.1e-5, which would reach past the branch's other end.
+  const auto [lo, hi] = branch_end_interval<double>(21.0000044, 21.0000045, true, 53, 8e-6);
+  EXPECT_NEAR(parse_decimal("hi", hi).approx() - parse_decimal("lo", lo).approx(), 2e-6, 1e-12);
+  const auto [lo2, hi2] = branch_end_interval<double>(20.9999955, 20.9999956, false, 53, 8e-6);
+  EXPECT_NEAR(parse_decimal("hi", hi2).approx() - parse_decimal("lo", lo2).approx(), 2e-6, 1e-12);
+  // A long branch keeps 1e-6 |a|.
+  const auto [lo3, hi3] = branch_end_interval<double>(31.5, 32.5, true, 53, 10.0);
+  EXPECT_NEAR(parse_decimal("hi", hi3).approx() - parse_decimal("lo", lo3).approx(), 31.5e-6, 1e-12);
+}
+
 TEST(BranchEnd, HighEndBoundIsBelowTheKnotAtA32) {
   const BranchEndQuestion q = question(branch_end_interval<double>(32 - 1e-9, 32, true, 53), true);
   const BranchEndCertificate c = certify_branch_end(q);

@@ -167,6 +167,44 @@ TEST(Continuation, PeriodDoublingWhereAMultiplierIsMinusOne) {
 // Newton's grid search of the velocity-dependent model finds (theta, v) = (0.0625, 4 + 4e-13)
 // as a "fixed point": the particle moves with the rising wall and lands after a flight of
 // a few ulps. It satisfies P(x) = x at every a, so it is refused as a start, not followed.
+TEST(Continuation, ThePeriod1096AttractorLivesOnAWindowOfNineMillionths) {
+  // veldep c = 1000: `attractors` at a = 21 finds a stable period 1096 (53% of a 32 x 32
+  // grid). Its branch ends at two knot border collisions within 1e-5 of 21. Independent of
+  // the continuation: the orbit started from its point just inside each end stays on a
+  // period-1096 cycle (classify), and just outside the window it does not.
+  const ModelSpec s = spec(Law::veldep, "21", "1", "1000");
+  const Model<double> m = make_model<double>(s, 53);
+  const Branch<double> b = continue_branch(m, Parameter::a, 1096, State<double>{2.4250358356353804e-05, 22.812185821199588},
+                                           20.9, 21.1);
+  ASSERT_TRUE(b.started) << b.note;
+  EXPECT_EQ(b.low.reason, EndReason::border);
+  EXPECT_EQ(b.high.reason, EndReason::border);
+  EXPECT_EQ(b.low.margin, static_cast<int>(Margin::knot));
+  EXPECT_EQ(b.high.margin, static_cast<int>(Margin::knot));
+  EXPECT_GT(b.low.param, 20.99999);
+  EXPECT_LT(b.high.param, 21.00001);
+  EXPECT_GT(b.high.param - b.low.param, 5e-6);
+  ClassifyOptions opt;
+  opt.transient = 20000;
+  opt.steps = 3000;
+  opt.max_period = 1100;
+  auto period_at = [&](double a, const State<double>& x) {
+    Model<double> ma = m;
+    ma.a = a;
+    return classify(ImpactMap<double>(ma), x, opt);
+  };
+  const State<double>& lo_pt = b.low.last_point;
+  const State<double>& hi_pt = b.high.last_point;
+  const Classification in_lo = period_at(b.low.bracket_hi + 1e-9, lo_pt);
+  EXPECT_EQ(in_lo.cls, OrbitClass::periodic);
+  EXPECT_EQ(in_lo.period, 1096);
+  const Classification in_hi = period_at(b.high.bracket_lo - 1e-9, hi_pt);
+  EXPECT_EQ(in_hi.cls, OrbitClass::periodic);
+  EXPECT_EQ(in_hi.period, 1096);
+  EXPECT_NE(period_at(b.low.param - 2e-6, lo_pt).period, 1096);
+  EXPECT_NE(period_at(b.high.param + 2e-6, hi_pt).period, 1096);
+}
+
 TEST(Continuation, TouchdownIsNotABranch) {
   const Model<double> m = make_model<double>(spec(Law::veldep, "12", "1", "100"), 53);
   const Branch<double> b = continue_branch(m, Parameter::a, 1, State<double>{0.0625, 4.0000000000004095}, 5.0, 60.0);

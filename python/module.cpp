@@ -1358,6 +1358,7 @@ class ModelCore {
       by["evidence"] = e.beyond.evidence;
       by["newton_orbit_events"] = e.beyond_orbit;
       by["newton_orbit_minimal_period"] = e.beyond_orbit_period;
+      by["newton_orbit_relation"] = name(e.beyond_relation);  // as continue's JSON
       d["beyond"] = by;
     } else {
       d["beyond"] = py::none();

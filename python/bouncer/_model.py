@@ -168,7 +168,8 @@ class BranchEnd:
         (1-based), knot: the wall knot involved (exact rational text), detail: one phrase
     last_point: the orbit's first point on the branch side
     beyond: what the map does just past a* (param, class_, period, lambda_, evidence,
-        newton_orbit_events, newton_orbit_minimal_period), or None; beyond_note
+        newton_orbit_events, newton_orbit_minimal_period, newton_orbit_relation: none |
+        continuation | other_branch | mother | unrelated, as continue's JSON), or None; beyond_note
     accuracy: how far param can be trusted (docs/guide/dynamics.md, bouncer continue, "Printed digits"):
         kind estimate | given | not_estimated; for an estimate a_star_backed and
         a_star_plus_minus (the digits it backs), a_star_digits, bracket_estimate (lo, hi),

@@ -391,6 +391,7 @@ def test_continue_branch_matches_the_cli():
             assert same_double(by["param"], cb["param"]) and by["class_"] == cb["class"]
             assert (by["period"], by["evidence"], by["newton_orbit_events"]) == (cb["period"], cb["evidence"],
                                                                                 cb["newton_orbit_events"])
+            assert by["newton_orbit_relation"] == cb["newton_orbit_relation"]
     assert len(b.bifurcations) == len(r["bifurcations"])
     assert b.corrector_runs == r["corrector_runs"]
 

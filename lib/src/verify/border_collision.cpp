@@ -376,17 +376,15 @@ Jet jet(const Setup& S, const std::vector<Mpfi>& x) {
 
 // A Krawczyk problem: the unknowns yi and the rows (indices into the variables and rows of
 // Jet), and optionally the free parameter (z = p in Z: the orbit alone, for every p in Z).
-// Above this many unknowns (periods above 200: the longest before shooting reached 1096) the preconditioner's LU, (2Q)^3 flops, costs
-// seconds: C is computed once per problem (at its first Krawczyk evaluation; copies share it)
-// instead of at every evaluation. Any C keeps the operator sound; below this size every
-// evaluation computes its own, as the proofs of the shorter periods were measured with.
-constexpr size_t kReuseFrom = 401;
-
 struct Problem {
   std::vector<size_t> rows, yi;
   bool free_p = false;
   Mpfi Z;
   Mpfr zhat;
+  // The preconditioner of a large system (detail::kLargeSystem unknowns or more), computed
+  // at the problem's first Krawczyk evaluation (copies share it): its LU costs seconds. Any C
+  // keeps the operator sound; a smaller system computes its own at every evaluation, as the
+  // proofs of the shorter periods were measured with.
   std::shared_ptr<std::optional<detail::Preconditioner>> C = std::make_shared<std::optional<detail::Preconditioner>>();
 };
 
@@ -479,7 +477,7 @@ std::vector<Mpfi> krawczyk(const Setup& S, const Problem& P, const std::vector<M
     for (const auto& [r, v] : column(J.f.size() - 1)) Fz[r] = v;
   try {
     std::optional<detail::Preconditioner> own;
-    std::optional<detail::Preconditioner>& slot = n >= kReuseFrom ? *P.C : own;
+    std::optional<detail::Preconditioner>& slot = n >= detail::kLargeSystem ? *P.C : own;
     if (!slot) slot.emplace(A, S.bits);
     const detail::Preconditioner& C = *slot;
     return detail::krawczyk_image(C, yhat, f, A, P.free_p ? &Fz : nullptr, P.free_p ? Mpfi(P.Z - thin(P.zhat)) : Mpfi(0, S.bits), Y,

@@ -103,7 +103,10 @@ Mpfi to_mpfi(const DoubleInterval& x, long bits) {
 // added to y^ in MPFI. They are small (f(y^) is a residual at the working precision, Y - y^
 // the box's radius), so double's relative accuracy costs nothing the proof could see: for a
 // period-1096 orbit at 64 bits, |C f| ~ 1e-19 and |M (Y - y^)| ~ 1e-20 are enclosed to
-// ~1e-35 and ~1e-36. The n^2 products cost nanoseconds instead of MPFI's ~100 ns.
+// ~1e-35 and ~1e-36. The n^2 products cost nanoseconds instead of MPFI's ~100 ns. Only for
+// large systems (kLargeSystem): on a smaller one (the period-37 grazing end at a = 21.5036,
+// veldep c = 1000, whose knot margin vanishes with the border) the double products left
+// the branch side's boxes too wide for a second margin's sign, which MPFI's products decide.
 std::vector<Mpfi> image_in_doubles(const std::vector<double>& c, const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
                                    const SparseColumns& A, const std::vector<Mpfi>* Fz, const Mpfi& dz,
                                    const std::vector<Mpfi>& Y, long bits) {
@@ -149,7 +152,7 @@ std::vector<Mpfi> image_in_doubles(const std::vector<double>& c, const std::vect
 std::vector<Mpfi> krawczyk_image(const Preconditioner& C, const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
                                  const SparseColumns& A, const std::vector<Mpfi>* Fz, const Mpfi& dz,
                                  const std::vector<Mpfi>& Y, long bits) {
-  if (C.doubles()) return image_in_doubles(*C.doubles(), yhat, f, A, Fz, dz, Y, bits);
+  if (C.doubles() && yhat.size() >= kLargeSystem) return image_in_doubles(*C.doubles(), yhat, f, A, Fz, dz, Y, bits);
   const size_t n = yhat.size();
   std::vector<Mpfi> D;  // Y - y^
   bool thin_box = true;  // Y = y^ (Newton): (I - C A) (Y - y^) = 0

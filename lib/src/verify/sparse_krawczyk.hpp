@@ -20,6 +20,12 @@
 
 namespace bouncer::detail {
 
+// A large system: from this many unknowns (shooting over periods above 200) the LU of the
+// preconditioner, (2Q)^3 flops, is computed once per problem (border_collision.cpp), and
+// K(Y)'s n^2 products with C are enclosed in double intervals instead of MPFI
+// (sparse_krawczyk.cpp says why that is sound and what it costs).
+constexpr size_t kLargeSystem = 401;
+
 // Why the operator could not be formed (a singular midpoint matrix, a non-finite image).
 struct KrawczykFailure : std::runtime_error {
   using std::runtime_error::runtime_error;

@@ -26,6 +26,11 @@ import subprocess
 import sys
 from dataclasses import dataclass, field
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.dont_write_bytecode = True  # no tools/__pycache__ in the source tree
+import cpp_api  # noqa: E402  (tools/cpp_api.py: the C++ API page, and the Markdown escaping both pages use)
+from cpp_api import md_escape  # noqa: E402
+
 
 @dataclass
 class Option:
@@ -129,13 +134,6 @@ def commands_of(top_help):
 
 
 # ---------------------------------------------------------------- Markdown reference pages
-
-def md_escape(s):
-    s = s.replace("\\", "\\\\")
-    for ch in "`*_[]":
-        s = s.replace(ch, "\\" + ch)
-    return s.replace("<", "&lt;").replace(">", "&gt;")
-
 
 def option_signature(o):
     sig = ", ".join(o.names)
@@ -378,9 +376,6 @@ def cpp_api_page(src, version):
     """docs/reference/cpp.md: every public header of the library (lib/include/bouncer), by
     layer: the comment that opens it, with its layout, and its public declarations with their
     comments (tools/cpp_api.py reads them)."""
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    sys.dont_write_bytecode = True  # no tools/__pycache__ in the source tree
-    import cpp_api
     return cpp_api.page(src, version)
 
 

@@ -129,7 +129,7 @@ AttractorsSweepResult sweep_attractors(const AttractorsSweepRequest& r, const Gr
 // orbit at that value lies on a branch already continued (same period, Newton from the
 // branch's nearest orbit converging onto the chain's) is that branch, not continued again.
 // Each chain's appearances and disappearances inside the range are tied to the branch events;
-// with certify, the events so tied (and only they) are proved: border ends on both sides of
+// with certify, every event of every branch (tied or not) is proved: border ends on both sides of
 // a* (verify/border_collision.hpp certify_branch_ends), period doublings
 // (certify_period_doubling) and folds (certify_fold); the other ends are reported, not proved.
 // The proofs run on `threads` workers (GridOptions::threads); the result does not depend on it.

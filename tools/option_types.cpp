@@ -13,7 +13,7 @@ namespace bouncer::cli {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, std::string_view>, 73> kinds{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 74> kinds{{
     // decimals (exact: a run encloses or rounds them as its precision says)
     {"a", "NUMBER"}, {"eps", "NUMBER"}, {"c", "NUMBER"}, {"theta", "NUMBER"}, {"v", "NUMBER"},
     {"step", "NUMBER"}, {"beyond", "NUMBER"}, {"tolerance", "NUMBER"}, {"lift", "NUMBER"},
@@ -41,7 +41,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 73> kinds{{
     // one word of a stated set (the help lists them)
     {"model", "WORD"}, {"wall", "WALL"}, {"veldep-collapse", "on|off"}, {"downward-sticking", "WORD"},
     {"palette", "WORD"}, {"vary", "a|eps|c"}, {"show", "WORD"}, {"method", "WORD"}, {"sampling", "WORD"},
-    {"family", "auto|on|off"}, {"prove-attractor", "on|off"}, {"curves", "WORD"},
+    {"family", "auto|on|off"}, {"formulation", "auto|composed|shooting"}, {"prove-attractor", "on|off"}, {"curves", "WORD"},
 }};
 
 }  // namespace

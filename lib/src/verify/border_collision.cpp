@@ -546,32 +546,11 @@ bool all_inside(const std::vector<Mpfi>& K, const std::vector<Mpfi>& Y) {
 // K(Y) n Y repeatedly: the tight enclosure of the unique zero in the proof box.
 std::vector<Mpfi> prove_tight(const Setup& S, const Problem& P, const std::vector<Mpfr>& yhat) {
   const std::vector<Mpfi> f = residual(S, P, yhat);
-  std::vector<Mpfr> r;
-  for (size_t i = 0; i < yhat.size(); ++i) {
-    Mpfi ulps = abs(thin(yhat[i])) + 1;
-    mpfi_mul_2si(ulps.get(), ulps.get(), -(S.bits - 8));
-    Mpfi s = ulps;
-    for (const Mpfi& fi : f) s += abs(fi);
-    r.push_back(s.upper());
+  try {
+    return detail::prove_by_inflation(yhat, f, [&](const std::vector<Mpfi>& Y) { return krawczyk(S, P, yhat, f, Y); }, S.bits, 8).Y;
+  } catch (const detail::KrawczykFailure& e) {
+    throw Fail(e.what());
   }
-  for (int it = 0; it < 24; ++it) {
-    std::vector<Mpfi> Y;
-    for (size_t i = 0; i < yhat.size(); ++i) Y.push_back(Mpfi(Mpfr(yhat[i] - r[i]), Mpfr(yhat[i] + r[i])));
-    const std::vector<Mpfi> K = krawczyk(S, P, yhat, f, Y);
-    if (all_inside(K, Y)) {
-      std::vector<Mpfi> T;
-      for (size_t i = 0; i < K.size(); ++i) T.push_back(intersect(K[i], Y[i]));
-      return tighten(S, P, yhat, T, 8);
-    }
-    for (size_t i = 0; i < yhat.size(); ++i) {
-      Mpfr grown(S.bits);
-      grown = abs(K[i] - thin(yhat[i])).upper() * 2;
-      Mpfr doubled(S.bits);
-      doubled = r[i] * 2;
-      r[i] = mpfr_greater_p(grown.get(), doubled.get()) ? grown : doubled;
-    }
-  }
-  throw Fail("the Krawczyk operator did not map any small box around the Newton point into itself");
 }
 
 // The period-Q point x(p) at one parameter value p (thin), enclosed tightly.

@@ -479,58 +479,21 @@ class Shooting {
     return y;
   }
 
-  struct Proof {
-    std::vector<Mpfi> Y0, K0;  // K(Y0) in the interior of Y0
-    std::vector<Mpfi> Y;       // the zero, enclosed: K(Y) n Y, tightened
-    int inflations = 0;
-  };
-
-  // Epsilon inflation around y^ (refined first), then Y <- K(Y) n Y.
-  Proof prove(const std::vector<Mpfr>& start) {
+  // Epsilon inflation around y^ (refined first), then Y <- K(Y) n Y (sparse_krawczyk.hpp).
+  detail::InflationProof prove(const std::vector<Mpfr>& start) {
     const std::vector<Mpfr> yhat = refine(start);
     const std::vector<Mpfi> f = residual(yhat);
-    Mpfi fsum(0, bits_);
-    for (const Mpfi& x : f) fsum += abs(x);
-    std::vector<Mpfr> r;
-    for (const Mpfr& v : yhat) {
-      Mpfi ulps = abs(thin(v)) + 1;
-      mpfi_mul_2si(ulps.get(), ulps.get(), -(bits_ - 8));
-      r.push_back(Mpfi(ulps + fsum).upper());
+    try {
+      return detail::prove_by_inflation(
+          yhat, f,
+          [&](const std::vector<Mpfi>& Y) {
+            throw_if_cancelled();
+            return image(yhat, f, Y);
+          },
+          bits_, 6);
+    } catch (const detail::KrawczykFailure& e) {
+      throw NotCertified(e.what());
     }
-    for (int it = 0; it < 24; ++it) {
-      throw_if_cancelled();
-      std::vector<Mpfi> Y;
-      for (size_t i = 0; i < yhat.size(); ++i) Y.push_back(Mpfi(Mpfr(yhat[i] - r[i]), Mpfr(yhat[i] + r[i])));
-      const std::vector<Mpfi> K = image(yhat, f, Y);
-      bool in = true;
-      for (size_t i = 0; i < K.size() && in; ++i) in = strictly_inside(K[i], Y[i]);
-      if (in) {
-        Proof p{Y, K, {}, it};
-        for (size_t i = 0; i < K.size(); ++i) p.Y.push_back(intersect(K[i], Y[i]));
-        for (int t = 0; t < 6; ++t) {
-          const std::vector<Mpfi> KT = image(yhat, f, p.Y);
-          bool shrank = false;
-          for (size_t i = 0; i < KT.size(); ++i) {
-            const Mpfi N = intersect(KT[i], p.Y[i]);
-            if (N.has_nan()) throw NotCertified("K(Y) n Y is empty while tightening the proved box (an enclosure is inconsistent)");
-            Mpfr half = p.Y[i].width();
-            mpfr_div_2ui(half.get(), half.get(), 1, MPFR_RNDN);
-            if (mpfr_less_p(N.width().get(), half.get())) shrank = true;
-            p.Y[i] = N;
-          }
-          if (!shrank) break;
-        }
-        return p;
-      }
-      for (size_t i = 0; i < yhat.size(); ++i) {
-        Mpfr grown(bits_);
-        grown = abs(K[i] - thin(yhat[i])).upper() * 2;
-        Mpfr doubled(bits_);
-        doubled = r[i] * 2;
-        r[i] = mpfr_greater_p(grown.get(), doubled.get()) ? grown : doubled;
-      }
-    }
-    throw NotCertified("multiple shooting: the Krawczyk operator did not map any box around the Newton orbit into itself");
   }
 
   // Trace and determinant of the period map's Jacobian J_{Q-1} ... J_0 over the boxes Y.
@@ -712,7 +675,7 @@ class Attempt1 {
       start.push_back(at_bits(x.theta, bits_));
       start.push_back(at_bits(x.v, bits_));
     }
-    const Shooting::Proof p = S.prove(start);
+    const detail::InflationProof p = S.prove(start);
     c.outcome = PeriodicOutcome::isolated;
     c.shooting = true;
     c.unknowns = "theta, v (of every point: multiple shooting)";

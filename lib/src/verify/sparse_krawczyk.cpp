@@ -109,7 +109,7 @@ Mpfi to_mpfi(const DoubleInterval& x, long bits) {
 // the branch side's boxes too wide for a second margin's sign, which MPFI's products decide.
 std::vector<Mpfi> image_in_doubles(const std::vector<double>& c, const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
                                    const SparseColumns& A, const std::vector<Mpfi>* Fz, const Mpfi& dz,
-                                   const std::vector<Mpfi>& Y, long bits) {
+                                   const std::vector<Mpfi>& Y) {
   const size_t n = yhat.size();
   std::vector<DoubleInterval> fd(n), D(n);
   bool thin_box = true;
@@ -143,7 +143,6 @@ std::vector<Mpfi> image_in_doubles(const std::vector<double>& c, const std::vect
     if (k.has_nan() || !k.bounded()) throw KrawczykFailure("the Krawczyk image is not finite");
     K.push_back(k);
   }
-  (void)bits;
   return K;
 }
 
@@ -152,7 +151,7 @@ std::vector<Mpfi> image_in_doubles(const std::vector<double>& c, const std::vect
 std::vector<Mpfi> krawczyk_image(const Preconditioner& C, const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
                                  const SparseColumns& A, const std::vector<Mpfi>* Fz, const Mpfi& dz,
                                  const std::vector<Mpfi>& Y, long bits) {
-  if (C.doubles() && yhat.size() >= kLargeSystem) return image_in_doubles(*C.doubles(), yhat, f, A, Fz, dz, Y, bits);
+  if (C.doubles() && yhat.size() >= kLargeSystem) return image_in_doubles(*C.doubles(), yhat, f, A, Fz, dz, Y);
   const size_t n = yhat.size();
   std::vector<Mpfi> D;  // Y - y^
   bool thin_box = true;  // Y = y^ (Newton): (I - C A) (Y - y^) = 0
@@ -190,6 +189,52 @@ std::vector<Mpfi> krawczyk_image(const Preconditioner& C, const std::vector<Mpfr
     K.push_back(k);
   }
   return K;
+}
+
+InflationProof prove_by_inflation(const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
+                                  const std::function<std::vector<Mpfi>(const std::vector<Mpfi>&)>& image, long bits,
+                                  int rounds) {
+  Mpfi fsum(0, bits);
+  for (const Mpfi& x : f) fsum += abs(x);
+  std::vector<Mpfr> r;
+  for (const Mpfr& v : yhat) {
+    Mpfi ulps = abs(thin(v)) + 1;
+    mpfi_mul_2si(ulps.get(), ulps.get(), -(bits - 8));
+    r.push_back(Mpfi(ulps + fsum).upper());
+  }
+  for (int it = 0; it < 24; ++it) {
+    std::vector<Mpfi> Y;
+    for (size_t i = 0; i < yhat.size(); ++i) Y.push_back(Mpfi(Mpfr(yhat[i] - r[i]), Mpfr(yhat[i] + r[i])));
+    const std::vector<Mpfi> K = image(Y);
+    bool in = true;
+    for (size_t i = 0; i < K.size() && in; ++i) in = mpfi_is_strictly_inside(K[i].get(), Y[i].get()) > 0;
+    if (in) {
+      InflationProof p{Y, K, {}, it};
+      for (size_t i = 0; i < K.size(); ++i) p.Y.push_back(intersect(K[i], Y[i]));
+      for (int t = 0; t < rounds; ++t) {
+        const std::vector<Mpfi> KT = image(p.Y);
+        bool shrank = false;
+        for (size_t i = 0; i < KT.size(); ++i) {
+          const Mpfi N = intersect(KT[i], p.Y[i]);
+          if (N.has_nan()) throw KrawczykFailure("K(B) n B is empty while tightening (an enclosure is inconsistent)");
+          Mpfr half = p.Y[i].width();
+          mpfr_div_2ui(half.get(), half.get(), 1, MPFR_RNDN);
+          if (mpfr_less_p(N.width().get(), half.get())) shrank = true;
+          p.Y[i] = N;
+        }
+        if (!shrank) break;
+      }
+      return p;
+    }
+    for (size_t i = 0; i < yhat.size(); ++i) {
+      Mpfr grown(bits);
+      grown = abs(K[i] - thin(yhat[i])).upper() * 2;
+      Mpfr doubled(bits);
+      doubled = r[i] * 2;
+      r[i] = mpfr_greater_p(grown.get(), doubled.get()) ? grown : doubled;
+    }
+  }
+  throw KrawczykFailure("the Krawczyk operator did not map any small box around the Newton point into itself");
 }
 
 }  // namespace bouncer::detail

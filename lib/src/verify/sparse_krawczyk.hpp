@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -61,5 +62,19 @@ class Preconditioner {
 std::vector<Mpfi> krawczyk_image(const Preconditioner& C, const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
                                  const SparseColumns& A, const std::vector<Mpfi>* Fz, const Mpfi& dz,
                                  const std::vector<Mpfi>& Y, long bits);
+
+// Epsilon inflation (Rump) around y^ with residual f = f(y^): boxes y^ +- r, r from the
+// residual's size and a few ulps of y^, grown (to max(2 |K - y^|, 2 r)) until K(Y) lies in
+// the interior of Y (at most 24 times); then Y <- K(Y) n Y, which keeps the unique zero,
+// until no component's width halves (at most `rounds` times). `image` is K over a box.
+// Throws KrawczykFailure when no box maps into itself or an intersection is empty.
+struct InflationProof {
+  std::vector<Mpfi> Y0, K0;  // K(Y0) in the interior of Y0
+  std::vector<Mpfi> Y;       // the zero, enclosed (tightened)
+  int inflations = 0;
+};
+InflationProof prove_by_inflation(const std::vector<Mpfr>& yhat, const std::vector<Mpfi>& f,
+                                  const std::function<std::vector<Mpfi>(const std::vector<Mpfi>&)>& image, long bits,
+                                  int rounds);
 
 }  // namespace bouncer::detail

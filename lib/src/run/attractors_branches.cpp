@@ -101,22 +101,20 @@ ContinuedBranch continue_one(const AttractorsSweepResult& r, const Model<T>& m, 
   return cb;
 }
 
-// Krawczyk on the events of a branch marked needed[e] (all of them, in the sweep): border ends
+// Krawczyk on every event of a branch, tied to a chain's transition or not (a branch ends
+// where it ends whether or not a basin at the sampled values shows it: the period 3 goes on
+// to a* = 25.40222, where its basin is below one start in 1024): border ends
 // (certify_branch_ends, both sides of a*), period doublings (certify_period_doubling) and
-// folds, ends or on the branch (certify_fold).
+// folds, ends or on the branch (certify_fold). Range ends and unexplained ends have no proof.
 template <class T>
-void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, ContinuedBranch& cb, const std::vector<bool>& needed) {
+void certify_events(const AttractorsSweepRequest& s, const Branch<T>& b, ContinuedBranch& cb) {
   const long bits = s.point.precision.bits;
   if (!b.started) return;
-  Branch<T> ends = b;  // the ends not needed are not certified
-  if (!needed.front()) ends.low.reason = EndReason::range_end;
-  if (!needed.back()) ends.high.reason = EndReason::range_end;
-  const CertifiedBranchEnds c = certify_branch_ends(s.point.model, s.vary, cb.period, ends, bits, /*one_sided=*/false);
+  const CertifiedBranchEnds c = certify_branch_ends(s.point.model, s.vary, cb.period, b, bits, /*one_sided=*/false);
   take_certificate(cb.events.front(), c.low);
   take_certificate(cb.events.back(), c.high);
   for (size_t e = 0; e < cb.events.size(); ++e) {
     BranchEventInfo& i = cb.events[e];
-    if (!needed[e]) continue;
     std::optional<PeriodDoublingCertificate> smooth;
     if (i.end) {
       smooth = certify_smooth_end(s.point.model, s.vary, cb.period, b, i.high ? b.high : b.low, bits);
@@ -221,12 +219,6 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify, int t
     }
   }
   if (certify) {
-    // Every event of every branch, tied to a transition or not: a branch found by the sweep
-    // ends where it ends whether or not a basin at the sampled values shows it (the period 3
-    // goes on to a* = 25.40222, where its basin is below one start in 1024; issue 23 asks for
-    // each stable branch's two ends certified). Range ends and unexplained ends have no proof.
-    std::vector<std::vector<bool>> needed(out.branches.size());
-    for (size_t b = 0; b < out.branches.size(); ++b) needed[b].assign(out.branches[b].events.size(), true);
     // The branches' proofs are independent: `threads` workers take them in turn (each writes
     // only its branch, so the result does not depend on the number of threads).
     std::atomic<size_t> next{0};
@@ -234,9 +226,8 @@ ChainBranches continue_typed(const AttractorsSweepResult& r, bool certify, int t
     std::exception_ptr error;
     auto work = [&] {
       for (size_t b; (b = next++) < out.branches.size() && !failed;) {
-        if (std::find(needed[b].begin(), needed[b].end(), true) == needed[b].end()) continue;
         try {
-          certify_events(s, branches[b], out.branches[b], needed[b]);
+          certify_events(s, branches[b], out.branches[b]);
         } catch (...) {
           if (!failed.exchange(true)) error = std::current_exception();
         }

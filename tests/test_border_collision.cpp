@@ -15,6 +15,7 @@
 // 2437424316, from a different algorithm: bisection on the margin along Newton orbits).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "bouncer/analysis/continuation.hpp"
@@ -92,6 +93,61 @@ TEST(BorderCollision, StickingThresholdInEpsIsTwoMinusSqrt3) {
   got = hull(got, hi);
   EXPECT_TRUE(got.contains(truth)) << c.parameter.lo << " " << c.parameter.hi;
   EXPECT_LE(c.width, 1e-30);
+}
+
+// The long-flight period-1 sticking orbit through the release state (claims row 17), derived
+// by hand: from (1/2, 4) the height above the peak is 4t - a t^2/2, so for a < 8 the particle
+// clears the next peak (t = 1) by 4 - a/2 and lands on the falling wall 1 - 4(t - 1) where
+// a t^2 - 16 t + 8 = 0, with relative speed q = a t - 8 = sqrt(8 (8 - a)); below the sticking
+// threshold it collapses there (chatter time 2 eps q / (a (1 - eps)) within the 3/2 - t left
+// of the fall), rides down, through the upward turn (the paper's convention) and up to the
+// next peak: period 1 for every eps < 1. Its branch in a ends
+//   - at a* = 8 (for every eps): the clearance 4 - a/2 at the peak, the impact's distance to
+//     the peak and the impact speed reach 0 together: a corner touchdown;
+//   - at eps = 1/2, at the sticking threshold 2q/a = 3/2 - t: with the impact equation,
+//     9a^2 + 192a - 2048 = 0, a* = 32 (sqrt(3) - 1) / 3 = 7.8085...
+BorderCollisionQuestion touchdown_question(const std::string& eps, const std::pair<std::string, std::string>& interval,
+                                           bool high) {
+  BorderCollisionQuestion q = release_question(interval, high);
+  q.end.model = test_support::spec(Law::constant, "7.9", eps);
+  return q;
+}
+
+TEST(BorderCollision, CornerTouchdownAt8IsEnclosedTwoSidedForEveryEps) {
+  for (const char* eps : {"0.5", "0.25", "0.9"}) {
+    const BorderCollisionCertificate c =
+        certify_border_collision(touchdown_question(eps, branch_end_interval<double>(8 - 1e-9, 8, true, 53), true));
+    ASSERT_TRUE(c.certified) << eps << ": " << c.statement;
+    EXPECT_TRUE(c.through_release);
+    // Three margins vanish together at the peak (knot 1); the one named carries the others.
+    EXPECT_TRUE(c.margin == Margin::clearance || c.margin == Margin::knot) << c.margin_text;
+    EXPECT_EQ(c.knot, 1) << c.margin_text;
+    EXPECT_LE(c.lo, mpq_class(8));
+    EXPECT_GE(c.hi, mpq_class(8));
+    EXPECT_LE(mpq_class(c.hi - c.lo).get_d(), 1e-30);
+    EXPECT_LT(c.checked_at, mpq_class(8));  // on the branch side, not a* itself
+    EXPECT_LT(c.z_lo, c.lo);
+    EXPECT_EQ(c.events, "S1^");
+    if (c.margin == Margin::clearance) {
+      EXPECT_NE(c.margin_text.find("corner touchdown"), std::string::npos) << c.margin_text;
+    }
+  }
+}
+
+TEST(BorderCollision, StickingThresholdThroughAnUpwardTurnIs32Sqrt3Minus1Over3) {
+  const double guess = 32 * (std::sqrt(3.0) - 1) / 3;
+  const BorderCollisionCertificate c = certify_border_collision(
+      touchdown_question("0.5", branch_end_interval<double>(guess - 1e-9, guess + 1e-9, false, 53), false));
+  ASSERT_TRUE(c.certified) << c.statement;
+  EXPECT_EQ(c.margin, Margin::sticking) << c.margin_text;
+  const Mpfi truth = 32 * (sqrt(Mpfi(3, 256)) - 1) / 3;
+  Mpfi got(256), hi(256);
+  ASSERT_TRUE(got.set_decimal(c.parameter.lo));
+  ASSERT_TRUE(hi.set_decimal(c.parameter.hi));
+  got = hull(got, hi);
+  EXPECT_TRUE(got.contains(truth)) << c.parameter.lo << " " << c.parameter.hi;
+  EXPECT_LE(c.width, 1e-30);
+  EXPECT_GT(c.checked_at, c.hi);
 }
 
 TEST(BorderCollision, SameEndWithTheMarginGivenAndAtMoreBits) {

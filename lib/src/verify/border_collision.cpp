@@ -285,6 +285,42 @@ bool coincident_clearance(const Setup& S, const std::vector<Mpfi>& mv, size_t i,
 // The border margin, oriented (> 0 on the branch side).
 Mpfi oriented(const Setup& S, const std::vector<Mpfi>& mv, size_t i) { return S.sign[i] > 0 ? mv[i] : Mpfi(-mv[i]); }
 
+// Two margins of a step whose signs follow from its entry clearance, by identities. The gap
+// to the line of the impact segment j, g(t) = g0 + W t - a t^2/2, keeps
+// g'(t)^2 + 2 a g(t) = W^2 + 2 a g0 = D at every t. Let t_k be the time the flight enters
+// segment j's window, at its start knot in the impact's wall period (the step's last
+// clearance, c = g(t_k)). Then
+//   - the impact speed: D = g'(t_k)^2 + 2 a c >= 2 a c, so D > 0 where c > 0;
+//   - the impact's distance to that knot, t* - t_k = (g'(t_k) + sqrt(D)) / a, > 0 where c > 0
+//     (sqrt(D) > |g'(t_k)|: t_k lies strictly between the roots, t* the larger);
+// and for a flight that departs from segment j itself (no knot passed) g0 = 0 and D = W^2, W
+// its departure margin. So these margins are > 0 wherever that clearance (or departure
+// margin) is > 0: certainly so over the box, or because it is the border margin itself, > 0
+// on the branch side by steps 2 and 3. This is what makes a corner touchdown provable: the
+// release orbit at a = 8 lands on the peak with zero relative speed, where its clearance at
+// the peak is 4 - a/2, D = 8 (8 - a) and the distance to the peak is of order sqrt(8 - a),
+// all 0 at a*; their own intervals (differences of terms near 64) cannot decide their signs
+// next to a*. It is also why a touchdown cannot end a branch alone: D reaches 0 only where c
+// and g'(t_k) do (a corner touchdown), or where the departure speed does.
+bool implied_by_entry(const Setup& S, const std::vector<Mpfi>& mv, size_t i) {
+  const MarginId& id = S.ids[i];
+  const bool speed = id.kind == static_cast<int>(Margin::speed);
+  const Piece& pc = S.pieces[static_cast<size_t>(id.step)];
+  if (!speed && !(id.kind == static_cast<int>(Margin::knot) && !id.end && id.knot == pc.segment)) return false;
+  long from = -1;  // the step's last clearance, else (the speed) its departure margin
+  for (size_t k = 0; k < S.ids.size(); ++k)
+    if (S.ids[k].step == id.step && S.ids[k].kind == static_cast<int>(Margin::clearance)) from = static_cast<long>(k);
+  if (from >= 0 && S.ids[static_cast<size_t>(from)].knot != pc.segment) return false;
+  if (from < 0) {
+    if (!speed || pc.from_segment != pc.segment || pc.periods != 0) return false;
+    for (size_t k = 0; k < S.ids.size(); ++k)
+      if (S.ids[k].step == id.step && S.ids[k].kind == kDeparture) from = static_cast<long>(k);
+    if (from < 0) return false;
+  }
+  if (from == S.border) return true;
+  return Tr::lt(Mpfi(0, S.bits), oriented(S, mv, static_cast<size_t>(from))) == Truth::yes;
+}
+
 // Values and Jacobian of the system over a box. Variables: the 2m point coordinates, then p
 // (index 2m); rows: the 2m orbit rows of Eval::g, then the border margin (index 2m). The
 // Jacobian is kept by columns, with only its structurally nonzero entries (shooting: each
@@ -304,7 +340,7 @@ Jet jet(const Setup& S, const std::vector<Mpfi>& x) {
   const bool flip = margin_row && S.sign[S.border] < 0;
   auto check = [](const IDual& y) {
     if (!ScalarTraits<IDual>::derivatives_finite(y))
-      throw Fail("the derivative enclosure over the box is not finite (a square root at 0: a touchdown)");
+      throw Fail("the derivative enclosure over the box is not finite (the enclosure of an impact speed over it reaches 0: the box is too wide at this precision)");
   };
   // One step (or the composed period, m = 1) from a start: run 0 differentiates along the
   // start (theta, v), run 1 along p. Returns the end and the margins with their derivatives.
@@ -581,10 +617,13 @@ Piece piece_of(const Model<Mpfr>& m, const State<Mpfr>& s, const StepResult<Mpfr
   }
   pc.periods = std::lround(Mpfr(s.theta + tau - th).to_double());
   if (pc.sticks) {
-    // The ride after the collapse must end at a release (a downward turn): with the
-    // --downward-sticking impact convention it may end in a collision at an upward turn,
-    // whose outcome this closed form does not model.
-    if (r.passed_upward_turn) throw Fail("the sticking step's ride passes an upward turn: not supported");
+    // The ride after the collapse must end at a release (a downward turn). Under the paper's
+    // convention (--downward-sticking paper, the models that stick) the particle rides through
+    // an upward turn to the next downward one (ImpactMap::ride), so the release state is
+    // still exact; with the impact convention an upward turn is a collision (r.corner), whose
+    // outcome this closed form does not model.
+    if (r.passed_upward_turn && r.corner)
+      throw Fail("the sticking step's ride ends in a collision at an upward turn (--downward-sticking impact): not supported");
     pc.release_knot = r.next.knot;
     pc.release_segment = r.segment;
     if (pc.release_knot < 0) throw Fail("the sticking step does not end at a wall knot");
@@ -664,7 +703,9 @@ bool step_confirms(const Setup& S, const std::vector<Mpfi>& x, const Mpfi& p) {
       const int seg = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
       if (r.kind != S.events[i].kind || seg != S.events[i].segment || r.corner != S.events[i].corner)
         throw Fail("the step's own events at the branch side's check point differ from the branch side's at step " +
-                   std::to_string(i));
+                   std::to_string(i) + " (the step: " + name(r.kind) + " on segment " + std::to_string(seg) +
+                   (r.corner ? " at a corner" : "") + "; the branch side: " + name(S.events[i].kind) + " on segment " +
+                   std::to_string(S.events[i].segment) + (S.events[i].corner ? " at a corner" : "") + ")");
       s = r.next;
     }
   } catch (const Undecided&) {
@@ -984,7 +1025,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
         // also tends to 0 at a* (the knot at a = 32, reached as the flight grazes that
         // corner) is positive on the side if it is monotone there (its derivative over the
         // side has one sign) and positive at both of the side's ends.
-        bool ok = coincident_clearance(S, ev.margins, i, P);
+        bool ok = implied_by_entry(S, ev.margins, i) || coincident_clearance(S, ev.margins, i, P);
         if (!ok && S.release) {
           if (!slopes) slopes = margin_slopes(S, P);
           const Mpfi& d = (*slopes)[i].d[0];
@@ -1029,7 +1070,13 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   // (the check covers its enclosure, so the decimal printed is a point checked).
   std::optional<std::string> checked;
   {
-    const Mpfr width = Mpfr(ahi - alo);
+    // The first point is the enclosure's width away from it, at least a few ulps: an a*
+    // found exactly (the corner touchdown at a = 8: [8, 8]) has width 0, and a* itself is
+    // not on the branch side.
+    Mpfr width = Mpfr(ahi - alo);
+    Mpfr ulps(bits);
+    mpfr_mul_2si(ulps.get(), Mpfr(abs(alo) + 1).get(), 8 - bits, MPFR_RNDU);
+    if (width.to_double() < ulps.to_double()) width = ulps;
     for (int k : {0, 8, 16, 32, 48, 64, 80, 96}) {
       Mpfr d(bits);
       mpfr_mul_2si(d.get(), width.get(), k, MPFR_RNDN);
@@ -1077,6 +1124,16 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     orbit_out = pts;
   }
   for (const State<Mpfi>& x : orbit_out) c.orbit.push_back({enclosure(x.theta), enclosure(x.v)});
+  // A clearance at the knot where the flight enters its impact segment takes the impact speed
+  // with it where the relative velocity there is 0 too (D = g'^2 + 2 a c, implied_by_entry):
+  // a corner touchdown. Say so where D's enclosure at a* holds 0.
+  if (bid.kind == static_cast<int>(Margin::clearance) && bid.knot == S.pieces[static_cast<size_t>(bid.step)].segment) {
+    const Eval at_star = evaluate(S, S.release ? std::vector<Mpfi>{} : pr.xstar, pr.pstar);
+    for (size_t k = 0; k < S.ids.size(); ++k)
+      if (S.ids[k].step == bid.step && S.ids[k].kind == static_cast<int>(Margin::speed) && at_star.margins[k].contains(Mpfi(0, bits)))
+        c.margin_text += std::string(" (and with it the impact speed: a corner touchdown; at a* the squared speed ") +
+                         (Tr::is_zero(at_star.margins[k]) == Truth::yes ? "is exactly 0" : "is enclosed in an interval holding 0") + ")";
+  }
   const std::string p = name(S.par);
   std::ostringstream s;
   // Short decimals, rounded so that each claim stays true: the branch side's interval

@@ -130,7 +130,7 @@ Derivatives derivatives(const Model<Mpfi>& m, Parameter par, const Box3& b, long
     const IDual* rows[2] = {&s.theta, &s.v};
     for (int r = 0; r < 2; ++r) {
       if (!ScalarTraits<IDual>::derivatives_finite(*rows[r]))
-        throw NotCertified("the Jacobian enclosure over the box is not finite (a square root at 0: grazing or touchdown)");
+        throw NotCertified("the Jacobian enclosure over the box is not finite (the enclosure of an impact speed over it reaches 0: the box is too wide at this precision, or the orbit touches down)");
       if (run == 0) {
         out.value[r] = rows[r]->v;
         out.D[r][0] = rows[r]->d[0];
@@ -420,7 +420,7 @@ class Shooting {
       for (const IDual* x : {&s.theta, &s.v})
         if (!ScalarTraits<IDual>::derivatives_finite(*x))
           throw NotCertified("the Jacobian enclosure of step " + std::to_string(i + 1) +
-                             " over its box is not finite (a square root at 0: grazing or touchdown)");
+                             " over its box is not finite (the enclosure of an impact speed over it reaches 0: the box is too wide at this precision, or the orbit touches down)");
       J.push_back({s.theta.d[0], s.theta.d[1], s.v.d[0], s.v.d[1]});
     }
     return J;

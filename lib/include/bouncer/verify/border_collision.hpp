@@ -53,9 +53,13 @@
 // and positive at both of its ends is positive on it (the knot and the grazing at a = 32).
 //
 // Grazing (clearance) and sticking ends are the same construction with another margin. A
-// touchdown (impact speed 0) is not: the map has a square root singularity there and the
-// Krawczyk operator fails (reported as not certified). Any other margin that vanishes at a*
-// makes step 4 fail: nothing is claimed.
+// touchdown (impact speed 0) never ends a branch alone: the gap to the impact segment's line
+// keeps g'^2 + 2 a g = D (the squared impact speed) along the flight, so D >= 2 a c with c the
+// clearance at the knot where the flight enters that segment (and D = W^2 for a flight that
+// departs from it). The impact speed and the impact's distance to that knot are therefore
+// positive wherever that clearance is, which step 4 uses; a corner touchdown (c, g' and D
+// reaching 0 together, the release orbit at a = 8) is proved as the clearance's end. Any other
+// margin that vanishes at a* makes step 4 fail: nothing is claimed.
 //
 // Long periods (Formulation): the same proof with all Q orbit points as unknowns, Y a
 // box per point, G_i = piece_i(x_i; p) - x_{i+1 mod Q}; every margin of step i is evaluated

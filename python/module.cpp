@@ -664,7 +664,7 @@ void put_attractors(py::dict& d, const std::vector<AttractorCell>& cells) {
 }
 
 // --confirm (run/cells.hpp GridConfirm): each start's verdict ("unchecked" outside the
-// sample), and the class and period at the check's first precision.
+// sample), the class and period at the check's first precision, and what differs.
 void put_confirm(py::dict& d, const std::vector<AttractorCell>& cells, const GridConfirm& g) {
   std::vector<std::string> verdicts, names = py::cast<std::vector<std::string>>(d["class_names"]);
   d["confirm"] = codes_of(cells, [](const AttractorCell& c) { return c.confirm ? std::string(name(*c.confirm)) : std::string("unchecked"); }, verdicts);
@@ -672,6 +672,11 @@ void put_confirm(py::dict& d, const std::vector<AttractorCell>& cells, const Gri
   d["check_class"] = codes_of(cells, [](const AttractorCell& c) { return name(c.check_cls); }, names);
   d["check_period"] = ints_of(cells, [](const AttractorCell& c) { return c.check_period; });
   d["class_names"] = names;
+  // What differs where run and check disagree ("accelerator period 33 vs 11"), "" elsewhere.
+  std::vector<std::string> differs;
+  differs.reserve(cells.size());
+  for (const AttractorCell& c : cells) differs.push_back(c.differs_in);
+  d["differs_in"] = differs;
   d["confirm_bits"] = g.bits;
 }
 

@@ -366,6 +366,33 @@ TEST(Classify, SameBehaviour) {
   EXPECT_FALSE(same_behaviour(x, y));
 }
 
+TEST(Classify, BehaviourDifferenceNamesWhatDiffers) {
+  Classification x, y;
+  x.cls = y.cls = OrbitClass::periodic;
+  x.period = y.period = 7;
+  EXPECT_EQ(behaviour_difference(x, y), "");
+  y.period = 3;
+  EXPECT_EQ(behaviour_difference(x, y), "period");
+  y.cls = OrbitClass::chaotic;
+  EXPECT_EQ(behaviour_difference(x, y), "class");
+  // Unbounded in both, period 0 in both: the growth says why they differ.
+  x.cls = y.cls = OrbitClass::unbounded;
+  x.period = y.period = 0;
+  x.growth_kind = y.growth_kind = "accelerator";
+  x.accel_period = 33;
+  y.accel_period = 11;
+  EXPECT_EQ(behaviour_difference(x, y), "accelerator period 33 vs 11");
+  y.growth_kind = "irregular";
+  y.accel_period = 0;
+  EXPECT_EQ(behaviour_difference(x, y), "growth kind accelerator vs irregular");
+  x.cls = y.cls = OrbitClass::transient_chaos;
+  x.settled_class = OrbitClass::periodic;
+  y.settled_class = OrbitClass::sticking;
+  EXPECT_EQ(behaviour_difference(x, y), "settles on periodic vs sticking");
+  // Never a comma (it is a CSV field as it stands).
+  EXPECT_EQ(behaviour_difference(y, x).find(','), std::string::npos);
+}
+
 TEST(ClassifyChecked, DoublesQuasiperiodicAnswerIsAnArtefactThere) {
   // The case of issue 23: double calls the start quasiperiodic (it is never captured in
   // 40000 steps); mpfr:256 and mpfr:512 follow the exact orbit into the period-33

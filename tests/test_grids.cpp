@@ -242,8 +242,18 @@ TEST(GridCells, ConfirmedCellsReadBack) {
   c.confirm = PrecisionVerdict::artefact;
   c.check_cls = OrbitClass::unbounded;
   c.check_period = 0;
-  EXPECT_EQ(encode(c), "quasiperiodic,0,artefact,unbounded,0");
+  c.differs_in = "class";
+  EXPECT_EQ(encode(c), "quasiperiodic,0,artefact,unbounded,0,class");
   EXPECT_EQ(decode_cell<AttractorCell>(encode(c)), c);
+  c.cls = OrbitClass::unbounded;
+  c.differs_in = "accelerator period 33 vs 11";
+  EXPECT_EQ(decode_cell<AttractorCell>(encode(c)), c);
+  AttractorCell agrees = attractor_cell(OrbitClass::fixed, 1);
+  agrees.confirm = PrecisionVerdict::agrees;
+  agrees.check_cls = OrbitClass::fixed;
+  agrees.check_period = 1;
+  EXPECT_EQ(encode(agrees), "fixed,1,agrees,fixed,1,");
+  EXPECT_EQ(decode_cell<AttractorCell>(encode(agrees)), agrees);
   ScanCell sc;
   sc.count[static_cast<size_t>(OrbitClass::fixed)] = 9;
   sc.confirmed = true;
@@ -253,7 +263,11 @@ TEST(GridCells, ConfirmedCellsReadBack) {
   ScanCell none;  // confirmed, every start outside: no verdicts
   none.confirmed = true;
   EXPECT_EQ(decode_cell<ScanCell>(encode(none)), none);
-  for (const char* bad : {"fixed,1,maybe,fixed,1", "fixed,1,agrees,fixed", "fixed,1,agrees,sideways,1"})
+  // A tile is read as hostile: the words of what differs are lower-case letters, digits,
+  // spaces and '_' only, at most 80 of them.
+  for (const char* bad : {"fixed,1,maybe,fixed,1,", "fixed,1,agrees,fixed,", "fixed,1,agrees,sideways,1,",
+                          "fixed,1,agrees,fixed,1", "fixed,1,artefact,fixed,2,<script>", "fixed,1,artefact,fixed,2,a\nb",
+                          "fixed,1,artefact,fixed,2,period,x"})
     EXPECT_THROW(decode_cell<AttractorCell>(bad), std::runtime_error) << bad;
   // The artefact list must hold as many starts as the artefact count.
   EXPECT_THROW(decode_cell<ScanCell>("0,0,0,0,0,0,0,0,0,0|1,2,0|3"), std::runtime_error);

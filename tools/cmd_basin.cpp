@@ -28,7 +28,8 @@ nlohmann::ordered_json confirm_summary(const BasinResult& b, long stride) {
                            {"class", name(c.cls)},
                            {"period", c.period},
                            {"check_class", name(c.check_cls)},
-                           {"check_period", c.check_period}});
+                           {"check_period", c.check_period},
+                           {"differs_in", c.differs_in}});
   }
   return confirm_json(r.precision, r.confirm, r.classify,
                       {{"stride", stride},
@@ -40,15 +41,16 @@ nlohmann::ordered_json confirm_summary(const BasinResult& b, long stride) {
 void write_basin(const BasinResult& b, long stride, const RunFlags& f, const Provenance& prov) {
   const BasinRequest& r = b.request;
   const bool confirm = r.confirm.on;
-  std::string csv = confirm ? "theta,v,class,period,confirm,check_class,check_period\n" : "theta,v,class,period\n";
+  std::string csv = confirm ? "theta,v,class,period,confirm,check_class,check_period,differs_in\n" : "theta,v,class,period\n";
   long outside = 0;
   for (size_t i = 0; i < b.cells.size(); ++i) {
     const AttractorCell& c = b.cells[i];
     csv += b.theta[i % static_cast<size_t>(r.nx)].digits + ',' + b.v[i / static_cast<size_t>(r.nx)].digits + ',' +
            name(c.cls) + ',' + std::to_string(c.period);
     if (confirm)
-      csv += c.confirm ? std::string(",") + name(*c.confirm) + ',' + name(c.check_cls) + ',' + std::to_string(c.check_period)
-                       : std::string(",,,");
+      csv += c.confirm ? std::string(",") + name(*c.confirm) + ',' + name(c.check_cls) + ',' + std::to_string(c.check_period) +
+                             ',' + c.differs_in
+                       : std::string(",,,,");
     csv += '\n';
     outside += c.cls == OrbitClass::outside;
   }

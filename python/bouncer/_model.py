@@ -312,6 +312,8 @@ class Basin:
         the sample; "agrees"; "artefact": the start's class at the run's precision is not what
         mpfr:B and mpfr:2B both give; "precision_dependent": those two differ too);
         check_class (codes into classes) and check_period: the class at mpfr:B where checked;
+        differs_in (M, N) str: what differs between the run's class and mpfr:B's ("class",
+        "period", "accelerator period 33 vs 11", ...), "" where they agree or unchecked;
         confirm_bits: B
     """
     theta: np.ndarray
@@ -333,6 +335,7 @@ class Basin:
     confirm_verdicts: Tuple[str, ...] = CONFIRM_VERDICTS
     check_class: Optional[np.ndarray] = None
     check_period: Optional[np.ndarray] = None
+    differs_in: Optional[np.ndarray] = None
     confirm_bits: Optional[int] = None
 
 
@@ -563,7 +566,8 @@ def _grid_fields(d: Dict[str, Any]) -> Dict[str, Any]:
     if "confirm" in d:
         out.update(confirm=_recode(d["confirm"], d["confirm_names"], CONFIRM_VERDICTS, shape),
                    check_class=_recode(d["check_class"], names, CLASSES, shape),
-                   check_period=d["check_period"].reshape(shape), confirm_bits=d["confirm_bits"])
+                   check_period=d["check_period"].reshape(shape),
+                   differs_in=np.array(d["differs_in"], dtype=str).reshape(shape), confirm_bits=d["confirm_bits"])
     return out
 
 

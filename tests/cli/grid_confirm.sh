@@ -38,15 +38,31 @@ E18=(--model elastic --a 18 --theta-range 0.05:0.25 --v-range 9.5:10.5 --grid 2x
 run e18 basin "${E18[@]}" --confirm --threads 2 --quiet --out e18 && outputs e18 e18
 [[ -s e18-artefacts.png ]] || fail e18 "no artefact map e18-artefacts.png"
 run e18-classify classify --model elastic --a 18 --theta 0.1 --v 10 --transient 20000 --steps 20000 --json
+run e18-classify2 classify --model elastic --a 18 --theta 0.2 --v 10 --transient 20000 --steps 20000 --json
 python3 - <<'PY' || fail e18-content "see above"
 import csv, json, sys
 from clichecks import check, done
 rows = list(csv.DictReader(l for l in open("e18.csv") if not l.startswith("#")))
-check(list(rows[0].keys()) == ["theta", "v", "class", "period", "confirm", "check_class", "check_period"], f"columns {list(rows[0])}")
+check(list(rows[0].keys()) == ["theta", "v", "class", "period", "confirm", "check_class", "check_period", "differs_in"],
+      f"columns {list(rows[0])}")
 first = rows[0]
 check(float(first["theta"]) == 0.1 and float(first["v"]) == 10, f"first start {first['theta']}, {first['v']}")
 check(first["class"] == "quasiperiodic", f"double's class {first['class']}")
 check(first["confirm"] == "artefact" and first["check_class"] == "unbounded", f"confirmation {first}")
+check(first["differs_in"] == "class", f"what differs {first}")
+# (0.2, 10): unbounded at both precisions, period 0 in both: only differs_in says why it is an
+# artefact; its words must be what single-point classify reports for the start at double and
+# at mpfr:256 (growth kind, else the accelerator's period).
+second = rows[1]
+d2 = json.load(open("e18-classify2.out"))
+k2 = d2["precision_check"]["checks"][0]
+if d2["growth_kind"] != k2["growth_kind"]:
+    want = f"growth kind {d2['growth_kind'] or 'none'} vs {k2['growth_kind'] or 'none'}"
+else:
+    want = f"accelerator period {d2['accelerator_period']} vs {k2['accelerator_period']}"
+check(second["class"] == second["check_class"] == "unbounded" and second["confirm"] == d2["precision_check"]["verdict"] == "artefact",
+      f"second start {second}")
+check(second["differs_in"] == want, f"what differs at (0.2, 10): {second['differs_in']!r}, classify says {want!r}")
 c = json.load(open("e18.json"))["summary"]["confirm"]
 check(c["precisions"] == ["mpfr:256", "mpfr:512"], f"precisions {c['precisions']}")
 check(c["sample"]["starts"] == 2 and c["confirmed"] == 2, f"sample {c['sample']}, confirmed {c['confirmed']}")
@@ -55,6 +71,8 @@ check(abs(c["confirmed_fraction"] - c["agrees"] / 2) < 1e-15, "confirmed fractio
 check(len(c["artefacts"]) == c["artefact"] and float(c["artefacts"][0]["theta"]) == 0.1 and float(c["artefacts"][0]["v"]) == 10,
       f"artefacts {c['artefacts']}")
 check(c["artefacts"][0]["check_class"] == "unbounded", f"artefact {c['artefacts'][0]}")
+check([a["differs_in"] for a in c["artefacts"]] == [r["differs_in"] for r in rows if r["confirm"] == "artefact"],
+      f"the JSON's differs_in {c['artefacts']}")
 # Single-point classify of the same start: the same verdict at the same precisions.
 pc = json.load(open("e18-classify.out"))["precision_check"]
 check(pc["verdict"] == "artefact", f"classify's verdict {pc['verdict']}")

@@ -121,10 +121,11 @@ def test_basin_confirm_flags_doubles_artefact():
     assert b.classes[b.class_[0, 0]] == "quasiperiodic"
     assert b.confirm_verdicts[b.confirm[0, 0]] == "artefact"
     assert b.classes[b.check_class[0, 0]] == "unbounded"
+    assert b.differs_in.shape == (1, 2) and b.differs_in[0, 0] == "class"
     hp = bouncer.Model(model="elastic", a="18", precision="mpfr:256").classify("0.1", "10", transient=20000, steps=20000)
     assert hp.class_ == "unbounded"
     plain = m.basin(threads=2, **window)
-    assert plain.confirm is None and plain.check_class is None
+    assert plain.confirm is None and plain.check_class is None and plain.differs_in is None
     assert np.array_equal(plain.class_, b.class_)
     with pytest.raises(ValueError, match="confirm"):
         m.basin(confirm=10, **window)

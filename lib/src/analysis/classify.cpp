@@ -564,6 +564,18 @@ bool same_behaviour(const Classification& x, const Classification& y) {
   return true;
 }
 
+std::string behaviour_difference(const Classification& x, const Classification& y) {
+  if (same_behaviour(x, y)) return "";
+  if (x.cls != y.cls) return "class";
+  if (x.period != y.period) return "period";
+  if (x.cls == OrbitClass::transient_chaos)
+    return std::string("settles on ") + name(x.settled_class) + " vs " + name(y.settled_class);
+  if (x.growth_kind != y.growth_kind)
+    return "growth kind " + (x.growth_kind.empty() ? std::string("none") : x.growth_kind) + " vs " +
+           (y.growth_kind.empty() ? std::string("none") : y.growth_kind);
+  return "accelerator period " + std::to_string(x.accel_period) + " vs " + std::to_string(y.accel_period);
+}
+
 const char* name(PrecisionVerdict v) {
   switch (v) {
     case PrecisionVerdict::agrees: return "agrees";

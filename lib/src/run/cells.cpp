@@ -45,21 +45,29 @@ E named(std::optional<E> e, std::string_view text) {
 
 std::string encode(const AttractorCell& c) {
   std::string s = std::string(name(c.cls)) + ',' + std::to_string(c.period);
-  if (c.confirm) s += std::string(",") + name(*c.confirm) + ',' + name(c.check_cls) + ',' + std::to_string(c.check_period);
+  if (c.confirm)
+    s += std::string(",") + name(*c.confirm) + ',' + name(c.check_cls) + ',' + std::to_string(c.check_period) + ',' +
+         c.differs_in;
   return s;
 }
 
 template <>
 AttractorCell decode_cell<AttractorCell>(std::string_view text) {
   const auto f = fields(text);
-  if (f.size() != 2 && f.size() != 5) bad_cell(text);
+  if (f.size() != 2 && f.size() != 6) bad_cell(text);
   AttractorCell c = attractor_cell(named(orbit_class_named(f[0]), text), whole<long>(f[1], text));
-  if (f.size() == 5) {
+  if (f.size() == 6) {
     for (PrecisionVerdict v : {PrecisionVerdict::agrees, PrecisionVerdict::artefact, PrecisionVerdict::precision_dependent})
       if (f[2] == name(v)) c.confirm = v;
     if (!c.confirm) bad_cell(text);
     c.check_cls = named(orbit_class_named(f[3]), text);
     c.check_period = whole<long>(f[4], text);
+    // behaviour_difference's words: lower-case letters, digits, '_' and spaces, short.
+    if (f[5].size() > 80 || !std::all_of(f[5].begin(), f[5].end(), [](char ch) {
+          return (ch >= 'a' && ch <= 'z') || (ch >= '0' && ch <= '9') || ch == ' ' || ch == '_';
+        }))
+      bad_cell(text);
+    c.differs_in = std::string(f[5]);
   }
   return c;
 }
@@ -96,6 +104,7 @@ AttractorCell confirmed_cell(const CheckedClassification& check) {
   c.confirm = check.verdict;
   c.check_cls = check.checks.at(0).result.cls;
   c.check_period = check.checks.at(0).result.period;
+  c.differs_in = behaviour_difference(check.result, check.checks.at(0).result);
   return c;
 }
 

@@ -94,6 +94,10 @@ Classification classify_start(const ModelSpec& spec, const Precision& precision,
 // accelerator period). Exponents and evidence may differ: two precisions of a chaotic orbit
 // follow different orbits of the same attractor.
 bool same_behaviour(const Classification& x, const Classification& y);
+// What differs between them, in a few words, "" when same_behaviour: "class", "period",
+// "growth kind accelerator vs diffusive", "accelerator period 33 vs 11", "settles on periodic
+// vs sticking" (x's first). No commas: a CSV field as it stands (basin --confirm).
+std::string behaviour_difference(const Classification& x, const Classification& y);
 
 // "classify knows when double lies": the start classified at the run's precision, then again
 // at MPFR precisions that follow the exact orbit longer.

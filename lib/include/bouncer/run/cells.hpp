@@ -29,6 +29,10 @@ struct AttractorCell {
   std::optional<PrecisionVerdict> confirm;
   OrbitClass check_cls = OrbitClass::undecided;
   long check_period = 0;
+  // What differs between the run's class and the check's (analysis/classify.hpp
+  // behaviour_difference), "" where they agree: it says why an artefact whose classes and
+  // periods read the same (an accelerator mode of another period) is one.
+  std::string differs_in;
   friend bool operator==(const AttractorCell&, const AttractorCell&) = default;
 };
 // A cell with its class and period and no --confirm verdict.

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <set>
 
 #include "bouncer/analysis/classify.hpp"
 #include "bouncer/analysis/periodic.hpp"
@@ -423,4 +425,71 @@ TEST(ClassifyChecked, AStableFixedPointAgreesAtOnce) {
   ASSERT_EQ(r.checks.size(), 1u);
   EXPECT_EQ(r.checks[0].precision.text(), "mpfr:106");  // max(64, 2 x 53)
   EXPECT_EQ(r.verdict, PrecisionVerdict::agrees) << r.summary;
+}
+
+// classify_many steps four orbits side by side; each orbit's classification must be what
+// classify() gives it alone, bit for bit, whatever rule decides it: chaos re-checked (and
+// still chaotic, or settled: transient chaos), periodic orbits, sticking, unbounded growth
+// (elastic), the unstable fixed point at the start (rule 0), in double and in MPFR, and for a
+// number of starts that is not a multiple of four.
+namespace {
+bool same_bits(double x, double y) { return std::memcmp(&x, &y, sizeof x) == 0; }
+
+template <class T>
+void expect_many_equals_one(const ModelSpec& s, const std::vector<std::pair<double, double>>& starts, const ClassifyOptions& o,
+                            long bits) {
+  const ImpactMap<T> map(make_model<T>(s, bits));
+  std::vector<State<T>> xs;
+  for (const auto& [th, v] : starts)
+    xs.push_back(make_state<T>(map.model(), {parse_decimal("theta", std::to_string(th)), parse_decimal("v", std::to_string(v))}));
+  const std::vector<Classification> many = classify_many<T>(map, xs, o);
+  ASSERT_EQ(many.size(), xs.size());
+  for (size_t i = 0; i < xs.size(); ++i) {
+    const Classification one = classify<T>(map, xs[i], o);
+    const Classification& m = many[i];
+    EXPECT_EQ(m.cls, one.cls) << i << ": " << one.evidence;
+    EXPECT_EQ(m.period, one.period) << i;
+    EXPECT_TRUE(same_bits(m.lambda, one.lambda)) << i << ": " << m.lambda << " vs " << one.lambda;
+    EXPECT_EQ(m.evidence, one.evidence) << i;
+    EXPECT_TRUE(same_bits(m.alpha, one.alpha)) << i;
+    EXPECT_EQ(m.settled_class, one.settled_class) << i;
+    EXPECT_EQ(m.settled_at, one.settled_at) << i;
+    EXPECT_EQ(m.accel_period, one.accel_period) << i;
+    EXPECT_EQ(m.growth_kind, one.growth_kind) << i;
+  }
+}
+}  // namespace
+
+TEST(ClassifyMany, EachOrbitAsAloneBitForBit) {
+  ClassifyOptions o;
+  o.transient = 400;
+  o.steps = 128;
+  o.max_period = 32;
+  o.recheck_factor = 20;
+  std::vector<std::pair<double, double>> grid;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) grid.push_back({0.1 + 0.3 * i, 6 + 5 * j});
+  grid.push_back({0.5, 4});  // the release state
+  grid.push_back({0.25, 12});
+  // Chaos (re-checked), transient chaos and periodic windows: eps = 0.96, a = 28.82 and 31;
+  // the veldep model's chaos at c = 1000, a = 27; sticking and fixed points at eps = 0.5, a = 24;
+  // unbounded growth and quasiperiodic orbits of the elastic map at a = 18.
+  std::set<OrbitClass> seen;
+  for (const ModelSpec& s : {spec(Law::constant, "28.82", "0.96"), spec(Law::constant, "31", "0.96"),
+                             spec(Law::veldep, "27", "1", "1000"), spec(Law::constant, "24", "0.5"),
+                             spec(Law::elastic, "18")}) {
+    expect_many_equals_one<double>(s, grid, o, 53);
+    const ImpactMap<double> map(make_model<double>(s, 53));
+    for (const auto& [th, v] : grid) seen.insert(classify<double>(map, State<double>{th, v}, o).cls);
+  }
+  // The cases cover the rules (else this test would not test them).
+  for (OrbitClass c : {OrbitClass::chaotic, OrbitClass::sticking, OrbitClass::unbounded}) EXPECT_TRUE(seen.count(c)) << name(c);
+  expect_many_equals_one<Mpfr>(spec(Law::constant, "28.82", "0.96"), {{0.1, 6}, {0.4, 11}, {0.7, 16}, {0.5, 4}, {0.2, 9}}, o, 80);
+  expect_many_equals_one<double>(spec(Law::constant, "28.82", "0.96"), {}, o, 53);  // nothing to do
+  // A step that cannot be taken (v = 1e200: its square overflows) in a group of four: that
+  // orbit is undecided at its step, the other three go on as alone.
+  const std::vector<std::pair<double, double>> odd = {{0.1, 6}, {0.2, 1e200}, {0.4, 11}, {0.7, 16}};
+  expect_many_equals_one<double>(spec(Law::constant, "29.125", "0.96"), odd, o, 53);
+  const ImpactMap<double> map(make_model<double>(spec(Law::constant, "29.125", "0.96"), 53));
+  EXPECT_EQ(classify<double>(map, State<double>{0.2, 1e200}, o).cls, OrbitClass::undecided);
 }

@@ -43,6 +43,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -189,48 +190,132 @@ std::string windows_text(const ClassifyOptions& opt) {
 
 namespace {
 
-// Rules 1-6 on the window after the transient; `last` receives the window's last state.
+// The steps of one window run (the transient, then the window of W steps), with what rules
+// 1-6 need of them: the window's states, events, segments and relative velocities, the
+// growth samples of the whole run and the last sticking step. One orbit per run; several
+// runs advance together (run_windows), each exactly as alone.
 template <class T>
-Classification classify_window(const ImpactMap<T>& map, State<T> s, const ClassifyOptions& opt, State<T>& last) {
-  using Tr = ScalarTraits<T>;
-  Classification c;
-  c.lambda = std::numeric_limits<double>::quiet_NaN();
-  const Model<T>& model = map.model();
-  const long W = std::max(4L, opt.steps);
-  const long N = std::max(0L, opt.transient) + W;
-
+struct WindowRun {
+  State<T> s;
+  long N = 0, W = 0;
+  long n = 0;  // steps taken
   std::vector<State<T>> win;
   std::vector<EventKind> kinds;
   std::vector<int> segs;
   std::vector<double> rel;  // relative velocity after each step (v - u of the segment)
-  win.reserve(W + 1);
   GrowthSamples growth;
   long last_stick = -1;     // step index (1-based) of the last sticking step
   State<T> release{};
-  long n = 0;
-  try {
-    for (; n < N; ++n) {
-      throw_if_cancelled(n);
-      StepResult<T> r = map.step(s);
-      s = std::move(r.next);
-      growth.add(n + 1, Tr::to_double(s.v));
-      if (r.kind == EventKind::sticking) {
-        last_stick = n + 1;
-        release = s;
-      }
-      if (n >= N - W) {
-        win.push_back(s);
-        kinds.push_back(r.kind);
-        segs.push_back(r.segment);
-        const int j = model.wall.segment_of(s.theta);
-        rel.push_back(Tr::to_double(s.v - model.wall.velocity[j]));
+  std::string undecided;    // the step's reason, when a step was undecided
+  bool failed = false;
+
+  WindowRun(State<T> start, const ClassifyOptions& opt)
+      : s(std::move(start)), N(std::max(0L, opt.transient) + std::max(4L, opt.steps)), W(std::max(4L, opt.steps)) {
+    win.reserve(static_cast<size_t>(W) + 1);
+  }
+  bool done() const { return failed || n >= N; }
+
+  // One step (throws Undecided).
+  void step(const ImpactMap<T>& map) {
+    using Tr = ScalarTraits<T>;
+    const Model<T>& model = map.model();
+    StepResult<T> r = map.step(s);
+    s = std::move(r.next);
+    growth.add(n + 1, Tr::to_double(s.v));
+    if (r.kind == EventKind::sticking) {
+      last_stick = n + 1;
+      release = s;
+    }
+    if (n >= N - W) {
+      win.push_back(s);
+      kinds.push_back(r.kind);
+      segs.push_back(r.segment);
+      const int j = model.wall.segment_of(s.theta);
+      rel.push_back(Tr::to_double(s.v - model.wall.velocity[j]));
+    }
+    ++n;
+  }
+  void step_or_fail(const ImpactMap<T>& map) {
+    try {
+      step(map);
+    } catch (const Undecided& e) {
+      failed = true;
+      undecided = "step " + std::to_string(n + 1) + " undecided: " + e.what();
+    }
+  }
+};
+
+// Advance every run to its end. The runs go in groups of kInterleave, one step of each in
+// turn: the step of one orbit is a chain of dependent operations whose latency, not the
+// arithmetic, sets its speed (bench_step), so independent orbits stepped side by side overlap
+// in the processor. Each orbit's operations are those of the run alone, in the same order:
+// the results are the same, bit for bit.
+constexpr size_t kInterleave = 4;
+
+template <class T>
+void run_windows(const ImpactMap<T>& map, const std::vector<WindowRun<T>*>& runs) {
+  size_t g = 0;
+  for (; g + kInterleave <= runs.size(); g += kInterleave) {
+    WindowRun<T>* w[kInterleave];
+    for (size_t i = 0; i < kInterleave; ++i) w[i] = runs[g + i];
+    // Rounds of one step of each, without per-step checks, while all four are at the same
+    // step and none has ended (the runs of one phase start together with the same length).
+    bool lockstep = true;
+    for (WindowRun<T>* x : w) lockstep = lockstep && !x->done() && x->n == w[0]->n && x->N == w[0]->N;
+    if (lockstep) {
+      try {
+        for (long k = w[0]->n, N = w[0]->N; k < N; ++k) {
+          throw_if_cancelled(k);
+          w[0]->step(map);
+          w[1]->step(map);
+          w[2]->step(map);
+          w[3]->step(map);
+        }
+      } catch (const Undecided&) {
+        // A step that throws changes nothing: the runs not yet past this round (w[3] never
+        // is) take it again one by one, and the one that failed records its own failure.
+        const long n0 = w[3]->n;
+        for (WindowRun<T>* x : w)
+          if (x->n == n0) x->step_or_fail(map);
       }
     }
-  } catch (const Undecided& e) {
+    // Whatever is left (after a failure), one by one.
+    for (WindowRun<T>* x : w)
+      while (!x->done()) {
+        throw_if_cancelled(x->n);
+        x->step_or_fail(map);
+      }
+  }
+  for (; g < runs.size(); ++g) {
+    WindowRun<T>& w = *runs[g];
+    while (!w.done()) {
+      throw_if_cancelled(w.n);
+      w.step_or_fail(map);
+    }
+  }
+}
+
+// Rules 1-6 on a finished window run; `last` receives the window's last state.
+template <class T>
+Classification finish_window(const ImpactMap<T>& map, WindowRun<T>& w, const ClassifyOptions& opt, State<T>& last) {
+  using Tr = ScalarTraits<T>;
+  Classification c;
+  c.lambda = std::numeric_limits<double>::quiet_NaN();
+  const Model<T>& model = map.model();
+  const long W = w.W;
+  const long N = w.N;
+  if (w.failed) {
     c.cls = OrbitClass::undecided;
-    c.evidence = "step " + std::to_string(n + 1) + " undecided: " + e.what();
+    c.evidence = w.undecided;
     return c;
   }
+  const std::vector<State<T>>& win = w.win;
+  const std::vector<EventKind>& kinds = w.kinds;
+  const std::vector<int>& segs = w.segs;
+  const std::vector<double>& rel = w.rel;
+  const GrowthSamples& growth = w.growth;
+  const long last_stick = w.last_stick;
+  const State<T>& release = w.release;
   last = win.back();
 
   // 2. Unbounded growth. Not with constant eps < 1: there every orbit enters the trapping
@@ -416,6 +501,14 @@ Classification classify_window(const ImpactMap<T>& map, State<T> s, const Classi
   return c;
 }
 
+// Rules 1-6 on the window after the transient; `last` receives the window's last state.
+template <class T>
+Classification classify_window(const ImpactMap<T>& map, State<T> s, const ClassifyOptions& opt, State<T>& last) {
+  WindowRun<T> w(std::move(s), opt);
+  run_windows<T>(map, {&w});
+  return finish_window(map, w, opt, last);
+}
+
 // The step from which an orbit stays on its period-q cycle: one past the last i with
 // |x_{i+q} - x_i| > tolerance in `run` (the states after the start, step 1 first).
 template <class T>
@@ -428,10 +521,10 @@ long settle_step(const std::vector<State<T>>& run, long q) {
 
 }  // namespace
 
+// 0. The start on an unstable periodic orbit, or nothing.
 template <class T>
-Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptions& opt) {
-  const std::string windows = windows_text<T>(opt);
-  // 0. The start on an unstable periodic orbit.
+std::optional<Classification> on_unstable_orbit(const ImpactMap<T>& map, const State<T>& s, const ClassifyOptions& opt,
+                                                const std::string& windows) {
   const long qmax = std::max(1L, opt.max_period);
   try {
     const double tol = std::ldexp(1.0, -static_cast<int>(std::max(20L, map.model().bits - 10)));
@@ -460,29 +553,40 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
     // the window rules report the undecided step
   }
 
-  State<T> last = s;
-  Classification c = classify_window(map, s, opt, last);
+  return std::nullopt;
+}
+
+// Whether a window's verdict is re-checked later along the orbit (rule 7), and whether the map
+// is conservative.
+template <class T>
+bool wants_recheck(const ImpactMap<T>& map, const Classification& c, const ClassifyOptions& opt, bool& conservative,
+                   bool& quiet) {
   // A conservative map (elastic, or eps = 1) preserves a measure and has no attractors: a
   // chaotic orbit cannot settle, and a quiet later window is a sticky episode near an island.
   // In a dissipative map an invariant circle is rare and a chaotic transient whose exponent
   // is within its error of 0 is common, so there `quasiperiodic` is re-checked too.
   const Model<T>& model = map.model();
-  const bool conservative = model.law == Law::elastic ||
-                            (model.law == Law::constant && certainly(ScalarTraits<T>::is_zero(T(model.eps - 1))));
-  const bool quiet = c.cls == OrbitClass::quasiperiodic && !conservative;
-  if ((c.cls != OrbitClass::chaotic && !quiet) || opt.recheck_factor <= 0) {
-    c.evidence += windows;
-    return c;
-  }
-  // 7. Re-check a chaotic (or dissipative quasiperiodic) verdict much later along the orbit.
+  conservative = model.law == Law::elastic ||
+                 (model.law == Law::constant && certainly(ScalarTraits<T>::is_zero(T(model.eps - 1))));
+  quiet = c.cls == OrbitClass::quasiperiodic && !conservative;
+  return (c.cls == OrbitClass::chaotic || quiet) && opt.recheck_factor > 0;
+}
+
+// The re-check's options: R = recheck_factor x max(transient, steps) steps, then the window.
+inline ClassifyOptions recheck_options(const ClassifyOptions& opt) {
+  ClassifyOptions ro = opt;
+  ro.transient = opt.recheck_factor * std::max(opt.transient, opt.steps);
+  ro.recheck_factor = 0;
+  return ro;
+}
+
+// Rule 7's verdict from the first window's c (ending at `last`) and the later window's.
+template <class T>
+Classification after_recheck(const ImpactMap<T>& map, Classification c, const Classification& later, const State<T>& last,
+                             const ClassifyOptions& opt, const std::string& windows, bool conservative, bool quiet) {
   const long W = std::max(4L, opt.steps);
   const long N = std::max(0L, opt.transient) + W;
   const long R = opt.recheck_factor * std::max(opt.transient, opt.steps);
-  ClassifyOptions ro = opt;
-  ro.transient = R;
-  ro.recheck_factor = 0;
-  State<T> later_last = last;
-  const Classification later = classify_window(map, last, ro, later_last);
   const std::string first = c.evidence;
   if (quiet && (later.cls == OrbitClass::quasiperiodic || later.cls == OrbitClass::chaotic)) {
     // Aperiodic then and later: the later window's label, the earlier one as evidence.
@@ -555,6 +659,81 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
   }
   c.evidence += windows;
   return c;
+}
+
+template <class T>
+Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptions& opt) {
+  const std::string windows = windows_text<T>(opt);
+  if (std::optional<Classification> u = on_unstable_orbit(map, s, opt, windows)) return *u;
+  State<T> last = s;
+  Classification c = classify_window(map, s, opt, last);
+  bool conservative = false, quiet = false;
+  if (!wants_recheck(map, c, opt, conservative, quiet)) {
+    c.evidence += windows;
+    return c;
+  }
+  // 7. Re-check a chaotic (or dissipative quasiperiodic) verdict much later along the orbit.
+  State<T> later_last = last;
+  const Classification later = classify_window(map, last, recheck_options(opt), later_last);
+  return after_recheck(map, std::move(c), later, last, opt, windows, conservative, quiet);
+}
+
+template <class T>
+std::vector<Classification> classify_many(const ImpactMap<T>& map, const std::vector<State<T>>& starts,
+                                          const ClassifyOptions& opt) {
+  const std::string windows = windows_text<T>(opt);
+  const size_t n = starts.size();
+  std::vector<Classification> out(n);
+  std::vector<bool> done(n, false);
+  for (size_t i = 0; i < n; ++i)
+    if (std::optional<Classification> u = on_unstable_orbit(map, starts[i], opt, windows)) {
+      out[i] = std::move(*u);
+      done[i] = true;
+    }
+  // The first windows, side by side.
+  std::vector<WindowRun<T>> first;
+  std::vector<size_t> who;
+  first.reserve(n);
+  for (size_t i = 0; i < n; ++i)
+    if (!done[i]) {
+      first.emplace_back(starts[i], opt);
+      who.push_back(i);
+    }
+  std::vector<WindowRun<T>*> ptrs;
+  for (WindowRun<T>& w : first) ptrs.push_back(&w);
+  run_windows<T>(map, ptrs);
+  // The re-checks, side by side.
+  const ClassifyOptions ro = recheck_options(opt);
+  std::vector<State<T>> lasts(who.size());
+  std::vector<WindowRun<T>> later;
+  std::vector<size_t> again;  // indices into who
+  std::vector<char> cons(who.size(), 0), quiet(who.size(), 0);
+  later.reserve(who.size());
+  for (size_t k = 0; k < who.size(); ++k) {
+    lasts[k] = starts[who[k]];
+    Classification c = finish_window(map, first[k], opt, lasts[k]);
+    bool co = false, qu = false;
+    const bool re = wants_recheck(map, c, opt, co, qu);
+    cons[k] = co;
+    quiet[k] = qu;
+    if (!re) c.evidence += windows;
+    out[who[k]] = std::move(c);
+    if (re) {
+      later.emplace_back(lasts[k], ro);
+      again.push_back(k);
+    }
+    first[k] = WindowRun<T>(State<T>{}, ClassifyOptions{0, 4, 1, 0});  // its memory back
+  }
+  ptrs.clear();
+  for (WindowRun<T>& w : later) ptrs.push_back(&w);
+  run_windows<T>(map, ptrs);
+  for (size_t m = 0; m < again.size(); ++m) {
+    const size_t k = again[m];
+    State<T> later_last = lasts[k];
+    const Classification lc = finish_window(map, later[m], ro, later_last);
+    out[who[k]] = after_recheck(map, std::move(out[who[k]]), lc, lasts[k], opt, windows, cons[k] != 0, quiet[k] != 0);
+  }
+  return out;
 }
 
 bool same_behaviour(const Classification& x, const Classification& y) {
@@ -655,7 +834,9 @@ CheckedClassification classify_checked(const ModelSpec& spec, const Precision& p
 }
 
 #define BOUNCER_X(T, kind) \
-  template Classification classify<T>(const ImpactMap<T>&, State<T>, const ClassifyOptions&);
+  template Classification classify<T>(const ImpactMap<T>&, State<T>, const ClassifyOptions&); \
+  template std::vector<Classification> classify_many<T>(const ImpactMap<T>&, const std::vector<State<T>>&, \
+                                                        const ClassifyOptions&);
 BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
 #undef BOUNCER_X
 

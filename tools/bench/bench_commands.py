@@ -22,8 +22,9 @@ schedule decided them. Those counts are checked against each other before anythi
 written (the classes sum to the grid, the agreement counts to the starts, the CSV has one row
 per start, the columns listed are the samples asked for): a run whose summary does not add up
 exits 1. Timings are printed, never checked. --quick: the same commands on 10 x 10 starts and
-10 columns (seconds; the ctest smoke run bench.commands_quick). --json FILE also writes the
-table with the run's provenance (tools/bench/bench_record.py, for tools/bench/record_tables.py).
+10 columns, and --newcomer on 5 values (seconds; the ctest smoke run bench.commands_quick).
+--json FILE also writes the table with the run's provenance (tools/bench/bench_record.py, for
+tools/bench/record_tables.py).
 """
 
 import argparse

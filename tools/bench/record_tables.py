@@ -46,7 +46,8 @@ BENCHMARKS = {
     "audit": {"tool": "bench_audit.py", "script": "tools/bench/bench_audit.py", "args": ["--cli", "{build}/tools/bouncer"]},
     "python": {"tool": "bench_python.py", "script": "tools/bench/bench_python.py", "args": ["--cli", "{build}/tools/bouncer"],
                "env": {"PYTHONPATH": "{build}/python", "PYTHONDONTWRITEBYTECODE": "1"}},
-    "commands": {"tool": "bench_commands.py", "script": "tools/bench/bench_commands.py", "args": ["--cli", "{build}/tools/bouncer"]},
+    "commands": {"tool": "bench_commands.py", "script": "tools/bench/bench_commands.py",
+                 "args": ["--cli", "{build}/tools/bouncer", "--newcomer"]},
 }
 
 BEGIN = re.compile(r"^<!-- bench:(\S+) begin -->$")

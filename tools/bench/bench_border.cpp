@@ -13,7 +13,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_record.hpp"
@@ -54,8 +56,20 @@ struct Tables {
   bench::Table border{"border", "certified border collisions, period doubling and fold: best wall-clock seconds",
                       {"end", "form", "bits", "seconds", "width", "double off", "margin"}, {-44, -9, 5, 10, 12, 12, -1}, {}, {}};
   bench::Table enclosures{"enclosures", "the enclosures of a* at 128 bits, and double's bracket",
-                          {"end", "form", "a* in", "double bracket"}, {-44, -9, -1, -1}, {}, {}};
+                          {"end", "form", "a* in", "double bracket", "double bracket vs a*"}, {-44, -9, -1, -1, -1}, {}, {}};
   std::vector<const bench::Table*> all() const { return {&border, &enclosures}; }
+};
+
+// Whether double's bracket [blo, bhi] contains the enclosure's a*, or how far it misses it.
+std::string versus(double off) { return off == 0 ? "contains a*" : "misses it by " + bench::fmt("%.2g", off); }
+
+// The 256-bit enclosures against the 128-bit ones of the same end and formulation.
+struct Nesting {
+  int compared = 0, inside = 0;
+  void check(const mpq_class& lo128, const mpq_class& hi128, const mpq_class& lo, const mpq_class& hi) {
+    ++compared;
+    if (lo128 <= lo && hi <= hi128) ++inside;
+  }
 };
 
 std::string bracket(double lo, double hi) {
@@ -76,6 +90,7 @@ int main(int argc, char** argv) {
     return argc > 1 && std::strcmp(argv[1], "--help") == 0 ? 0 : 2;
   }
   run.print_provenance();
+  Nesting nesting;
   const std::vector<Case> cases = {
       {"sticking threshold 200/9 (release, eps 1/4)", spec(Law::constant, "24", "0.25", "1000"), 1, 0.5, 4, 20, 31, false},
       {"knot theta = 0 at 32 (release, eps 1/4)", spec(Law::constant, "26", "0.25", "1000"), 1, 0.5, 4, 24, 33.5, true},
@@ -111,6 +126,7 @@ int main(int argc, char** argv) {
       if (form == Formulation::shooting && k.period == 1) continue;
       const char* form_name = form == Formulation::composed ? "composed" : "shooting";
       q.formulation = form;
+      std::optional<std::pair<mpq_class, mpq_class>> at128;  // the 128-bit enclosure, for the 256-bit one
       for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
         q.bits = bits;
         double best = 1e300;
@@ -126,11 +142,16 @@ int main(int argc, char** argv) {
                                   "NOT CERTIFIED: " + c.reason.substr(0, 150)});
           continue;
         }
+        const double off = distance(end.bracket_lo, end.bracket_hi, c);
         t.border.add_and_print({k.name, form_name, std::to_string(bits), bench::fmt("%.4f", best), bench::fmt("%.3g", c.width),
-                                bench::fmt("%.3g", distance(end.bracket_lo, end.bracket_hi, c)), c.margin_text});
-        if (bits == 128)
+                                bench::fmt("%.3g", off), c.margin_text});
+        if (bits == 128) {
           t.enclosures.add({k.name, form_name, "[" + c.parameter.lo + ", " + c.parameter.hi + "]",
-                            bracket(end.bracket_lo, end.bracket_hi)});
+                            bracket(end.bracket_lo, end.bracket_hi), versus(off)});
+          at128.emplace(c.lo, c.hi);
+        } else if (at128) {
+          nesting.check(at128->first, at128->second, c.lo, c.hi);
+        }
       }
     }
   }
@@ -138,6 +159,7 @@ int main(int argc, char** argv) {
   // the same construction on det(DP^Q +- I).
   auto smooth = [&](const char* name, const PeriodDoublingQuestion& q0, double blo_d, double bhi_d, auto certify) {
     PeriodDoublingQuestion q = q0;
+    std::optional<std::pair<mpq_class, mpq_class>> at128;
     for (long bits : quick ? std::vector<long>{128} : std::vector<long>{128, 256}) {
       q.bits = bits;
       double best = 1e300;
@@ -156,8 +178,12 @@ int main(int argc, char** argv) {
       const double off = bhi < c.lo ? mpq_class(c.lo - bhi).get_d() : c.hi < blo ? mpq_class(blo - c.hi).get_d() : 0.0;
       t.border.add_and_print({name, "composed", std::to_string(bits), bench::fmt("%.4f", best), bench::fmt("%.3g", c.width),
                               bench::fmt("%.3g", off), "other multiplier [" + c.other.lo + ", " + c.other.hi + "]"});
-      if (bits == 128)
-        t.enclosures.add({name, "composed", "[" + c.parameter.lo + ", " + c.parameter.hi + "]", bracket(blo_d, bhi_d)});
+      if (bits == 128) {
+        t.enclosures.add({name, "composed", "[" + c.parameter.lo + ", " + c.parameter.hi + "]", bracket(blo_d, bhi_d), versus(off)});
+        at128.emplace(c.lo, c.hi);
+      } else if (at128) {
+        nesting.check(at128->first, at128->second, c.lo, c.hi);
+      }
     }
   };
   auto question = [](const ModelSpec& ms, long period, const State<double>& x, double lo, double hi) {
@@ -190,6 +216,10 @@ int main(int argc, char** argv) {
       smooth("eps 0.9 P11 fold (multiplier +1)", question(ms, 11, b.low.last_point, b.low.bracket_lo, b.low.bracket_hi),
              b.low.bracket_lo, b.low.bracket_hi, [](const PeriodDoublingQuestion& q) { return certify_fold(q); });
   }
+  if (nesting.compared > 0)
+    t.border.notes.push_back("At 256 bits, " + std::to_string(nesting.inside) + " of " + std::to_string(nesting.compared) +
+                             " enclosures lie inside the 128-bit enclosure of the same end and formulation.");
+  for (const std::string& n : t.border.notes) std::printf("%s\n", n.c_str());
   std::printf("\n");
   t.enclosures.print_all();
   return run.finish(t.all()) ? 0 : 1;

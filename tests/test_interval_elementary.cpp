@@ -191,7 +191,7 @@ TEST(IntervalElementary, WideIntervals) {
 }
 
 // The fast path is the one taken: it decides nearly every argument in its range (|x| <= 708,
-// normal positive x for log). Its undecided share is about W's width over an ulp, ~2^-12.
+// normal positive x for log). Its undecided share is about W's width over an ulp (measured 1 in 2-4 10^4).
 TEST(IntervalElementary, FastPathDecidesAlmostEverywhere) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-708.0, 708.0);

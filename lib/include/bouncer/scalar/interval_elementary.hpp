@@ -10,7 +10,7 @@
 // each use. Then, RD being monotone, RD(s + W.lo) <= RD(f(x)) <= RD(s + W.hi); the two outer
 // values are add_down(s, W.lo) and add_down(s, W.hi) (exact directed sums, interval_double.hpp),
 // and when they are equal they ARE RD(f(x)). Likewise RU. When they differ (f(x) lies within
-// W's width of a double: about once in 2^12 random arguments), or when x lies outside the
+// W's width of a double: measured once in 2-4 10^4 random ends), or when x lies outside the
 // range argued below, the end is computed by MPFR at 53 bits in the same direction, as before.
 // So every end is exactly MPFR's directed result: 0 ulps wider (tests/test_interval_elementary.cpp
 // checks that bit for bit over random and extreme arguments). The fast path is Ziv's strategy

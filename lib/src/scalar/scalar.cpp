@@ -300,24 +300,6 @@ std::string ScalarTraits<DoubleDouble>::to_string(const DoubleDouble& x) {
 
 namespace {
 
-// exp or log of x's ends by MPFR at 53 bits, rounded down for the lower end and up for the
-// upper one (both functions are increasing). A 53-bit MPFR number is a double exactly.
-template <int (*F)(mpfr_ptr, mpfr_srcptr, mpfr_rnd_t)>
-DoubleInterval directed(const DoubleInterval& x) {
-  thread_local struct Tmp {
-    mpfr_t t;
-    Tmp() { mpfr_init2(t, 53); }
-    ~Tmp() { mpfr_clear(t); }
-  } tmp;
-  mpfr_set_d(tmp.t, x.lower(), MPFR_RNDN);  // exact
-  F(tmp.t, tmp.t, MPFR_RNDD);
-  const double lo = mpfr_get_d(tmp.t, MPFR_RNDD);
-  mpfr_set_d(tmp.t, x.upper(), MPFR_RNDN);
-  F(tmp.t, tmp.t, MPFR_RNDU);
-  const double hi = mpfr_get_d(tmp.t, MPFR_RNDU);
-  return {lo, hi};
-}
-
 std::string double_to_string(double x, mpfr_rnd_t rnd) {
   mpfr_t t;
   mpfr_init2(t, 53);
@@ -329,16 +311,7 @@ std::string double_to_string(double x, mpfr_rnd_t rnd) {
 
 }  // namespace
 
-DoubleInterval exp(const DoubleInterval& x) {
-  if (x.has_nan()) return DoubleInterval::nan_interval();
-  return directed<mpfr_exp>(x);
-}
-
-DoubleInterval log(const DoubleInterval& x) {
-  // As mpfi_log: defined for x > 0 only (an end <= 0 gives -inf or NaN: never finite).
-  if (x.has_nan() || x.upper() < 0) return DoubleInterval::nan_interval();
-  return directed<mpfr_log>(x);
-}
+// exp and log: scalar/interval_elementary.cpp (double arithmetic, MPFR as fallback).
 
 DoubleInterval ScalarTraits<DoubleInterval>::from_decimal(std::string_view text, long) {
   std::string s(text);

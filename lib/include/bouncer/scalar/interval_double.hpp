@@ -50,12 +50,12 @@
 // Products and quotients take the min / max over the corner results, each rounded in its
 // direction.
 //
-// exp and log are not correctly rounded in libm. They are computed by MPFR at 53 bits with
-// directed rounding (MPFR_RNDD for the lower end, MPFR_RNDU for the upper end; MPFR's results
-// are correctly rounded in the requested direction) and converted to double in the same
-// direction (exact in the normal range; in the subnormal range and beyond DBL_MAX the
-// second directed rounding gives the directed rounding of the exact value to double), which is
-// rigorous, tightest, and still far cheaper than an MPFI step.
+// exp and log are not correctly rounded in libm. Each end is MPFR's directed result at 53 bits
+// (MPFR_RNDD for the lower end, MPFR_RNDU for the upper) converted to double in the same
+// direction, bit for bit: rigorous and tightest. scalar/interval_elementary.hpp computes it in
+// double arithmetic (a table, a short Taylor polynomial in this interval arithmetic plus
+// Lagrange's remainder, then two directed sums that must agree), and calls MPFR only when they
+// disagree or the argument lies outside the proven range; its opening comment has the argument.
 //
 // Invalid intervals. An interval with a NaN end is invalid (has_nan; every caller treats it as
 // undecided: ScalarTraits gives Truth::invalid and is_finite = false). Every operation with an
@@ -341,8 +341,8 @@ class DoubleInterval {
     const double lo = x.lo_ <= 0 ? 0.0 : interval_double_detail::root_to<false>(x.lo_);
     return {std::max(lo, 0.0), interval_double_detail::root_to<true>(x.hi_)};
   }
-  friend DoubleInterval exp(const DoubleInterval& x);  // MPFR, directed rounding
-  // MPFR, directed rounding; NaN for an x reaching below 0, and a lower end 0 gives -inf.
+  friend DoubleInterval exp(const DoubleInterval& x);  // MPFR's directed roundings (interval_elementary)
+  // MPFR's directed roundings; NaN for an x reaching below 0, and a lower end 0 gives -inf.
   friend DoubleInterval log(const DoubleInterval& x);
   friend DoubleInterval abs(const DoubleInterval& x) {
     if (x.lo_ >= 0) return x;

@@ -104,9 +104,7 @@ def main():
                        f"{statistics.median(rows['comparison']):.2f} s on top; the wall clock follows the machine's load, "
                        f"the CPU time the work done); {rounds} round(s), load average {load:.1f} at the end.")
     table.print_text()
-    version = subprocess.run([cli, "--version"], stdout=subprocess.PIPE, text=True).stdout
-    m = re.match(r"bouncer (\S+) \(commit ([^)]*)\)", version)
-    run.finish(args.json, [table], m.group(1) if m else "unknown", m.group(2) if m else "unknown")
+    run.finish_cli(args.json, [table], cli)
     return 0
 
 

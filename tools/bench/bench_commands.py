@@ -207,9 +207,7 @@ def main():
                        f"contradicts plain double's class.{' --quick: small grids, a smoke run.' if args.quick else ''}")
     print()
     table.print_text()
-    version = subprocess.run([cli, "--version"], stdout=subprocess.PIPE, text=True).stdout
-    m = re.match(r"bouncer (\S+) \(commit ([^)]*)\)", version)
-    run.finish(args.json, [table], m.group(1) if m else "unknown", m.group(2) if m else "unknown")
+    run.finish_cli(args.json, [table], cli)
     return 0
 
 

@@ -9,6 +9,8 @@ Standard library only.
 """
 
 import json
+import re
+import subprocess
 import os
 import sys
 import time
@@ -83,6 +85,12 @@ class Run:
     def print_columns(self, tables):
         print(json.dumps({"tool": self.tool, "tables": [t.as_json(False) for t in tables]}, indent=1, sort_keys=True))
         return 0
+
+    def finish_cli(self, path, tables, cli):
+        """finish() with the version and commit that the bouncer executable `cli` reports."""
+        out = subprocess.run([cli, "--version"], stdout=subprocess.PIPE, text=True).stdout
+        m = re.match(r"bouncer (\S+) \(commit ([^)]*)\)", out)
+        self.finish(path, tables, m.group(1) if m else "unknown", m.group(2) if m else "unknown")
 
     def finish(self, path, tables, version, commit, build=""):
         """Writes the record to path (nothing when path is None)."""

@@ -18,7 +18,14 @@
 
 #include <mpfr.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -447,6 +454,86 @@ TEST(WriteOrbits, AFailedStreamIsAnOutputError) {
   std::ostringstream out;
   out.setstate(std::ios::badbit);
   EXPECT_THROW(write_orbits(req, provenance(o, req), out), OutputError);
+}
+
+// --format npy: the period-1 sticking orbit through R = (1/2, 4) (eps = 1/4, a = 24, see the
+// top of this file) in float64: every step sticks on the rising segment at theta_i =
+// sqrt(1/3) - 1/2 and returns to R exactly, tau = 1. The header is the NumPy format 1.0
+// preamble, written here from its specification; empty CSV cells are NaN.
+TEST(WriteOrbitsNpy, TheStickingOrbitAsFloat64Rows) {
+  Options o = options("0.25", "24", {"0.5", "0.5"}, {"4", "4"}, "10", "double");
+  o.set("format", "npy");
+  expect_input_error([&] { orbit_request(o); }, "out");  // binary output needs a file
+  o.set("out", "x.npy");
+  o.set("every", "3");
+  const OrbitRequest req = orbit_request(o);
+  EXPECT_EQ(req.format, Format::npy);
+  EXPECT_EQ(planned_orbit_rows(req), 2 * 5);  // per orbit: n = 0, 3, 6, 9 and the last, 10
+  std::ostringstream out;
+  const NpyOrbits w = write_orbits_npy(req, planned_orbit_rows(req), out);
+  const std::string bytes = out.str();
+  const size_t cols = npy_orbit_columns().size();
+  ASSERT_EQ(cols, 16u);
+  ASSERT_EQ(w.total_rows, 10);
+  ASSERT_EQ(w.rows, (std::vector<long long>{5, 5}));
+  ASSERT_EQ(bytes.size(), 128 + 10 * cols * 8);
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x93NUMPY\x01\x00", 8));
+  EXPECT_EQ(static_cast<unsigned char>(bytes[8]) + 256 * static_cast<unsigned char>(bytes[9]), 118);
+  const std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (10, 16), }";
+  EXPECT_EQ(bytes.substr(10, dict.size()), dict);
+  EXPECT_EQ(bytes[127], '\n');
+  EXPECT_EQ(bytes.find_first_not_of(' ', 10 + dict.size()), 127u);
+  auto at = [&](size_t row, const std::string& name) {
+    const size_t c = static_cast<size_t>(std::find(npy_orbit_columns().begin(), npy_orbit_columns().end(), name) -
+                                         npy_orbit_columns().begin());
+    double x;
+    std::memcpy(&x, bytes.data() + 128 + (row * cols + c) * 8, 8);
+    return x;
+  };
+  const double ti = std::sqrt(1.0 / 3.0) - 0.5;
+  const long long n_of[] = {0, 3, 6, 9, 10};
+  for (size_t r = 0; r < 10; ++r) {
+    EXPECT_EQ(at(r, "n"), static_cast<double>(n_of[r % 5])) << r;
+    EXPECT_EQ(at(r, "orbit"), static_cast<double>(r / 5)) << r;
+    EXPECT_EQ(at(r, "theta"), 0.5) << r;
+    EXPECT_EQ(at(r, "v"), 4.0) << r;
+    if (r % 5 == 0) {
+      EXPECT_EQ(at(r, "event"), 0.0);
+      for (const char* empty : {"tau", "periods", "segment", "wall", "corner", "indirect", "stick_wall",
+                                "passed_upward_turn", "stuck_theta", "stuck_v", "phase_bits"})
+        EXPECT_TRUE(std::isnan(at(r, empty))) << empty;
+      continue;
+    }
+    EXPECT_EQ(at(r, "event"), 2.0) << r;  // sticking
+    EXPECT_NEAR(at(r, "tau"), 1, 1e-12) << r;
+    EXPECT_EQ(at(r, "stick_wall"), 1.0) << r;  // the rising segment
+    EXPECT_NEAR(at(r, "stuck_theta"), ti, 1e-12) << r;
+    EXPECT_GE(at(r, "phase_bits"), 51) << r;  // one period's flight costs theta at most a bit or two
+    EXPECT_LE(at(r, "phase_bits"), 53) << r;
+  }
+  // The header rewritten in place for another row count keeps its 128 bytes.
+  const fs::path tmp = fs::temp_directory_path() / ("bouncer_npy_" + std::to_string(::getpid()));
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << bytes;
+  }
+  const int fd = ::open(tmp.c_str(), O_WRONLY);
+  ASSERT_GE(fd, 0);
+  rewrite_npy_header(fd, tmp.string(), 7, cols);
+  ::close(fd);
+  std::ifstream f(tmp, std::ios::binary);
+  const std::string back((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  fs::remove(tmp);
+  ASSERT_EQ(back.size(), bytes.size());
+  EXPECT_EQ(back.substr(0, 128), npy_header(7, cols));
+  EXPECT_NE(back.find("'shape': (7, 16), }"), std::string::npos);
+  EXPECT_EQ(back.substr(128), bytes.substr(128));
+  // Precisions whose values are not doubles are refused, naming --format.
+  for (const char* p : {"long", "dd", "quad", "mpfr:53", "interval:double"}) {
+    Options q = o;
+    q.set("precision", p);
+    EXPECT_TRUE(contains(expect_input_error([&] { orbit_request(q); }, "format"), "--precision double")) << p;
+  }
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 // bouncer orbit: iterate the impact map from one or more initial conditions.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
@@ -17,7 +18,8 @@ CommandRunner setup_orbit(CLI::App* sub) {
   opts->add_list("v", "Initial velocity(ies) after impact, >= the wall velocity at theta (<= 1e15)");
   opts->add("steps", "Number of impact-map steps, integer >= 0 (default 10)");
   opts->add("precision", "double | long | dd | quad | mpfr:BITS | interval:BITS | interval:double (16 <= BITS <= 1048576)");
-  opts->add("format", "csv (default) | json | table");
+  opts->add("format", "csv (default) | json | table | npy (double only, with --out PATH: a NumPy float64 array in "
+                      "PATH, its provenance, columns and codes in PATH.json)");
   opts->add("method", "Interval runs: lohner (default, as the certified commands: Lohner's QR method, "
                       "tight enclosures, about 5x the cost per step) | naive (iterate the box)");
   opts->add("every", "Print every K-th step (and the last), integer >= 1 (default 1)");
@@ -38,7 +40,32 @@ CommandRunner setup_orbit(CLI::App* sub) {
     std::optional<std::string> out;
     if (o.has("out")) out = o.get("out");
     std::vector<OrbitOutcome> outcomes;
-    write_atomically(out, [&](std::ostream& s) { outcomes = write_orbits(req, p, s); });
+    if (req.format == Format::npy) {
+      // PATH and PATH.json, all or none. The header names the rows of a run whose orbits all
+      // complete; an orbit that stops early leaves fewer, and the header is rewritten in the
+      // staging file (a pipe or device cannot be rewritten: that run fails, exit status 1).
+      const std::string json_path = *out + ".json";
+      OutputSet set;
+      set.reserve("out", *out);
+      set.reserve("out", json_path);
+      const long long planned = planned_orbit_rows(req);
+      NpyOrbits npy;
+      set.write(*out, [&](std::ostream& s) { npy = write_orbits_npy(req, planned, s); });
+      if (npy.total_rows != planned) {
+        const int fd = set.descriptor(*out);
+        if (fd < 0)
+          throw OutputError("an orbit stopped early, so '" + *out + "' holds " + std::to_string(npy.total_rows) +
+                            " rows, not the " + std::to_string(planned) +
+                            " its header names, and a pipe or device cannot be rewritten: write to a file");
+        rewrite_npy_header(fd, *out, npy.total_rows, npy_orbit_columns().size());
+      }
+      const std::string sidecar = orbit_npy_sidecar(req, p, npy, std::filesystem::path(*out).filename().string());
+      set.write(json_path, [&](std::ostream& s) { s << sidecar; });
+      set.commit();
+      outcomes = npy.outcomes;
+    } else {
+      write_atomically(out, [&](std::ostream& s) { outcomes = write_orbits(req, p, s); });
+    }
     for (size_t i = 0; i < outcomes.size(); ++i) {
       const OrbitOutcome& oc = outcomes[i];
       if (oc.undecided)

@@ -1,9 +1,26 @@
 #include "bouncer/io/orbit.hpp"
 #include "bouncer/base/output.hpp"
 
+#include <unistd.h>
+
+#include <bit>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
 #include <iomanip>
+#include <limits>
 #include <ostream>
 #include <sstream>
+#include <type_traits>
+
+// GCC 12 at -O3 reports false "maybe uninitialized" warnings inside nlohmann::json.
+#pragma GCC diagnostic push
+#if !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
+#include <nlohmann/json.hpp>
+#pragma GCC diagnostic pop
 
 #include "bouncer/model/impact_map.hpp"
 
@@ -29,7 +46,8 @@ OrbitRequest orbit_request(const Options& o) {
   if (f == "csv") r.format = Format::csv;
   else if (f == "json") r.format = Format::json;
   else if (f == "table") r.format = Format::table;
-  else throw InputError("format", "unknown format '" + f + "' (allowed: csv, json, table)");
+  else if (f == "npy") r.format = Format::npy;
+  else throw InputError("format", "unknown format '" + f + "' (allowed: csv, json, table, npy)");
   // Interval runs default to Lohner's method, as the certified commands do: the same
   // exact orbit, enclosed in sets that grow with the dynamics, not with the wrapping effect.
   r.method = r.precision.is_interval() ? EnclosureMethod::lohner : EnclosureMethod::naive;
@@ -38,6 +56,16 @@ OrbitRequest orbit_request(const Options& o) {
     if (r.method == EnclosureMethod::lohner && !r.precision.is_interval())
       throw InputError("method", "lohner needs --precision interval:BITS (got " + o.get_or("precision", "double") +
                                      "); point precisions have no enclosure method");
+  }
+  if (r.format == Format::npy) {
+    // float64 holds a double run's numbers exactly and no other precision's: refused rather
+    // than rounded (the CSV and JSON formats print every precision in full).
+    if (r.precision.kind != Precision::Kind::double_)
+      throw InputError("format", "npy holds float64 values: it needs --precision double (got " + r.precision.text() +
+                                     "); allowed with other precisions: csv, json, table");
+    if (!o.has("out"))
+      throw InputError("out", "--format npy writes a binary file and its provenance beside it: give --out PATH "
+                              "(writes PATH and PATH.json)");
   }
   return r;
 }
@@ -94,11 +122,58 @@ const char* truth_name(Truth t, const char* yes, const char* no) {
   return t == Truth::yes ? yes : t == Truth::no ? no : "undecided";
 }
 
-// Streams rows in one of the three formats.
+// CSV cells appended to one buffer, each followed by ',' (the row's last ',' becomes '\n'):
+// no per-cell strings, no iostream formatting.
+template <size_t N>
+void append_chars(std::string& b, const char (&t)[N], const char* end) {
+  // The bound is explicit: GCC 12 otherwise warns that the length might be negative.
+  const size_t len = static_cast<size_t>(end - t);
+  b.append(t, len <= N ? len : 0);
+}
+void csv_int(std::string& b, long long x) {
+  char t[24];
+  append_chars(b, t, std::to_chars(t, t + sizeof t, x).ptr);
+  b += ',';
+}
+void csv_text(std::string& b, const char* x) {
+  b += x;
+  b += ',';
+}
+void csv_empty(std::string& b) { b += ','; }
+template <class T>
+void csv_scalar(std::string& b, const T& x) {
+  using Tr = ScalarTraits<T>;
+  if constexpr (std::is_same_v<T, double>) {
+    // The shortest decimal that reads back to x: the same call as ScalarTraits<double>::
+    // to_string (scalar/scalar.cpp), into a stack buffer instead of a string.
+    char t[32];
+    append_chars(b, t, std::to_chars(t, t + sizeof t, x).ptr);
+  } else if constexpr (Tr::is_interval) {
+    b += Tr::lower_string(x);
+    b += ',';
+    b += Tr::upper_string(x);
+  } else {
+    b += Tr::to_string(x);
+  }
+  b += ',';
+}
+template <class T>
+void csv_empty_scalar(std::string& b) {
+  b += ScalarTraits<T>::is_interval ? ",," : ",";
+}
+
+// Streams rows in one of the three text formats.
 class RowWriter {
  public:
   RowWriter(std::ostream& out, Format f, bool interval, long bits) : out_(out), f_(f), names_(header_names(interval)) {
     width_ = static_cast<int>(bits * 0.30103) + 9;
+  }
+  // CSV rows go through csv_line(): cells appended to one buffer written in 64 KiB blocks.
+  bool fast_csv() const { return f_ == Format::csv; }
+  std::string& csv_line() { return buf_; }
+  void csv_line_done() {
+    buf_.back() = '\n';
+    if (buf_.size() >= kBlock) flush_csv();
   }
   void begin(const Provenance& p) {
     if (f_ == Format::json) {
@@ -133,6 +208,7 @@ class RowWriter {
     first_row_ = false;
   }
   void end_orbit(size_t index, const OrbitOutcome& o, long bits) {
+    flush_csv();
     std::ostringstream end;
     if (o.undecided)
       end << "undecided at step " << o.steps_done + 1 << ": " << o.reason << " (steps 1.." << o.steps_done
@@ -158,6 +234,7 @@ class RowWriter {
     }
   }
   void finish() {
+    flush_csv();
     if (f_ == Format::json) out_ << "\n ]\n}\n";
     out_.flush();
     check();
@@ -168,6 +245,12 @@ class RowWriter {
   }
 
  private:
+  static constexpr size_t kBlock = size_t{1} << 16;
+  void flush_csv() {
+    if (buf_.empty()) return;
+    out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+    buf_.clear();
+  }
   void table_row(const std::vector<std::string>& cells) {
     for (size_t i = 0; i < cells.size(); ++i) {
       const bool wide = names_[i].rfind("theta", 0) == 0 || names_[i].rfind("v", 0) == 0 ||
@@ -181,6 +264,7 @@ class RowWriter {
   std::vector<std::string> names_;
   int width_ = 24;
   bool first_row_ = true;
+  std::string buf_;
 };
 
 template <class T>
@@ -226,13 +310,73 @@ std::vector<std::string> step_row(long long n, const StepResult<T>& r, const Mod
   return row;
 }
 
-// The text sink of the orbit driver (run/orbit.hpp): each row as the writer's cells.
+// The CSV lines of start_row and step_row, appended to b (the same cells, in the same order).
+template <class T>
+void csv_start_row(std::string& b, const State<T>& s, size_t orbit) {
+  csv_int(b, 0);
+  csv_scalar(b, s.theta);
+  csv_scalar(b, s.v);
+  csv_text(b, "start");
+  csv_empty_scalar<T>(b);
+  for (int i = 0; i < 6; ++i) csv_empty(b);
+  csv_empty_scalar<T>(b);
+  csv_empty_scalar<T>(b);
+  csv_empty(b);
+  csv_int(b, static_cast<long long>(orbit));
+}
+
+template <class T>
+void csv_step_row(std::string& b, long long n, const StepResult<T>& r, const Model<T>& m, size_t orbit) {
+  csv_int(b, n);
+  csv_scalar(b, r.next.theta);
+  csv_scalar(b, r.next.v);
+  csv_text(b, name(r.kind));
+  csv_scalar(b, r.tau);
+  csv_int(b, r.periods);
+  csv_int(b, r.segment);
+  csv_text(b, direction_name(m.wall.direction[r.segment]));
+  csv_text(b, r.corner ? "1" : "0");
+  csv_text(b, truth_name(r.indirect, "indirect", "direct"));
+  if (r.kind == EventKind::sticking) {
+    b += direction_name(m.wall.direction[r.stick_segment]);
+    if (r.passed_upward_turn) {
+      b += ':';
+      b += name(m.downward);
+    }
+    b += ',';
+    csv_scalar(b, r.stuck_theta);
+    csv_scalar(b, r.stuck_v);
+  } else {
+    csv_empty(b);
+    csv_empty_scalar<T>(b);
+    csv_empty_scalar<T>(b);
+  }
+  csv_int(b, ScalarTraits<T>::bits(r.next.theta) - r.phase_bits_lost);
+  csv_int(b, static_cast<long long>(orbit));
+}
+
+// The text sink of the orbit driver (run/orbit.hpp): each row as the writer's cells (CSV:
+// appended to the writer's buffer).
 template <class T>
 class TextSink final : public OrbitSink<T> {
  public:
   TextSink(RowWriter& w, const Model<T>& m, size_t orbit) : w_(w), m_(m), orbit_(orbit) {}
-  void start(const State<T>& s) override { w_.row(start_row(s, orbit_)); }
-  void row(long long n, const StepResult<T>& r) override { w_.row(step_row(n, r, m_, orbit_)); }
+  void start(const State<T>& s) override {
+    if (w_.fast_csv()) {
+      csv_start_row(w_.csv_line(), s, orbit_);
+      w_.csv_line_done();
+    } else {
+      w_.row(start_row(s, orbit_));
+    }
+  }
+  void row(long long n, const StepResult<T>& r) override {
+    if (w_.fast_csv()) {
+      csv_step_row(w_.csv_line(), n, r, m_, orbit_);
+      w_.csv_line_done();
+    } else {
+      w_.row(step_row(n, r, m_, orbit_));
+    }
+  }
   void check() override { w_.check(); }
 
  private:
@@ -263,7 +407,180 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
   return outcomes;
 }
 
+// ---- --format npy ----------------------------------------------------------------------
+
+// Codes of the text columns: event as bouncer.Model.orbit's Orbit.event (python/module.cpp,
+// bouncer.EVENTS: the start row, then EventKind in order), wall directions as Wall::direction.
+double event_code(EventKind k) { return 1.0 + static_cast<double>(static_cast<int>(k)); }
+constexpr double kStartEvent = 0;
+constexpr double kEmpty = std::numeric_limits<double>::quiet_NaN();
+
+// Rows of float64 appended to one buffer written in 64 KiB blocks.
+class NpyWriter {
+ public:
+  explicit NpyWriter(std::ostream& out) : out_(out) { buf_.reserve(kBlock); }
+  void put(double x) {
+    buf_.push_back(x);
+    if (buf_.size() == kBlock) flush();
+  }
+  void flush() {
+    static_assert(std::endian::native == std::endian::little, "the .npy data are written as little-endian float64");
+    if (buf_.empty()) return;
+    out_.write(reinterpret_cast<const char*>(buf_.data()), static_cast<std::streamsize>(buf_.size() * sizeof(double)));
+    buf_.clear();
+  }
+  void check() const {
+    if (!out_) throw OutputError("writing the orbit failed (disk full, or the reader closed the pipe?)");
+  }
+
+ private:
+  static constexpr size_t kBlock = 8192;
+  std::ostream& out_;
+  std::vector<double> buf_;
+};
+
+class NpySink final : public OrbitSink<double> {
+ public:
+  NpySink(NpyWriter& w, const Model<double>& m, size_t orbit) : w_(w), m_(m), orbit_(static_cast<double>(orbit)) {}
+  void start(const State<double>& s) override {
+    const double row[] = {0,      s.theta, s.v,    kStartEvent, kEmpty, kEmpty, kEmpty, kEmpty,
+                          kEmpty, kEmpty,  kEmpty, kEmpty,      kEmpty, kEmpty, kEmpty, orbit_};
+    put(row);
+  }
+  void row(long long n, const StepResult<double>& r) override {
+    const bool stuck = r.kind == EventKind::sticking;
+    const double row[] = {static_cast<double>(n),
+                          r.next.theta,
+                          r.next.v,
+                          event_code(r.kind),
+                          r.tau,
+                          static_cast<double>(r.periods),
+                          static_cast<double>(r.segment),
+                          static_cast<double>(m_.wall.direction[r.segment]),
+                          r.corner ? 1.0 : 0.0,
+                          r.indirect == Truth::yes ? 1.0 : r.indirect == Truth::no ? 0.0 : -1.0,
+                          stuck ? static_cast<double>(m_.wall.direction[r.stick_segment]) : kEmpty,
+                          stuck ? (r.passed_upward_turn ? 1.0 : 0.0) : kEmpty,
+                          stuck ? r.stuck_theta : kEmpty,
+                          stuck ? r.stuck_v : kEmpty,
+                          static_cast<double>(ScalarTraits<double>::bits(r.next.theta) - r.phase_bits_lost),
+                          orbit_};
+    put(row);
+  }
+  void check() override { w_.check(); }
+  long long rows() const { return rows_; }
+
+ private:
+  void put(const double (&row)[16]) {
+    for (double x : row) w_.put(x);
+    ++rows_;
+  }
+  NpyWriter& w_;
+  const Model<double>& m_;
+  double orbit_;
+  long long rows_ = 0;
+};
+
 }  // namespace
+
+const std::vector<std::string>& npy_orbit_columns() {
+  static const std::vector<std::string> c{"n",       "theta",     "v",         "event",        "tau",
+                                          "periods", "segment",   "wall",      "corner",       "indirect",
+                                          "stick_wall", "passed_upward_turn", "stuck_theta", "stuck_v",
+                                          "phase_bits", "orbit"};
+  return c;
+}
+
+long long planned_orbit_rows(const OrbitRequest& r) {
+  // follow_orbit keeps the steps n with n % every == 0 and the last one.
+  const long long kept = r.steps / r.every + (r.steps % r.every != 0 ? 1 : 0);
+  return static_cast<long long>(r.initial.size()) * (1 + kept);
+}
+
+std::string npy_header(long long rows, size_t cols) {
+  // Format 1.0: magic, version, header length (uint16 little-endian), then the dict padded
+  // with spaces and ended by '\n' so that the data start at a multiple of 64 bytes (here 128).
+  constexpr size_t kTotal = 128;
+  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
+                     std::to_string(cols) + "), }";
+  std::string h("\x93NUMPY\x01\x00", 8);
+  const size_t len = kTotal - 10;
+  h += static_cast<char>(len & 0xff);
+  h += static_cast<char>(len >> 8);
+  h += dict;
+  h.append(kTotal - 1 - h.size(), ' ');
+  h += '\n';
+  return h;
+}
+
+NpyOrbits write_orbits_npy(const OrbitRequest& req, long long header_rows, std::ostream& out) {
+  if (req.precision.kind != Precision::Kind::double_) throw std::logic_error("write_orbits_npy: double runs only");
+  const ImpactMap<double> map(make_model<double>(req.model, req.precision.bits));
+  std::vector<State<double>> starts;
+  for (const InitialCondition& ic : req.initial) starts.push_back(make_state<double>(map.model(), ic));
+  const std::string h = npy_header(header_rows, npy_orbit_columns().size());
+  out.write(h.data(), static_cast<std::streamsize>(h.size()));
+  NpyWriter w(out);
+  NpyOrbits result;
+  for (size_t i = 0; i < starts.size(); ++i) {
+    NpySink sink(w, map.model(), i);
+    result.outcomes.push_back(follow_orbit(map, starts[i], orbit_steps(req), sink));
+    result.rows.push_back(sink.rows());
+    result.total_rows += sink.rows();
+  }
+  w.flush();
+  out.flush();
+  w.check();
+  return result;
+}
+
+void rewrite_npy_header(int fd, const std::string& name, long long rows, size_t cols) {
+  const std::string h = npy_header(rows, cols);
+  size_t done = 0;
+  while (done < h.size()) {
+    const ssize_t w = ::pwrite(fd, h.data() + done, h.size() - done, static_cast<off_t>(done));
+    if (w < 0 && errno == EINTR) continue;
+    if (w <= 0) throw OutputError("rewriting the header of '" + name + "' failed: " + std::strerror(w < 0 ? errno : EIO));
+    done += static_cast<size_t>(w);
+  }
+}
+
+std::string orbit_npy_sidecar(const OrbitRequest& r, const Provenance& p, const NpyOrbits& o, const std::string& npy_name) {
+  using nlohmann::json;
+  json doc;
+  doc["provenance"] = json::parse(p.as_json());
+  doc["npy"] = npy_name;
+  doc["dtype"] = "<f8";
+  doc["shape"] = {o.total_rows, npy_orbit_columns().size()};
+  doc["columns"] = npy_orbit_columns();
+  doc["empty"] = "NaN: a cell the CSV leaves empty (tau, periods, segment, wall, corner, indirect of the start row "
+                 "n = 0; stick_wall, passed_upward_turn, stuck_theta, stuck_v of rows without sticking; phase_bits "
+                 "of the start row)";
+  doc["codes"] = {{"event", {{"0", "start"}, {"1", name(EventKind::impact)}, {"2", name(EventKind::sticking)},
+                             {"3", name(EventKind::ride)}}},
+                  {"wall", {{"1", "up"}, {"-1", "down"}, {"0", "flat"}}},
+                  {"stick_wall", {{"1", "up"}, {"-1", "down"}, {"0", "flat"}}},
+                  {"indirect", {{"1", "indirect"}, {"0", "direct"}, {"-1", "undecided"}}},
+                  {"passed_upward_turn", {{"1", std::string("the ride passed an upward turn (CSV sticking ':") +
+                                                    name(r.model.downward) + "')"},
+                                          {"0", "it did not"}}}};
+  json orbits = json::array();
+  long long first = 0;
+  for (size_t i = 0; i < o.outcomes.size(); ++i) {
+    const OrbitOutcome& oc = o.outcomes[i];
+    json e{{"orbit", i},
+           {"first_row", first},
+           {"rows", o.rows[i]},
+           {"status", oc.undecided ? "undecided" : "completed"},
+           {"steps_done", oc.steps_done}};
+    if (oc.undecided) e["reason"] = oc.reason;
+    if (oc.phase_lost_at >= 0) e["phase_lost_at"] = oc.phase_lost_at;
+    orbits.push_back(e);
+    first += o.rows[i];
+  }
+  doc["orbits"] = orbits;
+  return doc.dump(1) + "\n";
+}
 
 std::vector<OrbitOutcome> write_orbits(const OrbitRequest& r, const Provenance& p, std::ostream& out) {
   return with_scalar(r.precision, [&](auto tag) { return run<typename decltype(tag)::type>(r, p, out); });

@@ -44,6 +44,13 @@ CommandRunner setup_orbit(CLI::App* sub) {
       // PATH and PATH.json, all or none. The header names the rows of a run whose orbits all
       // complete; an orbit that stops early leaves fewer, and the header is rewritten in the
       // staging file (a pipe or device cannot be rewritten: that run fails, exit status 1).
+      // PATH.json is written beside PATH: a device or pipe (/dev/null, /dev/stdout) would put
+      // it among the devices.
+      std::error_code ec;
+      const auto st = std::filesystem::status(*out, ec);
+      if (!ec && std::filesystem::exists(st) && !std::filesystem::is_regular_file(st))
+        throw InputError("out", "with --format npy must name a regular file (PATH and PATH.json are written), not a "
+                                "device, pipe or directory: '" + *out + "'");
       const std::string json_path = *out + ".json";
       OutputSet set;
       set.reserve("out", *out);

@@ -217,5 +217,11 @@ bad_input long format "needs --precision double" --format npy --precision long -
 bad_input interval format "needs --precision double" --format npy --precision interval:double \
   --out "$TMP/bad_interval/o.npy"
 bad_input noout out "give --out PATH" --format npy
+# A device or directory: PATH.json would be written beside it (/dev/null.json among the devices).
+mkdir -p "$TMP/adir"
+bad_input dir out "must name a regular file" --format npy --out "$TMP/adir"
+[[ ! -e /dev/null.json ]] || { rm -f /dev/null.json; fail dev_null "wrote /dev/null.json"; }
+bad_input devnull out "must name a regular file" --format npy --out /dev/null
+[[ ! -e /dev/null.json ]] || { rm -f /dev/null.json; fail dev_null "wrote /dev/null.json"; }
 
 finish

@@ -493,3 +493,157 @@ TEST(ClassifyMany, EachOrbitAsAloneBitForBit) {
   const ImpactMap<double> map(make_model<double>(spec(Law::constant, "29.125", "0.96"), 53));
   EXPECT_EQ(classify<double>(map, State<double>{0.2, 1e200}, o).cls, OrbitClass::undecided);
 }
+
+// The recurrence rule (RecheckRule::recurrence): on a chaotic attractor, the first two
+// aperiodic starts run the whole re-check (R = 20 x 400 steps here: the set and its second
+// confirmation), the 8th start allowed to join after them too (an audit), and the others stop where they
+// have stayed 1000 steps in the cells those visited; every label is the full rule's. The
+// velocity-dependent model at c = 1000, a = 27: its chaos is an attractor (exponent ~0.11 per
+// collision at every precision, claims table).
+namespace {
+long joined_after(const Classification& c) {
+  const std::string key = "re-check by recurrence: after ";
+  const size_t at = c.evidence.find(key);
+  return at == std::string::npos ? -1 : std::atol(c.evidence.c_str() + at + key.size());
+}
+}  // namespace
+
+TEST(ClassifyMany, RecurrenceStopsReChecksOnAKnownChaoticSetWithTheSameLabels) {
+  ClassifyOptions o;
+  o.transient = 400;
+  o.steps = 128;
+  o.max_period = 32;
+  o.recheck_factor = 20;
+  const long R = 20 * 400;
+  const ImpactMap<double> map(make_model<double>(spec(Law::veldep, "27", "1", "1000"), 53));
+  std::vector<State<double>> xs;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) xs.push_back({0.05 + 0.23 * i, 7 + 4.5 * j});
+  o.recheck = RecheckRule::full;
+  const std::vector<Classification> full = classify_many<double>(map, xs, o);
+  o.recheck = RecheckRule::recurrence;
+  const std::vector<Classification> rec = classify_many<double>(map, xs, o);
+  ASSERT_EQ(full.size(), rec.size());
+  std::vector<long> joined;  // per chaotic start, in order: its join step or -1
+  for (size_t i = 0; i < xs.size(); ++i) {
+    EXPECT_TRUE(same_behaviour(full[i], rec[i])) << i << ": " << full[i].evidence << " | " << rec[i].evidence;
+    if (full[i].cls != OrbitClass::chaotic) continue;
+    const long n = joined_after(rec[i]);
+    joined.push_back(n);
+    if (n < 0) {
+      // A whole re-check: the full rule's evidence, word for word.
+      EXPECT_EQ(rec[i].evidence, full[i].evidence) << i;
+      continue;
+    }
+    // It stopped early, after at least the 1000 steps of the stay, and its window's exponent
+    // is positive (its label is its own window's, not borrowed).
+    EXPECT_GE(n, 1000) << rec[i].evidence;
+    EXPECT_LE(n + 128, R) << rec[i].evidence;
+    EXPECT_GT(rec[i].lambda, 0.01) << rec[i].evidence;
+  }
+  ASSERT_EQ(joined.size(), 12u) << "every start is on the chaotic attractor";
+  // The first two make and confirm the set; of the next ones the eighth is an audit.
+  EXPECT_EQ(joined[0], -1);
+  EXPECT_EQ(joined[1], -1);
+  for (size_t i = 2; i < joined.size(); ++i) EXPECT_EQ(joined[i] < 0, (i - 2) % 8 == 7) << i;
+}
+
+// Where a chaotic set is a long-lived transient (the veldep model at c = 650, a = 22.75: a
+// start settles on the period-2 attractor anywhere from 10^4 to 10^5 steps after the paper's
+// window), whole re-checks see orbits settle, every start that had joined is re-checked in
+// full and none joins after: the labels are the full rule's, field for field (the settled
+// runs skipped along their exact cycles included).
+TEST(ClassifyMany, RecurrenceFallsBackToFullReChecksWhereAnOrbitSettles) {
+  ClassifyOptions o;  // the paper's window: 5000 + 500, re-checked 100000 steps later
+  o.recheck = RecheckRule::recurrence;
+  std::vector<std::pair<double, double>> grid;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) grid.push_back({0.05 + 0.25 * i, 5 + 3 * j});
+  const ModelSpec s = spec(Law::veldep, "22.75", "1", "650");
+  expect_many_equals_one<double>(s, grid, o, 53);
+  const ImpactMap<double> map(make_model<double>(s, 53));
+  std::vector<State<double>> xs;
+  for (const auto& [th, v] : grid) xs.push_back({th, v});
+  long settled = 0;
+  for (const Classification& c : classify_many<double>(map, xs, o)) {
+    settled += c.cls == OrbitClass::transient_chaos && c.settled_at > 5500 + 10000;
+    EXPECT_EQ(c.evidence.find("re-check by recurrence"), std::string::npos) << c.evidence;
+  }
+  EXPECT_GE(settled, 2) << "the case is what it claims to be";
+}
+
+// In a conservative map (elastic; eps = 1) the recurrence rule does not apply: a sticky
+// episode near an island looks quiet and chaos cannot settle, so every start runs the whole
+// re-check, bit for bit as classify() alone.
+TEST(ClassifyMany, RecurrenceRuleLeavesConservativeMapsAlone) {
+  ClassifyOptions o;
+  o.transient = 400;
+  o.steps = 128;
+  o.max_period = 32;
+  o.recheck_factor = 20;
+  o.recheck = RecheckRule::recurrence;
+  std::vector<std::pair<double, double>> grid;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) grid.push_back({0.1 + 0.3 * i, 6 + 5 * j});
+  expect_many_equals_one<double>(spec(Law::elastic, "18"), grid, o, 53);
+  expect_many_equals_one<double>(spec(Law::constant, "18", "1"), grid, o, 53);
+}
+
+TEST(ClassifyMany, RecheckRuleNames) {
+  for (RecheckRule r : {RecheckRule::full, RecheckRule::recurrence}) EXPECT_EQ(recheck_rule_named(name(r)), r);
+  EXPECT_EQ(recheck_rule_named("Full"), std::nullopt);
+  EXPECT_EQ(recheck_rule_named(""), std::nullopt);
+  EXPECT_EQ(ClassifyOptions{}.recheck, RecheckRule::full);  // classify()'s labels, start by start
+}
+
+// Carrying an exactly recurring orbit along its cycle (ClassifyOptions::exact_cycles) gives
+// what stepping gives, every field, bit for bit: periodic orbits of several periods, sticking
+// (the last sticking step and release state are carried), the velocity-dependent model's
+// attractors and transient chaos (settled during the re-check), in double and in MPFR.
+TEST(ClassifyMany, ExactCyclesAreCarriedBitForBit) {
+  ClassifyOptions on;
+  on.transient = 3000;
+  on.steps = 256;
+  on.max_period = 64;
+  on.recheck_factor = 20;
+  on.recheck = RecheckRule::full;
+  ClassifyOptions off = on;
+  off.exact_cycles = false;
+  std::vector<std::pair<double, double>> grid;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 3; ++j) grid.push_back({0.05 + 0.23 * i, 5 + 4 * j});
+  std::set<OrbitClass> seen;
+  for (const ModelSpec& s : {spec(Law::constant, "24", "0.5"), spec(Law::constant, "28.82", "0.96"),
+                             spec(Law::constant, "14", "0.8"), spec(Law::veldep, "23.1", "1", "1000"),
+                             spec(Law::veldep, "22.75", "1", "650")}) {
+    const ImpactMap<double> map(make_model<double>(s, 53));
+    std::vector<State<double>> xs;
+    for (const auto& [th, v] : grid) xs.push_back({th, v});
+    const std::vector<Classification> a = classify_many<double>(map, xs, on), b = classify_many<double>(map, xs, off);
+    for (size_t i = 0; i < xs.size(); ++i) {
+      EXPECT_EQ(a[i].cls, b[i].cls) << i << ": " << b[i].evidence;
+      EXPECT_EQ(a[i].period, b[i].period) << i;
+      EXPECT_TRUE(same_bits(a[i].lambda, b[i].lambda)) << i;
+      EXPECT_EQ(a[i].evidence, b[i].evidence) << i;
+      EXPECT_TRUE(same_bits(a[i].alpha, b[i].alpha)) << i;
+      EXPECT_EQ(a[i].settled_class, b[i].settled_class) << i;
+      EXPECT_EQ(a[i].settled_at, b[i].settled_at) << i;
+      seen.insert(b[i].cls);
+      // classify() alone carries too: the same as classify_many.
+      const Classification one = classify<double>(map, xs[i], on);
+      EXPECT_EQ(one.evidence, a[i].evidence) << i;
+    }
+  }
+  for (OrbitClass c : {OrbitClass::sticking, OrbitClass::periodic, OrbitClass::chaotic})
+    EXPECT_TRUE(seen.count(c)) << name(c) << ": the cases cover it";
+  // MPFR: the orbit recurs exactly at its precision too.
+  const ImpactMap<Mpfr> m(make_model<Mpfr>(spec(Law::constant, "24", "0.5"), 80));
+  std::vector<State<Mpfr>> xs;
+  for (const auto& [th, v] : grid)
+    xs.push_back(make_state<Mpfr>(m.model(), {parse_decimal("theta", std::to_string(th)), parse_decimal("v", std::to_string(v))}));
+  const std::vector<Classification> a = classify_many<Mpfr>(m, xs, on), b = classify_many<Mpfr>(m, xs, off);
+  for (size_t i = 0; i < xs.size(); ++i) {
+    EXPECT_EQ(a[i].evidence, b[i].evidence) << i;
+    EXPECT_TRUE(same_bits(a[i].lambda, b[i].lambda)) << i;
+  }
+}

@@ -75,6 +75,14 @@ std::optional<OrbitClass> orbit_class_named(std::string_view text) {
   return std::nullopt;
 }
 
+const char* name(RecheckRule r) { return r == RecheckRule::full ? "full" : "recurrence"; }
+
+std::optional<RecheckRule> recheck_rule_named(std::string_view text) {
+  for (RecheckRule r : {RecheckRule::full, RecheckRule::recurrence})
+    if (text == name(r)) return r;
+  return std::nullopt;
+}
+
 namespace {
 
 constexpr double kRepeatTol = 1e-9;  // relative agreement of states for "repeats"
@@ -190,6 +198,34 @@ std::string windows_text(const ClassifyOptions& opt) {
 
 namespace {
 
+// The exact return of a deterministic orbit: once a state recurs exactly (every bit, and the
+// knot), the orbit repeats its cycle for ever, so the steps up to any later step are known
+// without taking them. Brent's method: the state saved at steps 1, 2, 4, 8, ... is compared
+// with each later one; a cycle of period p starting by step m is seen by step 2 max(m, p).
+// States with a zero coordinate are not compared (-0 and +0 compare equal but could step
+// differently).
+template <class T>
+struct ExactCycle {
+  State<T> saved{};
+  long saved_at = -1, next_save = 1;
+  long period = 0;  // found: the state at step n equals the one at step n - period
+  void see(const State<T>& s, long n) {
+    if (period) return;
+    using Tr = ScalarTraits<T>;
+    const double th = Tr::to_double(s.theta), v = Tr::to_double(s.v);
+    const bool comparable = th != 0 && v != 0 && std::isfinite(th) && std::isfinite(v);
+    if (comparable && saved_at >= 0 && s.knot == saved.knot && s.theta == saved.theta && s.v == saved.v) {
+      period = n - saved_at;
+      return;
+    }
+    if (n >= next_save) {
+      saved = s;
+      saved_at = comparable ? n : -1;
+      next_save = 2 * n;
+    }
+  }
+};
+
 // The steps of one window run (the transient, then the window of W steps), with what rules
 // 1-6 need of them: the window's states, events, segments and relative velocities, the
 // growth samples of the whole run and the last sticking step. One orbit per run; several
@@ -208,12 +244,47 @@ struct WindowRun {
   State<T> release{};
   std::string undecided;    // the step's reason, when a step was undecided
   bool failed = false;
+  ExactCycle<T> cycle;      // watched during the transient (opt.exact_cycles)
+  bool watch = true, carried = false;
 
   WindowRun(State<T> start, const ClassifyOptions& opt)
-      : s(std::move(start)), N(std::max(0L, opt.transient) + std::max(4L, opt.steps)), W(std::max(4L, opt.steps)) {
+      : s(std::move(start)), N(std::max(0L, opt.transient) + std::max(4L, opt.steps)), W(std::max(4L, opt.steps)),
+        watch(opt.exact_cycles) {
     win.reserve(static_cast<size_t>(W) + 1);
   }
   bool done() const { return failed || n >= N; }
+
+  // After a step: if the orbit has just recurred exactly (ExactCycle), take one more cycle and
+  // carry the run along it to the last whole cycle before the window: the states, growth
+  // samples and last sticking step that stepping would give, bit for bit (every v of the cycle
+  // is in the running maximum already). True if it moved.
+  bool carry(const ImpactMap<T>& map) {
+    const long p = cycle.period;
+    if (!p || carried || failed) return false;
+    carried = true;
+    const long window_at = N - W;
+    if (n + p >= window_at) return false;
+    std::vector<State<T>> states;
+    std::vector<char> stuck;
+    for (long i = 0; i < p; ++i) {
+      const long before = last_stick;
+      step_or_fail(map);
+      if (failed) return false;
+      states.push_back(s);
+      stuck.push_back(last_stick != before);
+    }
+    const long end = n + (window_at - n) / p * p;
+    if (end == n) return false;
+    for (long i = p - 1; i >= 0; --i)
+      if (stuck[static_cast<size_t>(i)]) {
+        last_stick = end - (p - 1 - i);
+        release = states[static_cast<size_t>(i)];
+        break;
+      }
+    while (growth.next <= static_cast<double>(end)) growth.add(static_cast<long>(growth.next), growth.runmax);
+    n = end;  // s is the cycle's last state, as p, 2p, ... steps later
+    return true;
+  }
 
   // One step (throws Undecided).
   void step(const ImpactMap<T>& map) {
@@ -226,6 +297,7 @@ struct WindowRun {
       last_stick = n + 1;
       release = s;
     }
+    if (watch && n < N - W) cycle.see(s, n + 1);
     if (n >= N - W) {
       win.push_back(s);
       kinds.push_back(r.kind);
@@ -270,6 +342,8 @@ void run_windows(const ImpactMap<T>& map, const std::vector<WindowRun<T>*>& runs
           w[1]->step(map);
           w[2]->step(map);
           w[3]->step(map);
+          // An orbit that recurred exactly is carried along its cycle (below), out of step.
+          if (w[0]->cycle.period | w[1]->cycle.period | w[2]->cycle.period | w[3]->cycle.period) break;
         }
       } catch (const Undecided&) {
         // A step that throws changes nothing: the runs not yet past this round (w[3] never
@@ -279,18 +353,24 @@ void run_windows(const ImpactMap<T>& map, const std::vector<WindowRun<T>*>& runs
           if (x->n == n0) x->step_or_fail(map);
       }
     }
-    // Whatever is left (after a failure), one by one.
-    for (WindowRun<T>* x : w)
-      while (!x->done()) {
-        throw_if_cancelled(x->n);
-        x->step_or_fail(map);
-      }
+    // Whatever is left (after a failure or an exact recurrence), one step of each in turn.
+    for (bool left = true; left;) {
+      left = false;
+      for (WindowRun<T>* x : w)
+        if (!x->done()) {
+          throw_if_cancelled(x->n);
+          x->step_or_fail(map);
+          x->carry(map);
+          left = true;
+        }
+    }
   }
   for (; g < runs.size(); ++g) {
     WindowRun<T>& w = *runs[g];
     while (!w.done()) {
       throw_if_cancelled(w.n);
       w.step_or_fail(map);
+      w.carry(map);
     }
   }
 }
@@ -556,6 +636,14 @@ std::optional<Classification> on_unstable_orbit(const ImpactMap<T>& map, const S
   return std::nullopt;
 }
 
+// Whether the map is conservative: elastic, or constant eps = 1.
+template <class T>
+bool is_conservative(const ImpactMap<T>& map) {
+  const Model<T>& model = map.model();
+  return model.law == Law::elastic ||
+         (model.law == Law::constant && certainly(ScalarTraits<T>::is_zero(T(model.eps - 1))));
+}
+
 // Whether a window's verdict is re-checked later along the orbit (rule 7), and whether the map
 // is conservative.
 template <class T>
@@ -565,9 +653,7 @@ bool wants_recheck(const ImpactMap<T>& map, const Classification& c, const Class
   // chaotic orbit cannot settle, and a quiet later window is a sticky episode near an island.
   // In a dissipative map an invariant circle is rare and a chaotic transient whose exponent
   // is within its error of 0 is common, so there `quasiperiodic` is re-checked too.
-  const Model<T>& model = map.model();
-  conservative = model.law == Law::elastic ||
-                 (model.law == Law::constant && certainly(ScalarTraits<T>::is_zero(T(model.eps - 1))));
+  conservative = is_conservative(map);
   quiet = c.cls == OrbitClass::quasiperiodic && !conservative;
   return (c.cls == OrbitClass::chaotic || quiet) && opt.recheck_factor > 0;
 }
@@ -581,13 +667,16 @@ inline ClassifyOptions recheck_options(const ClassifyOptions& opt) {
 }
 
 // Rule 7's verdict from the first window's c (ending at `last`) and the later window's.
+// `R`: the steps between the first window and the later one (the full re-check's, or fewer
+// when the later window was taken where the orbit joined a known chaotic set, as `joined`
+// says).
 template <class T>
 Classification after_recheck(const ImpactMap<T>& map, Classification c, const Classification& later, const State<T>& last,
-                             const ClassifyOptions& opt, const std::string& windows, bool conservative, bool quiet) {
+                             const ClassifyOptions& opt, const std::string& windows, bool conservative, bool quiet,
+                             long R, const std::string& joined = {}) {
   const long W = std::max(4L, opt.steps);
   const long N = std::max(0L, opt.transient) + W;
-  const long R = opt.recheck_factor * std::max(opt.transient, opt.steps);
-  const std::string first = c.evidence;
+  const std::string first = c.evidence + joined;
   if (quiet && (later.cls == OrbitClass::quasiperiodic || later.cls == OrbitClass::chaotic)) {
     // Aperiodic then and later: the later window's label, the earlier one as evidence.
     c.cls = later.cls;
@@ -623,14 +712,35 @@ Classification after_recheck(const ImpactMap<T>& map, Classification c, const Cl
       try {
         const long E = R + W;
         if (later.cls == OrbitClass::fixed || later.cls == OrbitClass::periodic) {
+          // With exact cycles, the replay stops a cycle and a period after the orbit recurs
+          // exactly: from the cycle's first state on, every q-shifted pair is one of the
+          // cycle's, so if none of those disagrees the last disagreeing pair lies before it,
+          // as in the whole replay (else the whole replay decides).
+          const long q = later.period;
           std::vector<State<T>> run;
-          run.reserve(E);
           State<T> x = last;
-          for (long i = 0; i < E; ++i) {
+          ExactCycle<T> cycle;
+          long stop = E, cycle_from = -1;
+          for (long i = 0; i < stop; ++i) {
             x = map.step(x).next;
             run.push_back(x);
+            if (opt.exact_cycles && !cycle.period) {
+              cycle.see(x, i + 1);
+              if (cycle.period) {
+                cycle_from = i - cycle.period;  // index of the state the recurrence returned to
+                stop = std::min(E, i + 1 + cycle.period + q);
+              }
+            }
           }
-          c.settled_at = N + settle_step(run, later.period);
+          long at = settle_step(run, q);
+          if (stop < E && at - 2 >= cycle_from) {
+            for (long i = stop; i < E; ++i) {
+              x = map.step(x).next;
+              run.push_back(x);
+            }
+            at = settle_step(run, q);
+          }
+          c.settled_at = N + at;
         } else if (later.cls == OrbitClass::sticking) {
           State<T> x = last;
           for (long i = 0; i < E; ++i) {
@@ -674,9 +784,182 @@ Classification classify(const ImpactMap<T>& map, State<T> s, const ClassifyOptio
   }
   // 7. Re-check a chaotic (or dissipative quasiperiodic) verdict much later along the orbit.
   State<T> later_last = last;
-  const Classification later = classify_window(map, last, recheck_options(opt), later_last);
-  return after_recheck(map, std::move(c), later, last, opt, windows, conservative, quiet);
+  const ClassifyOptions ro = recheck_options(opt);
+  const Classification later = classify_window(map, last, ro, later_last);
+  return after_recheck(map, std::move(c), later, last, opt, windows, conservative, quiet, ro.transient);
 }
+
+// Rule 7 by recurrence (RecheckRule::recurrence): the chaotic sets of one map found so far,
+// each the cells of the section that one start's orbit visited in the second half of a whole
+// re-check that ended chaotic. The cells: n x n over theta in [0, 1) and over the orbit's range
+// of v (padded by 5%), n = sqrt(samples)/2 within [16, 128] (about four samples a row and a
+// column of cells each), each visited cell with its 8 neighbours. So a second orbit of the same
+// attractor, which visits its own sample of the same set, rarely steps outside: at c = 1000,
+// a = 27 (veldep), none of 20000 steps of a second orbit fell outside the set of 4000 or of
+// 50000 samples, where 256 x 256 cells without neighbours missed 29% and 2%.
+class KnownSet {
+ public:
+  explicit KnownSet(const std::vector<std::pair<double, double>>& pts)
+      : n_(std::clamp(static_cast<int>(std::sqrt(static_cast<double>(pts.size())) / 2), 16, 128)) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const auto& p : pts) lo = std::min(lo, p.second), hi = std::max(hi, p.second);
+    const double pad = 0.05 * (hi - lo) + 1e-9 * std::max(1.0, std::fabs(hi));
+    v0_ = lo - pad;
+    scale_ = n_ / (hi + pad - v0_);
+    cells_.assign(static_cast<size_t>(n_) * static_cast<size_t>(n_), 0);
+    for (const auto& p : pts) {
+      const int i = theta_cell(p.first), j = v_cell(p.second);
+      for (int di = -1; di <= 1; ++di)
+        for (int dj = std::max(0, j - 1); dj <= std::min(n_ - 1, j + 1); ++dj)
+          cells_[static_cast<size_t>(dj) * static_cast<size_t>(n_) + static_cast<size_t>((i + di + n_) % n_)] = 1;
+    }
+  }
+  bool contains(double theta, double v) const {
+    const double y = (v - v0_) * scale_;
+    if (!(y >= 0 && y < n_)) return false;
+    return cells_[static_cast<size_t>(y) * static_cast<size_t>(n_) + static_cast<size_t>(theta_cell(theta))] != 0;
+  }
+
+ private:
+  int theta_cell(double theta) const {
+    const double t = theta - std::floor(theta);
+    return std::min(n_ - 1, static_cast<int>(t * n_));
+  }
+  int v_cell(double v) const { return std::clamp(static_cast<int>((v - v0_) * scale_), 0, n_ - 1); }
+  int n_;
+  double v0_ = 0, scale_ = 1;
+  std::vector<unsigned char> cells_;
+};
+
+// Consecutive steps in a known set's cells that end a re-check by recurrence: twice the
+// paper's window, long against the few steps in which an orbit that merely passes near the
+// set (a chaotic saddle beside a periodic attractor) leaves its cells.
+constexpr long kJoinSteps = 1000;
+// Sets kept per map (the first ones found), and the whole re-checks that must have stayed
+// aperiodic on a set before starts may join it. Some starts allowed to join run their whole
+// re-check anyway (an audit: a set that is a long-lived chaotic transient shows itself there).
+constexpr size_t kMaxKnownSets = 4;
+constexpr long kConfirmations = 2;
+// The audits: the 8th start allowed to join, then the 24th, 56th, 120th, ... (gaps 8, 16, 32,
+// ...): a set on which more whole re-checks stayed aperiodic needs fewer more.
+bool audit_at(long allowed) {
+  for (long at = 7, gap = 8; at <= allowed; gap *= 2, at += gap)
+    if (at == allowed) return true;
+  return false;
+}
+
+bool aperiodic(OrbitClass c) { return c == OrbitClass::chaotic || c == OrbitClass::quasiperiodic; }
+
+// A re-check run (R = ro.transient steps from `last`, then the window), as the full re-check
+// takes it, with two additions:
+//   * `join` (RecheckRule::recurrence): once the orbit has stayed kJoinSteps consecutive steps
+//     in the cells of one of these sets, a window of the ordinary options (no transient) is
+//     taken from there, and its label is the answer if it is aperiodic; otherwise the run goes
+//     on to the full answer;
+//   * an orbit that recurs exactly during the R steps is carried to the window along its cycle
+//     without stepping (ExactCycle): the same states, growth samples and last sticking step,
+//     bit for bit, as stepping them.
+// `seen` receives the states of the second half of the R steps (theta, v) when asked for.
+template <class T>
+struct RecheckRun {
+  Classification later;
+  long R = 0;          // the steps before the later window
+  bool joined = false;
+  std::vector<std::pair<double, double>> seen;
+};
+
+template <class T>
+RecheckRun<T> recheck_run(const ImpactMap<T>& map, const State<T>& last, const ClassifyOptions& opt,
+                          const ClassifyOptions& ro, const std::vector<const KnownSet*>& join, bool record) {
+  using Tr = ScalarTraits<T>;
+  RecheckRun<T> out;
+  const long R = ro.transient;
+  out.R = R;
+  const long W = std::max(4L, opt.steps);
+  WindowRun<T> w(last, ro);
+  if (record) out.seen.reserve(static_cast<size_t>(R - R / 2));
+  bool may_join = !join.empty();
+  long stay = 0;
+  const KnownSet* where = nullptr;
+  while (!w.done() && w.n < R) {
+    throw_if_cancelled(w.n);
+    w.step_or_fail(map);
+    if (w.failed) break;
+    const double th = Tr::to_double(w.s.theta), v = Tr::to_double(w.s.v);
+    if (record && w.n > R / 2) out.seen.emplace_back(th, v);
+    if (w.carry(map)) {
+      // An exactly periodic orbit: no aperiodic set to record, none to join.
+      record = false;
+      out.seen.clear();
+      may_join = false;
+      continue;
+    }
+    if (!may_join) continue;
+    if (where && where->contains(th, v)) {
+      ++stay;
+    } else {
+      stay = 0;
+      where = nullptr;
+      for (const KnownSet* k : join)
+        if (k->contains(th, v)) {
+          where = k;
+          stay = 1;
+          break;
+        }
+    }
+    if (stay >= kJoinSteps && w.n + W <= R) {
+      ClassifyOptions wo = opt;
+      wo.transient = 0;
+      wo.recheck_factor = 0;
+      State<T> wl = w.s;
+      Classification lc = classify_window(map, w.s, wo, wl);
+      if (aperiodic(lc.cls)) {
+        out.later = std::move(lc);
+        out.R = w.n;
+        out.joined = true;
+        return out;
+      }
+      may_join = false;  // not that set after all: the full re-check decides
+    }
+  }
+  while (!w.done()) {
+    throw_if_cancelled(w.n);
+    w.step_or_fail(map);
+  }
+  State<T> later_last = last;
+  out.later = finish_window(map, w, ro, later_last);
+  return out;
+}
+
+// The aperiodic sets of one map met by whole re-checks (RecheckRule::recurrence), with how many
+// whole re-checks stayed aperiodic on each.
+struct KnownSets {
+  std::vector<KnownSet> sets;
+  std::vector<long> confirmed;
+  // A whole re-check that stayed aperiodic, with the states of its second half: it confirms the
+  // set that holds 99% of them, or starts a new one.
+  void confirm(const std::vector<std::pair<double, double>>& seen) {
+    if (seen.empty()) return;
+    for (size_t i = 0; i < sets.size(); ++i) {
+      size_t in = 0;
+      for (const auto& p : seen) in += sets[i].contains(p.first, p.second);
+      if (in >= seen.size() - seen.size() / 100) {
+        ++confirmed[i];
+        return;
+      }
+    }
+    if (sets.size() < kMaxKnownSets) {
+      sets.emplace_back(seen);
+      confirmed.push_back(1);
+    }
+  }
+  std::vector<const KnownSet*> trusted() const {
+    std::vector<const KnownSet*> out;
+    for (size_t i = 0; i < sets.size(); ++i)
+      if (confirmed[i] >= kConfirmations) out.push_back(&sets[i]);
+    return out;
+  }
+};
 
 template <class T>
 std::vector<Classification> classify_many(const ImpactMap<T>& map, const std::vector<State<T>>& starts,
@@ -704,6 +987,7 @@ std::vector<Classification> classify_many(const ImpactMap<T>& map, const std::ve
   run_windows<T>(map, ptrs);
   // The re-checks, side by side.
   const ClassifyOptions ro = recheck_options(opt);
+  const bool by_recurrence = opt.recheck == RecheckRule::recurrence && !is_conservative(map);
   std::vector<State<T>> lasts(who.size());
   std::vector<WindowRun<T>> later;
   std::vector<size_t> again;  // indices into who
@@ -719,10 +1003,52 @@ std::vector<Classification> classify_many(const ImpactMap<T>& map, const std::ve
     if (!re) c.evidence += windows;
     out[who[k]] = std::move(c);
     if (re) {
-      later.emplace_back(lasts[k], ro);
+      if (!by_recurrence) later.emplace_back(lasts[k], ro);
       again.push_back(k);
     }
     first[k] = WindowRun<T>(State<T>{}, ClassifyOptions{0, 4, 1, 0});  // its memory back
+  }
+  if (by_recurrence) {
+    // A dissipative map: the starts one after the other. A start may join a set on which
+    // kConfirmations whole re-checks stayed aperiodic, except the audits (audit_at), which run
+    // their whole re-check. As soon as a whole re-check of this map ends anywhere but on an
+    // aperiodic set (the orbit settled, grew or failed), the sets may be long-lived transients:
+    // the starts that joined are re-checked in full, and no start joins any more. So a joined
+    // label stands only where every whole re-check of the map stayed aperiodic.
+    KnownSets known;
+    bool escaped = false;
+    long allowed = 0;
+    std::vector<size_t> joined;
+    std::vector<Classification> firsts(who.size());
+    const auto settle = [&](size_t k, const RecheckRun<T>& rc) {
+      const std::string how =
+          rc.joined ? "; re-check by recurrence: after " + std::to_string(rc.R) + " further steps the orbit had stayed " +
+                          std::to_string(kJoinSteps) + " steps in the cells of an aperiodic set on which at least " +
+                          std::to_string(kConfirmations) + " earlier starts of this map stayed aperiodic through " +
+                          "their whole re-checks of " + std::to_string(ro.transient) + " steps, and no whole re-check settled"
+                    : std::string();
+      out[who[k]] = after_recheck(map, firsts[k], rc.later, lasts[k], opt, windows, false, quiet[k] != 0, rc.R, how);
+    };
+    for (const size_t k : again) firsts[k] = out[who[k]];
+    for (const size_t k : again) {
+      std::vector<const KnownSet*> join;
+      if (!escaped) {
+        join = known.trusted();
+        if (!join.empty() && audit_at(allowed++)) join.clear();
+      }
+      const RecheckRun<T> rc = recheck_run(map, lasts[k], opt, ro, join, !escaped && known.sets.size() < kMaxKnownSets);
+      if (rc.joined) {
+        joined.push_back(k);
+      } else if (aperiodic(rc.later.cls)) {
+        known.confirm(rc.seen);
+      } else if (!escaped) {
+        escaped = true;
+        for (const size_t j : joined) settle(j, recheck_run(map, lasts[j], opt, ro, {}, false));
+        joined.clear();
+      }
+      settle(k, rc);
+    }
+    return out;
   }
   ptrs.clear();
   for (WindowRun<T>& w : later) ptrs.push_back(&w);
@@ -731,7 +1057,8 @@ std::vector<Classification> classify_many(const ImpactMap<T>& map, const std::ve
     const size_t k = again[m];
     State<T> later_last = lasts[k];
     const Classification lc = finish_window(map, later[m], ro, later_last);
-    out[who[k]] = after_recheck(map, std::move(out[who[k]]), lc, lasts[k], opt, windows, cons[k] != 0, quiet[k] != 0);
+    out[who[k]] = after_recheck(map, std::move(out[who[k]]), lc, lasts[k], opt, windows, cons[k] != 0, quiet[k] != 0,
+                                ro.transient);
   }
   return out;
 }

@@ -59,6 +59,20 @@ struct Classification {
   std::string growth_kind;        // accelerator | diffusive | irregular
 };
 
+// How classify_many re-checks (rule 7) the aperiodic verdicts of many starts of one map.
+enum class RecheckRule {
+  // Every start runs the whole re-check, R steps then a window, exactly as classify() alone.
+  full,
+  // A start whose re-check orbit stays kJoinSteps consecutive steps in the cells of a chaotic
+  // set on which an earlier start of the same call stayed chaotic through its whole re-check
+  // stops there: its later window is taken at that step, and if it says chaotic that is the
+  // label; otherwise the run goes on to the full R. Dissipative maps only (conservative ones
+  // re-check in full). docs/guide/dynamics.md, "Re-checks".
+  recurrence,
+};
+const char* name(RecheckRule r);
+std::optional<RecheckRule> recheck_rule_named(std::string_view text);
+
 struct ClassifyOptions {
   long transient = 5000;   // steps discarded first (paper: 5000)
   long steps = 500;        // steps examined (paper: 500)
@@ -66,15 +80,25 @@ struct ClassifyOptions {
   // A `chaotic` verdict is re-checked after recheck_factor x max(transient, steps) further
   // steps; an orbit that has settled by then is transient_chaos. 0 turns the re-check off.
   long recheck_factor = 20;
+  // classify_many only (classify() has no other starts to share with). full: every start's
+  // label is classify()'s (basin); scan's requests default to recurrence (`scan --recheck`).
+  RecheckRule recheck = RecheckRule::full;
+  // An orbit whose state recurs exactly (every bit) before the window, in the transient or the
+  // re-check's R steps, is carried along its cycle instead of stepped: a deterministic map
+  // repeats it for ever, so the results are the same, bit for bit (tested). False steps every
+  // step (tests, benchmarks).
+  bool exact_cycles = true;
 };
 
 template <class T>
 Classification classify(const ImpactMap<T>& map, State<T> start, const ClassifyOptions& opt);
 
-// classify() of each start, for many starts of one map at once: the same results, bit for
-// bit (tested), faster. The steps without analysis (the transient and the re-check's R
-// steps, most of a classification's time) go four orbits side by side, so that the
-// processor overlaps their chains of dependent operations (bench_grid: scan).
+// classify() of each start, for many starts of one map at once, faster. With opt.recheck =
+// full (the default) the same results as classify(), bit for bit (tested); with recurrence
+// (the scan's default), a start re-checked on an aperiodic set that earlier starts of the call
+// have already followed through whole re-checks stops early (RecheckRule; its evidence says so). The first
+// windows' steps go four orbits side by side, so that the processor overlaps their chains of
+// dependent operations (bench_grid: scan).
 template <class T>
 std::vector<Classification> classify_many(const ImpactMap<T>& map, const std::vector<State<T>>& starts,
                                           const ClassifyOptions& opt);

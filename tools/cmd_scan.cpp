@@ -72,6 +72,7 @@ void write_scan(const ScanResult& res, const ScanGrid& grid, const ScanOptions& 
   for (OrbitClass c : scan_classes()) t[name(c)] = totals[static_cast<size_t>(c)];
   s["totals"] = t;
   s["precision"] = r.precision.text();
+  s["recheck"] = r.classify.recheck_factor > 0 ? name(r.classify.recheck) : "off";
   std::vector<ExtraFigure> extra;
   if (confirm) {
     s["confirm"] = confirm_summary(res, grid);
@@ -99,7 +100,7 @@ const std::set<std::string>& scan_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = model_keys();
     k.insert({"a-range", "eps-range", "c-range", "grid", "ics", "theta-range", "v-range", "transient", "steps",
-              "max-period", "recheck-factor", "precision", "show", "curves", "certify", "max-bits", "theta", "v", "confirm", "confirm-sample"});
+              "max-period", "recheck-factor", "recheck", "precision", "show", "curves", "certify", "max-bits", "theta", "v", "confirm", "confirm-sample"});
     k.insert(run_keys().begin(), run_keys().end());
     k.insert(picture_keys().begin(), picture_keys().end());
     return k;
@@ -132,6 +133,9 @@ CommandRunner setup_scan(CLI::App* sub) {
   opts->add("theta-range", "Initial phases T0:T1 within [0, 1] (default 0:1)");
   opts->add("v-range", "Initial velocities V0:V1 (default: the trapping region of each point, from the wall velocity 4 to its top; README, Claims row 5)");
   add_classify_options(*opts);
+  opts->add("recheck", "How the starts of one point re-check their chaotic labels: recurrence (default: a start whose orbit stays "
+                       "1000 steps in the cells of a chaotic set on which an earlier start of the point stayed chaotic through "
+                       "its whole re-check is classified there) | full (every start runs the whole re-check)");
   opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
   opts->add("curves", "Over the picture: fixed-points (default for --model constant: the paper's eq. 5, "

@@ -13,12 +13,12 @@ namespace bouncer::cli {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, std::string_view>, 74> kinds{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 75> kinds{{
     // decimals (exact: a run encloses or rounds them as its precision says)
     {"a", "NUMBER"}, {"eps", "NUMBER"}, {"c", "NUMBER"}, {"theta", "NUMBER"}, {"v", "NUMBER"},
     {"step", "NUMBER"}, {"beyond", "NUMBER"}, {"tolerance", "NUMBER"}, {"lift", "NUMBER"},
     // integers
-    {"steps", "INT"}, {"transient", "INT"}, {"threads", "INT"}, {"recheck-factor", "INT"},
+    {"steps", "INT"}, {"transient", "INT"}, {"threads", "INT"}, {"recheck-factor", "INT"}, {"recheck", "recurrence|full"},
     {"max-period", "INT"}, {"max-bits", "INT"}, {"samples", "INT"}, {"max-iter", "INT"},
     {"start-bits", "INT"}, {"max-steps", "INT"}, {"max-pieces", "INT"}, {"max-depth", "INT"},
     {"values", "INT"}, {"recurrences", "INT"}, {"p-max", "INT"}, {"max-points", "INT"},

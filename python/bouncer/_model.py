@@ -847,8 +847,8 @@ class Model(_core.Model):
              ics: Optional[int] = None, theta_range: Optional[Tuple[Number, Number]] = None,
              v_range: Optional[Tuple[Number, Number]] = None, transient: Optional[int] = None,
              steps: Optional[int] = None, max_period: Optional[int] = None, recheck_factor: Optional[int] = None,
-             certify: bool = False, theta: Optional[Number] = None, v: Optional[Number] = None,
-             max_bits: Optional[int] = None, threads: Optional[int] = None) -> Scan:
+             recheck: Optional[str] = None, certify: bool = False, theta: Optional[Number] = None,
+             v: Optional[Number] = None, max_bits: Optional[int] = None, threads: Optional[int] = None) -> Scan:
         """A parameter scan over (a, eps) (constant model) or (a, c) (veldep model) with this
         model's law, wall and sticking rule (its own a and eps or c are not used): at each of
         P x Q points, K x K starts classified and counted (``bouncer scan``).
@@ -857,6 +857,9 @@ class Model(_core.Model):
         grid: (P, Q), each in [1, 4096] (default (20, 20)); ics: K in [1, 1000] (default 10)
         theta_range, v_range: the starts (default: theta in (0, 1), v in each point's
             trapping region); transient, steps, max_period, recheck_factor: as classify
+        recheck: "recurrence" (default: a start that joins a chaotic set on which an earlier
+            start of the point stayed chaotic through its whole re-check stops there) or "full"
+            (every start's whole re-check, as classify alone)
         certify: True: the exact orbit of (theta, v) (default the release state (0.5, 4))
             certified at each exact double point, with double's class; max_bits as for basin
         threads: worker threads (default: all cores)
@@ -865,7 +868,7 @@ class Model(_core.Model):
                               c_range=_range_text(c_range, "c_range"), grid=_grid_text(grid, "grid"), ics=ics,
                               theta_range=_range_text(theta_range, "theta_range"),
                               v_range=_range_text(v_range, "v_range"), transient=transient, steps=steps,
-                              max_period=max_period, recheck_factor=recheck_factor,
+                              max_period=max_period, recheck_factor=recheck_factor, recheck=recheck,
                               certify="true" if certify else None, theta=theta, v=v, max_bits=max_bits,
                               threads=threads))
         y = d["y"]

@@ -44,6 +44,7 @@ BENCHMARKS = {
     "border": {"tool": "bench_border", "exe": "tools/bench/bench_border", "args": []},
     "attractors": {"tool": "bench_attractors", "exe": "tools/bench/bench_attractors", "args": []},
     "output": {"tool": "bench_output", "exe": "tools/bench/bench_output", "args": []},
+    "recheck": {"tool": "bench_recheck", "exe": "tools/bench/bench_recheck", "args": []},
     "audit": {"tool": "bench_audit.py", "script": "tools/bench/bench_audit.py", "args": ["--cli", "{build}/tools/bouncer"]},
     "python": {"tool": "bench_python.py", "script": "tools/bench/bench_python.py", "args": ["--cli", "{build}/tools/bouncer"],
                "env": {"PYTHONPATH": "{build}/python", "PYTHONDONTWRITEBYTECODE": "1"}},

@@ -57,6 +57,7 @@ struct GridBase {
   virtual Classification classification(long i, long j) const = 0;
   virtual std::pair<Number, Number> start(long i, long j) const = 0;
   virtual ScanCell cell(long i) const = 0;
+  virtual std::vector<StartLabel> labels(long i) const = 0;
   virtual CertifiedCell certified_cell(long i) const = 0;
   virtual std::vector<Number> a(bool exact) const = 0;
   virtual std::vector<Number> y(bool exact) const = 0;
@@ -107,21 +108,31 @@ struct Grid final : GridBase {
     return {number_of(x.theta), number_of(x.v)};
   }
 
-  ScanCell cell(long i) const override {
+  // The point's starts inside the phase space, classified side by side (classify_many, with
+  // the request's re-check rule).
+  std::vector<StartLabel> labels(long i) const override {
     const Model<T> m = model_at(i);
     const ImpactMap<T> map(m);
-    ScanCell c;
-    // The point's starts inside the phase space, classified side by side (classify_many: the
-    // same labels as one by one, faster).
     std::vector<State<T>> inside;
+    std::vector<long> index;
     for (long j = 0; j < r.k * r.k; ++j) {
       const State<T> x = start_of(m, j);
-      if (outside_at(m, x))
-        ++c.count[static_cast<size_t>(OrbitClass::outside)];
-      else
+      if (!outside_at(m, x)) {
         inside.push_back(x);
+        index.push_back(j);
+      }
     }
-    for (const Classification& k : classify_many<T>(map, inside, r.classify)) ++c.count[static_cast<size_t>(k.cls)];
+    std::vector<Classification> c = classify_many<T>(map, inside, r.classify);
+    std::vector<StartLabel> out;
+    for (size_t n = 0; n < c.size(); ++n) out.push_back({index[n], std::move(c[n])});
+    return out;
+  }
+
+  ScanCell cell(long i) const override {
+    ScanCell c;
+    const std::vector<StartLabel> inside = labels(i);
+    c.count[static_cast<size_t>(OrbitClass::outside)] = r.k * r.k - static_cast<long>(inside.size());
+    for (const StartLabel& s : inside) ++c.count[static_cast<size_t>(s.label.cls)];
     return c;
   }
 
@@ -301,6 +312,7 @@ ScanCell ScanGrid::cell(long i) const {
 }
 long ScanGrid::confirm_stride() const { return impl_->stride; }
 std::pair<Number, Number> ScanGrid::start(long i, long j) const { return impl_->grid->start(i, j); }
+std::vector<StartLabel> ScanGrid::labels(long i) const { return impl_->grid->labels(i); }
 CertifiedCell ScanGrid::certified_cell(long i) const { return impl_->grid->certified_cell(i); }
 ScanResult ScanGrid::result(std::vector<ScanCell> cells) const {
   return {impl_->request, impl_->y, impl_->grid->a(false), impl_->grid->y(false), std::move(cells)};

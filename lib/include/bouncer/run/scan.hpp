@@ -31,7 +31,8 @@ struct ScanRequest {
   Decimal theta_lo = Decimal::from_int(0), theta_hi = Decimal::from_int(1);
   // The starting velocities; none: the trapping region of each point (model/trapping.hpp).
   std::optional<std::pair<Decimal, Decimal>> v_range;
-  ClassifyOptions classify;
+  // Re-checks by recurrence by default (`scan --recheck`; analysis/classify.hpp RecheckRule).
+  ClassifyOptions classify{.recheck = RecheckRule::recurrence};
   Precision precision;  // an analysis scalar; certified: double, the twin run
   // certified_scan only: the certified start (exact) and the certificate's schedule.
   InitialCondition start{Decimal::from_int(0), Decimal::from_int(0)};
@@ -78,6 +79,12 @@ struct CertifiedScanResult {
   std::vector<CertifiedCell> cells;
 };
 
+// One start of a scan point and its classification.
+struct StartLabel {
+  long j = 0;  // the start's index, 0 <= j < k * k (ScanGrid::start)
+  Classification label;
+};
+
 // The grid of a scan request, cell by cell (any thread).
 class ScanGrid {
  public:
@@ -93,6 +100,9 @@ class ScanGrid {
   long confirm_stride() const;  // --confirm: the sample's lattice over the p x q points; else 1
   // Start j (0 <= j < k * k) of parameter point i, in the run's scalar: (theta, v).
   std::pair<Number, Number> start(long i, long j) const;
+  // The classifications of point i's starts inside the phase space (what cell(i) counts), in
+  // the order of j: for comparing runs start by start (bench_recheck compares the re-check rules).
+  std::vector<StartLabel> labels(long i) const;
   CertifiedCell certified_cell(long i) const;
   ScanResult result(std::vector<ScanCell> cells) const;
   CertifiedScanResult certified_result(std::vector<CertifiedCell> cells) const;

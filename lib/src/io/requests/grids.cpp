@@ -81,6 +81,11 @@ ScanOptions scan_options(const Options& o) {
   std::tie(r.theta_lo, r.theta_hi) = parse_range("theta-range", o.get_or("theta-range", "0:1"));
   if (o.has("v-range")) r.v_range = parse_range("v-range", o.get("v-range"));
   r.classify = classify_options_from(o);
+  const std::string rule = o.get_or("recheck", "recurrence");
+  if (const std::optional<RecheckRule> rr = recheck_rule_named(rule))
+    r.classify.recheck = *rr;
+  else
+    throw InputError("recheck", "must be recurrence or full (got '" + rule + "')");
   r.precision = point_precision(o);
   const std::string show = o.get_or("show", "regular");
   if (show != "regular") {

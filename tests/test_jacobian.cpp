@@ -244,3 +244,44 @@ TEST(Jacobian, DualMapFollowsThePlainMapBitForBit) {
     }
   }
 }
+
+// Dual<Mpfr>'s in-place forms (operator*=, make_nonneg, clamp_into_segment, blank) give the
+// bits of the operator forms they replace (ScalarTraits<Dual<Mpfr>>::nonneg and ::clamp,
+// `x = x * y`): for constant and varying operands, an operand that is the target itself,
+// negative and clamped values; at 128 bits (two limbs) and 300 (beyond four).
+TEST(Jacobian, DualMpfrInPlaceFormsMatchTheOperators) {
+  using D = Dual<Mpfr>;
+  using Tr = ScalarTraits<D>;
+  for (const long bits : {128L, 300L}) {
+    const auto num = [bits](const char* s) { return ScalarTraits<Mpfr>::from_decimal(s, bits); };
+    const auto same = [](const D& x, const D& y) {
+      for (const auto& [p, q] : {std::pair{&x.v, &y.v}, std::pair{&x.d[0], &y.d[0]}, std::pair{&x.d[1], &y.d[1]}})
+        if (p->bits() != q->bits() || !(mpfr_equal_p(p->get(), q->get()) || (mpfr_nan_p(p->get()) && mpfr_nan_p(q->get()))) ||
+            mpfr_signbit(p->get()) != mpfr_signbit(q->get()))
+          return false;
+      return true;
+    };
+    const std::vector<D> xs{D(num("3.1"), num("-0.7"), num("1e-5")), D(num("-2.25"), num("0.1"), num("-7.3")),
+                            D(num("0.3")), D::variable(num("1.7"), 1), D(num("1e20"), num("3"), num("0"))};
+    for (const D& x : xs) {
+      for (const D& y : xs) {
+        D a = x;
+        a *= y;
+        EXPECT_TRUE(same(a, x * y)) << bits << " bits: " << x << " * " << y;
+      }
+      D self = x;
+      self *= self;
+      EXPECT_TRUE(same(self, x * x)) << bits << " bits: " << x << " squared";
+      D n = x;
+      make_nonneg(n);
+      EXPECT_TRUE(same(n, Tr::nonneg(x))) << bits << " bits: nonneg " << x;
+      for (const auto& [lo, hi] : {std::pair{"-1", "1"}, std::pair{"0.5", "4"}, std::pair{"-3", "-2.5"}}) {
+        D c = x;
+        clamp_into_segment(c, D(num(lo)), D(num(hi)));
+        EXPECT_TRUE(same(c, Tr::clamp(x, D(num(lo)), D(num(hi))))) << bits << " bits: clamp " << x;
+      }
+    }
+    const D b = blank<D>(bits);
+    for (const Mpfr* p : {&b.v, &b.d[0], &b.d[1]}) EXPECT_EQ(p->bits(), bits);
+  }
+}

@@ -210,7 +210,9 @@ TEST(Jacobian, EigenvaluesSolveTheCharacteristicPolynomial) {
 }
 
 // The dual map is the plain map on values: along long orbits (impacts, sticking, the
-// downward-sticking "impact" convention, veldep collapse) the states agree bit for bit.
+// downward-sticking "impact" convention, veldep collapse) the states agree bit for bit,
+// in every analysis scalar (Newton's line search, analysis/periodic.cpp, relies on it:
+// it tries steps with the plain map and differentiates only the one it accepts).
 // This also guards dual_model(), which must copy every field of Model.
 TEST(Jacobian, DualMapFollowsThePlainMapBitForBit) {
   std::vector<ModelSpec> specs{spec(Law::elastic, "20"), spec(Law::constant, "19", "0.9"),
@@ -222,25 +224,74 @@ TEST(Jacobian, DualMapFollowsThePlainMapBitForBit) {
   ModelSpec collapse = spec(Law::veldep, "14", "1", "1");
   collapse.veldep_collapse = true;
   specs.push_back(collapse);
-  for (size_t i = 0; i < specs.size(); ++i) {
-    const ImpactMap<double> map(make_model<double>(specs[i], 53));
-    const TangentMap<double> tm(map.model());
-    State<double> x{0.3, 9}, y{0.3, 9};
-    int sticking = 0;
-    for (int n = 0; n < 3000; ++n) {
-      const StepResult<double> r = map.step(x);
-      const LinearStep<double> l = tm.step(y);
-      ASSERT_EQ(r.next.theta, l.next.theta) << "model " << i << " step " << n;
-      ASSERT_EQ(r.next.v, l.next.v) << "model " << i << " step " << n;
-      ASSERT_EQ(r.kind, l.kind);
-      ASSERT_EQ(r.next.knot, l.next.knot);
-      ASSERT_EQ(l.contracted, r.kind != EventKind::impact);
-      sticking += r.kind == EventKind::sticking;
-      x = r.next;
-      y = l.next;
+  for_each_scalar<AnalysisScalars>([&](auto tag) {
+    using T = typename decltype(tag)::type;
+    using Tr = ScalarTraits<T>;
+    const long bits = Tr::fixed_bits > 0 ? Tr::fixed_bits : 128;  // Mpfr: the two-limb precision
+    const bool is_double = std::is_same_v<T, double>;
+    // The exact printed value (every digit the type holds): equal texts, equal numbers.
+    const auto same = [](const T& p, const T& q) { return Tr::to_string(p) == Tr::to_string(q); };
+    for (size_t i = 0; i < specs.size(); ++i) {
+      const ImpactMap<T> map(make_model<T>(specs[i], bits));
+      const TangentMap<T> tm(map.model());
+      State<T> x = make_state<T>(InitialCondition{*Decimal::parse("0.3"), *Decimal::parse("9")}, bits), y = x;
+      int sticking = 0;
+      for (int n = 0; n < (is_double ? 3000 : 600); ++n) {
+        const StepResult<T> r = map.step(x);
+        const LinearStep<T> l = tm.step(y);
+        ASSERT_TRUE(same(r.next.theta, l.next.theta)) << Tr::family << " model " << i << " step " << n;
+        ASSERT_TRUE(same(r.next.v, l.next.v)) << Tr::family << " model " << i << " step " << n;
+        ASSERT_EQ(r.kind, l.kind);
+        ASSERT_EQ(r.next.knot, l.next.knot);
+        ASSERT_EQ(l.contracted, r.kind != EventKind::impact);
+        sticking += r.kind == EventKind::sticking;
+        x = r.next;
+        y = l.next;
+      }
+      if (i == 2 || i == 5) {
+        EXPECT_GT(sticking, 0) << Tr::family << " model " << i;
+      }
     }
-    if (i == 2 || i == 5) {
-      EXPECT_GT(sticking, 0) << "model " << i;
+  });
+}
+
+// Dual<Mpfr>'s in-place forms (operator*=, make_nonneg, clamp_into_segment, blank) give the
+// bits of the operator forms they replace (ScalarTraits<Dual<Mpfr>>::nonneg and ::clamp,
+// `x = x * y`): for constant and varying operands, an operand that is the target itself,
+// negative and clamped values; at 128 bits (two limbs) and 300 (beyond four).
+TEST(Jacobian, DualMpfrInPlaceFormsMatchTheOperators) {
+  using D = Dual<Mpfr>;
+  using Tr = ScalarTraits<D>;
+  for (const long bits : {128L, 300L}) {
+    const auto num = [bits](const char* s) { return ScalarTraits<Mpfr>::from_decimal(s, bits); };
+    const auto same = [](const D& x, const D& y) {
+      for (const auto& [p, q] : {std::pair{&x.v, &y.v}, std::pair{&x.d[0], &y.d[0]}, std::pair{&x.d[1], &y.d[1]}})
+        if (p->bits() != q->bits() || !(mpfr_equal_p(p->get(), q->get()) || (mpfr_nan_p(p->get()) && mpfr_nan_p(q->get()))) ||
+            mpfr_signbit(p->get()) != mpfr_signbit(q->get()))
+          return false;
+      return true;
+    };
+    const std::vector<D> xs{D(num("3.1"), num("-0.7"), num("1e-5")), D(num("-2.25"), num("0.1"), num("-7.3")),
+                            D(num("0.3")), D::variable(num("1.7"), 1), D(num("1e20"), num("3"), num("0"))};
+    for (const D& x : xs) {
+      for (const D& y : xs) {
+        D a = x;
+        a *= y;
+        EXPECT_TRUE(same(a, x * y)) << bits << " bits: " << x << " * " << y;
+      }
+      D self = x;
+      self *= self;
+      EXPECT_TRUE(same(self, x * x)) << bits << " bits: " << x << " squared";
+      D n = x;
+      make_nonneg(n);
+      EXPECT_TRUE(same(n, Tr::nonneg(x))) << bits << " bits: nonneg " << x;
+      for (const auto& [lo, hi] : {std::pair{"-1", "1"}, std::pair{"0.5", "4"}, std::pair{"-3", "-2.5"}}) {
+        D c = x;
+        clamp_into_segment(c, D(num(lo)), D(num(hi)));
+        EXPECT_TRUE(same(c, Tr::clamp(x, D(num(lo)), D(num(hi))))) << bits << " bits: clamp " << x;
+      }
     }
+    const D b = blank<D>(bits);
+    for (const Mpfr* p : {&b.v, &b.d[0], &b.d[1]}) EXPECT_EQ(p->bits(), bits);
   }
 }

@@ -1,6 +1,7 @@
 #include "bouncer/analysis/jacobian.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace bouncer {
 
@@ -30,15 +31,15 @@ LinearStep<S> TangentMap<S>::step(const State<S>& s) const {
   ds.knot = s.knot;
   StepResult<D> r = map_.step(ds);
   LinearStep<S> out;
-  out.next.theta = r.next.theta.v;
-  out.next.v = r.next.v.v;
+  out.contracted = r.kind != EventKind::impact && all_zero(r.next.theta) && all_zero(r.next.v);
+  out.next.theta = std::move(r.next.theta.v);
+  out.next.v = std::move(r.next.v.v);
   out.next.knot = r.next.knot;
-  out.tau = r.tau.v;
+  out.tau = std::move(r.tau.v);
   out.periods = r.periods;
   out.kind = r.kind;
   out.segment = r.segment;
-  out.J = {r.next.theta.d[0], r.next.theta.d[1], r.next.v.d[0], r.next.v.d[1]};
-  out.contracted = r.kind != EventKind::impact && all_zero(r.next.theta) && all_zero(r.next.v);
+  out.J = {std::move(r.next.theta.d[0]), std::move(r.next.theta.d[1]), std::move(r.next.v.d[0]), std::move(r.next.v.d[1])};
   return out;
 }
 

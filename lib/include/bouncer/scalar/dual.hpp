@@ -27,6 +27,7 @@
 #pragma once
 
 #include <cmath>
+#include <concepts>
 #include <ostream>
 #include <string>
 #include <string_view>
@@ -48,7 +49,15 @@ class Dual {
   Dual() : v{}, d{S{}, S{}} {}
   // A constant (zero derivatives at the precision of the value).
   explicit Dual(S value) : v(std::move(value)), d{zero_like(v), zero_like(v)} {}
-  Dual(S value, S d0, S d1) : v(std::move(value)), d{std::move(d0), std::move(d1)} {}
+  // From three parts, each an S or anything S is built from. A part that is an expression
+  // of the multiple-precision type (scalar/mpfr.hpp) is evaluated straight into its member,
+  // with the roundings of a named temporary but without one (and without the move).
+  template <class A, class B, class C>
+    requires std::convertible_to<A&&, S> && std::convertible_to<B&&, S> && std::convertible_to<C&&, S>
+  Dual(A&& value, B&& d0, C&& d1) : v(std::forward<A>(value)), d{S(std::forward<B>(d0)), S(std::forward<C>(d1))} {}
+  // Parts to be assigned before they are read, at the precision `bits` where S has one
+  // (blank<S>, scalar/traits.hpp), so that the assignments evaluate in place.
+  static Dual blank(long bits) { return {bouncer::blank<S>(bits), bouncer::blank<S>(bits), bouncer::blank<S>(bits)}; }
 
   static S zero_like(const S& x) { return ScalarTraits<S>::from_int(0, ScalarTraits<S>::bits(x)); }
   // Seeds: theta0 -> (1, 0), v0 -> (0, 1).
@@ -60,7 +69,30 @@ class Dual {
 
   Dual& operator+=(const Dual& o) { v += o.v; d[0] += o.d[0]; d[1] += o.d[1]; return *this; }
   Dual& operator-=(const Dual& o) { v -= o.v; d[0] -= o.d[0]; d[1] -= o.d[1]; return *this; }
-  Dual& operator*=(const Dual& o) { *this = *this * o; return *this; }
+  // Over Mpfr in place, with the MPFR calls of `*this = *this * o` in the same order (the
+  // derivatives are updated before the value they read; o may be *this). Elsewhere through
+  // the binary operator: a compound assignment of S need not round as its operator does.
+  Dual& operator*=(const Dual& o) {
+    if constexpr (!std::is_same_v<S, Mpfr>) {
+      *this = *this * o;
+      return *this;
+    } else if (o.constant()) {
+      d[0] *= o.v;
+      d[1] *= o.v;
+    } else if (constant()) {
+      d[0] = v * o.d[0];
+      d[1] = v * o.d[1];
+    } else {
+      S t = v * o.d[0];  // before d[0] changes (o.d[0] may be d[0])
+      S u = v * o.d[1];
+      d[0] *= o.v;
+      d[0] += t;
+      d[1] *= o.v;
+      d[1] += u;
+    }
+    v *= o.v;
+    return *this;
+  }
   Dual& operator/=(const Dual& o) { *this = *this / o; return *this; }
   Dual& operator*=(long n) { v *= n; d[0] *= n; d[1] *= n; return *this; }
   Dual& operator/=(long n) { v /= n; d[0] /= n; d[1] /= n; return *this; }
@@ -108,7 +140,7 @@ class Dual {
   friend Dual operator/(long n, const Dual& x) {
     S q = n / x.v;  // d(n/x) = -q/x dx
     S f = -(q / x.v);
-    return {q, f * x.d[0], f * x.d[1]};
+    return {std::move(q), f * x.d[0], f * x.d[1]};
   }
 
   // Comparisons look at values only (branching never depends on derivatives). Only where S
@@ -124,7 +156,7 @@ class Dual {
     using std::sqrt;
     S r = sqrt(x.v);
     S f = 1 / (2 * r);
-    return {r, f * x.d[0], f * x.d[1]};
+    return {std::move(r), f * x.d[0], f * x.d[1]};
   }
   friend Dual exp(const Dual& x) {
     using std::exp;
@@ -172,7 +204,7 @@ struct ScalarTraits<Dual<S>> {
   static D pow_3_5(const D& x) {
     S p = B::pow_3_5(x.v);
     S f = 3 * p / (5 * x.v);
-    return {p, f * x.d[0], f * x.d[1]};
+    return {std::move(p), f * x.d[0], f * x.d[1]};
   }
   static std::string to_string(const D& x) { return B::to_string(x.v); }
 
@@ -183,6 +215,23 @@ struct ScalarTraits<Dual<S>> {
   static std::string lower_string(const D& x) requires B::is_interval { return B::lower_string(x.v); }
   static std::string upper_string(const D& x) requires B::is_interval { return B::upper_string(x.v); }
 };
+
+// In-place forms of nonneg and clamp (scalar/traits.hpp's make_nonneg and
+// clamp_into_segment) for duals: the results of ScalarTraits<Dual<S>>::nonneg and ::clamp
+// without copying the dual.
+template <class S>
+void make_nonneg(Dual<S>& x) {
+  using B = ScalarTraits<S>;
+  if constexpr (B::is_interval) {
+    make_nonneg(x.v);
+  } else if (B::likely_negative(x.v)) {
+    x = Dual<S>(Dual<S>::zero_like(x.v));
+  }
+}
+template <class S>
+void clamp_into_segment(Dual<S>& x, const Dual<S>& lo, const Dual<S>& hi) {
+  clamp_into_segment(x.v, lo.v, hi.v);
+}
 
 // "value (d/dtheta0, d/dv0)", each part printed as its scalar type prints.
 template <class S>

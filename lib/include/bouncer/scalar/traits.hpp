@@ -250,6 +250,7 @@ struct ScalarTraits<DoubleInterval> {
 template <class T>
 T blank(long bits) {
   if constexpr (std::is_same_v<T, Mpfr>) return Mpfr(bits);
+  else if constexpr (requires { T::blank(bits); }) return T::blank(bits);  // Dual<S>: its parts' blanks
   else return T();
 }
 

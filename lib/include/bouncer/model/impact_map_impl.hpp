@@ -450,8 +450,10 @@ Truth ImpactMap<T>::left_zone(const State<T>& s, int j0, const T& u, const T& q)
 
 // The collision law (paper eq. 2) in the wall's frame, written once: the map's collisions
 // and the trajectory's chatter bounces (analysis/trajectory.cpp) both use it.
+// Inlined into step() and each lane of step_n: in the library's instantiation unit GCC kept
+// it a call, which put the lane's impact speed and result through memory on every step.
 template <class T>
-T ImpactMap<T>::rebound(const T& speed) const {
+[[gnu::always_inline]] inline T ImpactMap<T>::rebound(const T& speed) const {
   using Tr = ScalarTraits<T>;
   using std::exp;
   T out = speed;

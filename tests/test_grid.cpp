@@ -109,6 +109,49 @@ TEST(Grid, SameResultAtOneAndTwoThreadsAsASerialLoop) {
   }
 }
 
+TEST(Grid, GroupedItemsEqualTheSerialLoop) {
+  // The grouped form: groups never cross a tile and cover each item once, in order, with the
+  // last group of a tile shorter; the texts are the serial loop's (here the orbits go four
+  // side by side through the batched step, ImpactMap::step_n, as bench_grid's basin does).
+  const auto f = [](long i) { return orbit_end(double_map(), i, 300, 53); };
+  GridPlan plan{160, 7};
+  const auto truth = serial(plan.items, f);
+  for (long group : {1L, 3L, 4L, 7L, 50L})
+    for (unsigned threads : {1u, 2u}) {
+      GridOptions o;
+      o.threads = threads;
+      std::atomic<long> calls{0};
+      const GridResult r = run_grid(plan, group, [&](long b, long e, std::string* out) {
+        ++calls;
+        EXPECT_LE(e - b, group);
+        EXPECT_EQ(plan.begin(b / plan.tile_items), plan.begin((e - 1) / plan.tile_items)) << "a group crosses a tile";
+        if (e - b == 4) {
+          State<double> s[4];
+          StepResult<double> res[4];
+          Reason why[4];
+          for (int k = 0; k < 4; ++k)
+            s[k] = State<double>{static_cast<double>(2 * ((b + k) % 16) + 1) / 32, static_cast<double>(5 + (b + k) / 16)};
+          for (long n = 0; n < 300; ++n) {
+            ASSERT_EQ(double_map().step_n<kStepLanes>(s, res, why), 0u);
+            for (int k = 0; k < 4; ++k) s[k] = res[k].next;
+          }
+          for (int k = 0; k < 4; ++k) {
+            const std::string one = f(b + k);
+            EXPECT_EQ(one.substr(0, one.rfind(',')),
+                      ScalarTraits<double>::to_string(s[k].theta) + "," + ScalarTraits<double>::to_string(s[k].v));
+          }
+        }
+        for (long i = b; i < e; ++i) out[i - b] = f(i);
+      }, o);
+      ASSERT_TRUE(r.complete());
+      EXPECT_EQ(r.items, truth) << "group " << group << ", " << threads << " threads";
+      long expected = 0;
+      for (long t = 0; t < plan.tiles(); ++t) expected += (plan.end(t) - plan.begin(t) + group - 1) / group;
+      EXPECT_EQ(calls.load(), expected);
+    }
+  EXPECT_THROW(run_grid(plan, 0, [](long, long, std::string*) {}, GridOptions{}), std::invalid_argument);
+}
+
 TEST(Grid, MpfrScanOnTwoThreadsEqualsOneThread) {
   // 200 bits: precision travels with each value, no process-wide default is involved.
   const ImpactMap<Mpfr> map(make_model<Mpfr>(constant_model("19", "0.9"), 200));

@@ -10,6 +10,7 @@
 #include <quadmath.h>
 
 #include <cmath>
+#include <limits>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -634,6 +635,25 @@ TEST(ScalarTraits, BelowExponentFloor) {
   EXPECT_EQ(ScalarTraits<long double>::exponent(0.75L), 0);
   EXPECT_EQ(exact(ScalarTraits<Mpfr>::floor(ScalarTraits<Mpfr>::from_decimal("-2.5", 100))), -3);
   EXPECT_EQ(exact(ScalarTraits<Quad>::floor(ScalarTraits<Quad>::from_decimal("7.999", 113))), 7);
+}
+
+TEST(ScalarTraits, DoubleExponentIsFrexps) {
+  // double's exponent reads the bits of a normal number; frexp is its truth, at the ends of
+  // every binade, for subnormals, zeros, infinities and NaN.
+  auto frexp_e = [](double x) {
+    int e;
+    std::frexp(x, &e);
+    return e;
+  };
+  std::vector<double> xs = {0.0, -0.0, std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::min(),
+                            std::numeric_limits<double>::max(), std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()};
+  for (int e = -1074; e <= 1023; ++e)
+    for (double m : {1.0, 1.5, 2 - std::ldexp(1.0, -52)}) {
+      xs.push_back(std::ldexp(m, e));
+      xs.push_back(-std::ldexp(m, e));
+    }
+  for (double x : xs) EXPECT_EQ(ScalarTraits<double>::exponent(x), frexp_e(x)) << x;
 }
 
 // ---------------------------------------------------------------------------------------

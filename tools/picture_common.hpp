@@ -166,6 +166,10 @@ struct PictureJob {
   Options job;     // job_options(...) of the merged scene + command line
   GridPlan plan;
   std::function<std::string(long)> item;
+  // Optional: items computed in groups of at most `group` (run_grid's grouped form), the
+  // same texts as item() one by one (BasinGrid: orbits side by side).
+  long group = 1;
+  std::function<void(long, long, std::string*)> items;
   // About how many bytes one item's text takes (a CSV row of a point grid, a column of a
   // bifurcation diagram, an orbit of a portrait): the memory estimate of run_job.
   double item_bytes = 32;
@@ -342,7 +346,7 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
   }
   GridResult r;
   try {
-    r = run_grid(j.plan, j.item, g);
+    r = (j.items ? run_grid(j.plan, j.group, j.items, g) : run_grid(j.plan, j.item, g));
   } catch (...) {
     // A run that fails before it saved a tile (no thread could start, bad input found in
     // the first item) leaves no tile directory it made: nothing in it could be resumed.
@@ -360,7 +364,7 @@ inline std::optional<std::vector<std::string>> run_job(const PictureJob& j, cons
     mpi_barrier();  // every rank's tiles are saved
     if (world.rank != 0) return std::nullopt;
     g.compute = false;
-    r = run_grid(j.plan, j.item, g);
+    r = (j.items ? run_grid(j.plan, j.group, j.items, g) : run_grid(j.plan, j.item, g));
     if (!r.complete()) throw std::runtime_error("mpirun: tiles missing after every rank finished");
     return std::move(r.items);
   }
@@ -506,6 +510,10 @@ std::optional<std::vector<Cell>> run_cells(const std::string& command, const Opt
   job.job = job_options(o);
   job.plan = grid.plan();
   job.item = [&grid](long i) { return grid.item(i); };
+  if constexpr (requires(std::string* out) { grid.items(0L, 0L, out); }) {
+    job.group = grid.group();
+    job.items = [&grid](long b, long e, std::string* out) { grid.items(b, e, out); };
+  }
   job.item_bytes = item_bytes;
   job.size_field = size_field;
   const auto items = run_job(job, f);

@@ -1,9 +1,11 @@
 // bench_grid: throughput of the deterministic grid runner on the paper's workloads.
 //   1. basin grid, double: every point of an N x N grid (a = 19, eps = 0.9, theta in [0, 1),
 //      v in [4, 40]) iterated S impact-map steps (exactly S steps per point), at 1 and 2
-//      threads: steps per second and the speed-up (target >= 1.9x on 2 idle cores);
-//   2. the same grid classified by bouncer::classify (S - 500 transient + 500 examined
-//      steps; what `bouncer basin` does), points per second;
+//      threads: steps per second and the speed-up (target >= 1.9x on 2 idle cores); then the
+//      same with kStepLanes points side by side (ImpactMap::step_n, the batched step), its
+//      ns per orbit-step and its end states compared with the one-by-one run's;
+//   2. the same grid classified as `bouncer basin` does (classify_many, kStepLanes points side
+//      by side; S - 500 transient + 500 examined steps), points per second;
 //   3. a bifurcation diagram at paper resolution (1000 values of a x (5000 + 500) steps);
 //   4. the basin iteration in MPFR at 128 bits on a smaller grid, extrapolated to N x N;
 //   5. an exponent curve (`bouncer lyapunov --vary a`): K values of a in [20, 30] of the
@@ -75,6 +77,43 @@ std::string iterate(const ImpactMap<T>& map, long i, long n, long steps, long bi
     return u.what();
   }
   return Tr::to_string(s.theta) + "," + Tr::to_string(s.v);
+}
+
+// The same for the grid points [begin, end), kStepLanes of them side by side in one call
+// of the batched step (ImpactMap::step_n); a point whose step is undecided goes on alone.
+void iterate_side_by_side(const ImpactMap<double>& map, long begin, long end, long n, long steps, std::string* out) {
+  using Tr = ScalarTraits<double>;
+  constexpr int K = kStepLanes;
+  if (end - begin < K) {
+    for (long i = begin; i < end; ++i) out[i - begin] = iterate(map, i, n, steps, 53);
+    return;
+  }
+  State<double> s[K];
+  StepResult<double> r[K];
+  Reason why[K];
+  for (int k = 0; k < K; ++k) s[k] = grid_point<double>(begin + k, n, 53);
+  unsigned failed = 0;
+  long done = 0;
+  for (; done < steps && !failed; ++done) {
+    failed = map.step_n<K>(s, r, why);
+    for (int k = 0; k < K; ++k)
+      if (!(failed >> k & 1u)) s[k] = r[k].next;
+  }
+  for (int k = 0; k < K; ++k) {
+    std::string& o = out[k];
+    if (failed >> k & 1u) {
+      o = Undecided(why[k]).what();
+      continue;
+    }
+    try {
+      for (long j = done; j < steps; ++j) s[k] = map.step(s[k]).next;
+      o = Tr::to_string(s[k].theta) + "," + Tr::to_string(s[k].v);
+    } catch (const Undecided& u) {
+      o = u.what();
+    }
+  }
+  for (long i = begin + K; i < end; i += K)
+    iterate_side_by_side(map, i, std::min(end, i + K), n, steps, out + (i - begin));
 }
 
 struct Row {
@@ -157,7 +196,30 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
 
-    // 2. The real basin: classify every point (transient steps - 500, then 500 examined).
+    // 1b. The same, kStepLanes points side by side (ImpactMap::step_n), compared with 1.
+    for (unsigned threads : {1u, 2u}) {
+      GridOptions o;
+      o.threads = threads;
+      const auto t0 = std::chrono::steady_clock::now();
+      GridResult r = run_grid(plan, kStepLanes, [&](long b, long e, std::string* out) {
+        iterate_side_by_side(map, b, e, n, steps, out);
+      }, o);
+      const double t = seconds_since(t0);
+      char note[128];
+      if (threads == 1)
+        std::snprintf(note, sizeof note, "%.1f ns per orbit-step; %.2fx one by one; %s", 1e9 * t / total_steps,
+                      rows[0].seconds / t, r.items == ref ? "identical" : "DIFFERENT");
+      else
+        std::snprintf(note, sizeof note, "%.2fx one by one at 2 threads; %s", rows[1].seconds / t,
+                      r.items == ref ? "identical" : "DIFFERENT");
+      rows.push_back({"basin " + std::to_string(n) + "^2 x " + std::to_string(steps) + " steps, double, " +
+                          std::to_string(kStepLanes) + " side by side",
+                      threads, t, total_steps / t, "steps/s", note});
+      std::fflush(stdout);
+    }
+
+    // 2. The real basin: classify every point (transient steps - 500, then 500 examined), as
+    //    `bouncer basin` does: kStepLanes points at a time (classify_many, BasinGrid::items).
     {
       ClassifyOptions co;
       co.transient = steps - 500;
@@ -169,9 +231,12 @@ int main(int argc, char** argv) {
         GridOptions o;
         o.threads = threads;
         const auto t0 = std::chrono::steady_clock::now();
-        GridResult r = run_grid(plan, [&](long i) {
-          const Classification c = classify<double>(map, grid_point<double>(i, n, 53), co);
-          return std::string(name(c.cls)) + "," + std::to_string(c.period);
+        GridResult r = run_grid(plan, kStepLanes, [&](long b, long e, std::string* out) {
+          std::vector<State<double>> starts;
+          for (long i = b; i < e; ++i) starts.push_back(grid_point<double>(i, n, 53));
+          const std::vector<Classification> cs = classify_many<double>(map, starts, co);
+          for (long i = b; i < e; ++i)
+            out[i - b] = std::string(name(cs[i - b].cls)) + "," + std::to_string(cs[i - b].period);
         }, o);
         const double t = seconds_since(t0);
         std::string note = "peak RSS " + std::to_string(peak_rss_mb()) + " MB";

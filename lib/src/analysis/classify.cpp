@@ -45,6 +45,7 @@
 #include <limits>
 #include <optional>
 #include <sstream>
+#include <type_traits>
 #include <vector>
 
 #include "bouncer/analysis/jacobian.hpp"
@@ -287,10 +288,10 @@ struct WindowRun {
   }
 
   // One step (throws Undecided).
-  void step(const ImpactMap<T>& map) {
+  void step(const ImpactMap<T>& map) { take(map.model(), map.step(s)); }
+  // The step's result r (of the step from s) recorded.
+  void take(const Model<T>& model, StepResult<T>&& r) {
     using Tr = ScalarTraits<T>;
-    const Model<T>& model = map.model();
-    StepResult<T> r = map.step(s);
     s = std::move(r.next);
     growth.add(n + 1, Tr::to_double(s.v));
     if (r.kind == EventKind::sticking) {
@@ -311,9 +312,12 @@ struct WindowRun {
     try {
       step(map);
     } catch (const Undecided& e) {
-      failed = true;
-      undecided = "step " + std::to_string(n + 1) + " undecided: " + e.what();
+      fail(e.reason);
     }
+  }
+  void fail(Reason why) {
+    failed = true;
+    undecided = "step " + std::to_string(n + 1) + " undecided: " + describe(why);
   }
 };
 
@@ -321,7 +325,9 @@ struct WindowRun {
 // turn: the step of one orbit is a chain of dependent operations whose latency, not the
 // arithmetic, sets its speed (bench_step), so independent orbits stepped side by side overlap
 // in the processor. Each orbit's operations are those of the run alone, in the same order:
-// the results are the same, bit for bit.
+// the results are the same, bit for bit. In double the group's steps are one call of the
+// batched step (ImpactMap::step_n), whose lanes the processor overlaps better than four calls
+// of step() (bench_grid's "side by side" row).
 constexpr size_t kInterleave = 4;
 
 template <class T>
@@ -334,7 +340,26 @@ void run_windows(const ImpactMap<T>& map, const std::vector<WindowRun<T>*>& runs
     // step and none has ended (the runs of one phase start together with the same length).
     bool lockstep = true;
     for (WindowRun<T>* x : w) lockstep = lockstep && !x->done() && x->n == w[0]->n && x->N == w[0]->N;
-    if (lockstep) {
+    if constexpr (std::is_same_v<T, double>) {
+      // double: the batched step (ImpactMap::step_n), kStepLanes orbits in one call.
+      static_assert(kInterleave == static_cast<size_t>(kStepLanes));
+      if (lockstep) {
+        const Model<T>& model = map.model();
+        State<T> s[kInterleave];
+        StepResult<T> out[kInterleave];
+        Reason why[kInterleave];
+        for (long k = w[0]->n, N = w[0]->N; k < N; ++k) {
+          throw_if_cancelled(k);
+          for (size_t i = 0; i < kInterleave; ++i) s[i] = w[i]->s;
+          const unsigned failed = map.template step_n<kStepLanes>(s, out, why);
+          for (size_t i = 0; i < kInterleave; ++i) {
+            if (failed >> i & 1u) w[i]->fail(why[i]);
+            else w[i]->take(model, std::move(out[i]));
+          }
+          if (failed) break;  // the others go on one by one
+        }
+      }
+    } else if (lockstep) {
       try {
         for (long k = w[0]->n, N = w[0]->N; k < N; ++k) {
           throw_if_cancelled(k);

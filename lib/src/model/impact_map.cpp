@@ -18,5 +18,6 @@ const char* name(EventKind k) {
   template Model<T> make_model<T>(const ModelSpec&, long);
 BOUNCER_FOR_EACH_SCALAR(BOUNCER_X)
 #undef BOUNCER_X
+template unsigned ImpactMap<double>::step_n<kStepLanes>(const State<double>*, StepResult<double>*, Reason*) const;
 
 }  // namespace bouncer

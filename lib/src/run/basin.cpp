@@ -4,6 +4,7 @@
 #include <charconv>
 #include <stdexcept>
 
+#include "bouncer/analysis/classify.hpp"
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/run/cells.hpp"
 
@@ -42,6 +43,8 @@ struct GridBase {
   // Start i classified (whether or not it lies inside the phase space).
   virtual Classification classification(long i) const = 0;
   virtual AttractorCell cell(long i) const = 0;
+  // cell(i) for every i of `cells`, the starts inside classified together (classify_many).
+  virtual void cells(const std::vector<long>& cells, AttractorCell* out) const = 0;
   virtual CertifiedCell certified_cell(long i) const = 0;
   virtual std::vector<Number> theta() const = 0;
   virtual std::vector<Number> v() const = 0;
@@ -83,6 +86,26 @@ struct Grid final : GridBase {
     out.cls = c.cls;
     out.period = c.period;
     return out;
+  }
+
+  void cells(const std::vector<long>& is, AttractorCell* out) const override {
+    std::vector<State<T>> starts;
+    std::vector<size_t> inside;
+    for (size_t k = 0; k < is.size(); ++k) {
+      const T theta = theta_at(is[k] % r.nx), v = v_at(is[k] / r.nx);
+      out[k] = AttractorCell{};
+      if (outside(theta, v)) {
+        out[k].cls = OrbitClass::outside;
+      } else {
+        starts.push_back(State<T>{theta, v});
+        inside.push_back(k);
+      }
+    }
+    const std::vector<Classification> c = classify_many<T>(map, starts, r.classify);
+    for (size_t m = 0; m < inside.size(); ++m) {
+      out[inside[m]].cls = c[m].cls;
+      out[inside[m]].period = c[m].period;
+    }
   }
 
   CertifiedCell certified_cell(long i) const override {
@@ -147,6 +170,27 @@ GridPlan BasinGrid::plan() const {
 std::string BasinGrid::item(long i) const {
   return impl_->certified ? encode(impl_->grid->certified_cell(i)) : encode(cell(i));
 }
+long BasinGrid::group() const { return impl_->certified ? 1 : kStepLanes; }
+void BasinGrid::items(long begin, long end, std::string* out) const {
+  const Impl& m = *impl_;
+  const BasinRequest& r = m.request;
+  if (m.certified) {
+    for (long i = begin; i < end; ++i) out[i - begin] = item(i);
+    return;
+  }
+  // The --confirm sample's cells one by one (cell()); the others together.
+  std::vector<long> together;
+  for (long i = begin; i < end; ++i) {
+    if (r.confirm.on && in_confirm_sample(i % r.nx, i / r.nx, r.nx, r.ny, m.stride))
+      out[i - begin] = encode(cell(i));
+    else
+      together.push_back(i);
+  }
+  std::vector<AttractorCell> cells(together.size());
+  m.grid->cells(together, cells.data());
+  for (size_t k = 0; k < together.size(); ++k) out[together[k] - begin] = encode(cells[k]);
+}
+
 AttractorCell BasinGrid::cell(long i) const {
   const Impl& m = *impl_;
   const BasinRequest& r = m.request;
@@ -170,7 +214,8 @@ CertifiedBasinResult BasinGrid::certified_result(std::vector<CertifiedCell> cell
 
 BasinResult basin(const BasinRequest& r, const GridOptions& run) {
   const BasinGrid grid(r, false);
-  return grid.result(decode_cells<AttractorCell>(run_in_memory(grid.plan(), [&](long i) { return grid.item(i); }, run)));
+  return grid.result(decode_cells<AttractorCell>(
+      run_in_memory(grid.plan(), grid.group(), [&](long b, long e, std::string* out) { grid.items(b, e, out); }, run)));
 }
 
 CertifiedBasinResult certified_basin(const BasinRequest& r, const GridOptions& run) {

@@ -165,11 +165,16 @@ GridPlan point_grid_plan(long items, long max_tile) {
 
 std::vector<std::string> run_in_memory(const GridPlan& plan, const std::function<std::string(long)>& item,
                                        const GridOptions& run) {
+  return run_in_memory(plan, 1, [&item](long i, long, std::string* out) { *out = item(i); }, run);
+}
+
+std::vector<std::string> run_in_memory(const GridPlan& plan, long group,
+                                       const std::function<void(long, long, std::string*)>& items, const GridOptions& run) {
   GridOptions g = run;
   g.tile_dir.clear();
   g.shard = Shard{};
   g.compute = true;
-  GridResult r = run_grid(plan, item, g);
+  GridResult r = run_grid(plan, group, items, g);
   if (!r.complete()) throw std::runtime_error("grid: tiles missing after an in-memory run");
   return std::move(r.items);
 }

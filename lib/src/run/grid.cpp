@@ -376,7 +376,13 @@ void ProgressBar::finish() {
 }
 
 GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>& item, const GridOptions& opt) {
+  return run_grid(plan, 1, [&item](long i, long, std::string* out) { *out = item(i); }, opt);
+}
+
+GridResult run_grid(const GridPlan& plan, long group, const std::function<void(long, long, std::string*)>& items,
+                    const GridOptions& opt) {
   if (plan.tile_items < 1) throw std::invalid_argument("run_grid: tile_items must be >= 1");
+  if (group < 1) throw std::invalid_argument("run_grid: group must be >= 1");
   GridResult r;
   const long ntiles = plan.tiles();
   r.items.assign(static_cast<size_t>(plan.items), std::string());
@@ -423,13 +429,13 @@ GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>
       if (k >= todo.size()) return;
       const long t = todo[k];
       try {
-        std::vector<std::string> tile;
-        tile.reserve(static_cast<size_t>(plan.end(t) - plan.begin(t)));
-        for (long i = plan.begin(t); i < plan.end(t); ++i) {
+        std::vector<std::string> tile(static_cast<size_t>(plan.end(t) - plan.begin(t)));
+        for (long i = plan.begin(t); i < plan.end(t); i += group) {
           if (failed.load()) return;
           throw_if_cancelled();
-          tile.push_back(item(i));
-          progress.advance(1);
+          const long e = std::min(plan.end(t), i + group);
+          items(i, e, &tile[static_cast<size_t>(i - plan.begin(t))]);
+          progress.advance(e - i);
         }
         if (saving) write_tile(opt.tile_dir, t, plan, opt.job_key, tile);
         for (long i = plan.begin(t); i < plan.end(t); ++i)

@@ -47,6 +47,19 @@ class ImpactMap {
   // One step. Throws Undecided when a branch cannot be decided (intervals, NaN).
   StepResult<T> step(const State<T>& s) const;
 
+  // K steps of K independent orbits: out[k] is step(s[k]) bit for bit, every field; where
+  // step(s[k]) is undecided, bit k of the returned mask is set, why[k] is its reason and
+  // out[k] is unspecified. The step of one orbit is a chain of dependent operations whose
+  // latency, not the arithmetic, sets its speed; here the common case of the step, written
+  // without calls, is stamped out once per lane in one function, so that the processor
+  // overlaps the K independent chains, and a lane whose step is not of that case takes
+  // step() itself. The common case computes every value with step()'s own helpers (the
+  // flight's root, the corner's gap, the jump), so the results are the same bit for bit.
+  // Instantiated for double (kStepLanes lanes), the point type of grids; other types and
+  // lane counts need impact_map_impl.hpp.
+  template <int K>
+  unsigned step_n(const State<T>* s, StepResult<T>* out, Reason* why) const;
+
   // The collision law (paper eq. 2) in the wall's frame: the relative speed after a
   // collision of relative speed `speed` (constant: eps speed; veldep: exp(-(speed/c)^(3/5))
   // speed; elastic: speed). Each bounce of a chatter is one such collision.
@@ -69,6 +82,13 @@ class ImpactMap {
  private:
   Model<T> m_;
   T zero_;  // 0 at the model's precision, built once
+  // The step into r (default-constructed), inlined into step().
+  [[gnu::always_inline]] inline void step_into(const State<T>& s, StepResult<T>& r) const;
+  // The common case of step_into for a point type, with no call and fewer branches: a flight
+  // of a few pieces (with at most one jump over the top) ending in an impact that does not
+  // stick. Writes step()'s result into r (default-constructed) and returns true, or returns
+  // false (r unspecified) where the step is not of that case. Each lane of step_n().
+  [[gnu::always_inline]] inline bool common_step(const State<T>& s, StepResult<T>& r) const;
   // `collapses`: where after_sticking records the collapses of the walk (step(): none).
   void collide(StepResult<T>& r, int j, T theta, const T& speed, int knot = -1,
                std::vector<Collapse>* collapses = nullptr) const;
@@ -85,5 +105,10 @@ class ImpactMap {
   extern template Model<T> make_model<T>(const ModelSpec&, long);
 BOUNCER_FOR_EACH_SCALAR(BOUNCER_X)
 #undef BOUNCER_X
+
+// Lanes of the batched double step (step_n): of 2, 4 and 8, 4 was the fastest on the
+// development machine (x86-64, SSE2 flags; bench_grid's "side by side" row measures it).
+inline constexpr int kStepLanes = 4;
+extern template unsigned ImpactMap<double>::step_n<kStepLanes>(const State<double>*, StepResult<double>*, Reason*) const;
 
 }  // namespace bouncer

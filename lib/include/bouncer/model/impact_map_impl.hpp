@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 #include "bouncer/model/impact_map.hpp"
@@ -79,19 +80,260 @@ long long whole_periods(const T& whole) {
 constexpr long kWalkLimit = 1L << 24;
 // Flights longer than this many periods are only taken by the analytic jump.
 constexpr long kLongestWalkedFlight = 64;
+// Pieces of the walk that the common case (ImpactMap::common_step) takes before it leaves
+// the flight to step(): the impact in the starting segment, in the next, or after the jump
+// and up to two corners (on bench_grid's basin all but about 1e-5 of the steps).
+constexpr int kCommonPieces = 4;
+
+// The pieces of the walk, written once: step() and its common case (common_step, the lanes
+// of the batched step) compute every value with these, so they agree bit for bit.
+
+// The first zero sigma of the gap G + W s - (a/2) s^2 after s = 0 and, off the wall, the
+// relative impact speed there, root_D = sqrt(W^2 + 2aG) (on the wall, G = 0 exactly, sigma
+// is 2W/a and the impact speed W).
+template <class T>
+[[gnu::always_inline]] inline void first_zero(const T& W, const T& G, const T& a, bool on_wall, T& root_D, T& sigma) {
+  using Tr = ScalarTraits<T>;
+  using std::sqrt;
+  if (on_wall) {
+    sigma = (W + W) / a;
+  } else {
+    root_D = W * W + 2 * a * G;
+    make_nonneg(root_D);
+    root_D = sqrt(root_D);
+    if (Tr::likely_negative(W)) {
+      sigma = 2 * G / (root_D - W);
+    } else {
+      sigma = (W + root_D) / a;
+    }
+  }
+}
+
+// Still above the wall at the corner, L after the piece began: the gap there, free of
+// cancellation: gap(L) = (a/2)(sigma* - L)(L - sigma_), sigma_ = -2G/(a sigma*) the other root.
+template <class T>
+[[gnu::always_inline]] inline T gap_at_corner(const T& a, const T& sigma, const T& L, const T& G, bool on_wall) {
+  T gap = a * (sigma - L);
+  if (on_wall) {
+    gap *= L;
+  } else {
+    gap *= L + 2 * G / (a * sigma);
+  }
+  gap /= 2;
+  make_nonneg(gap);
+  return gap;
+}
+
+// The relative velocity W on segment k after the time L of a piece on segment j.
+template <class T>
+[[gnu::always_inline]] inline void onto_next_segment(T& W, const T& a, const T& L, const T& u_j, const T& u_k) {
+  W -= a * L;
+  W += u_j;
+  W -= u_k;
+}
+
+// The fall back to the top after the particle, launched from s on segment j0, rose above
+// it: the speed at the top, root = sqrt(v^2 - 2a(top - f0)), and the time of the fall back,
+// tau_fall = (v + root)/a after the launch.
+template <class T>
+struct FallToTop {
+  T root, tau_fall;
+};
+template <class T>
+[[gnu::always_inline]] inline FallToTop<T> fall_to_top(const Model<T>& m, const State<T>& s, int j0) {
+  using std::sqrt;
+  const T f0 = m.wall.height_at(j0, s.theta);
+  T root = s.v * s.v - 2 * m.a * (m.wall.top - f0);
+  make_nonneg(root);
+  root = sqrt(root);
+  T tau_fall = (s.v + root) / m.a;
+  return {std::move(root), std::move(tau_fall)};
+}
+
+// The phase theta_fall = x - whole of the landing on the top (x = theta + tau_fall, whole its
+// floor), kept in [0, 1).
+template <class T>
+[[gnu::always_inline]] inline void fall_phase(T& fall, const T& x, const T& whole, const Wall<T>& wall, const T& zero) {
+  fall = x - whole;
+  clamp_into_segment(fall, zero, wall.end.back());
+}
+
+// The piece that begins with the landing on the top at phase fall on segment jf: the time
+// left in the segment, the gap and the relative velocity.
+template <class T>
+[[gnu::always_inline]] inline void after_fall(const Wall<T>& wall, int jf, const T& fall, const T& root, T& L, T& G, T& W) {
+  L = wall.end[jf] - fall;
+  G = wall.top - wall.height_at(jf, fall);
+  make_nonneg(G);
+  W = -root - wall.velocity[jf];
+}
+
+// The phase of an impact sigma after a piece began at pos on segment j, kept in the segment.
+template <class T>
+[[gnu::always_inline]] inline T impact_phase(const T& pos, const T& sigma, const Wall<T>& wall, int j) {
+  T theta = pos + sigma;
+  clamp_into_segment(theta, wall.start[j], wall.end[j]);
+  return theta;
+}
+
+// The sticking test of the constant-restitution model (paper sec. II.B.3, generalized to any
+// segment): the relative speed `out` after an impact at theta on segment j is at most the
+// collapse's reach in the time left.
+template <class T>
+[[gnu::always_inline]] inline Truth sticks_constant(const Model<T>& m, int j, const T& theta, const T& out) {
+  return ScalarTraits<T>::le(out, m.collapse * (m.wall.end[j] - theta));
+}
+
+// Wall::segment_of and Wall::segment_if_certain for a hardware floating type, without a
+// branch per knot: the count of knots s_i <= theta (i >= 1) is the largest such i, as the
+// knots increase. A NaN theta counts 0 (segment_of would be undecided: the caller's next
+// comparison with it fails); segment_if_certain's -1 for NaN holds (NaN < end is false).
+template <class T>
+[[gnu::always_inline]] inline int count_segment(const Wall<T>& wall, const T& theta) {
+  const T* start = wall.start.data();
+  const int n = wall.segments();
+  int j = 0;
+  for (int i = 1; i < n; ++i) j += start[i] <= theta;
+  return j;
+}
+template <class T>
+[[gnu::always_inline]] inline int count_segment_if_certain(const Wall<T>& wall, const T& theta) {
+  const int j = count_segment(wall, theta);
+  return theta < wall.end[static_cast<size_t>(j)] ? j : -1;
+}
 
 }  // namespace detail
 
 template <class T>
 StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
+  // The result is built in place (no copy of the whole StepResult at the end); every field
+  // is defined (stuck_theta and stuck_v are 0 unless the step sticks), as in step_n.
+  StepResult<T> r{};
+  step_into(s, r);
+  return r;
+}
+
+template <class T>
+template <int K>
+unsigned ImpactMap<T>::step_n(const State<T>* s, StepResult<T>* out, Reason* why) const {
+  static_assert(K >= 1 && K <= 32, "a lane mask of 32 bits");
+  bool common[K];
+  // One copy of the common case per lane (unrolled), so that each lane's branches are
+  // predicted on their own and the processor sees the lanes' independent chains together.
+#pragma GCC unroll 32
+  for (int k = 0; k < K; ++k) common[k] = common_step(s[k], out[k]);
+  unsigned failed = 0;
+  for (int k = 0; k < K; ++k) {
+    if (common[k]) continue;
+    try {
+      out[k] = step(s[k]);
+    } catch (const Undecided& e) {
+      failed |= 1u << k;
+      why[k] = e.reason;
+    }
+  }
+  return failed;
+}
+
+template <class T>
+bool ImpactMap<T>::common_step(const State<T>& s, StepResult<T>& r) const {
+  // The hardware floating types only (the others take step(): the class's explicit
+  // instantiation compiles this for every type of the scalar set). Their comparisons are
+  // those of ScalarTraits (yes/no, or NaN: the lane is left to step(), which decides it).
+  if constexpr (!std::is_floating_point_v<T>) {
+    (void)s;
+    (void)r;
+    return false;
+  } else {
+    using Tr = ScalarTraits<T>;
+    const Wall<T>& wall = m_.wall;
+    const T a = m_.a;
+    const T* start = wall.start.data();
+    const T* end = wall.end.data();
+    const T* velocity = wall.velocity.data();
+    // A NaN theta (segment 0 here) makes L NaN: the first comparison leaves it to step().
+    int j = s.knot >= 0 ? s.knot : detail::count_segment(wall, s.theta);
+    const int j0 = j;
+    T W = s.v - velocity[j];
+    make_nonneg(W);
+    if (!(W > 0)) return false;  // rides (W = 0), or NaN
+    T tau = 0;
+    long long periods = 0;
+    int phase_bits_lost = 0;
+    T pos = s.theta;  // step(): *pos
+    T L = end[j] - s.theta;
+    T G = 0, root_D = 0, sigma = 0;
+    bool on_wall = true;
+    bool jumped = false;
+    bool landed = false;  // step(): pos == &fall
+    for (int piece = 0;; ++piece) {
+      if (piece == detail::kCommonPieces) return false;
+      detail::first_zero(W, G, a, on_wall, root_D, sigma);
+      if (sigma < L) break;
+      if (!(L < sigma)) return false;  // the corner itself (or NaN)
+      const int k = wall.next(j);
+      tau += L;
+      if (k == 0) ++periods;
+      G = detail::gap_at_corner(a, sigma, L, G, on_wall);
+      detail::onto_next_segment(W, a, L, velocity[j], velocity[k]);
+      on_wall = false;
+      j = k;
+      pos = start[k];
+      landed = false;
+      L = end[k] - start[k];
+      if (!jumped && wall.top < wall.height[static_cast<size_t>(j)] + G) {
+        jumped = true;
+        const detail::FallToTop<T> f = detail::fall_to_top(m_, s, j0);
+        const T x = s.theta + f.tau_fall;
+        T whole = 0;
+        if (Tr::floor_certain(x, whole) != Truth::yes) return false;
+        detail::fall_phase(pos, x, whole, wall, zero_);
+        const int jf = detail::count_segment_if_certain(wall, pos);
+        if (jf < 0) return false;
+        periods = detail::whole_periods(whole);
+        phase_bits_lost = std::max(0, Tr::exponent(x));
+        tau = f.tau_fall;
+        j = jf;
+        landed = true;
+        detail::after_fall(wall, j, pos, f.root, L, G, W);
+      }
+    }
+    // Impact inside segment j (step(): its first branch, then collide()).
+    if (landed && !(sigma != 0)) return false;  // perhaps on the top's corner
+    const T q = on_wall ? W : root_D;
+    tau += sigma;
+    const T theta = detail::impact_phase(pos, sigma, wall, j);
+    const Truth indirect = jumped ? Truth::yes : left_zone(s, j0, velocity[j], q);
+    const T out = rebound(q);
+    if (m_.law == Law::veldep && m_.veldep_collapse) return false;
+    if (m_.law == Law::constant && detail::sticks_constant(m_, j, theta, out) != Truth::no) return false;
+    const T v = velocity[j] + out;
+    if (!Tr::is_finite(theta) || !Tr::is_finite(v)) return false;
+    r.next.theta = theta;
+    r.next.v = v;
+    r.next.knot = -1;
+    r.tau = tau;
+    r.periods = periods;
+    r.segment = j;
+    r.kind = EventKind::impact;
+    r.corner = false;
+    r.indirect = indirect;
+    r.stick_segment = -1;
+    r.passed_upward_turn = false;
+    r.stuck_theta = 0;
+    r.stuck_v = 0;
+    r.phase_bits_lost = phase_bits_lost;
+    return true;
+  }
+}
+
+template <class T>
+void ImpactMap<T>::step_into(const State<T>& s, StepResult<T>& r) const {
   using Tr = ScalarTraits<T>;
-  using std::sqrt;
   const Wall<T>& wall = m_.wall;
   const T& a = m_.a;
   const T& zero = zero_;
 
-  // The result is built in place (no copy of the whole StepResult at the end).
-  StepResult<T> r;
   r.tau = zero;
   int j = s.knot >= 0 ? s.knot : wall.segment_of(s.theta);
   if constexpr (Tr::is_interval)
@@ -117,24 +359,12 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
     bool jumped = false;
     for (long iter = 0;; ++iter) {
       if (iter > detail::kWalkLimit) throw Undecided(Reason::walk_limit);
-      if (on_wall) {
-        sigma = (W + W) / a;
-      } else {
-        root_D = W * W + 2 * a * G;
-        make_nonneg(root_D);
-        root_D = sqrt(root_D);
-        if (Tr::likely_negative(W)) {
-          sigma = 2 * G / (root_D - W);
-        } else {
-          sigma = (W + root_D) / a;
-        }
-      }
+      detail::first_zero(W, G, a, on_wall, root_D, sigma);
       const T& q = on_wall ? W : root_D;  // relative impact speed if the impact is here
       if (decide(Tr::lt(sigma, L), Reason::impact_at_corner)) {
         // Impact inside segment j.
         r.tau += sigma;
-        T theta = *pos + sigma;
-        clamp_into_segment(theta, wall.start[j], wall.end[j]);
+        T theta = detail::impact_phase(*pos, sigma, wall, j);
         r.indirect = jumped ? Truth::yes : left_zone(s, j0, wall.velocity[j], q);
         // Only a landing exactly on the top after a jump can have sigma = 0; it is a corner
         // impact when the top is a knot (the triangle's peak), as the walk would report.
@@ -150,9 +380,7 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         // from the new segment. Landing with zero relative speed is a collision of speed
         // 0, as everywhere else (the particle then moves with the wall; constant eps: it
         // sticks), so a touchdown is labelled the same whichever path finds it.
-        W -= a * L;
-        W += wall.velocity[j];
-        W -= wall.velocity[k];
+        detail::onto_next_segment(W, a, L, wall.velocity[j], wall.velocity[k]);
         if (decide(Tr::le(W, zero), Reason::corner_approach)) {
           r.corner = true;
           W = -W;  // the impact speed
@@ -163,20 +391,9 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         G = zero;  // grazes the corner and flies on
         on_wall = true;
       } else {
-        // Still above the wall at the corner. The gap there, free of cancellation:
-        // gap(L) = (a/2)(sigma* - L)(L - sigma_), sigma_ = -2G/(a sigma*) the other root.
-        T gap = a * (sigma - L);
-        if (on_wall) {
-          gap *= L;
-        } else {
-          gap *= L + 2 * G / (a * sigma);
-        }
-        gap /= 2;
-        W -= a * L;
-        W += wall.velocity[j];
-        W -= wall.velocity[k];
-        make_nonneg(gap);
-        G = std::move(gap);
+        // Still above the wall at the corner.
+        G = detail::gap_at_corner(a, sigma, L, G, on_wall);
+        detail::onto_next_segment(W, a, L, wall.velocity[j], wall.velocity[k]);
         on_wall = false;
       }
       j = k;
@@ -188,41 +405,32 @@ StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
         // is a shortcut: where its phase is not certain (an enclosure of theta_fall
         // straddling a period boundary or a corner), the walk simply goes on.
         jumped = true;
-        const T f0 = wall.height_at(j0, s.theta);
-        T root = s.v * s.v - 2 * a * (wall.top - f0);
-        make_nonneg(root);
-        root = sqrt(root);
-        const T tau_fall = (s.v + root) / a;
-        const T x = s.theta + tau_fall;
+        const detail::FallToTop<T> f = detail::fall_to_top(m_, s, j0);
+        const T x = s.theta + f.tau_fall;
         T whole = zero;
         const Truth whole_known = Tr::floor_certain(x, whole);
         if (whole_known == Truth::invalid) throw Undecided(Reason::nonfinite);
         if (whole_known == Truth::yes) {
-          fall = x - whole;
-          clamp_into_segment(fall, zero, wall.end.back());
+          detail::fall_phase(fall, x, whole, wall, zero);
           const int jf = wall.segment_if_certain(fall);
           if (jf >= 0) {
             r.periods = detail::whole_periods(whole);
             r.phase_bits_lost = std::max(0, Tr::exponent(x));
-            r.tau = tau_fall;
+            r.tau = f.tau_fall;
             j = jf;
             pos = &fall;
-            L = wall.end[j] - fall;
-            G = wall.top - wall.height_at(j, fall);
-            make_nonneg(G);
-            W = -root - wall.velocity[j];
+            detail::after_fall(wall, j, fall, f.root, L, G, W);
             on_wall = false;
             continue;
           }
         }
         // Walking a very long flight instead would only end at the walk limit.
-        if (certainly(Tr::lt(Tr::from_int(detail::kLongestWalkedFlight, m_.bits), tau_fall)))
+        if (certainly(Tr::lt(Tr::from_int(detail::kLongestWalkedFlight, m_.bits), f.tau_fall)))
           throw Undecided(whole_known == Truth::yes ? Reason::phase_at_corner : Reason::period_boundary);
       }
     }
   }
   if (!Tr::is_finite(r.next.theta) || !Tr::is_finite(r.next.v)) throw Undecided(Reason::nonfinite);
-  return r;
 }
 
 // Whether a flight from s (on segment j0) that ends with relative impact speed q on a
@@ -242,8 +450,10 @@ Truth ImpactMap<T>::left_zone(const State<T>& s, int j0, const T& u, const T& q)
 
 // The collision law (paper eq. 2) in the wall's frame, written once: the map's collisions
 // and the trajectory's chatter bounces (analysis/trajectory.cpp) both use it.
+// Inlined into step() and each lane of step_n: in the library's instantiation unit GCC kept
+// it a call, which put the lane's impact speed and result through memory on every step.
 template <class T>
-T ImpactMap<T>::rebound(const T& speed) const {
+[[gnu::always_inline]] inline T ImpactMap<T>::rebound(const T& speed) const {
   using Tr = ScalarTraits<T>;
   using std::exp;
   T out = speed;
@@ -257,7 +467,6 @@ T ImpactMap<T>::rebound(const T& speed) const {
 template <class T>
 void ImpactMap<T>::collide(StepResult<T>& r, int j, T theta, const T& speed, int knot,
                            std::vector<Collapse>* collapses) const {
-  using Tr = ScalarTraits<T>;
   const Wall<T>& wall = m_.wall;
   const T out = rebound(speed);  // relative speed after the impact
   r.segment = j;
@@ -268,8 +477,7 @@ void ImpactMap<T>::collide(StepResult<T>& r, int j, T theta, const T& speed, int
   // xi_up and xi_down are this test on the triangle. "<=" rather than the paper's "<":
   // at equality the collapse ends exactly at the corner, with the same release.
   const bool sticks =
-      (m_.law == Law::constant &&
-       decide(Tr::le(out, m_.collapse * (wall.end[j] - theta)), Reason::sticking_threshold)) ||
+      (m_.law == Law::constant && decide(detail::sticks_constant(m_, j, theta, out), Reason::sticking_threshold)) ||
       (m_.law == Law::veldep && m_.veldep_collapse && veldep_collapse_certain(out, wall.end[j] - theta));
   if (sticks) {
     if (r.kind != EventKind::sticking) {

@@ -67,6 +67,11 @@ class BasinGrid {
   const BasinRequest& request() const;
   GridPlan plan() const;          // nx * ny items in tiles
   std::string item(long i) const;  // encode(cell i)
+  // Items computed in groups (run_grid's grouped form): item(i) for i in [begin, end), the
+  // cells outside the --confirm sample classified side by side (classify_many: in double,
+  // the batched step), the same texts as item(i) one by one. group(): at most how many.
+  long group() const;
+  void items(long begin, long end, std::string* out) const;
   AttractorCell cell(long i) const;  // with --confirm, confirmed where i is in the sample
   long confirm_stride() const;       // --confirm: the sample's lattice (run/cells.hpp); else 1
   CertifiedCell certified_cell(long i) const;

@@ -132,5 +132,8 @@ GridPlan point_grid_plan(long items, long max_tile);
 // returns every item's text; rethrows what an item threw (Cancelled, InputError, ...).
 std::vector<std::string> run_in_memory(const GridPlan& plan, const std::function<std::string(long)>& item,
                                        const GridOptions& run);
+// The same with items computed in groups of at most `group` (run_grid's grouped form).
+std::vector<std::string> run_in_memory(const GridPlan& plan, long group,
+                                       const std::function<void(long, long, std::string*)>& items, const GridOptions& run);
 
 }  // namespace bouncer

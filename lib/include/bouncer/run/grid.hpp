@@ -72,6 +72,12 @@ struct GridResult {
 // Threads = 1 runs in the calling thread. The tile directory must be a real directory
 // (created if missing; a symbolic link is refused: InputError).
 GridResult run_grid(const GridPlan& plan, const std::function<std::string(long)>& item, const GridOptions& opt);
+// The same with items computed in groups: `items(begin, end, out)` fills out[0 .. end - begin)
+// for the items [begin, end) of one tile, at most `group` of them at a time (fewer at a tile's
+// end), for items that are cheaper computed together (orbits stepped side by side,
+// ImpactMap::step_n). Each item must still depend on its index only, not on its group.
+GridResult run_grid(const GridPlan& plan, long group, const std::function<void(long, long, std::string*)>& items,
+                    const GridOptions& opt);
 
 // Tile files: PREFIX.tiles/tile-NNNNNN. Exposed for merge and for tests. A tile larger than
 // kMaxTileBytes, or anything but a regular file at a tile's name, is refused (InputError).

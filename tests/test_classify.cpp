@@ -460,12 +460,19 @@ void expect_many_equals_one(const ModelSpec& s, const std::vector<std::pair<doub
 }
 }  // namespace
 
-TEST(ClassifyMany, EachOrbitAsAloneBitForBit) {
+// Windows of 400 + 128 steps, periods up to 32, re-checked 20 x 400 steps later: the
+// classify_many tests' options (short enough for the suite, long enough for every rule).
+static ClassifyOptions short_windows() {
   ClassifyOptions o;
   o.transient = 400;
   o.steps = 128;
   o.max_period = 32;
   o.recheck_factor = 20;
+  return o;
+}
+
+TEST(ClassifyMany, EachOrbitAsAloneBitForBit) {
+  ClassifyOptions o = short_windows();
   std::vector<std::pair<double, double>> grid;
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) grid.push_back({0.1 + 0.3 * i, 6 + 5 * j});
@@ -509,11 +516,7 @@ long joined_after(const Classification& c) {
 }  // namespace
 
 TEST(ClassifyMany, RecurrenceStopsReChecksOnAKnownChaoticSetWithTheSameLabels) {
-  ClassifyOptions o;
-  o.transient = 400;
-  o.steps = 128;
-  o.max_period = 32;
-  o.recheck_factor = 20;
+  ClassifyOptions o = short_windows();
   const long R = 20 * 400;
   const ImpactMap<double> map(make_model<double>(spec(Law::veldep, "27", "1", "1000"), 53));
   std::vector<State<double>> xs;
@@ -576,11 +579,7 @@ TEST(ClassifyMany, RecurrenceFallsBackToFullReChecksWhereAnOrbitSettles) {
 // episode near an island looks quiet and chaos cannot settle, so every start runs the whole
 // re-check, bit for bit as classify() alone.
 TEST(ClassifyMany, RecurrenceRuleLeavesConservativeMapsAlone) {
-  ClassifyOptions o;
-  o.transient = 400;
-  o.steps = 128;
-  o.max_period = 32;
-  o.recheck_factor = 20;
+  ClassifyOptions o = short_windows();
   o.recheck = RecheckRule::recurrence;
   std::vector<std::pair<double, double>> grid;
   for (int i = 0; i < 3; ++i)

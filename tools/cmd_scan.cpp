@@ -133,9 +133,10 @@ CommandRunner setup_scan(CLI::App* sub) {
   opts->add("theta-range", "Initial phases T0:T1 within [0, 1] (default 0:1)");
   opts->add("v-range", "Initial velocities V0:V1 (default: the trapping region of each point, from the wall velocity 4 to its top; README, Claims row 5)");
   add_classify_options(*opts);
-  opts->add("recheck", "How the starts of one point re-check their chaotic labels: recurrence (default: a start whose orbit stays "
-                       "1000 steps in the cells of a chaotic set on which an earlier start of the point stayed chaotic through "
-                       "its whole re-check is classified there) | full (every start runs the whole re-check)");
+  opts->add("recheck", "How the starts of one point re-check their aperiodic labels: recurrence (default: once two whole re-checks "
+                       "stayed aperiodic on the same cells, a start whose orbit stays 1000 steps in them is classified there; "
+                       "audits and any whole re-check that settles send it back to a whole re-check) | full (every start runs "
+                       "the whole re-check, as classify)");
   opts->add("precision", kPointPrecisionHelp);
   opts->add("show", "Picture: fraction of regular (default: fixed + periodic) | fixed | periodic | sticking | chaotic | ...");
   opts->add("curves", "Over the picture: fixed-points (default for --model constant: the paper's eq. 5, "

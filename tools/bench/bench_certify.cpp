@@ -15,7 +15,6 @@
 // Wall-clock timings on a shared machine: indicative only; nothing is asserted.
 //
 // Usage: bench_certify [--quick] [--json FILE] | --columns   (bench_record.hpp)
-#include <time.h>
 
 #include <cstdio>
 #include <cstring>
@@ -42,12 +41,6 @@ ModelSpec model(const char* a) {
 
 InitialCondition release() { return {*Decimal::parse("0.5"), Decimal::from_int(4)}; }
 
-double thread_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 // Nanoseconds per step of `n` steps of the point or interval step from the release state
 // (the orbit never sticks and never becomes undecided in this range; restarted if it does).
 template <class T>
@@ -55,7 +48,7 @@ double step_ns(const ModelSpec& spec, long bits, long n) {
   const ImpactMap<T> map(make_model<T>(spec, bits));
   const State<T> start = make_state<T>(release(), bits);
   State<T> s = start;
-  const double t0 = thread_seconds();
+  const double t0 = bench::thread_cpu_seconds();
   for (long i = 0; i < n; ++i) {
     try {
       s = map.step(s).next;
@@ -63,15 +56,15 @@ double step_ns(const ModelSpec& spec, long bits, long n) {
       s = start;
     }
   }
-  return 1e9 * (thread_seconds() - t0) / static_cast<double>(n);
+  return 1e9 * (bench::thread_cpu_seconds() - t0) / static_cast<double>(n);
 }
 
 template <class S>
 double lohner_ns(const ModelSpec& spec, long bits, long n) {
   OrbitEnclosureOf<S> orbit(interval_model_of<S>(spec, bits), make_state<S>(release(), bits), EnclosureMethod::lohner);
-  const double t0 = thread_seconds();
+  const double t0 = bench::thread_cpu_seconds();
   for (long i = 0; i < n; ++i) orbit.step();
-  return 1e9 * (thread_seconds() - t0) / static_cast<double>(n);
+  return 1e9 * (bench::thread_cpu_seconds() - t0) / static_cast<double>(n);
 }
 
 // The five tables: their columns (and text widths) in one place, for the text and the JSON.

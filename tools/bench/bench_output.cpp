@@ -14,7 +14,6 @@
 // Timings are printed, never checked (not a test).
 //   bench_output [--steps N] [--rounds R] [--json FILE]   (default N = 1000000, R = 5)
 //   bench_output --columns   (the table's columns as JSON, nothing run; bench_record.hpp)
-#include <time.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -32,12 +31,6 @@
 using namespace bouncer;
 
 namespace {
-
-double thread_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // Counts and drops what is written (as /dev/null would, without the system calls).
 class CountingBuf : public std::streambuf {
@@ -147,9 +140,9 @@ int main(int argc, char** argv) {
   std::vector<long long> bytes(table_rows.size());
   for (int k = 0; k < rounds; ++k)
     for (size_t i = 0; i < table_rows.size(); ++i) {
-      const double t0 = thread_seconds();
+      const double t0 = bench::thread_cpu_seconds();
       bytes[i] = table_rows[i].body();
-      table_rows[i].ns.push_back(1e9 * (thread_seconds() - t0) / static_cast<double>(rows));
+      table_rows[i].ns.push_back(1e9 * (bench::thread_cpu_seconds() - t0) / static_cast<double>(rows));
     }
   run.print_provenance();
   std::printf("# %lld rows (steps 0..%lld) of one orbit; %d rounds; output to a stream that drops its bytes\n", rows,

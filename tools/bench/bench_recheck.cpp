@@ -1,8 +1,9 @@
 // bench_recheck: the scan's two re-check rules (analysis/classify.hpp RecheckRule) on the
 // paper's scan ranges (figs. paramspace1, (a, eps) of the constant model, and paramspace2,
 // (a, c) of the velocity-dependent model), start by start: every parameter point's starts are
-// classified three times (ScanGrid::labels, the library call behind `bouncer scan`): as before
-// issue 25 (--recheck full, every step stepped: ClassifyOptions::exact_cycles off), with
+// classified three times (ScanGrid::labels, the library call behind `bouncer scan`): with the
+// rules before exact cycles and recurrence (--recheck full, every step taken:
+// ClassifyOptions::exact_cycles off), with
 // --recheck full (exact cycles carried: the same labels and evidence, checked here, exit 1
 // if not) and with --recheck recurrence, the default; timed (thread CPU time, each first in
 // turn), and the labels of the two rules compared. Issue 25's target: the scan >= 3x faster with the same labels, or
@@ -13,7 +14,6 @@
 //     scan, each scan about 30 s with the full rule on this machine)
 //   bench_recheck --quick        (4x2 points, 3 x 3 starts, transient 500, steps 128)
 //   bench_recheck --columns      (the tables' columns as JSON, nothing run; bench_record.hpp)
-#include <time.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -28,12 +28,6 @@
 using namespace bouncer;
 
 namespace {
-
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 ScanRequest request(Law law, const char* a, const char* y, long p, long q, long k, long transient, long steps) {
   ScanRequest r;
@@ -139,9 +133,9 @@ int main(int argc, char** argv) {
       double* times[3] = {&ts, &tf, &tr};
       for (int pass = 0; pass < 3; ++pass) {
         const int m = static_cast<int>((pass + i) % 3);  // each rule first in turn
-        const double t0 = thread_cpu_seconds();
+        const double t0 = bench::thread_cpu_seconds();
         out[m] = grids[m]->labels(i);
-        *times[m] += thread_cpu_seconds() - t0;
+        *times[m] += bench::thread_cpu_seconds() - t0;
       }
       const std::vector<StartLabel>&ls = out[0], &lf = out[1], &lr = out[2];
       for (size_t n = 0; n < ls.size() && n < lf.size(); ++n)
@@ -167,8 +161,8 @@ int main(int argc, char** argv) {
   }
   table.notes.push_back("grid " + std::to_string(p) + "x" + std::to_string(q) + ", " + std::to_string(k) + " x " +
                         std::to_string(k) + " starts per point, transient " + std::to_string(transient) + ", steps " +
-                        std::to_string(steps) + ", recheck-factor 20. stepped: --recheck full stepping every step (before issue 25); full: "
-                        "--recheck full, exact cycles carried (the same labels and evidence, checked); recurrence: the default; "
+                        std::to_string(steps) + ", recheck-factor 20. stepped: --recheck full, every step taken (the rules before exact cycles and "
+                        "recurrence); full: --recheck full, exact cycles carried (the same labels and evidence, checked); recurrence: the default; "
                         "speed-up: stepped / recurrence; joined: starts whose re-check ended early by recurrence.");
   std::printf("%s\n\n", table.notes.back().c_str());
   diffs.print_header();

@@ -26,6 +26,14 @@
 
 namespace bench {
 
+// The calling thread's CPU time in seconds: the benchmarks time work in thread CPU time, so
+// that other processes on the shared machine do not count (they still slow the caches).
+inline double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 struct Table {
   std::string name;                       // the block bench:TOOL/NAME of the page
   std::string title;                      // one line: what the table measures

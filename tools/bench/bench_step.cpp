@@ -1366,11 +1366,7 @@ struct Timing {
   std::vector<double> ns;    // per repetition, in round order (for paired ratios)
 };
 
-double thread_cpu_seconds() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return ts.tv_sec + 1e-9 * ts.tv_nsec;
-}
+using bench::thread_cpu_seconds;
 double wall_seconds() {
   timespec ts;
   clock_gettime(CLOCK_MONOTONIC, &ts);

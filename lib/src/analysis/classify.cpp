@@ -336,46 +336,51 @@ void run_windows(const ImpactMap<T>& map, const std::vector<WindowRun<T>*>& runs
   for (; g + kInterleave <= runs.size(); g += kInterleave) {
     WindowRun<T>* w[kInterleave];
     for (size_t i = 0; i < kInterleave; ++i) w[i] = runs[g + i];
-    // Rounds of one step of each, without per-step checks, while all four are at the same
-    // step and none has ended (the runs of one phase start together with the same length).
-    bool lockstep = true;
-    for (WindowRun<T>* x : w) lockstep = lockstep && !x->done() && x->n == w[0]->n && x->N == w[0]->N;
     if constexpr (std::is_same_v<T, double>) {
-      // double: the batched step (ImpactMap::step_n), kStepLanes orbits in one call.
+      // double: the batched step (ImpactMap::step_n), kStepLanes orbits in one call, while none
+      // has ended or failed. The lanes need not be at the same step: a run that recurs exactly
+      // is carried along its cycle (carry) and the four go on together.
       static_assert(kInterleave == static_cast<size_t>(kStepLanes));
-      if (lockstep) {
-        const Model<T>& model = map.model();
-        State<T> s[kInterleave];
-        StepResult<T> out[kInterleave];
-        Reason why[kInterleave];
-        for (long k = w[0]->n, N = w[0]->N; k < N; ++k) {
-          throw_if_cancelled(k);
-          for (size_t i = 0; i < kInterleave; ++i) s[i] = w[i]->s;
-          const unsigned failed = map.template step_n<kStepLanes>(s, out, why);
-          for (size_t i = 0; i < kInterleave; ++i) {
-            if (failed >> i & 1u) w[i]->fail(why[i]);
-            else w[i]->take(model, std::move(out[i]));
+      const Model<T>& model = map.model();
+      State<T> s[kInterleave];
+      StepResult<T> out[kInterleave];
+      Reason why[kInterleave];
+      while (!w[0]->done() && !w[1]->done() && !w[2]->done() && !w[3]->done()) {
+        throw_if_cancelled(w[0]->n);
+        for (size_t i = 0; i < kInterleave; ++i) s[i] = w[i]->s;
+        const unsigned failed = map.template step_n<kStepLanes>(s, out, why);
+        for (size_t i = 0; i < kInterleave; ++i) {
+          if (failed >> i & 1u) {
+            w[i]->fail(why[i]);
+          } else {
+            w[i]->take(model, std::move(out[i]));
+            w[i]->carry(map);
           }
-          if (failed) break;  // the others go on one by one
         }
       }
-    } else if (lockstep) {
-      try {
-        for (long k = w[0]->n, N = w[0]->N; k < N; ++k) {
-          throw_if_cancelled(k);
-          w[0]->step(map);
-          w[1]->step(map);
-          w[2]->step(map);
-          w[3]->step(map);
-          // An orbit that recurred exactly is carried along its cycle (below), out of step.
-          if (w[0]->cycle.period | w[1]->cycle.period | w[2]->cycle.period | w[3]->cycle.period) break;
+    } else {
+      // Rounds of one step of each, without per-step checks, while all four are at the same
+      // step and none has ended (the runs of one phase start together with the same length).
+      bool lockstep = true;
+      for (WindowRun<T>* x : w) lockstep = lockstep && !x->done() && x->n == w[0]->n && x->N == w[0]->N;
+      if (lockstep) {
+        try {
+          for (long k = w[0]->n, N = w[0]->N; k < N; ++k) {
+            throw_if_cancelled(k);
+            w[0]->step(map);
+            w[1]->step(map);
+            w[2]->step(map);
+            w[3]->step(map);
+            // An orbit that recurred exactly is carried along its cycle (below), out of step.
+            if (w[0]->cycle.period | w[1]->cycle.period | w[2]->cycle.period | w[3]->cycle.period) break;
+          }
+        } catch (const Undecided&) {
+          // A step that throws changes nothing: the runs not yet past this round (w[3] never
+          // is) take it again one by one, and the one that failed records its own failure.
+          const long n0 = w[3]->n;
+          for (WindowRun<T>* x : w)
+            if (x->n == n0) x->step_or_fail(map);
         }
-      } catch (const Undecided&) {
-        // A step that throws changes nothing: the runs not yet past this round (w[3] never
-        // is) take it again one by one, and the one that failed records its own failure.
-        const long n0 = w[3]->n;
-        for (WindowRun<T>* x : w)
-          if (x->n == n0) x->step_or_fail(map);
       }
     }
     // Whatever is left (after a failure or an exact recurrence), one step of each in turn.

@@ -462,14 +462,7 @@ void expect_many_equals_one(const ModelSpec& s, const std::vector<std::pair<doub
 
 // Windows of 400 + 128 steps, periods up to 32, re-checked 20 x 400 steps later: the
 // classify_many tests' options (short enough for the suite, long enough for every rule).
-static ClassifyOptions short_windows() {
-  ClassifyOptions o;
-  o.transient = 400;
-  o.steps = 128;
-  o.max_period = 32;
-  o.recheck_factor = 20;
-  return o;
-}
+static ClassifyOptions short_windows() { return {.transient = 400, .steps = 128, .max_period = 32, .recheck_factor = 20}; }
 
 TEST(ClassifyMany, EachOrbitAsAloneBitForBit) {
   ClassifyOptions o = short_windows();
@@ -600,12 +593,7 @@ TEST(ClassifyMany, RecheckRuleNames) {
 // (the last sticking step and release state are carried), the velocity-dependent model's
 // attractors and transient chaos (settled during the re-check), in double and in MPFR.
 TEST(ClassifyMany, ExactCyclesAreCarriedBitForBit) {
-  ClassifyOptions on;
-  on.transient = 3000;
-  on.steps = 256;
-  on.max_period = 64;
-  on.recheck_factor = 20;
-  on.recheck = RecheckRule::full;
+  const ClassifyOptions on{.transient = 3000, .steps = 256, .max_period = 64, .recheck_factor = 20, .recheck = RecheckRule::full};
   ClassifyOptions off = on;
   off.exact_cycles = false;
   std::vector<std::pair<double, double>> grid;

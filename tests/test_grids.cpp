@@ -83,7 +83,9 @@ TEST(Grids, BasinCellsAreClassifyOfEachCentreAlone) {
   // with starts below the wall. Chaotic and sticking cells included (eps 0.9 at a = 19; eps
   // 0.5 at a = 24).
   for (const char* prec : {"double", "dd"})
-    for (const auto& [a, eps] : {std::pair{"19", "0.9"}, std::pair{"24", "0.5"}}) {
+    for (const auto& point : {std::pair{"19", "0.9"}, std::pair{"24", "0.5"}}) {
+      const char* a = point.first;  // a variable, not a binding: the lambda below names it (clang 14)
+      const char* eps = point.second;
       BasinRequest r = small_basin("0", "1", "-3", "30", 7, 5);
       r.model = spec(Law::constant, a, eps);
       r.precision = parse_precision("precision", prec);

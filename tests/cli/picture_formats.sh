@@ -11,7 +11,7 @@
 #   * --tiles-from: a scan drawn with another --show from a finished job's kept tiles computes
 #     nothing (its tiles dir is filled by import: every tile there, none newer computed) and
 #     gives the same CSV rows; another job's tiles, a prefix without tiles, or no --out: exit 2;
-#   * bad --format/--size/--dpi/--palette/--curves: exit 2, one line naming the option, nothing
+#   * bad --format/--size/--dpi/--palette/--curves/--recheck (scan): exit 2, one line naming the option, nothing
 #     written; scene files take the same keys; sweep and continue take them too;
 #   * without the font file (hidden by a bind mount, where allowed): exit 1, one line naming
 #     fonts-dejavu-core, nothing written; without --out no font is needed.
@@ -134,6 +134,8 @@ bad dpi-word dpi "${BASIN[@]}" --dpi fine
 bad palette palette "${BASIN[@]}" --palette rainbow
 SCAN=(scan --model constant --a-range 20:24 --eps-range 0.4:0.6 --grid 3x2 --ics 2 --transient 50 --steps 32 --quiet)
 bad curves curves "${SCAN[@]}" --curves parabola
+bad recheck-typo recheck "${SCAN[@]}" --recheck ful
+bad recheck-case recheck "${SCAN[@]}" --recheck Full
 bad curves-veldep curves scan --model veldep --a-range 20:24 --c-range 0.4:0.6 --grid 2x2 --curves fixed-points
 bad sweep-format format sweep --model constant --eps 0.5 --a 24 --theta 0.5 --v 4 --steps 10 --format jpeg
 bad continue-size size continue --model constant --eps 0.25 --a 26 --period 1 --guess 0.5,4 --range 20:31 --size 9x9

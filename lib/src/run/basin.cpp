@@ -75,16 +75,10 @@ struct Grid final : GridBase {
     return classify<T>(map, State<T>{theta_at(i % r.nx), v_at(i / r.nx)}, r.classify);
   }
 
+  // One cell: cells() of one (classify_many of one start is classify, bit for bit).
   AttractorCell cell(long i) const override {
-    const T theta = theta_at(i % r.nx), v = v_at(i / r.nx);
     AttractorCell out;
-    if (outside(theta, v)) {
-      out.cls = OrbitClass::outside;
-      return out;
-    }
-    const Classification c = classify<T>(map, State<T>{theta, v}, r.classify);
-    out.cls = c.cls;
-    out.period = c.period;
+    cells({i}, &out);
     return out;
   }
 

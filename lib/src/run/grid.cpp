@@ -420,7 +420,11 @@ GridResult run_grid(const GridPlan& plan, long group, const std::function<void(l
   // record finished tiles in a byte vector and copy afterwards.
   std::vector<unsigned char> done(static_cast<size_t>(ntiles), 0);
   const std::atomic<bool>* cancel = current_cancel_flag();  // the caller's, for every worker
+  // Workers start computing only once every thread exists: a thread that cannot be created
+  // then stops a run in which no tile was computed, so nothing is left to resume or clean.
+  std::atomic<bool> go{false};
   auto safe_worker = [&] {
+    go.wait(false);
     const MpfrThreadCaches caches;  // freed when this worker ends
     const CancelScope scope(cancel);
     for (;;) {
@@ -452,11 +456,12 @@ GridResult run_grid(const GridPlan& plan, long group, const std::function<void(l
   };
   const unsigned nthreads = std::min<unsigned>(worker_threads(opt.threads), static_cast<unsigned>(todo.size()));
   if (nthreads <= 1) {
+    go.store(true);
     safe_worker();
   } else {
     // A thread that cannot be created (a process or memory limit) stops the run with a
-    // message: the threads already running finish their tile and are joined (a std::thread
-    // destroyed while running would abort the process).
+    // message before any tile is computed: the threads already created see `failed` when
+    // released, and are joined (a std::thread destroyed while running would abort the process).
     std::vector<std::thread> pool;
     std::string no_thread;
     for (unsigned i = 0; i < nthreads; ++i) {
@@ -469,6 +474,8 @@ GridResult run_grid(const GridPlan& plan, long group, const std::function<void(l
         break;
       }
     }
+    go.store(true);
+    go.notify_all();
     for (auto& th : pool) th.join();
     if (!no_thread.empty()) {
       progress.finish();

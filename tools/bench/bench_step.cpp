@@ -1466,7 +1466,7 @@ struct Options {
   double time_s = 0.2;
   int reps = 5;
   std::string model_filter;
-  std::string profile;  // run one runner only (for callgrind): plain|double|raw|mpfr|rawi|interval
+  std::string profile;  // run one runner only (for callgrind): plain|double|raw|mpfr|rawi|interval|idouble
   long bits = 113;
   long steps = 100000;
 };
@@ -1475,9 +1475,9 @@ struct Options {
   std::printf(
       "usage: bench_step [--quick | --check] [--time SECONDS] [--reps N] [--model SUBSTRING] [--json FILE]\n"
       "       bench_step --columns   (the table's columns as JSON; nothing is run)\n"
-      "       bench_step --profile plain|double|raw|mpfr|rawi|interval [--model SUBSTRING] [--bits B] [--steps N]\n"
+      "       bench_step --profile plain|double|raw|mpfr|rawi|interval|idouble [--model SUBSTRING] [--bits B] [--steps N]\n"
       "         (runs one runner N steps without timing, for valgrind --tool=callgrind;\n"
-      "          raw = raw-MPFR floor, rawi = raw-MPFI floor, interval = ImpactMap<Mpfi>)\n"
+      "          raw = raw-MPFR floor, rawi = raw-MPFI floor, interval = ImpactMap<Mpfi>, idouble = ImpactMap<DoubleInterval>)\n"
       "  Times ImpactMap<T>::step for each model and scalar type next to hand-written floors\n"
       "  (plain double; raw MPFR and raw MPFI with preallocated temporaries), after checking\n"
       "  bitwise that the floors compute the same orbits (and, for MPFI, are undecided at the\n"
@@ -1534,6 +1534,7 @@ int main(int argc, char** argv) {
     else if (opt.profile == "raw") r = std::make_unique<RawRunner>(k, opt.bits);
     else if (opt.profile == "mpfr") r = std::make_unique<MapRunner<Mpfr>>(k, opt.bits);
     else if (opt.profile == "interval") r = std::make_unique<MapRunner<Mpfi>>(k, opt.bits);
+    else if (opt.profile == "idouble") r = std::make_unique<MapRunner<DoubleInterval>>(k, 53);
     else if (opt.profile == "rawi") r = std::make_unique<RawMpfiRunner>(k, opt.bits);
     else usage(2);
     r->reset();

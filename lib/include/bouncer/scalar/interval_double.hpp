@@ -53,9 +53,9 @@
 // exp and log are not correctly rounded in libm. Each end is MPFR's directed result at 53 bits
 // (MPFR_RNDD for the lower end, MPFR_RNDU for the upper) converted to double in the same
 // direction, bit for bit: rigorous and tightest. scalar/interval_elementary.hpp computes it in
-// double arithmetic (a table, a short Taylor polynomial in this interval arithmetic plus
-// Lagrange's remainder, then two directed sums that must agree), and calls MPFR only when they
-// disagree or the argument lies outside the proven range; its opening comment has the argument.
+// double arithmetic (a table, a short Taylor polynomial and a written a-priori bound of every
+// rounding and truncation error, then two directed sums that must agree), and calls MPFR only
+// when they disagree or the argument lies outside the proven range (its opening comment).
 //
 // Invalid intervals. An interval with a NaN end is invalid (has_nan; every caller treats it as
 // undecided: ScalarTraits gives Truth::invalid and is_finite = false). Every operation with an

@@ -456,6 +456,7 @@ void expect_many_equals_one(const ModelSpec& s, const std::vector<std::pair<doub
     EXPECT_EQ(m.settled_at, one.settled_at) << i;
     EXPECT_EQ(m.accel_period, one.accel_period) << i;
     EXPECT_EQ(m.growth_kind, one.growth_kind) << i;
+    EXPECT_EQ(m.recheck_joined_at, one.recheck_joined_at) << i;
   }
 }
 }  // namespace
@@ -501,10 +502,12 @@ TEST(ClassifyMany, EachOrbitAsAloneBitForBit) {
 // velocity-dependent model at c = 1000, a = 27: its chaos is an attractor (exponent ~0.11 per
 // collision at every precision, claims table).
 namespace {
+// The join step, checked against the evidence's words (the one fact in two forms).
 long joined_after(const Classification& c) {
-  const std::string key = "re-check by recurrence: after ";
-  const size_t at = c.evidence.find(key);
-  return at == std::string::npos ? -1 : std::atol(c.evidence.c_str() + at + key.size());
+  const bool said = c.evidence.find("re-check by recurrence: after " + std::to_string(c.recheck_joined_at) + " further steps") !=
+                    std::string::npos;
+  EXPECT_EQ(said, c.recheck_joined_at > 0) << c.evidence;
+  return c.recheck_joined_at > 0 ? c.recheck_joined_at : -1;
 }
 }  // namespace
 
@@ -564,6 +567,7 @@ TEST(ClassifyMany, RecurrenceFallsBackToFullReChecksWhereAnOrbitSettles) {
   for (const Classification& c : classify_many<double>(map, xs, o)) {
     settled += c.cls == OrbitClass::transient_chaos && c.settled_at > 5500 + 10000;
     EXPECT_EQ(c.evidence.find("re-check by recurrence"), std::string::npos) << c.evidence;
+    EXPECT_EQ(c.recheck_joined_at, 0) << c.evidence;
   }
   EXPECT_GE(settled, 2) << "the case is what it claims to be";
 }

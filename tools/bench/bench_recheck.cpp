@@ -58,13 +58,9 @@ std::string words(const Classification& c) {
   return s;
 }
 
-// The join step of a recurrence label's evidence ("after N further steps"), or "".
+// The join step of a recurrence label, or "".
 std::string joined_after(const Classification& c) {
-  const std::string key = "re-check by recurrence: after ";
-  const size_t at = c.evidence.find(key);
-  if (at == std::string::npos) return "";
-  const size_t from = at + key.size();
-  return c.evidence.substr(from, c.evidence.find(' ', from) - from);
+  return c.recheck_joined_at > 0 ? std::to_string(c.recheck_joined_at) : "";
 }
 
 }  // namespace

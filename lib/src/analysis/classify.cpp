@@ -1058,6 +1058,7 @@ std::vector<Classification> classify_many(const ImpactMap<T>& map, const std::ve
                           "their whole re-checks of " + std::to_string(ro.transient) + " steps, and no whole re-check settled"
                     : std::string();
       out[who[k]] = after_recheck(map, firsts[k], rc.later, lasts[k], opt, windows, false, quiet[k] != 0, rc.R, how);
+      out[who[k]].recheck_joined_at = rc.joined ? rc.R : 0;
     };
     for (const size_t k : again) firsts[k] = out[who[k]];
     for (const size_t k : again) {

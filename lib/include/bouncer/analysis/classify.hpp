@@ -57,6 +57,11 @@ struct Classification {
   double accel_gain = 0;          // D: mean velocity gain per Q steps
   long captured_from = 0;         // accelerator: the window's step (0-based) from which it recurs
   std::string growth_kind;        // accelerator | diffusive | irregular
+
+  // classify_many with RecheckRule::recurrence only: the further steps after which the
+  // start's re-check joined a known aperiodic set (its evidence says so too); 0 when the
+  // re-check ran whole (or there was none).
+  long recheck_joined_at = 0;
 };
 
 // How classify_many re-checks (rule 7) the aperiodic verdicts of many starts of one map.

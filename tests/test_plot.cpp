@@ -341,6 +341,51 @@ TEST(Render, PdfAndSvgPagesAreSizeTimes72OverDpiWithFontAndProvenanceAndNoDate) 
   EXPECT_NE(v.find("<symbol"), std::string::npos);  // glyphs: text was drawn
 }
 
+// A scatter of many dots (a long orbit's portrait): in PDF and SVG more than 200000 of them
+// become one image of the frame (the rest of the page stays vector), so the file stays small
+// and cairo's SVG writer does not run out of memory; a few stay vector paths. In a PNG a dot
+// repeated at the same place changes no pixel (each is drawn once).
+TEST(Render, ManyMarkersBecomeOneImageInVectorFormatsAndRepeatsChangeNoPixel) {
+  TempDir tmp;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  Figure big = small_figure();
+  big.series[0].x.clear();
+  big.series[0].y.clear();
+  for (int i = 0; i < 250000; ++i) {
+    big.series[0].x.push_back(u(rng));
+    big.series[0].y.push_back(u(rng));
+  }
+  RenderOptions ro;
+  for (ImageFormat fmt : {ImageFormat::svg, ImageFormat::pdf}) {
+    const std::string path = (tmp.path / (fmt == ImageFormat::svg ? "big.svg" : "big.pdf")).string();
+    write_figure(path, big, fmt, ro);
+    const std::string v = slurp(path);
+    EXPECT_LT(v.size(), 20u << 20) << path;
+    if (fmt == ImageFormat::svg) {
+      EXPECT_NE(v.find("<image"), std::string::npos);
+      EXPECT_NE(v.find("<symbol"), std::string::npos);  // the text is still vector glyphs
+    }
+  }
+  const std::string few = (tmp.path / "few.svg").string();
+  write_figure(few, small_figure(), ImageFormat::svg, ro);
+  EXPECT_EQ(slurp(few).find("<image"), std::string::npos);
+
+  Figure once = small_figure(), thrice = small_figure();
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i <= 40; ++i) {
+      thrice.series[0].x.push_back(once.series[0].x[static_cast<size_t>(i)]);
+      thrice.series[0].y.push_back(once.series[0].y[static_cast<size_t>(i)]);
+    }
+  const std::string a = (tmp.path / "once.png").string(), b = (tmp.path / "thrice.png").string();
+  write_figure(a, once, ImageFormat::png, ro);
+  write_figure(b, thrice, ImageFormat::png, ro);
+  Decoded da, db;
+  ASSERT_TRUE(decode(a, da));
+  ASSERT_TRUE(decode(b, db));
+  EXPECT_TRUE(da.rgb == db.rgb);
+}
+
 TEST(Render, SizeOptionSetsThePngPixelsAndBadOptionsThrow) {
   TempDir tmp;
   const Figure f = small_figure();

@@ -17,12 +17,16 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <functional>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_set>
+#include <utility>
+#include <vector>
 
 #include "bouncer/base/output.hpp"
 #include "bouncer/io/contact_sheet.hpp"
@@ -695,6 +699,64 @@ Ticks axis_ticks(const AxisMap& m, double p0, double p1, int target) {
   return log_ticks(std::pow(m.base, p0), std::pow(m.base, p1), m.base);
 }
 
+// Round markers of radius r at the points `at`, in one fill. On a vector surface (PDF, SVG)
+// more than kVectorMarkers of them are drawn into an image of the frame at 4 pixels per unit
+// and placed there (what plotting libraries call a rasterized layer): each marker is a few
+// hundred bytes of path, and cairo's SVG writer runs out of memory at about 2 GB (fig.
+// attract_three, a 10^7-step portrait). The frame, the axes and the text stay vector.
+constexpr size_t kVectorMarkers = 200000;
+// Dots per fill: cairo's fill of one path of 10^5 circles took minutes (its cost grows faster
+// than the path); fills of a few hundred neighbouring dots cost the same per dot at every size.
+constexpr size_t kDotsPerFill = 256;
+void draw_markers(const Painter& p, const Frame& f, std::vector<std::pair<double, double>> at, double r, Rgb color) {
+  cairo_t* cr = p.cr();
+  // In strips of 8 radii, left to right: each fill then covers a small part of the frame (a
+  // fill costs in proportion to the area its dots span, and random dots span all of it). One
+  // colour, so the order of the dots changes nothing drawn.
+  const double strip = 8 * r;
+  std::sort(at.begin(), at.end(), [&](const auto& u, const auto& v) {
+    const double su = std::floor(u.second / strip), sv = std::floor(v.second / strip);
+    return su != sv ? su < sv : u.first < v.first;
+  });
+  auto dots = [&](cairo_t* c) {
+    cairo_set_source_rgb(c, color.r / 255.0, color.g / 255.0, color.b / 255.0);
+    size_t in_path = 0;
+    for (const auto& [x, y] : at) {
+      cairo_new_sub_path(c);
+      cairo_arc(c, x, y, r, 0, 2 * M_PI);
+      if (++in_path == kDotsPerFill) {
+        cairo_fill(c);
+        in_path = 0;
+      }
+    }
+    cairo_fill(c);
+  };
+  if (at.size() <= kVectorMarkers || cairo_surface_get_type(cairo_get_target(cr)) == CAIRO_SURFACE_TYPE_IMAGE) {
+    dots(cr);
+    return;
+  }
+  constexpr double kScale = 4;
+  const int w = static_cast<int>(std::ceil((f.right - f.left) * kScale)), h = static_cast<int>(std::ceil((f.bottom - f.top) * kScale));
+  cairo_surface_t* layer = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, std::max(w, 1), std::max(h, 1));
+  cairo_t* c = cairo_create(layer);
+  cairo_scale(c, kScale, kScale);
+  cairo_translate(c, -f.left, -f.top);
+  dots(c);
+  const cairo_status_t drawn = cairo_status(c);
+  cairo_destroy(c);
+  if (drawn == CAIRO_STATUS_SUCCESS) {
+    cairo_save(cr);
+    cairo_translate(cr, f.left, f.top);
+    cairo_scale(cr, 1 / kScale, 1 / kScale);
+    cairo_set_source_surface(cr, layer, 0, 0);
+    cairo_paint(cr);
+    cairo_restore(cr);
+  }
+  cairo_surface_destroy(layer);
+  if (drawn != CAIRO_STATUS_SUCCESS)
+    throw OutputError(std::string("cannot draw the markers' layer: ") + cairo_status_to_string(drawn));
+}
+
 // Series: lines, error bars, markers, clipped to the frame.
 void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& series, const AxisMap& mx, const AxisMap& my,
                  const Style& st, bool halo = false) {
@@ -746,14 +808,19 @@ void draw_series(const Painter& p, const Frame& f, const std::vector<Series>& se
       p.line(xp - cap, hi, xp + cap, hi, s.color, 0.8 * st.line);
     }
     if (s.markers) {
-      p.color(s.color);
       const double r = (s.marker_size <= 0 ? 0.8 : s.marker_size + 0.8) * st.unit;
-      for (size_t i = 0; i < n; ++i)
-        if (ok(i) && near(X(i), Y(i))) {
-          cairo_new_sub_path(cr);
-          cairo_arc(cr, X(i), Y(i), r, 0, 2 * M_PI);
-        }
-      cairo_fill(cr);
+      // One marker per cell of a grid a quarter of its radius wide: a dot drawn again within a
+      // quarter of its radius adds nothing one can see, and a long orbit's portrait repeats
+      // its dots millions of times (fig. attract_three: 10^7 steps).
+      const double g = r / 4;
+      std::unordered_set<std::uint64_t> seen;
+      std::vector<std::pair<double, double>> at;
+      for (size_t i = 0; i < n; ++i) {
+        if (!ok(i) || !near(X(i), Y(i))) continue;
+        const auto cell = [&](double z) { return static_cast<std::uint32_t>(static_cast<std::int32_t>(std::floor(z / g))); };
+        if (seen.insert(std::uint64_t{cell(X(i))} << 32 | cell(Y(i))).second) at.emplace_back(X(i), Y(i));
+      }
+      draw_markers(p, f, std::move(at), r, s.color);
     }
   }
   p.unclip();

@@ -17,7 +17,6 @@ namespace interval_elementary {
 
 namespace {
 
-using I = DoubleInterval;
 using interval_double_detail::add_down;
 using interval_double_detail::add_up;
 
@@ -212,31 +211,33 @@ double log_mpfr(double x, bool up) { return mpfr_point<true>(x, up); }
 
 }  // namespace interval_elementary
 
-// Both functions are increasing: the lower end from the lower end, the upper from the upper.
-DoubleInterval exp(const DoubleInterval& x) {
+namespace {
+
+// Both functions are increasing: the lower end from the lower end rounded down, the upper from
+// the upper rounded up; a point interval takes one sum for both ends.
+DoubleInterval increasing(const DoubleInterval& x, bool (*sum)(double, interval_elementary::Sum&),
+                          double (*mpfr)(double, bool)) {
   using namespace interval_elementary;
-  if (x.has_nan()) return DoubleInterval::nan_interval();
+  Sum f;
+  const bool lo_ok = sum(x.lower(), f);
   double lo, hi;
-  if (x.lower() == x.upper()) {  // a point: one sum for both ends
-    Sum f;
-    const bool ok = exp_sum(x.lower(), f);
-    if (!ok || !decide<false>(f, lo)) lo = exp_mpfr(x.lower(), false);
-    if (!ok || !decide<true>(f, hi)) hi = exp_mpfr(x.upper(), true);
-    return {lo, hi};
-  }
-  if (!exp_point<false>(x.lower(), lo)) lo = exp_mpfr(x.lower(), false);
-  if (!exp_point<true>(x.upper(), hi)) hi = exp_mpfr(x.upper(), true);
+  if (!lo_ok || !decide<false>(f, lo)) lo = mpfr(x.lower(), false);
+  const bool hi_ok = x.lower() == x.upper() ? lo_ok : sum(x.upper(), f);
+  if (!hi_ok || !decide<true>(f, hi)) hi = mpfr(x.upper(), true);
   return {lo, hi};
 }
 
+}  // namespace
+
+DoubleInterval exp(const DoubleInterval& x) {
+  if (x.has_nan()) return DoubleInterval::nan_interval();
+  return increasing(x, interval_elementary::exp_sum, interval_elementary::exp_mpfr);
+}
+
 DoubleInterval log(const DoubleInterval& x) {
-  using namespace interval_elementary;
   // As mpfi_log: defined for x > 0 only (an end <= 0 gives -inf or NaN from MPFR: never finite).
   if (x.has_nan() || x.upper() < 0) return DoubleInterval::nan_interval();
-  double lo, hi;
-  if (!log_point<false>(x.lower(), lo)) lo = log_mpfr(x.lower(), false);
-  if (!log_point<true>(x.upper(), hi)) hi = log_mpfr(x.upper(), true);
-  return {lo, hi};
+  return increasing(x, interval_elementary::log_sum, interval_elementary::log_mpfr);
 }
 
 }  // namespace bouncer

@@ -701,10 +701,11 @@ Ticks axis_ticks(const AxisMap& m, double p0, double p1, int target) {
 
 // Round markers of radius r at the points `at`. On a vector surface (PDF, SVG)
 // more than kVectorMarkers of them are drawn into an image of the frame at 4 pixels per unit
-// and placed there (what plotting libraries call a rasterized layer): each marker is a few
-// hundred bytes of path, and cairo's SVG writer runs out of memory at about 2 GB (fig.
-// attract_three, a 10^7-step portrait). The frame, the axes and the text stay vector.
-constexpr size_t kVectorMarkers = 200000;
+// and placed there (what plotting libraries call a rasterized layer): each marker is about 90
+// bytes of SVG path (a 4 10^5-step portrait: 2 10^5 distinct dots, an 18 MB SVG), and cairo's
+// SVG writer runs out of memory at about 2 GB (fig. attract_three, a 10^7-step portrait). The
+// frame, the axes and the text stay vector.
+constexpr size_t kVectorMarkers = 50000;
 // Dots per fill: one fill of 4 10^5 random circles took cairo about 20 s; fills of 256
 // neighbouring dots (below) about a fifth of that. Dots of two fills that overlap composite
 // their antialiased edges twice (a shade darker than one fill would draw them).

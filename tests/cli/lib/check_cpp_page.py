@@ -79,7 +79,7 @@ for h in headers:
         t = re.match(r"(?:(?:struct|class|union|enum(?: class)?) (\w+)[^;]*\{|using (\w+) =)", l)
         if hidden_at is None and depth == 1 and t:  # a type at namespace scope: a heading names it
             n_types += 1
-            if not re.search(rf"^#### .*`{t.group(1) or t.group(2)}`", sec, re.M):
+            if not re.search(rf"^#### .*`(\w+::)*{t.group(1) or t.group(2)}`", sec, re.M):  # a nested namespace qualifies it
                 problems.append(f"{h}:{k + 1}: {t.group(1) or t.group(2)} has no heading in its section")
         if (hidden_at is None and depth == 1 and re.match(r"[A-Za-z_][\w:<>,*& ]* [*&]?~?\w+\(.*\);$", l)
                 and not re.match(r"(static_assert|using|return|template|extern|friend|typedef)\b", l)):

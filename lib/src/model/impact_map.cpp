@@ -1,6 +1,7 @@
-// Explicit instantiation of the impact map for the scalar set (scalar/scalar_set.hpp), so
-// that tools and tests include only declarations and compile fast.
-#include "bouncer/model/impact_map_impl.hpp"
+// What of the impact map is not a template. Its explicit instantiations, so that tools and
+// tests include only declarations and compile fast, are in map_instances.cpp (one scalar
+// type per translation unit; that file says why).
+#include "bouncer/model/impact_map.hpp"
 
 namespace bouncer {
 
@@ -12,12 +13,5 @@ const char* name(EventKind k) {
   }
   return "?";
 }
-
-#define BOUNCER_X(T, kind)           \
-  template class ImpactMap<T>;       \
-  template Model<T> make_model<T>(const ModelSpec&, long);
-BOUNCER_FOR_EACH_SCALAR(BOUNCER_X)
-#undef BOUNCER_X
-template unsigned ImpactMap<double>::step_n<kStepLanes>(const State<double>*, StepResult<double>*, Reason*) const;
 
 }  // namespace bouncer

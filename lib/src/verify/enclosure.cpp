@@ -7,14 +7,11 @@
 #include "bouncer/base/cancel.hpp"
 #include "bouncer/model/spec.hpp"
 #include "bouncer/verify/interval_dual.hpp"
-// Instantiate the step for interval duals (Dual<S> over the enclosure scalars).
-#include "bouncer/model/impact_map_impl.hpp"
 
 namespace bouncer {
 
-#define BOUNCER_X(S, kind) template class ImpactMap<Dual<S>>;
-BOUNCER_FOR_EACH_ENCLOSURE_SCALAR(BOUNCER_X)
-#undef BOUNCER_X
+// The step for interval duals (Dual<S> over the enclosure scalars) is instantiated in
+// model/map_instances.cpp, one type per translation unit.
 
 const char* name(EnclosureMethod m) { return m == EnclosureMethod::naive ? "naive" : "lohner"; }
 

@@ -28,7 +28,7 @@
 namespace bouncer {
 
 // The step in Dual<S> for the analysis scalars (scalar/scalar_set.hpp), instantiated in
-// lib/src/model/dual_map.cpp.
+// lib/src/model/map_instances.cpp.
 #define BOUNCER_X(S, kind)                          \
   extern template class ImpactMap<Dual<S>>;         \
   extern template Model<Dual<S>> make_model<Dual<S>>(const ModelSpec&, long);

@@ -97,9 +97,9 @@ class ImpactMap {
   Truth left_zone(const State<T>& s, int j0, const T& u, const T& q) const;
 };
 
-// Explicitly instantiated in lib/src/model/impact_map.cpp for every type of the scalar set
-// (scalar/scalar_set.hpp); for the duals over it, see analysis/jacobian.hpp and
-// verify/interval_dual.hpp.
+// Explicitly instantiated in lib/src/model/map_instances.cpp for every type of the scalar set
+// (scalar/scalar_set.hpp), one type per translation unit; for the duals over it, see
+// analysis/jacobian.hpp and verify/interval_dual.hpp.
 #define BOUNCER_X(T, kind)                  \
   extern template class ImpactMap<T>;       \
   extern template Model<T> make_model<T>(const ModelSpec&, long);

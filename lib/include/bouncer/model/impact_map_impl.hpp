@@ -1,6 +1,6 @@
-// Definitions of the impact map templates. Included by lib/src/model/impact_map.cpp, which
-// instantiates them for the supported scalar set, and by code that instantiates the map
-// for further scalar types (dual numbers for Jacobians).
+// Definitions of the impact map templates. Included by lib/src/model/map_instances.cpp, which
+// instantiates them for the supported scalar set and the duals over it (one type per
+// translation unit), and by code that instantiates the map for further scalar types.
 //
 // The derivation (README "The model"): between impacts the gap between particle and wall
 // on wall segment j, as a function of the time sigma since the segment began, is

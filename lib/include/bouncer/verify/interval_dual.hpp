@@ -17,7 +17,7 @@ namespace bouncer {
 using IDual = Dual<Mpfi>;
 
 // The step for interval duals (over the enclosure scalars of scalar/scalar_set.hpp) is
-// instantiated once, in lib/src/verify/enclosure.cpp.
+// instantiated once, in lib/src/model/map_instances.cpp.
 #define BOUNCER_X(S, kind) extern template class ImpactMap<Dual<S>>;
 BOUNCER_FOR_EACH_ENCLOSURE_SCALAR(BOUNCER_X)
 #undef BOUNCER_X

@@ -240,6 +240,31 @@ TEST(AuditPlan, TheRerunWritesOnlyIntoItsDirectory) {
   EXPECT_EQ(p.argv, (std::vector<std::string>{"/self", "orbit", "--eps=--tiles-from=/etc"}));
 }
 
+// An npy orbit: the sidecar PATH.json is compared as JSON and its data PATH byte for byte.
+// The data's name comes from the audited file's own path, never from the recorded --out
+// (which a stranger could set to any file); the rerun writes both into its directory.
+TEST(AuditPlan, AnNpyOrbitComparesItsDataNamedByThePathNotByTheRecord) {
+  const std::string dir = "/tmp/audit-rerun";
+  AuditPlan p = plan_rerun("runs/o.npy.json", json_result("orbit", R"("a": "24", "format": "npy", "out": "/etc/shadow")"),
+                           dir, "/self");
+  EXPECT_EQ(p.argv, (std::vector<std::string>{"/self", "orbit", "--a=24", "--format=npy", "--out", dir + "/result"}));
+  EXPECT_EQ(p.data_path, "runs/o.npy");
+  EXPECT_EQ(p.rerun_data_path, dir + "/result");
+  EXPECT_EQ(p.compare_path, dir + "/result.json");
+  expect_inside(p, dir);
+  // Other orbits have no data file.
+  p = plan_rerun("o.json", json_result("orbit", R"("a": "24", "format": "json", "out": "o.json")"), dir, "/self");
+  EXPECT_TRUE(p.data_path.empty());
+  // The sidecar under a name without .json (its data could not be named) and the data itself
+  // (the npy magic) are refused, naming what to audit instead.
+  EXPECT_TRUE(contains(
+      expect_input_error([&] { plan_rerun("sidecar", json_result("orbit", R"("format": "npy", "out": "o")"), dir, "/self"); }, "file"),
+      "ending in .json"));
+  EXPECT_TRUE(contains(
+      expect_input_error([&] { plan_rerun("o.npy", std::string("\x93NUMPY\x01\x00", 8) + "{'descr': '<f8'}", dir, "/self"); }, "file"),
+      "audit its provenance 'o.npy.json'"));
+}
+
 // ---------------------------------------------------------------------------------------
 // audit(): refusals before anything runs, failed reruns
 

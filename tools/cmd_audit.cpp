@@ -70,6 +70,7 @@ int report(const AuditRequest& request, const AuditResult& r) {
             "pictures compared through their CSV and JSON)\n";
       else
         out << "audit: IDENTICAL: the rerun reproduces '" << request.file
+            << (r.data_file.empty() ? std::string() : "' and its npy data '" + r.data_file)
             << "' bit for bit (volatile fields skipped: timings, invocation, output location)\n";
       return 0;
     case AuditVerdict::different:

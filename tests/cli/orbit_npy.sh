@@ -17,6 +17,11 @@
 #         allowed values, and no file (nor .partial) left.
 #   early stop: an orbit that stops at an undecided step leaves fewer rows than planned: the
 #         header is rewritten to the rows written, the sidecar says where each orbit ends.
+#   audit: `bouncer audit PATH.json` reruns the orbit and compares the sidecar and the data
+#         PATH byte for byte (IDENTICAL, naming the data); one flipped bit in the data is
+#         DIFFERENT at its row and column (exit 1); the data file given instead, the sidecar
+#         under a name without .json, or the sidecar without its data: exit 2 and a
+#         one-line error naming the sidecar or the data.
 # Orbits: constant eps = 0.5, a = 10 from (0.3, 13) (sticking, with a ride through an upward
 # turn, and direct flights) and from (0.05, 10.5); every step and every 7th; elastic
 # a = 1e-300 (periods of 9e18, negative phase_bits, an overflow at step 1 of the second orbit).
@@ -193,6 +198,29 @@ for b in bad[:30]:
     print("FAIL:", b, file=sys.stderr)
 sys.exit(1 if bad else 0)
 PY
+
+# ---------------------------------------------------------------- audit of an npy orbit
+audited audit_npy "$TMP/o7.npy.json"
+grep -qF "and its npy data '$TMP/o7.npy'" "$TMP/audit.txt" || fail audit_npy "the verdict does not name the data: $(cat "$TMP/audit.txt")"
+mkdir -p "$TMP/tamper" && cp "$TMP/o7.npy" "$TMP/o7.npy.json" "$TMP/tamper/"
+# One bit of row 3's v (column 2 of 16 float64 values after the header) flipped.
+"$PY" - "$TMP/tamper/o7.npy" <<'PY'
+import sys
+p = sys.argv[1]
+d = bytearray(open(p, "rb").read())
+start = 10 + int.from_bytes(d[8:10], "little")
+d[start + (3 * 16 + 2) * 8] ^= 1
+open(p, "wb").write(bytes(d))
+PY
+rc=0
+"$BOUNCER" audit "$TMP/tamper/o7.npy.json" >"$TMP/tamper.txt" 2>&1 || rc=$?
+[[ $rc -eq 1 ]] && grep -q "DIFFERENT: first difference at .*o7.npy (npy data): byte [0-9]* differs (row 3, column v)" "$TMP/tamper.txt" ||
+  fail audit_tamper "exit $rc: $(tail -c 300 "$TMP/tamper.txt")"
+refused audit_data "o7.npy' is the data of an npy orbit; audit its provenance '.*o7.npy.json' beside it" audit "$TMP/o7.npy"
+cp "$TMP/o7.npy.json" "$TMP/tamper/sidecar"
+refused audit_name "sidecar' is the provenance of an npy orbit.*ending in .json" audit "$TMP/tamper/sidecar"
+rm "$TMP/tamper/o7.npy"
+refused audit_nodata "its data '.*tamper/o7.npy' cannot be read" audit "$TMP/tamper/o7.npy.json"
 
 # ---------------------------------------------------------------- bad input: exit 2, no files
 bad_input() {  # bad_input NAME OPTION-NAME ALLOWED-PATTERN ARGS...

@@ -48,6 +48,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       violated("the plan's --out is not inside its directory: " + shown(argv));
   }
   if (plan.compare_path.rfind(inside, 0) != 0) violated("the plan compares a file outside its directory: " + plan.compare_path);
+  if (!plan.rerun_data_path.empty() && plan.rerun_data_path.rfind(inside, 0) != 0)
+    violated("the plan reads the rerun's npy data outside its directory: " + plan.rerun_data_path);
+  // The audited file's npy data is named by the file's own path ("f" has no .json: none).
+  if (!plan.data_path.empty()) violated("the plan names npy data beside a file not named PATH.json: " + plan.data_path);
   // Validated as audit does before it starts the rerun.
   std::vector<std::string> words{"bouncer"};
   words.insert(words.end(), argv.begin() + 1, argv.end());

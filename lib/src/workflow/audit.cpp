@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -17,6 +18,7 @@
 #include "audit_internal.hpp"
 #include "bouncer/base/error.hpp"
 #include "bouncer/base/input.hpp"
+#include "bouncer/io/orbit.hpp"
 #include "bouncer/workflow/child_process.hpp"
 #include "bouncer/workflow/commands.hpp"
 #include "bouncer/workflow/reproduce.hpp"
@@ -100,6 +102,32 @@ std::optional<RecordedRun> recorded_text(const std::string& text) {
   return std::nullopt;
 }
 
+// The first difference of two npy orbit files (io/orbit.hpp: format 1.0, '<f8', rows of
+// npy_orbit_columns()), byte for byte; where it is in the data, by row and column.
+Comparison compare_npy(const std::string& name, const std::string& file, const std::string& rerun) {
+  Comparison c;
+  if (file == rerun) return c;
+  c.identical = false;
+  c.path = name + " (npy data)";
+  if (file.size() != rerun.size()) {
+    c.detail = std::to_string(file.size()) + " vs " + std::to_string(rerun.size()) + " bytes";
+    return c;
+  }
+  size_t at = 0;
+  while (file[at] == rerun[at]) ++at;
+  c.detail = "byte " + std::to_string(at) + " differs";
+  // The data start after the 10-byte preamble and the header whose length bytes 8-9 give.
+  const size_t data = file.size() >= 10 ? 10 + (static_cast<unsigned char>(file[8]) | static_cast<unsigned char>(file[9]) << 8) : file.size();
+  if (at >= data) {
+    const std::vector<std::string>& cols = npy_orbit_columns();
+    const size_t value = (at - data) / 8;
+    c.detail += " (row " + std::to_string(value / cols.size()) + ", column " + cols[value % cols.size()] + ")";
+  } else {
+    c.detail += " (in the header)";
+  }
+  return c;
+}
+
 // The rerun of one result file, planned, checked, run and compared.
 AuditResult audit_result(const AuditRequest& request, const std::string& text) {
   const std::string& path = request.file;
@@ -115,8 +143,17 @@ AuditResult audit_result(const AuditRequest& request, const std::string& text) {
     if (const auto refused = request.check_command(words))
       throw InputError("file", "'" + path + "' records inputs that bouncer refuses: " + *refused);
   }
+  // An npy orbit's data, read before anything runs: a provenance without its data proves nothing.
+  std::optional<std::string> data;
+  if (!plan.data_path.empty()) {
+    data = audit_detail::read_result(plan.data_path);
+    if (!data)
+      throw InputError("file", "'" + path + "' is the provenance of an npy orbit, but its data '" + plan.data_path +
+                                   "' cannot be read (missing, not a regular file, or above 1 GiB)");
+  }
   AuditResult result;
   result.is_json = plan.is_json;
+  result.data_file = plan.data_path;
   result.rerun = "bouncer " + plan.command;
   for (size_t i = 2; i < argv.size(); ++i) result.rerun += " " + (argv[i].rfind(dir, 0) == 0 ? "<tmp>" + argv[i].substr(dir.size()) : argv[i]);
   if (request.on_rerun) request.on_rerun(result.rerun);
@@ -144,7 +181,16 @@ AuditResult audit_result(const AuditRequest& request, const std::string& text) {
     if (b.is_discarded()) return failed("the rerun's output is not JSON");
     audit_detail::strip_volatile(a, true);
     audit_detail::strip_volatile(b, true);
+    if (data) {  // the data's file name, as "files" elsewhere: where it was written
+      if (a.is_object()) a.erase("npy");
+      b.erase("npy");
+    }
     result.first = audit_detail::first_difference(a, b);
+    if (data && result.first.identical) {
+      const std::optional<std::string> data_again = audit_detail::read_result(plan.rerun_data_path);
+      if (!data_again) return failed("the rerun wrote no npy data");
+      result.first = compare_npy(plan.data_path, *data, *data_again);
+    }
   } else {
     result.first = compare_text_results(text, *again);
   }
@@ -183,6 +229,8 @@ AuditPlan plan_rerun(const std::string& path, const std::string& text, const std
       (text.rfind("<?xml", 0) == 0 && text.find("<svg", 0) != std::string::npos))
     throw InputError("file", "'" + path + "' is a picture; audit the PREFIX.json or PREFIX.csv written beside it "
                              "(same provenance, exact numbers)");
+  if (text.rfind("\x93NUMPY", 0) == 0)
+    throw InputError("file", "'" + path + "' is the data of an npy orbit; audit its provenance '" + path + ".json' beside it");
   if (const json j = json::parse(text, nullptr, false); j.is_object() && j.contains("proof") && j.contains("claim"))
     throw InputError("file", "'" + path + "' is a proof certificate; rerun its proof (" + proof_prefix(self) + "proof_" +
                                  (j["proof"].is_string() && safe_name(j["proof"].get<std::string>()) ? j["proof"].get<std::string>()
@@ -245,6 +293,19 @@ AuditPlan plan_rerun(const std::string& path, const std::string& text, const std
     plan.compare_path = dir + "/result";
     if (rec->command == "sweep" || rec->command == "continue")  // PREFIX.json / PREFIX.csv
       plan.compare_path += std::filesystem::path(path).extension().string();  // .json / .csv
+  }
+  // orbit --format npy --out PATH wrote PATH (the data) and PATH.json (this provenance).
+  const bool npy = rec->command == "orbit" && std::any_of(rec->inputs.begin(), rec->inputs.end(), [](const auto& kv) {
+                     return kv.first == "format" && kv.second == "npy";
+                   });
+  if (npy && has_out && rec->is_json) {
+    const std::string suffix = ".json";
+    if (path.size() <= suffix.size() || path.compare(path.size() - suffix.size(), suffix.size(), suffix) != 0)
+      throw InputError("file", "'" + path + "' is the provenance of an npy orbit, which bouncer writes as PATH.json beside "
+                                   "its data PATH: audit it under a name ending in .json, beside its data");
+    plan.data_path = path.substr(0, path.size() - suffix.size());
+    plan.rerun_data_path = dir + "/result";
+    plan.compare_path = dir + "/result.json";
   }
   return plan;
 }

@@ -44,11 +44,18 @@ struct AuditPlan {
   std::vector<std::string> argv;   // argv[0] is `self`; any --out points into `dir`
   std::string compare_path;        // where the rerun's result will be, to compare with the file
   bool is_json = false;            // the file is JSON (else text/CSV with "# " provenance lines)
+  // An npy orbit (`orbit --format npy --out PATH`): the file audited is its provenance
+  // PATH.json, compared as JSON, and its data PATH (named by the audited file's own path,
+  // never by its content) is compared byte for byte with the rerun's `rerun_data_path`.
+  // Both empty for every other result.
+  std::string data_path;
+  std::string rerun_data_path;
 };
 
 // Reads the provenance of a result file's `text` (named `path` in messages) and builds the
 // rerun into the directory `dir`, without running anything. Throws InputError("file", ...)
-// for a picture, a proof certificate, a file without provenance, or a file that records what
+// for a picture, a proof certificate, an npy orbit's data (its PATH.json is audited) or
+// provenance not named PATH.json, a file without provenance, or a file that records what
 // bouncer never records: a command that is not a computing command (reproduce, audit, merge)
 // or an input that names tiles, scenes or manifests to read. A reproduce directory's
 // claims.json is audited by its directory, not here.
@@ -80,6 +87,7 @@ struct AuditResult {
   bool is_json = false;              // one result: it is JSON (else text/CSV)
   std::string rerun;                 // one result: the rerun, as on_rerun shows it
   Comparison first;                  // one result, different: the first difference
+  std::string data_file;             // one result, an npy orbit: its data file, compared too
   // A reproduce directory: its path, every difference ("claim ID: verdict: ...",
   // "panels/x.csv: rows differ"), and what was compared.
   std::string directory;

@@ -10,14 +10,14 @@
 // bottom and top x_s = -1, +1 (the entry set N^+).
 //
 // Covering relation N => M (Zgliczynski and Gidea, "Covering relations for multidimensional
-// dynamical systems", J. Differential Equations 202 (2004) 32-58, Sect. 3, the sufficient
+// dynamical systems", J. Differential Equations 202 (2004) 32-58: their sufficient
 // condition for u = 1; CAPD's capd/covrel/HSet2D.h checkCoveringRelation2D checks the same
 // three conditions). With (y_u, y_s) the local coordinates of M and F continuous on N, F
 // covers M when
-//   (a) F(left edge of N) lies in {y_u < -1} and F(right edge) in {y_u > 1}
-//       (sign +1), or the other way round (sign -1);
-//   (b) F(N) does not meet M^+ = {|y_u| <= 1, |y_s| >= 1}: every point of F(N) has
-//       |y_u| > 1 or |y_s| < 1 (CAPD's `across`).
+//   * (a) F(left edge of N) lies in {y_u < -1} and F(right edge) in {y_u > 1}
+//     (sign +1), or the other way round (sign -1);
+//   * (b) F(N) does not meet M^+ = {|y_u| <= 1, |y_s| >= 1}: every point of F(N) has
+//     |y_u| > 1 or |y_s| < 1 (CAPD's `across`).
 // (b) also gives the paper's first condition, that F of a horizontal segment
 // [-1, 1] x {q0} lies in the interior of {y_u < -1} u M u {y_u > 1}: where such a point has
 // |y_u| <= 1 it has |y_s| < 1. The paper's conclusion: N covers M with degree `sign`, and for

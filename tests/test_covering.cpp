@@ -28,13 +28,23 @@
 //    horseshoe's branch line (undecided), a singular B.
 // 5. Transition matrices of known spectral radius: the golden-mean shift [[1,1],[1,0]]
 //    (rho = (1 + sqrt 5)/2), reducible ones, a single cycle (rho = 1: no horseshoe).
+// 6. The bouncer itself (verify/covering_impact.hpp): the velocity-dependent model at
+//    c = 1000, a = 27 has a period-2 saddle (`bouncer periodic --model veldep --c 1000 --a 27
+//    --period 2`: the point (0.0905229578316182, 10.85655768412576), multipliers -2.87 and
+//    -0.27, eigenvectors about (0.013129, -0.999914) and (0.0517543, -0.99866)). A small
+//    h-set along them covers itself under F^2 with sign -1 (the unstable multiplier is
+//    negative: the edges swap sides); with the two directions swapped it does not (the
+//    image of an edge stays across M's unstable extent), and tied to a branch the h-set is
+//    not on, every box is refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "bouncer/scalar/mpfi.hpp"
 #include "bouncer/verify/covering.hpp"
+#include "bouncer/verify/covering_impact.hpp"
 #include "bouncer/verify/enclosure.hpp"
+#include "test_support.hpp"
 
 namespace bouncer {
 namespace {
@@ -302,6 +312,51 @@ TEST(Covering, OverlappingHSetsGiveNoEntropy) {
   const HorseshoeResult r = check_horseshoe(horseshoe, sets, 1, {kBits, 4});
   EXPECT_FALSE(r.disjoint);
   EXPECT_FALSE(r.entropy.horseshoe);
+}
+
+// Case 6: the period-2 saddle of the velocity-dependent bouncer at c = 1000, a = 27.
+mpq_class dec(const char* text) { return Decimal::parse(text)->value(); }
+
+HSet2 period2_hset() {
+  HSet2 n;
+  n.c = {dec("0.0905229578316182"), dec("10.85655768412576")};
+  n.B = {{{dec("0.000013129"), dec("0.0000517543")}, {dec("-0.000999914"), dec("-0.00099866")}}};
+  return n;
+}
+
+TEST(Covering, VeldepPeriod2SaddleCoversItselfUnderF2) {
+  const ModelSpec spec = test_support::spec(Law::veldep, "27", "1", "1000");
+  const HSet2 n = period2_hset();
+  const auto branch = impact_branch(spec, 2, kBits, n.c[0], n.c[1]);
+  ASSERT_EQ(branch.size(), 2u);
+  EXPECT_EQ(branch_text(branch), "I1+0 I0+1");
+  const CoveringResult c = check_covering(impact_box_map(spec, branch, kBits), n, n, {kBits, 16});
+  EXPECT_TRUE(c.proved) << c.message;
+  EXPECT_EQ(c.sign, -1);
+  // The naive box enclosure wraps too much for (b) at this subdivision; Lohner's does not.
+  const CoveringResult naive =
+      check_covering(impact_box_map(spec, branch, kBits, EnclosureMethod::naive), n, n, {kBits, 16});
+  EXPECT_FALSE(naive.proved);
+  // A single periodic orbit: one self-covering, rho = 1, no horseshoe.
+  const EntropyBound e = entropy_lower_bound({{1}}, 2);
+  EXPECT_FALSE(e.horseshoe);
+  EXPECT_EQ(e.bound, "0");
+}
+
+TEST(Covering, VeldepPeriod2SaddleWrongFrameOrBranchFails) {
+  const ModelSpec spec = test_support::spec(Law::veldep, "27", "1", "1000");
+  HSet2 swapped = period2_hset();
+  std::swap(swapped.B[0][0], swapped.B[0][1]);
+  std::swap(swapped.B[1][0], swapped.B[1][1]);
+  const auto branch = impact_branch(spec, 2, kBits, swapped.c[0], swapped.c[1]);
+  const CoveringResult c = check_covering(impact_box_map(spec, branch, kBits), swapped, swapped, {kBits, 16});
+  EXPECT_FALSE(c.proved);
+  EXPECT_EQ(c.failure, CoveringFailure::left_edge) << c.message;
+  auto other = branch;
+  other[0].periods += 1;
+  const HSet2 n = period2_hset();
+  const CoveringResult u = check_covering(impact_box_map(spec, other, kBits), n, n, {kBits, 4});
+  EXPECT_EQ(u.failure, CoveringFailure::undecided) << u.message;
 }
 
 }  // namespace

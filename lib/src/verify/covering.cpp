@@ -219,7 +219,7 @@ CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, 
   const std::string img = last.image ? " has y_u " + text((*last.image)[0]) + ", y_s " + text((*last.image)[1]) : "";
   switch (last.kind) {
     case CoveringFailure::undecided:
-      s << "the map could not decide the box of N's piece " << where;
+      s << "the map gave no image of the box of N's piece " << where << " (a branch undecided over it, or not the map's branch)";
       break;
     case CoveringFailure::left_edge:
     case CoveringFailure::right_edge:

@@ -90,7 +90,7 @@ enum class CoveringFailure {
   none,
   // B of N or of M is singular (det B = 0): not an h-set.
   singular_hset,
-  // The map refused a box (nullopt): a branch undecided over it.
+  // The map refused a box (nullopt): a branch undecided over it (or not the map's branch).
   undecided,
   // (a): a piece of the left edge's image is not certainly on one side of M (y_u < -1 or y_u > 1).
   left_edge,

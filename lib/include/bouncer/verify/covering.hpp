@@ -12,7 +12,7 @@
 // Covering relation N => M (Zgliczynski and Gidea, "Covering relations for multidimensional
 // dynamical systems", J. Differential Equations 202 (2004) 32-58: their sufficient
 // condition for u = 1; CAPD's capd/covrel/HSet2D.h checkCoveringRelation2D checks the same
-// three conditions). With (y_u, y_s) the local coordinates of M and F continuous on N, F
+// conditions on grids of the edges and the set, with the left edge to the left only). With (y_u, y_s) the local coordinates of M and F continuous on N, F
 // covers M when
 //   * (a) F(left edge of N) lies in {y_u < -1} and F(right edge) in {y_u > 1}
 //     (sign +1), or the other way round (sign -1);

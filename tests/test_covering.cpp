@@ -35,7 +35,10 @@
 //    h-set along them covers itself under F^2 with sign -1 (the unstable multiplier is
 //    negative: the edges swap sides); with the two directions swapped it does not (the
 //    image of an edge stays across M's unstable extent), and tied to a branch the h-set is
-//    not on, every box is refused.
+//    not on, every box is refused. Given on parallelograms (Lohner started from each piece
+//    itself), the same covering is proved with one piece per side, and a thin h-set (10^-3
+//    along the unstable direction, 10^-6 along the stable one, about 3 degrees apart) is
+//    proved where the boxes around its pieces wrap far beyond it and fail (b).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -341,6 +344,39 @@ TEST(Covering, VeldepPeriod2SaddleCoversItselfUnderF2) {
   const EntropyBound e = entropy_lower_bound({{1}}, 2);
   EXPECT_FALSE(e.horseshoe);
   EXPECT_EQ(e.bound, "0");
+}
+
+TEST(Covering, PiecesAsParallelogramsRoundTrip) {
+  // A piece of a tilted h-set as c + B r, taken back to the h-set's local coordinates:
+  // it contains the piece and is no wider than it by more than the rounding.
+  const HSet2 h = sheared(horseshoe_sets()[1]);
+  const mpq_class lo[2] = {mpq_class(-1, 4), mpq_class(1, 2)}, hi[2] = {mpq_class(1, 8), mpq_class(1, 2)};
+  const auto y = hset_local(h, hset_piece(h, lo[0], hi[0], lo[1], hi[1], kBits));
+  ASSERT_TRUE(y.has_value());
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_TRUE((*y)[i].contains(enclose(lo[i], hi[i], kBits))) << i;
+    const Mpfr w = (*y)[i].width();
+    mpq_class wq;
+    mpfr_get_q(wq.get_mpq_t(), w.get());
+    EXPECT_LT(wq - (hi[i] - lo[i]), mpq_class(1, 1000000000) / mpq_class("1000000000000000000000")) << i;
+  }
+}
+
+TEST(Covering, VeldepPeriod2SaddleOnParallelograms) {
+  const ModelSpec spec = test_support::spec(Law::veldep, "27", "1", "1000");
+  HSet2 n = period2_hset();
+  const auto branch = impact_branch(spec, 2, kBits, n.c[0], n.c[1]);
+  const CoveringResult c = check_covering(impact_set_map(spec, branch, kBits), n, n);
+  EXPECT_TRUE(c.proved) << c.message;
+  EXPECT_EQ(c.sign, -1);
+  EXPECT_EQ(c.pieces, 1);
+  // Thin: the stable column 1000 times shorter.
+  for (int i = 0; i < 2; ++i) n.B[i][1] /= 1000;
+  const CoveringResult thin = check_covering(impact_set_map(spec, branch, kBits), n, n);
+  EXPECT_TRUE(thin.proved) << thin.message;
+  const CoveringResult boxed = check_covering(impact_box_map(spec, branch, kBits), n, n, {kBits, 16});
+  EXPECT_FALSE(boxed.proved);
+  EXPECT_EQ(boxed.failure, CoveringFailure::stable_side) << boxed.message;
 }
 
 TEST(Covering, VeldepPeriod2SaddleWrongFrameOrBranchFails) {

@@ -122,7 +122,12 @@ std::optional<Box2> hset_local(const HSet2& M, const Box2& p) {
   return y;
 }
 
-CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
+namespace {
+
+// check_covering over `image_of(piece, bits)`: the image of a piece of N in M's local
+// coordinates, or nullopt.
+template <class ImageOf>
+CoveringResult check_covering_with(const ImageOf& image_of, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
   CoveringResult result;
   if (det(N.B) == 0 || det(M.B) == 0) {
     result.failure = CoveringFailure::singular_hset;
@@ -137,9 +142,7 @@ CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, 
   // The image of a piece of N in M's local coordinates (nullopt: the map refused it).
   auto image = [&](const std::array<mpq_class, 4>& p) -> std::optional<Box2> {
     ++result.boxes;
-    const auto y = F(hset_box(N, p[0], p[1], p[2], p[3], bits));
-    if (!y) return std::nullopt;
-    return hset_local(M, *y);
+    return image_of(p, bits);
   };
   // Condition (a) on one edge (x_u = xu) at n pieces: the common side, or the failure.
   auto edge = [&](const mpq_class& xu, int n, CoveringFailure kind, int& side_out) -> Failure {
@@ -238,6 +241,111 @@ CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, 
   }
   result.message = s.str();
   return result;
+}
+
+}  // namespace
+
+CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
+  return check_covering_with(
+      [&](const std::array<mpq_class, 4>& p, long bits) -> std::optional<Box2> {
+        const auto y = F(hset_box(N, p[0], p[1], p[2], p[3], bits));
+        if (!y) return std::nullopt;
+        return hset_local(M, *y);
+      },
+      N, M, options);
+}
+
+CoveringResult check_covering(const SetMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
+  return check_covering_with(
+      [&](const std::array<mpq_class, 4>& p, long bits) -> std::optional<Box2> {
+        const auto y = F(hset_piece(N, p[0], p[1], p[2], p[3], bits));
+        if (!y) return std::nullopt;
+        return hset_local(M, *y);
+      },
+      N, M, options);
+}
+
+namespace {
+
+// The exact rational value of a finite MPFR number (nullopt for NaN or infinity).
+std::optional<mpq_class> exact(const Mpfr& x) {
+  if (!mpfr_number_p(x.get())) return std::nullopt;
+  mpq_class q;
+  mpfr_get_q(q.get_mpq_t(), x.get());
+  return q;
+}
+
+Mpfr rounded(const mpq_class& q, long bits) {
+  Mpfr r(bits);
+  mpfr_set_q(r.get(), q.get_mpq_t(), MPFR_RNDN);
+  return r;
+}
+
+}  // namespace
+
+Parallelogram hset_piece(const HSet2& N, const mpq_class& xu_lo, const mpq_class& xu_hi, const mpq_class& xs_lo,
+                         const mpq_class& xs_hi, long bits) {
+  Parallelogram out;
+  const mpq_class mu = (xu_lo + xu_hi) / 2, ms = (xs_lo + xs_hi) / 2;
+  std::array<mpq_class, 2> centre;
+  Mat2 Bp;
+  for (int i = 0; i < 2; ++i) {
+    centre[i] = N.c[i] + N.B[i][0] * mu + N.B[i][1] * ms;
+    out.c[i] = rounded(centre[i], bits);
+    for (int j = 0; j < 2; ++j) {
+      out.B[i][j] = rounded(N.B[i][j], bits);
+      Bp[i][j] = *exact(out.B[i][j]);
+    }
+  }
+  // r = Bp^-1 (c_N - c') + Bp^-1 B_N x over the piece's x: affine, so its exact range.
+  const auto inv = inverse(Bp);
+  if (!inv) {
+    for (auto& r : out.r) r = Mpfi(bits);  // NaN: the piece cannot be represented
+    return out;
+  }
+  std::array<mpq_class, 2> d0;
+  for (int i = 0; i < 2; ++i) d0[i] = N.c[i] - *exact(out.c[i]);
+  const mpq_class lo[2] = {xu_lo, xs_lo}, hi[2] = {xu_hi, xs_hi};
+  for (int i = 0; i < 2; ++i) {
+    mpq_class base = (*inv)[i][0] * d0[0] + (*inv)[i][1] * d0[1];
+    mpq_class rlo = base, rhi = base;
+    for (int j = 0; j < 2; ++j) {
+      const mpq_class k = (*inv)[i][0] * N.B[0][j] + (*inv)[i][1] * N.B[1][j];
+      const mpq_class a = k * lo[j], b = k * hi[j];
+      rlo += std::min(a, b);
+      rhi += std::max(a, b);
+    }
+    out.r[i] = enclose(rlo, rhi, bits);
+  }
+  return out;
+}
+
+std::optional<Box2> hset_local(const HSet2& M, const Parallelogram& p) {
+  const auto inv = inverse(M.B);
+  if (!inv) return std::nullopt;
+  const long bits = std::max(p.r[0].bits(), p.r[1].bits());
+  std::array<mpq_class, 2> c;
+  Mat2 B;
+  for (int i = 0; i < 2; ++i) {
+    const auto ci = exact(p.c[i]);
+    if (!ci) return std::nullopt;
+    c[i] = *ci - M.c[i];
+    for (int j = 0; j < 2; ++j) {
+      const auto bij = exact(p.B[i][j]);
+      if (!bij) return std::nullopt;
+      B[i][j] = *bij;
+    }
+  }
+  Box2 y{Mpfi(bits), Mpfi(bits)};
+  for (int r = 0; r < 2; ++r) {
+    const mpq_class e = (*inv)[r][0] * c[0] + (*inv)[r][1] * c[1];
+    y[r] = point(e, bits);
+    for (int j = 0; j < 2; ++j) {
+      const mpq_class k = (*inv)[r][0] * B[0][j] + (*inv)[r][1] * B[1][j];
+      y[r] += point(k, bits) * p.r[j];
+    }
+  }
+  return y;
 }
 
 bool hsets_disjoint(const HSet2& a, const HSet2& b) {

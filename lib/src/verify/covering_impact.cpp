@@ -64,4 +64,23 @@ BoxMap2 impact_box_map(const ModelSpec& spec, const std::vector<BranchStep>& bra
   };
 }
 
+SetMap2 impact_set_map(const ModelSpec& spec, const std::vector<BranchStep>& branch, long bits) {
+  auto model = std::make_shared<const Model<Mpfi>>(interval_model(spec, bits));
+  return [model, branch](const Parallelogram& piece) -> std::optional<Parallelogram> {
+    if (branch.empty()) return std::nullopt;
+    try {
+      OrbitEnclosure orbit(*model, piece);
+      for (const BranchStep& want : branch) {
+        const EnclosedStep s = orbit.step();
+        if (s.event.kind != EventKind::impact || !(branch_step(s.event) == want)) return std::nullopt;
+      }
+      Parallelogram out = orbit.set();
+      if (!ScalarTraits<Mpfi>::is_finite(out.r[0]) || !ScalarTraits<Mpfi>::is_finite(out.r[1])) return std::nullopt;
+      return out;
+    } catch (const Undecided&) {
+      return std::nullopt;
+    }
+  };
+}
+
 }  // namespace bouncer

@@ -25,9 +25,13 @@
 // ever, and periodically) is followed by a true orbit of F.
 //
 // check_covering verifies (a) and (b) by interval enclosures: it cuts N's edges into n pieces
-// and N into n x n pieces (uniform in local coordinates), maps the interval box around each
-// piece (box of c + B x over the piece) with F, takes the image box to M's local coordinates,
-// and asks each condition of every box, certainly (outward-rounded MPFI at `bits`). It tries
+// and N into n x n pieces (uniform in local coordinates), maps each piece with F, takes the
+// image to M's local coordinates, and asks each condition of every piece's image, certainly
+// (outward-rounded MPFI at `bits`). F is given either on boxes (BoxMap2: the interval box
+// around the piece, whose corners wrap a tilted piece) or on parallelograms (SetMap2: the
+// piece itself as c + B r, and its image as one, taken to M's coordinates as
+// B_M^-1 (c' - c_M) + (B_M^-1 B') r' with both products exact: no wrapping, which thin
+// h-sets along nearly parallel directions need). It tries
 // n = 1, 4, 16, ... up to max_pieces; a condition once proved at some n is not asked again.
 // The map may refuse a box (std::nullopt: a branch of a piecewise map not decided over it):
 // then the covering is not proved. Continuity of F on N is the caller's part of the
@@ -54,6 +58,7 @@
 #include <vector>
 
 #include "bouncer/scalar/mpfi.hpp"
+#include "bouncer/verify/enclosure.hpp"
 
 namespace bouncer {
 
@@ -75,6 +80,11 @@ using Box2 = std::array<Mpfi, 2>;
 // A map given by interval enclosures: the box's image enclosure, or nullopt when it cannot
 // decide (a branch of a piecewise map undecided over the box).
 using BoxMap2 = std::function<std::optional<Box2>(const Box2&)>;
+
+// A map given by enclosures of parallelograms: a piece c + B r of an h-set (c, B points, r an
+// interval vector; the set contains the exact piece) to a parallelogram c' + B' r' containing
+// its image (e.g. Lohner's enclosure, verify/enclosure.hpp), or nullopt as BoxMap2.
+using SetMap2 = std::function<std::optional<Parallelogram>(const Parallelogram&)>;
 
 // How hard check_covering tries.
 struct CoveringOptions {
@@ -131,6 +141,9 @@ struct CoveringResult {
 // condition not certainly true at the finest subdivision makes `proved` false and says which.
 CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options = {});
 
+// The same with F given on parallelograms (SetMap2; the header comment says why).
+CoveringResult check_covering(const SetMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options = {});
+
 // The interval box c + B [x_u] x [x_s] of a piece of N given in local coordinates, at `bits`.
 Box2 hset_box(const HSet2& N, const mpq_class& xu_lo, const mpq_class& xu_hi, const mpq_class& xs_lo,
               const mpq_class& xs_hi, long bits);
@@ -138,6 +151,17 @@ Box2 hset_box(const HSet2& N, const mpq_class& xu_lo, const mpq_class& xu_hi, co
 // The local coordinates B^-1 (p - c) of a box p in the h-set M (B^-1 exact, applied in
 // interval arithmetic); nullopt if B is singular.
 std::optional<Box2> hset_local(const HSet2& M, const Box2& p);
+
+// The piece c + B [x_u] x [x_s] of N as a parallelogram c' + B' r containing it: c' the piece's
+// centre and B' N's frame rounded to `bits`, r their exact difference from the piece (exact
+// rationals) rounded outward.
+Parallelogram hset_piece(const HSet2& N, const mpq_class& xu_lo, const mpq_class& xu_hi, const mpq_class& xs_lo,
+                         const mpq_class& xs_hi, long bits);
+
+// The local coordinates in M of a parallelogram c' + B' r': B^-1 (c' - c) + (B^-1 B') r', the
+// two products exact (c', B' are exact binary fractions), then applied to r' in intervals;
+// nullopt if B is singular or c', B' are not finite.
+std::optional<Box2> hset_local(const HSet2& M, const Parallelogram& p);
 
 // Whether the closed parallelograms of two h-sets are certainly disjoint (exact rational
 // separating-axis test on the four edge normals).

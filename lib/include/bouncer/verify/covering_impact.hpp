@@ -49,4 +49,8 @@ std::string branch_text(const std::vector<BranchStep>& branch);
 BoxMap2 impact_box_map(const ModelSpec& spec, const std::vector<BranchStep>& branch, long bits,
                        EnclosureMethod method = EnclosureMethod::lohner);
 
+// The same on parallelograms (SetMap2): Lohner's enclosure started from the piece c + B r
+// itself (no box around it), returning its final c' + B' r'.
+SetMap2 impact_set_map(const ModelSpec& spec, const std::vector<BranchStep>& branch, long bits);
+
 }  // namespace bouncer

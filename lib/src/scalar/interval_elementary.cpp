@@ -175,16 +175,10 @@ bool log_sum(double x, Sum& f) {
 
 namespace {
 
-template <bool Up>
-bool exp_point(double x, double& out) {
+// The fast path of one end: the sum of f at x, then the decision in the direction asked.
+bool fast_point(bool (*sum)(double, Sum&), double x, bool up, double& out) {
   Sum f;
-  return exp_sum(x, f) && decide<Up>(f, out);
-}
-
-template <bool Up>
-bool log_point(double x, double& out) {
-  Sum f;
-  return log_sum(x, f) && decide<Up>(f, out);
+  return sum(x, f) && (up ? decide<true>(f, out) : decide<false>(f, out));
 }
 
 // The MPFR path (as before this file): one 53-bit temporary per thread.
@@ -204,8 +198,8 @@ double mpfr_point(double x, bool up) {
 
 }  // namespace
 
-bool exp_fast(double x, bool up, double& out) { return up ? exp_point<true>(x, out) : exp_point<false>(x, out); }
-bool log_fast(double x, bool up, double& out) { return up ? log_point<true>(x, out) : log_point<false>(x, out); }
+bool exp_fast(double x, bool up, double& out) { return fast_point(exp_sum, x, up, out); }
+bool log_fast(double x, bool up, double& out) { return fast_point(log_sum, x, up, out); }
 double exp_mpfr(double x, bool up) { return mpfr_point<false>(x, up); }
 double log_mpfr(double x, bool up) { return mpfr_point<true>(x, up); }
 

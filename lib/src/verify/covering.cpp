@@ -243,26 +243,28 @@ CoveringResult check_covering_with(const ImageOf& image_of, const HSet2& N, cons
   return result;
 }
 
-}  // namespace
-
-CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
+// check_covering_with for F given on the pieces of N as `piece_of` hands them over (hset_box:
+// the box around the piece; hset_piece: the piece itself), its images taken to M's local
+// coordinates (hset_local of a box or of a parallelogram).
+template <class Map, class PieceOf>
+CoveringResult check_mapped(const Map& F, PieceOf piece_of, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
   return check_covering_with(
       [&](const std::array<mpq_class, 4>& p, long bits) -> std::optional<Box2> {
-        const auto y = F(hset_box(N, p[0], p[1], p[2], p[3], bits));
+        const auto y = F(piece_of(N, p[0], p[1], p[2], p[3], bits));
         if (!y) return std::nullopt;
         return hset_local(M, *y);
       },
       N, M, options);
 }
 
+}  // namespace
+
+CoveringResult check_covering(const BoxMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
+  return check_mapped(F, hset_box, N, M, options);
+}
+
 CoveringResult check_covering(const SetMap2& F, const HSet2& N, const HSet2& M, const CoveringOptions& options) {
-  return check_covering_with(
-      [&](const std::array<mpq_class, 4>& p, long bits) -> std::optional<Box2> {
-        const auto y = F(hset_piece(N, p[0], p[1], p[2], p[3], bits));
-        if (!y) return std::nullopt;
-        return hset_local(M, *y);
-      },
-      N, M, options);
+  return check_mapped(F, hset_piece, N, M, options);
 }
 
 namespace {

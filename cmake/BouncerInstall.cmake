@@ -60,7 +60,7 @@ set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "Verified numerics for the piecewise linea
 # What a C++ developer installs to build against the installed library (find_package(bouncer)
 # or pkg-config bouncer; cmake/bouncerConfig.cmake.in and bouncer.pc.in name the same): the
 # headers and static libraries are in this package, their dependencies' headers are not.
-set(BOUNCER_DEV_PACKAGES "g++, cmake | pkg-config, libboost-dev, libgmp-dev, libmpfr-dev, libmpfi-dev, libqd-dev, nlohmann-json3-dev, libtomlplusplus-dev, libpng-dev, libcairo2-dev, libfreetype-dev")
+set(BOUNCER_DEV_PACKAGES "g++, cmake | pkg-config, libboost-dev, libgmp-dev, libmpfr-dev, libmpfi-dev, libqd-dev, libflint-arb-dev, nlohmann-json3-dev, libtomlplusplus-dev, libpng-dev, libcairo2-dev, libfreetype-dev")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "${BOUNCER_DEV_PACKAGES}")
 string(REPLACE ", cmake | pkg-config" ", cmake or pkg-config" BOUNCER_DEV_PACKAGES_TEXT "${BOUNCER_DEV_PACKAGES}")
 string(REPLACE "," "" BOUNCER_DEV_PACKAGES_TEXT "${BOUNCER_DEV_PACKAGES_TEXT}")

@@ -1,6 +1,8 @@
 // A certificate of chaos (issue 26): the h-sets and coverings of a horseshoe, with the map they
 // are coverings of, written to a file and replayed by a second, independent interval library.
 //
+// The file form (JSON) is io/chaos_certificate.hpp's.
+//
 // What a certificate states: the h-sets N_0..N_{m-1} (exact rational centres and frames, as in
 // verify/covering.hpp) are pairwise disjoint, and each listed covering N_i => N_j holds for
 // G = F^k, F the map named in the certificate. From those facts alone the entropy bound
@@ -20,6 +22,8 @@
 
 #include <gmpxx.h>
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,16 +84,6 @@ struct ChaosCertificate {
   std::string made_by;
 };
 
-// The certificate as JSON text (format "bouncer-chaos-certificate", version 1): rationals as
-// "p/q" strings, decimals as written, every field named (docs/guide/chaos.md describes it).
-std::string certificate_json(const ChaosCertificate& c);
-
-// Parses certificate_json's text. Throws InputError naming the field and what was expected on
-// anything else: a missing or mistyped field, a singular frame, a covering naming no h-set,
-// an out-of-range parameter, numbers beyond the limits (at most 4096 h-sets and coverings,
-// rationals of at most 4096 digits, k at most 100000, pieces at most 4096).
-ChaosCertificate parse_certificate(const std::string& text);
-
 // What one covering's replay found.
 struct ReplayedCovering {
   // Proved by the replay, with the certificate's sign.
@@ -116,8 +110,15 @@ struct ReplayResult {
   std::vector<std::string> problems;
 };
 
-// Replays a certificate with Arb at `bits` (independent of MPFI and of bouncer's impact map;
+// Replays a certificate with Arb at `bits` (each covering at its stated subdivision, then 4
+// and 16 times finer where that fails, up to 256 pieces per side) (independent of MPFI and of bouncer's impact map;
 // see the header comment). Never throws on a false certificate: it says what failed.
 ReplayResult replay_certificate(const ChaosCertificate& c, long bits = 256);
+
+// The replay's own map at a point, for tests against bouncer's map: G = F^k of the
+// certificate's map at (x0, x1) (exact), enclosed in Arb at `bits`, as [lo, hi] per
+// coordinate (exact rationals); nullopt if a branch is not decided there.
+std::optional<std::array<std::array<mpq_class, 2>, 2>> replay_iterate(const ChaosCertificate& c, const mpq_class& x0,
+                                                                       const mpq_class& x1, long bits = 256);
 
 }  // namespace bouncer

@@ -1,0 +1,23 @@
+// The file form of a chaos certificate (verify/chaos_certificate.hpp): JSON, format
+// "bouncer-chaos-certificate", version 1. docs/guide/chaos.md describes every field.
+#pragma once
+
+#include <string>
+
+#include "bouncer/verify/chaos_certificate.hpp"
+
+namespace bouncer {
+
+// The certificate as JSON text: rationals as "p/q" strings (or integers), decimals as written,
+// the model as a scene's model keys (model, a, eps, c, wall, downward-sticking,
+// veldep-collapse), every field named.
+std::string certificate_json(const ChaosCertificate& c);
+
+// Parses certificate_json's text, treating it as hostile. Throws InputError naming the field
+// and what was expected on anything else: not JSON, a missing, unknown or mistyped field, a
+// singular frame, a covering naming no h-set or given twice, an out-of-range parameter, or
+// numbers beyond the limits (at most 1024 h-sets and 4096 coverings, rationals of at most
+// 4096 characters, k at most 100000, pieces per side at most 4096).
+ChaosCertificate parse_certificate(const std::string& text);
+
+}  // namespace bouncer

@@ -1,0 +1,205 @@
+// The JSON form of a chaos certificate (io/chaos_certificate.hpp).
+#include "bouncer/io/chaos_certificate.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <set>
+#include <string>
+
+#include "bouncer/base/error.hpp"
+#include "bouncer/io/scene.hpp"
+
+namespace bouncer {
+
+namespace {
+
+using json = nlohmann::json;
+
+constexpr const char* kFormat = "bouncer-chaos-certificate";
+constexpr std::size_t kMaxSets = 1024;
+constexpr std::size_t kMaxCoverings = 4096;
+constexpr std::size_t kMaxRationalChars = 4096;
+constexpr long kMaxK = 100000;
+constexpr long kMaxPieces = 4096;
+
+std::string rational_text(const mpq_class& q) { return q.get_str(); }
+
+[[noreturn]] void bad(const std::string& field, const std::string& what) { throw InputError(field, what); }
+
+// A rational written "p/q" or "p" (decimal digits, optional leading minus, q > 0).
+mpq_class rational_from(const json& j, const std::string& field) {
+  if (!j.is_string()) bad(field, "must be a rational as a string, \"p/q\" or \"p\"");
+  const std::string s = j.get<std::string>();
+  if (s.empty() || s.size() > kMaxRationalChars) bad(field, "must be a rational of 1 to 4096 characters");
+  std::size_t i = s[0] == '-' ? 1 : 0;
+  std::size_t digits = 0, slash = 0, after = 0;
+  for (; i < s.size(); ++i) {
+    if (s[i] == '/' && !slash && digits) {
+      slash = 1;
+    } else if (s[i] >= '0' && s[i] <= '9') {
+      (slash ? after : digits) += 1;
+    } else {
+      bad(field, "must be a rational \"p/q\" or \"p\" in decimal digits (got '" + s.substr(0, 40) + "')");
+    }
+  }
+  if (!digits || (slash && !after)) bad(field, "must be a rational \"p/q\" or \"p\" (got '" + s.substr(0, 40) + "')");
+  mpq_class q(s, 10);
+  if (q.get_den() == 0) bad(field, "has a zero denominator");
+  q.canonicalize();
+  return q;
+}
+
+const json& member(const json& obj, const std::string& key, const std::string& field) {
+  if (!obj.is_object()) bad(field, "must be a JSON object");
+  const auto it = obj.find(key);
+  if (it == obj.end()) bad(field + "." + key, "is missing");
+  return *it;
+}
+
+void only_keys(const json& obj, const std::set<std::string>& keys, const std::string& field) {
+  for (const auto& [k, v] : obj.items())
+    if (!keys.count(k)) bad(field.empty() ? k : field + "." + k, "is not a field of a chaos certificate");
+}
+
+long integer_from(const json& j, const std::string& field, long lo, long hi) {
+  if (!j.is_number_integer()) bad(field, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  const long long v = j.is_number_unsigned() ? (long long)std::min<unsigned long long>(j.get<unsigned long long>(), 1ULL << 62)
+                                              : j.get<long long>();
+  if (v < lo || v > hi) bad(field, "must be an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " + std::to_string(v) + ")");
+  return long(v);
+}
+
+std::string string_from(const json& j, const std::string& field, std::size_t max = 4096) {
+  if (!j.is_string() || j.get<std::string>().size() > max) bad(field, "must be a string of at most " + std::to_string(max) + " characters");
+  return j.get<std::string>();
+}
+
+json model_json(const ModelSpec& m) {
+  json j;
+  j["model"] = name(m.law);
+  j["a"] = m.a.text();
+  if (m.law == Law::constant) j["eps"] = m.eps.text();
+  if (m.law == Law::veldep) j["c"] = m.c.text();
+  j["wall"] = m.wall.text;
+  j["downward-sticking"] = name(m.downward);
+  j["veldep-collapse"] = m.veldep_collapse ? "on" : "off";
+  return j;
+}
+
+// The model through the scene reader's own checks (model_from), keys as in a scene.
+ModelSpec model_from_json(const json& j) {
+  if (!j.is_object()) bad("model", "must be a JSON object of model keys (model, a, eps, c, wall, ...)");
+  Options o;
+  for (const auto& [k, v] : j.items()) {
+    if (!model_keys().count(k)) bad("model." + k, "is not a model key");
+    o.set(k, string_from(v, "model." + k, 256));
+  }
+  return model_from(o);
+}
+
+}  // namespace
+
+std::string certificate_json(const ChaosCertificate& c) {
+  json j;
+  j["format"] = kFormat;
+  j["version"] = 1;
+  j["map"] = name(c.map);
+  if (c.map == ChaosMap::impact) j["model"] = model_json(c.model);
+  if (c.map == ChaosMap::henon) j["henon"] = {{"a", c.henon_a.text()}, {"b", c.henon_b.text()}};
+  j["k"] = c.k;
+  j["bits"] = c.bits;
+  json sets = json::array();
+  for (const HSet2& h : c.sets) {
+    // json::array: an initializer list of two strings would be read as an object's pair.
+    json set;
+    set["centre"] = json::array({rational_text(h.c[0]), rational_text(h.c[1])});
+    set["frame"] = json::array({json::array({rational_text(h.B[0][0]), rational_text(h.B[0][1])}),
+                                json::array({rational_text(h.B[1][0]), rational_text(h.B[1][1])})});
+    sets.push_back(set);
+  }
+  j["sets"] = sets;
+  json covs = json::array();
+  for (const CertifiedCovering& v : c.coverings)
+    covs.push_back({{"from", v.from}, {"to", v.to}, {"sign", v.sign}, {"pieces", v.pieces}, {"branch", v.branch}});
+  j["coverings"] = covs;
+  j["entropy"] = {{"bound", c.entropy_bound}, {"quotient", rational_text(c.quotient)}};
+  j["made_by"] = c.made_by;
+  return j.dump(1) + "\n";
+}
+
+ChaosCertificate parse_certificate(const std::string& text) {
+  const json j = json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) bad("certificate", "is not valid JSON or not a JSON object");
+  only_keys(j, {"format", "version", "map", "model", "henon", "k", "bits", "sets", "coverings", "entropy", "made_by"}, "");
+  if (string_from(member(j, "format", "certificate"), "format") != kFormat)
+    bad("format", std::string("must be \"") + kFormat + "\"");
+  if (integer_from(member(j, "version", "certificate"), "version", 1, 1) != 1) bad("version", "must be 1");
+  ChaosCertificate c;
+  const std::string map = string_from(member(j, "map", "certificate"), "map", 16);
+  if (map == "impact") {
+    c.map = ChaosMap::impact;
+    if (j.contains("henon")) bad("henon", "is only used with map \"henon\"");
+    c.model = model_from_json(member(j, "model", "certificate"));
+  } else if (map == "henon") {
+    c.map = ChaosMap::henon;
+    if (j.contains("model")) bad("model", "is only used with map \"impact\"");
+    const json& h = member(j, "henon", "certificate");
+    only_keys(h, {"a", "b"}, "henon");
+    const auto a = Decimal::parse(string_from(member(h, "a", "henon"), "henon.a", 256));
+    const auto b = Decimal::parse(string_from(member(h, "b", "henon"), "henon.b", 256));
+    if (!a) bad("henon.a", "must be a decimal");
+    if (!b) bad("henon.b", "must be a decimal");
+    c.henon_a = *a;
+    c.henon_b = *b;
+  } else {
+    bad("map", "must be \"impact\" or \"henon\" (got '" + map.substr(0, 40) + "')");
+  }
+  c.k = int(integer_from(member(j, "k", "certificate"), "k", 1, kMaxK));
+  c.bits = integer_from(member(j, "bits", "certificate"), "bits", 2, 1 << 20);
+  const json& sets = member(j, "sets", "certificate");
+  if (!sets.is_array() || sets.empty() || sets.size() > kMaxSets) bad("sets", "must be an array of 1 to 1024 h-sets");
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    const std::string f = "sets[" + std::to_string(i) + "]";
+    only_keys(sets[i], {"centre", "frame"}, f);
+    const json& centre = member(sets[i], "centre", f);
+    const json& frame = member(sets[i], "frame", f);
+    if (!centre.is_array() || centre.size() != 2) bad(f + ".centre", "must be an array of two rationals");
+    if (!frame.is_array() || frame.size() != 2 || !frame[0].is_array() || !frame[1].is_array() || frame[0].size() != 2 ||
+        frame[1].size() != 2)
+      bad(f + ".frame", "must be a 2x2 array of rationals (rows; column 0 unstable, column 1 stable)");
+    HSet2 h;
+    for (int r = 0; r < 2; ++r) {
+      h.c[r] = rational_from(centre[r], f + ".centre[" + std::to_string(r) + "]");
+      for (int col = 0; col < 2; ++col)
+        h.B[r][col] = rational_from(frame[r][col], f + ".frame[" + std::to_string(r) + "][" + std::to_string(col) + "]");
+    }
+    if (h.B[0][0] * h.B[1][1] - h.B[0][1] * h.B[1][0] == 0) bad(f + ".frame", "is singular (determinant 0): not an h-set");
+    c.sets.push_back(std::move(h));
+  }
+  const json& covs = member(j, "coverings", "certificate");
+  if (!covs.is_array() || covs.empty() || covs.size() > kMaxCoverings) bad("coverings", "must be an array of 1 to 4096 coverings");
+  std::set<std::pair<int, int>> seen;
+  const long last = long(c.sets.size()) - 1;
+  for (std::size_t i = 0; i < covs.size(); ++i) {
+    const std::string f = "coverings[" + std::to_string(i) + "]";
+    only_keys(covs[i], {"from", "to", "sign", "pieces", "branch"}, f);
+    CertifiedCovering v;
+    v.from = int(integer_from(member(covs[i], "from", f), f + ".from", 0, last));
+    v.to = int(integer_from(member(covs[i], "to", f), f + ".to", 0, last));
+    v.sign = int(integer_from(member(covs[i], "sign", f), f + ".sign", -1, 1));
+    if (v.sign == 0) bad(f + ".sign", "must be -1 or 1");
+    v.pieces = int(integer_from(member(covs[i], "pieces", f), f + ".pieces", 1, kMaxPieces));
+    if (covs[i].contains("branch")) v.branch = string_from(covs[i]["branch"], f + ".branch", 1 << 16);
+    if (!seen.insert({v.from, v.to}).second) bad(f, "repeats the covering " + std::to_string(v.from) + " => " + std::to_string(v.to));
+    c.coverings.push_back(std::move(v));
+  }
+  const json& e = member(j, "entropy", "certificate");
+  only_keys(e, {"bound", "quotient"}, "entropy");
+  c.entropy_bound = string_from(member(e, "bound", "entropy"), "entropy.bound", 256);
+  if (!Decimal::parse(c.entropy_bound)) bad("entropy.bound", "must be a decimal (got '" + c.entropy_bound.substr(0, 40) + "')");
+  c.quotient = rational_from(member(e, "quotient", "entropy"), "entropy.quotient");
+  if (j.contains("made_by")) c.made_by = string_from(j["made_by"], "made_by");
+  return c;
+}
+
+}  // namespace bouncer

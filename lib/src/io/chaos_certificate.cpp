@@ -99,7 +99,7 @@ ModelSpec model_from_json(const json& j) {
 
 }  // namespace
 
-std::string certificate_json(const ChaosCertificate& c) {
+std::string certificate_json(const ChaosCertificate& c, const std::string& provenance) {
   json j;
   j["format"] = kFormat;
   j["version"] = 1;
@@ -124,13 +124,15 @@ std::string certificate_json(const ChaosCertificate& c) {
   j["coverings"] = covs;
   j["entropy"] = {{"bound", c.entropy_bound}, {"quotient", rational_text(c.quotient)}};
   j["made_by"] = c.made_by;
+  if (!provenance.empty()) j["provenance"] = json::parse(provenance);
   return j.dump(1) + "\n";
 }
 
 ChaosCertificate parse_certificate(const std::string& text) {
   const json j = json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) bad("certificate", "is not valid JSON or not a JSON object");
-  only_keys(j, {"format", "version", "map", "model", "henon", "k", "bits", "sets", "coverings", "entropy", "made_by"}, "");
+  only_keys(j, {"format", "version", "map", "model", "henon", "k", "bits", "sets", "coverings", "entropy", "made_by", "provenance"}, "");
+  if (j.contains("provenance") && !j["provenance"].is_object()) bad("provenance", "must be a JSON object");
   if (string_from(member(j, "format", "certificate"), "format") != kFormat)
     bad("format", std::string("must be \"") + kFormat + "\"");
   if (integer_from(member(j, "version", "certificate"), "version", 1, 1) != 1) bad("version", "must be 1");

@@ -72,8 +72,8 @@ class Ball {
     arb_add_error(out.x_, e.x_);
     return out;
   }
-  std::string text() const {
-    char* s = arb_get_str(x_, 12, 0);
+  std::string text(slong digits = 12) const {
+    char* s = arb_get_str(x_, digits, 0);
     std::string out(s);
     flint_free(s);
     return out;
@@ -495,8 +495,8 @@ ReplayResult replay_certificate(const ChaosCertificate& c, long bits) {
       std::string why = replay.check(used);
       for (int finer = 0; finer < 2 && !why.empty() && used * 4 <= 256; ++finer) why = replay.check(used *= 4);
       r.proved = why.empty();
-      r.message = label + (r.proved ? ": proved with " + std::to_string(used) + " pieces per side"
-                                    : ": not proved with " + std::to_string(used) + " pieces per side: " + why);
+      const std::string pieces = std::to_string(used) + (used == 1 ? " piece" : " pieces") + " per side";
+      r.message = label + (r.proved ? ": proved with " + pieces : ": not proved with " + pieces + ": " + why);
       if (r.proved) A[cov.from][cov.to] = 1;
     }
     if (!r.proved) out.problems.push_back(r.message);
@@ -514,11 +514,12 @@ ReplayResult replay_certificate(const ChaosCertificate& c, long bits) {
                            " is above the spectral radius of the coverings proved by the replay");
   } else {
     const Ball bound = log(Ball(c.quotient)) / Ball(mpq_class(c.k));
-    out.recomputed_bound = bound.text();
+    out.recomputed_bound = bound.text(30);
     out.bound_holds = arb_le(Ball(*stated).get(), bound.get()) != 0;
     if (!out.bound_holds)
       out.problems.push_back("the stated bound " + c.entropy_bound + " is not certainly below log(" +
-                             c.quotient.get_str() + ")/" + std::to_string(c.k) + " = " + out.recomputed_bound);
+                             c.quotient.get_str() + ")/" + std::to_string(c.k) + " = " + out.recomputed_bound + " at " +
+                             std::to_string(bits) + " bits (more bits may decide it)");
   }
   out.valid = out.problems.empty() && out.disjoint && out.bound_holds && !c.coverings.empty();
   if (out.valid) out.problems.push_back("valid");

@@ -10,10 +10,12 @@ namespace bouncer {
 
 // The certificate as JSON text: rationals as "p/q" strings (or integers), decimals as written,
 // the model as a scene's model keys (model, a, eps, c, wall, downward-sticking,
-// veldep-collapse), every field named.
-std::string certificate_json(const ChaosCertificate& c);
+// veldep-collapse), every field named; `provenance`, when given, is a Provenance::as_json()
+// object written as the field "provenance" (what made the file, for audit and for humans;
+// the replay does not read it).
+std::string certificate_json(const ChaosCertificate& c, const std::string& provenance = "");
 
-// Parses certificate_json's text, treating it as hostile. Throws InputError naming the field
+// Parses certificate_json's text, treating it as hostile (a "provenance" object is skipped). Throws InputError naming the field
 // and what was expected on anything else: not JSON, a missing, unknown or mistyped field, a
 // singular frame, a covering naming no h-set or given twice, an out-of-range parameter, or
 // numbers beyond the limits (at most 1024 h-sets and 4096 coverings, rationals of at most

@@ -5,11 +5,13 @@
 // Exit status: 0 the certificate is valid, 1 it is not (every failed check printed), 2 the file
 // is not a certificate (the field and what was expected named).
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 
 #include "bouncer/base/input.hpp"
 #include "bouncer/io/chaos_certificate.hpp"
+#include "bouncer/io/provenance.hpp"
 #include "cli_common.hpp"
 #include "commands.hpp"
 
@@ -35,10 +37,24 @@ CommandRunner setup_check_certificate(CLI::App* sub) {
   auto opts = std::make_shared<OptionSet>(sub);
   sub->add_option("file", *file, "A chaos certificate (JSON, from certify-chaos --out)")->required();
   opts->add("bits", "Arb precision of the replay, integer in [32, 65536] (default 256)");
-  auto run = [file, opts](const std::string&) {
-    const long bits = long(integer_from(opts->collected(), "bits", 32, 65536, 256));
+  opts->add("png", "Also draw one covering (--covering) in its target's local coordinates to PATH");
+  opts->add("covering", "The covering --png draws: its index in the certificate (default 0)");
+  auto run = [file, opts](const std::string& argv_text) {
+    const Options o = opts->collected();
+    const long bits = long(integer_from(o, "bits", 32, 65536, 256));
+    OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
+    std::optional<std::string> png;
+    if (o.has("png")) outputs.reserve("png", *(png = o.get("png")));
     const ChaosCertificate c = parse_certificate(read_input_file("file", *file, kMaxCertificateBytes));
+    const long covering = long(integer_from(o, "covering", 0, long(c.coverings.size()) - 1, 0));
+    if (o.has("covering") && !png) throw InputError("covering", "is only used with --png");
     const ReplayResult r = replay_certificate(c, bits);
+    if (png) {
+      Figure fig = covering_figure(c, std::size_t(covering));
+      Provenance p = provenance_for("check-certificate", o, Precision{Precision::Kind::interval, bits}, argv_text);
+      fig.metadata = png_metadata(p, fig.title);
+      write_output_set({{*png, [&](std::ostream& s) { write_figure(s, fig, ImageFormat::png); }}}, &outputs);
+    }
     std::ostream& out = command_out();
     out << "check-certificate: " << (r.valid ? "VALID" : "NOT VALID") << ": " << *file << "\n";
     out << "  map: G = F^" << c.k << " of " << map_text(c) << "\n";

@@ -14,7 +14,9 @@
 #         sign, a bound above log 2, overlapping strips.
 #   not a certificate (exit 2, one line naming the field, nothing on stdout): not JSON, an
 #         unknown field, a covering of a missing h-set, a singular frame, a directory, a FIFO
-#         (no hang), a file that does not exist, --bits out of range.
+#         (no hang), a file that does not exist, --bits out of range, --covering without
+#         --png or beyond the certificate's coverings (and no picture left).
+#   --png PATH --covering I: a PNG of covering I with the run's provenance.
 # Usage: bash check_certificate.sh <bouncer-binary> <source-dir>
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
@@ -90,6 +92,14 @@ mkfifo fifo
 refused fifo "file" fifo
 refused absent "file" absent.json
 refused bits "bits: must be an integer in \[32, 65536\]" henon.json --bits 5
+refused covering-alone "covering: is only used with --png" henon.json --covering 1
+refused covering-range "covering: must be an integer in \[0, 3\]" henon.json --png c.png --covering 4
+[[ ! -e c.png && ! -e c.png.partial ]] || fail covering-range "a picture was left behind"
+
+# --png: the covering drawn, with the run's provenance in the PNG's text chunks.
+check png 0 "VALID" henon.json --png cover.png --covering 1
+[[ $(head -c 8 cover.png | od -An -tx1 | tr -d ' \n') == 89504e470d0a1a0a ]] || fail png "cover.png is not a PNG"
+grep -aq "check-certificate" cover.png || fail png "no provenance in cover.png"
 [[ ! -e /tmp/x ]] || fail unknown "a named path was created"
 
 finish

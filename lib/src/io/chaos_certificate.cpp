@@ -204,4 +204,50 @@ ChaosCertificate parse_certificate(const std::string& text) {
   return c;
 }
 
+Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samples) {
+  const CertifiedCovering& cov = c.coverings.at(covering);
+  const HSet2& N = c.sets.at(cov.from);
+  const HSet2& M = c.sets.at(cov.to);
+  const mpq_class det = M.B[0][0] * M.B[1][1] - M.B[0][1] * M.B[1][0];
+  Figure fig;
+  fig.title = "Covering N" + std::to_string(cov.from) + " => N" + std::to_string(cov.to) + " under F^" + std::to_string(c.k);
+  fig.subtitle = "in N" + std::to_string(cov.to) + "'s local coordinates; image of N" + std::to_string(cov.from) +
+                 "'s boundary sampled at points (the proof is the interval check)";
+  fig.xlabel = "y_u (unstable)";
+  fig.ylabel = "y_s (stable)";
+  Series square{"N" + std::to_string(cov.to), {-1, 1, 1, -1, -1}, {-1, -1, 1, 1, -1}, Rgb{0, 0, 0}, true, false};
+  // The four edges of N in its local coordinates, from (u0, s0) to (u1, s1).
+  const struct {
+    const char* label;
+    int u0, s0, u1, s1;
+    Rgb color;
+  } edges[] = {{"image of the left edge", -1, -1, -1, 1, Rgb{200, 30, 30}},
+               {"image of the right edge", 1, -1, 1, 1, Rgb{30, 60, 200}},
+               {"image of the stable sides", -1, -1, 1, -1, Rgb{140, 140, 140}},
+               {"", -1, 1, 1, 1, Rgb{140, 140, 140}}};
+  fig.series.push_back(square);
+  for (const auto& e : edges) {
+    Series s{e.label, {}, {}, e.color, true, false};
+    for (int i = 0; i <= samples; ++i) {
+      const mpq_class t(i, samples);
+      const mpq_class xu = e.u0 + (e.u1 - e.u0) * t, xs = e.s0 + (e.s1 - e.s0) * t;
+      const mpq_class p0 = N.c[0] + N.B[0][0] * xu + N.B[0][1] * xs;
+      const mpq_class p1 = N.c[1] + N.B[1][0] * xu + N.B[1][1] * xs;
+      const auto y = replay_iterate(c, p0, p1, 128);
+      if (!y) {  // a branch not decided at this point: a gap in the curve
+        if (!s.x.empty()) {
+          fig.series.push_back(s);
+          s.x.clear(), s.y.clear(), s.label.clear();
+        }
+        continue;
+      }
+      const mpq_class d0 = ((*y)[0][0] + (*y)[0][1]) / 2 - M.c[0], d1 = ((*y)[1][0] + (*y)[1][1]) / 2 - M.c[1];
+      s.x.push_back(mpq_class((M.B[1][1] * d0 - M.B[0][1] * d1) / det).get_d());
+      s.y.push_back(mpq_class((M.B[0][0] * d1 - M.B[1][0] * d0) / det).get_d());
+    }
+    if (!s.x.empty()) fig.series.push_back(s);
+  }
+  return fig;
+}
+
 }  // namespace bouncer

@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "bouncer/io/plot.hpp"
 #include "bouncer/verify/chaos_certificate.hpp"
 
 namespace bouncer {
@@ -21,5 +22,12 @@ std::string certificate_json(const ChaosCertificate& c, const std::string& prove
 // numbers beyond the limits (at most 1024 h-sets and 4096 coverings, rationals of at most
 // 4096 characters, k at most 100000, pieces per side at most 4096).
 ChaosCertificate parse_certificate(const std::string& text);
+
+// A picture of one covering N => M of a certificate (its index in `coverings`), in M's local
+// coordinates (y_u, y_s): M is the square [-1, 1]^2, and the image under G of N's boundary is
+// drawn from `samples` points per edge (the left edge's image in red, the right edge's in
+// blue, the stable sides' in grey), each point mapped by the replay's map (replay_iterate)
+// at its centre. An illustration: the proof is the interval check, not these points.
+Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samples = 200);
 
 }  // namespace bouncer

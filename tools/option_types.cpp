@@ -13,7 +13,7 @@ namespace bouncer::cli {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, std::string_view>, 76> kinds{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 78> kinds{{
     // decimals (exact: a run encloses or rounds them as its precision says)
     {"a", "NUMBER"}, {"eps", "NUMBER"}, {"c", "NUMBER"}, {"theta", "NUMBER"}, {"v", "NUMBER"},
     {"step", "NUMBER"}, {"beyond", "NUMBER"}, {"tolerance", "NUMBER"}, {"lift", "NUMBER"},
@@ -25,10 +25,10 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 76> kinds{{
     {"lyapunov-steps", "INT"}, {"lost-steps", "INT"}, {"jobs", "INT"}, {"hits", "INT"},
     {"every", "INT"}, {"confirm-bits", "INT"}, {"classify-steps", "INT"}, {"blocks", "INT"},
     {"bins", "INT"}, {"attractor-steps", "INT"}, {"period", "INT"}, {"dpi", "INT"},
-    {"reference-max-bits", "INT"}, {"record", "INT"}, {"ics", "INT"}, {"periods", "INT"}, {"bits", "INT"},
+    {"reference-max-bits", "INT"}, {"record", "INT"}, {"ics", "INT"}, {"periods", "INT"}, {"bits", "INT"}, {"covering", "INT"},
     {"confirm-sample", "N|all"}, {"confirm", "[BITS]"},
     // files
-    {"scene", "PATH"}, {"out", "PREFIX"}, {"tiles-from", "PREFIX"},
+    {"scene", "PATH"}, {"png", "PATH"}, {"out", "PREFIX"}, {"tiles-from", "PREFIX"},
     // a scalar type
     {"precision", "PREC"},
     // LO:HI

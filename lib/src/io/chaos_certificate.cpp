@@ -21,6 +21,7 @@ constexpr std::size_t kMaxCoverings = 4096;
 constexpr std::size_t kMaxRationalChars = 4096;
 constexpr long kMaxK = 100000;
 constexpr long kMaxPieces = 4096;
+constexpr double kMaxWork = 16777216.0;
 
 std::string rational_text(const mpq_class& q) { return q.get_str(); }
 
@@ -195,6 +196,12 @@ ChaosCertificate parse_certificate(const std::string& text) {
     if (!seen.insert({v.from, v.to}).second) bad(f, "repeats the covering " + std::to_string(v.from) + " => " + std::to_string(v.to));
     c.coverings.push_back(std::move(v));
   }
+  // The replay's work: every piece of every covering mapped by F^k, at most 2^24 maps of F
+  // (about a minute of Arb for the bouncer), so that a file cannot ask for days of work.
+  double work = 0;
+  for (const CertifiedCovering& v : c.coverings) work += double(c.k) * (double(v.pieces) * v.pieces + 2.0 * v.pieces);
+  if (work > kMaxWork)
+    bad("coverings", "ask for more than 2^24 evaluations of F (k times the pieces of every covering): the replay's limit");
   const json& e = member(j, "entropy", "certificate");
   only_keys(e, {"bound", "quotient"}, "entropy");
   c.entropy_bound = string_from(member(e, "bound", "entropy"), "entropy.bound", 256);

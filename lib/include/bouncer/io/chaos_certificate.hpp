@@ -20,7 +20,8 @@ std::string certificate_json(const ChaosCertificate& c, const std::string& prove
 // and what was expected on anything else: not JSON, a missing, unknown or mistyped field, a
 // singular frame, a covering naming no h-set or given twice, an out-of-range parameter, or
 // numbers beyond the limits (at most 1024 h-sets and 4096 coverings, rationals of at most
-// 4096 characters, k at most 100000, pieces per side at most 4096).
+// 4096 characters, k at most 100000, pieces per side at most 4096, and at most 2^24
+// evaluations of F in the replay: k (pieces^2 + 2 pieces) summed over the coverings).
 ChaosCertificate parse_certificate(const std::string& text);
 
 // A picture of one covering N => M of a certificate (its index in `coverings`), in M's local

@@ -332,6 +332,9 @@ TEST(ChaosCertificateFile, HostileTextIsRefusedNamingTheField) {
   };
   expect_refused(first_field("sign", "0"), "coverings[0].sign");
   expect_refused(first_field("pieces", "100000"), "coverings[0].pieces");
+  // 4096 pieces per side is allowed alone, but one such covering is 4096^2 + 2 4096 > 2^24
+  // evaluations of F: more work than a replay will do for a stranger's file.
+  expect_refused(first_field("pieces", "4096"), "coverings");
   // hset_rectangle(3/20, 3/5, ...): the frame's first entry is (3/5 - 3/20)/2 = 9/40.
   expect_refused(edit("\"9/40\"", "\"3/0\""), "sets[0].frame[0][0]");
   expect_refused(edit("\"9/40\"", "\"0x10\""), "sets[0].frame[0][0]");

@@ -390,6 +390,8 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
   const M D = mabs(u1);
   std::vector<M> L(m + 1, M(0, bits)), S(m + 1, M(0, bits));
   L[0] = M(D * 6 / 10);
+  // The cap leaves the last h-set room to stretch across N_0 (|lambda_u| L_m > L_0).
+  if (cap < L[0] * 2) cap = M(L[0] * 2);
   S[0] = M(sm_abs / 5 * 2);
   // Images of a grid of N_i (centre a, directions wa, za, radii la, sa) relative to b in the
   // basis (wb, zb): the smallest |alpha| on the edges x = +-1 (the reach of the image along
@@ -465,7 +467,7 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
       c.why = "an image of a point of N_m is undecided";
       return c;
     }
-    const M lower = M(r.beta(L[0], grow) * sgrow), upper = M((sm_abs - S[m]) / grow);
+    const M lower = M(r.beta(L[0], grow) * grow), upper = M((sm_abs - S[m]) / grow);
     if (r.edge < L[0] * grow) {
       std::ostringstream s;
       s << "the last h-set's image does not stretch across N_0: its edges reach " << dbl(r.edge) << " along e_u, N_0 is "
@@ -493,6 +495,18 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
   };
   c.sets.push_back(hset(sd.p, sd.eu, sd.es, L[0], S[0]));
   for (int i = 1; i <= m; ++i) c.sets.push_back(hset(q[i], w[i], z[i], L[i], S[i]));
+  // Every h-set inside 0 < theta < 1: the strip where the plane's (theta, v) are the
+  // cylinder's, so that disjointness in the plane is disjointness on the cylinder and no
+  // h-set is cut by the wrap of theta.
+  for (int i = 0; i <= m; ++i) {
+    const HSet2& n = c.sets[i];
+    const mpq_class half = abs(n.B[0][0]) + abs(n.B[0][1]);
+    if (n.c[0] - half <= 0 || n.c[0] + half >= 1) {
+      c.why = "N_" + std::to_string(i) + " crosses theta = 0 (the wrap of the phase)";
+      c.sets.clear();
+      return c;
+    }
+  }
   return c;
 }
 

@@ -46,7 +46,7 @@ struct ChaosSearchOptions {
   int max_period = 4;
   // The fundamental domain of the unstable manifold starts at t0 = unstable_start (Euclidean
   // distance from p along e_u in (theta, v)); N_0's unstable radius is about 0.6 |lambda_u| t.
-  double unstable_start = 1e-4;
+  double unstable_start = 2e-3;
   // The most iterates of G followed from the fundamental domain in the homoclinic search.
   int max_return = 40;
   // The most vertices of the polyline of the unstable manifold.
@@ -57,8 +57,9 @@ struct ChaosSearchOptions {
   // parallel) of the neighbourhood of p where a crossing of the polyline with the stable
   // line counts as a return.
   double neighbourhood = 0.5;
-  // The largest unstable radius of an h-set (Euclidean): keeps every h-set on one branch.
-  double cap = 1e-3;
+  // The largest unstable radius of an h-set (Euclidean; at least twice N_0's): keeps every
+  // h-set small, on one branch.
+  double cap = 3e-3;
   // Margin of the radii: an image must reach (1 + margin) times past the next h-set's edge.
   double margin = 0.25;
   // Margin of the stable radii: an h-set's stable radius is (1 + stable_margin) times its

@@ -107,6 +107,49 @@ TEST(Covering, LinearHorseshoeProvesAllFourCoveringsAndLog2) {
   EXPECT_LE(r.entropy.bound_double, std::log(2.0));
 }
 
+// The linear horseshoe on parallelograms: the piece's box (c + B r in intervals) mapped, and
+// its image handed back as the parallelogram 0 + I r'.
+std::optional<Parallelogram> horseshoe_on_sets(const Parallelogram& p) {
+  Box2 box;
+  auto pt = [](const Mpfr& x) { return Mpfi(x, x); };
+  for (int i = 0; i < 2; ++i) box[i] = pt(p.c[i]) + pt(p.B[i][0]) * p.r[0] + pt(p.B[i][1]) * p.r[1];
+  const auto y = horseshoe(box);
+  if (!y) return std::nullopt;
+  Parallelogram out;
+  for (int i = 0; i < 2; ++i) {
+    out.c[i] = Mpfr(0, kBits);
+    for (int j = 0; j < 2; ++j) out.B[i][j] = Mpfr(i == j ? 1 : 0, kBits);
+    out.r[i] = (*y)[i];
+  }
+  return out;
+}
+
+TEST(Covering, HorseshoeOverListedEdgesChecksOnlyThem) {
+  // Three of the four coverings listed, one map per source set: the golden-mean graph
+  // 0 => 0, 0 => 1, 1 => 0 (rho = (1 + sqrt 5)/2), 1 => 1 not checked.
+  const auto sets = horseshoe_sets();
+  const std::vector<SetMap2> maps{horseshoe_on_sets, horseshoe_on_sets};
+  const HorseshoeResult r = check_horseshoe(maps, sets, {{0, 0}, {0, 1}, {1, 0}}, 1, {kBits, 4});
+  ASSERT_TRUE(r.disjoint);
+  EXPECT_TRUE(r.coverings[0][0].proved) << r.coverings[0][0].message;
+  EXPECT_TRUE(r.coverings[0][1].proved) << r.coverings[0][1].message;
+  EXPECT_TRUE(r.coverings[1][0].proved) << r.coverings[1][0].message;
+  EXPECT_EQ(r.coverings[1][0].sign, -1);
+  EXPECT_FALSE(r.coverings[1][1].proved);
+  EXPECT_EQ(r.coverings[1][1].boxes, 0);
+  EXPECT_EQ(r.coverings[1][1].message, "not checked");
+  EXPECT_EQ(r.matrix, (std::vector<std::vector<int>>{{1, 1}, {1, 0}}));
+  EXPECT_TRUE(r.entropy.horseshoe);
+  EXPECT_LE(r.entropy.bound_double, std::log((1 + std::sqrt(5.0)) / 2));
+  EXPECT_GT(r.entropy.bound_double, std::log((1 + std::sqrt(5.0)) / 2) - 1e-9);
+  // Overlapping sets: no bound, whatever the coverings.
+  std::vector<HSet2> overlapping = sets;
+  overlapping[1] = hset_rectangle(mpq_class(1, 3), mpq_class(31, 30), mpq_class(-1, 10), mpq_class(11, 10));
+  const HorseshoeResult o = check_horseshoe(maps, overlapping, {{0, 0}}, 1, {kBits, 4});
+  EXPECT_FALSE(o.disjoint);
+  EXPECT_FALSE(o.entropy.horseshoe);
+}
+
 TEST(Covering, HorseshoeOnTheUnitStripsIsNotACoveringEdgesOnTheBoundary) {
   // F maps N_0's left edge x = 0 onto x = 0: y_u = -1 exactly, not < -1.
   const HSet2 n0 = hset_rectangle(0, mpq_class(1, 3), 0, 1);

@@ -457,6 +457,28 @@ EntropyBound entropy_lower_bound(const std::vector<std::vector<int>>& A, int k, 
   return out;
 }
 
+namespace {
+
+// The disjointness of all pairs and the entropy bound of the proved coverings in `out`.
+void finish_horseshoe(HorseshoeResult& out, const std::vector<HSet2>& sets, int k, const CoveringOptions& options) {
+  const size_t m = sets.size();
+  out.disjoint = true;
+  for (size_t i = 0; i < m && out.disjoint; ++i)
+    for (size_t j = i + 1; j < m; ++j)
+      if (!hsets_disjoint(sets[i], sets[j])) {
+        out.disjoint = false;
+        break;
+      }
+  if (out.disjoint) {
+    out.entropy = entropy_lower_bound(out.matrix, k, options.bits);
+  } else {
+    out.entropy.bound = "not proved: the h-sets are not certainly disjoint";
+    out.entropy.bound_double = -INFINITY;
+  }
+}
+
+}  // namespace
+
 HorseshoeResult check_horseshoe(const BoxMap2& G, const std::vector<HSet2>& sets, int k, const CoveringOptions& options) {
   HorseshoeResult out;
   const size_t m = sets.size();
@@ -467,16 +489,27 @@ HorseshoeResult check_horseshoe(const BoxMap2& G, const std::vector<HSet2>& sets
       out.coverings[i][j] = check_covering(G, sets[i], sets[j], options);
       out.matrix[i][j] = out.coverings[i][j].proved ? 1 : 0;
     }
-  out.disjoint = true;
-  for (size_t i = 0; i < m; ++i)
-    for (size_t j = i + 1; j < m; ++j)
-      if (!hsets_disjoint(sets[i], sets[j])) out.disjoint = false;
-  if (out.disjoint) {
-    out.entropy = entropy_lower_bound(out.matrix, k, options.bits);
-  } else {
-    out.entropy.bound = "not proved: the h-sets are not certainly disjoint";
-    out.entropy.bound_double = -INFINITY;
+  finish_horseshoe(out, sets, k, options);
+  return out;
+}
+
+HorseshoeResult check_horseshoe(const std::vector<SetMap2>& maps, const std::vector<HSet2>& sets,
+                                const std::vector<CoveringEdge>& edges, int k, const CoveringOptions& options) {
+  HorseshoeResult out;
+  const size_t m = sets.size();
+  CoveringResult unchecked;
+  unchecked.message = "not checked";
+  out.coverings.assign(m, std::vector<CoveringResult>(m, unchecked));
+  out.matrix.assign(m, std::vector<int>(m, 0));
+  for (const CoveringEdge& e : edges) {
+    if (e.from < 0 || e.to < 0 || static_cast<size_t>(e.from) >= m || static_cast<size_t>(e.to) >= m ||
+        static_cast<size_t>(e.from) >= maps.size())
+      continue;
+    CoveringResult& c = out.coverings[e.from][e.to];
+    c = check_covering(maps[e.from], sets[e.from], sets[e.to], options);
+    out.matrix[e.from][e.to] = c.proved ? 1 : 0;
   }
+  finish_horseshoe(out, sets, k, options);
   return out;
 }
 

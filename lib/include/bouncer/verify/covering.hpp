@@ -208,4 +208,21 @@ struct HorseshoeResult {
 HorseshoeResult check_horseshoe(const BoxMap2& G, const std::vector<HSet2>& sets, int k,
                                 const CoveringOptions& options = {});
 
+// One covering to check: N_from => N_to (0-based indices into the h-sets).
+struct CoveringEdge {
+  // The h-set covered from.
+  int from = 0;
+  // The h-set covered.
+  int to = 0;
+};
+
+// Checks the listed coverings N_from => N_to only, each under maps[from] (one map per source
+// h-set: for a piecewise map, G = F^k on the branch of N_from, so that G is continuous on
+// each h-set; all of them the same G = F^k where the sets are on its branches), and bounds the
+// entropy from the proved ones when the h-sets are pairwise disjoint. coverings[i][j] of an
+// unlisted pair is not proved ("not checked"). The theorem of the header comment applies:
+// every maps[i] must be G on N_i for one G.
+HorseshoeResult check_horseshoe(const std::vector<SetMap2>& maps, const std::vector<HSet2>& sets,
+                                const std::vector<CoveringEdge>& edges, int k, const CoveringOptions& options = {});
+
 }  // namespace bouncer

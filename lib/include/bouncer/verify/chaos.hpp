@@ -67,8 +67,11 @@ struct ChaosSearchOptions {
   double stable_margin = 1.0;
   // Significant decimal digits of the h-sets' exact centres and frames.
   int digits = 40;
-  // The most homoclinic candidates tried (each a chain of h-sets checked in full).
+  // The most homoclinic candidates tried per attempt (each a chain of h-sets checked in full).
   int max_candidates = 4;
+  // Attempts: each further one divides unstable_start and cap by 4 (smaller h-sets, nearer
+  // p, a longer return), tried when the one before proved nothing.
+  int attempts = 3;
 };
 
 // The saddle and homoclinic orbit the search found (doubles, for reports).

@@ -384,9 +384,9 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
   z[m + 1] = sd.es;
   for (int i = m; i >= 1; --i) z[i] = unit(solve(J[i], z[i + 1]));
   z[0] = sd.es;
-  const auto [um, sm] = coords(diff(q[m], sd.p), sd.eu, sd.es);
+  const M sm = coords(diff(q[m], sd.p), sd.eu, sd.es).second;
   const M sm_abs = mabs(sm);
-  const auto [u1, s1] = coords(diff(q[1], sd.p), sd.eu, sd.es);
+  const M u1 = coords(diff(q[1], sd.p), sd.eu, sd.es).first;
   const M D = mabs(u1);
   std::vector<M> L(m + 1, M(0, bits)), S(m + 1, M(0, bits));
   L[0] = M(D * 6 / 10);
@@ -471,7 +471,7 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
     if (r.edge < L[0] * grow) {
       std::ostringstream s;
       s << "the last h-set's image does not stretch across N_0: its edges reach " << dbl(r.edge) << " along e_u, N_0 is "
-        << dbl(L[0]) << " wide (the unstable radii were capped at " << o.cap << ")";
+        << dbl(L[0]) << " wide (the unstable radii were capped at " << dbl(cap) << ")";
       c.why = s.str();
       return c;
     }

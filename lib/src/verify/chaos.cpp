@@ -625,8 +625,11 @@ ChaosSearchResult certify_chaos(const ModelSpec& spec, const ChaosSearchOptions&
   for (int attempt = 0; attempt < std::max(1, o.attempts) && !out.proved; ++attempt) {
     // Each further attempt starts 4 times closer to p with 4 times smaller h-sets.
     ChaosSearchOptions oa = o;
-    oa.unstable_start = o.unstable_start / std::pow(4.0, attempt);
-    oa.cap = o.cap / std::pow(4.0, attempt);
+    // Near a strongly expanding saddle the first image of the fundamental domain is far from
+    // p: t0 scaled by 3 / |lambda_u| when that is below 1.
+    const double scale = std::min(1.0, 3.0 / std::fabs(out.orbit.lambda_u)) / std::pow(4.0, attempt);
+    oa.unstable_start = o.unstable_start * scale;
+    oa.cap = o.cap * scale;
     std::ostringstream at;
     at << "t0 = " << oa.unstable_start << ": ";
     const auto t_search = std::chrono::steady_clock::now();

@@ -48,7 +48,8 @@ struct ChaosSearchOptions {
   // Saddles are searched for the periods 1..max_period of F.
   int max_period = 4;
   // The fundamental domain of the unstable manifold starts at t0 = unstable_start (Euclidean
-  // distance from p along e_u in (theta, v)); N_0's unstable radius is about 0.6 |lambda_u| t.
+  // distance from p along e_u in (theta, v)), times 3 / |lambda_u| when that is below 1;
+  // N_0's unstable radius is about 0.6 |lambda_u| t.
   double unstable_start = 2e-3;
   // The most iterates of G followed from the fundamental domain in the homoclinic search.
   int max_return = 40;

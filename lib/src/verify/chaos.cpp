@@ -384,9 +384,9 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
   z[m + 1] = sd.es;
   for (int i = m; i >= 1; --i) z[i] = unit(solve(J[i], z[i + 1]));
   z[0] = sd.es;
-  const auto [um, sm] = coords(diff(q[m], sd.p), sd.eu, sd.es);
+  const M sm = coords(diff(q[m], sd.p), sd.eu, sd.es).second;
   const M sm_abs = mabs(sm);
-  const auto [u1, s1] = coords(diff(q[1], sd.p), sd.eu, sd.es);
+  const M u1 = coords(diff(q[1], sd.p), sd.eu, sd.es).first;
   const M D = mabs(u1);
   std::vector<M> L(m + 1, M(0, bits)), S(m + 1, M(0, bits));
   L[0] = M(D * 6 / 10);
@@ -471,7 +471,7 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
     if (r.edge < L[0] * grow) {
       std::ostringstream s;
       s << "the last h-set's image does not stretch across N_0: its edges reach " << dbl(r.edge) << " along e_u, N_0 is "
-        << dbl(L[0]) << " wide (the unstable radii were capped at " << o.cap << ")";
+        << dbl(L[0]) << " wide (the unstable radii were capped at " << dbl(cap) << ")";
       c.why = s.str();
       return c;
     }
@@ -510,48 +510,19 @@ Chain build_chain(const Dynamics& dyn, const Saddle& sd, const Homoclinic& h, co
   return c;
 }
 
-}  // namespace
-
-ChaosSearchResult certify_chaos(const ModelSpec& spec, const ChaosSearchOptions& o) {
-  ChaosSearchResult out;
-  const auto t_start = std::chrono::steady_clock::now();
-  out.certificate.map = ChaosMap::impact;
-  out.certificate.model = spec;
-  out.certificate.bits = o.bits;
-  out.certificate.made_by = "certify_chaos (bouncer " + build_info().version + ", commit " + build_info().commit + ")";
-  std::string why;
-  const auto saddle = find_saddle(spec, o, why);
-  if (!saddle) {
-    out.message = why;
-    out.search_seconds = seconds_since(t_start);
-    return out;
-  }
-  out.orbit.period = saddle->period;
-  out.orbit.theta = dbl(saddle->p.theta);
-  out.orbit.v = dbl(saddle->p.v);
-  out.orbit.lambda_u = dbl(saddle->lu);
-  out.orbit.lambda_s = dbl(saddle->ls);
-  out.certificate.k = saddle->period;
-  const Dynamics dyn(spec, o.search_bits, saddle->period);
-  const std::vector<Homoclinic> candidates = find_homoclinic(dyn, *saddle, o, why);
-  out.candidates = static_cast<int>(candidates.size());
-  out.search_seconds = seconds_since(t_start);
-  std::ostringstream saddle_text;
-  saddle_text << "saddle of period " << saddle->period << " at (" << out.orbit.theta << ", " << out.orbit.v
-              << "), multipliers " << out.orbit.lambda_u << ", " << out.orbit.lambda_s;
-  if (candidates.empty()) {
-    out.message = why + " (" + saddle_text.str() + ")";
-    return out;
-  }
-  const auto t_check = std::chrono::steady_clock::now();
-  std::vector<std::string> failures;
+// Builds and checks the chain of each candidate until one is proved; fills `out` with the
+// last one tried, and `failures` with why the others were not proved.
+void try_candidates(const ModelSpec& spec, const Dynamics& dyn, const Saddle& saddle_, const std::vector<Homoclinic>& candidates,
+                    const ChaosSearchOptions& o, const std::string& saddle_text, const std::string& at, ChaosSearchResult& out,
+                    std::vector<std::string>& failures) {
+  const Saddle* saddle = &saddle_;
   for (const Homoclinic& h : candidates) {
     out.orbit.t = dbl(h.t);
     out.orbit.m = h.n;
     out.orbit.return_distance = std::fabs(dbl(h.s));
     Chain chain = build_chain(dyn, *saddle, h, o);
     if (chain.sets.empty()) {
-      failures.push_back("return after " + std::to_string(h.n) + " iterates: " + chain.why);
+      failures.push_back(at + "return after " + std::to_string(h.n) + " iterates: " + chain.why);
       continue;
     }
     const int m = chain.m;
@@ -567,7 +538,7 @@ ChaosSearchResult certify_chaos(const ModelSpec& spec, const ChaosSearchOptions&
       maps.push_back(impact_set_map(spec, branch, o.bits));
     }
     if (!undecided.empty()) {
-      failures.push_back("return after " + std::to_string(h.n) + " iterates: " + undecided);
+      failures.push_back(at + "return after " + std::to_string(h.n) + " iterates: " + undecided);
       continue;
     }
     std::vector<CoveringEdge> edges{{0, 0}, {0, 1}};
@@ -605,13 +576,13 @@ ChaosSearchResult certify_chaos(const ModelSpec& spec, const ChaosSearchOptions&
     if (hs.disjoint && hs.entropy.horseshoe) {
       out.proved = true;
       std::ostringstream s;
-      s << "proved: h_top >= " << hs.entropy.bound << " per collision (" << saddle_text.str() << "; homoclinic return after "
+      s << "proved: h_top >= " << hs.entropy.bound << " per collision (" << saddle_text << "; homoclinic return after "
         << m << " iterates of F^" << saddle->period << ", " << count << " disjoint h-sets, "
         << out.certificate.coverings.size() << " coverings at " << o.bits << " bits)";
       out.message = s.str();
       break;
     }
-    std::string f = "return after " + std::to_string(m) + " iterates: ";
+    std::string f = at + "return after " + std::to_string(m) + " iterates: ";
     if (!hs.disjoint) {
       for (int i = 0; i < count; ++i)
         for (int j = i + 1; j < count; ++j)
@@ -621,9 +592,61 @@ ChaosSearchResult certify_chaos(const ModelSpec& spec, const ChaosSearchOptions&
     if (!first_failure.empty()) f += "covering " + first_failure;
     failures.push_back(f);
   }
-  out.check_seconds = seconds_since(t_check);
+}
+
+}  // namespace
+
+ChaosSearchResult certify_chaos(const ModelSpec& spec, const ChaosSearchOptions& o) {
+  ChaosSearchResult out;
+  const auto t_start = std::chrono::steady_clock::now();
+  out.certificate.map = ChaosMap::impact;
+  out.certificate.model = spec;
+  out.certificate.bits = o.bits;
+  out.certificate.made_by = "certify_chaos (bouncer " + build_info().version + ", commit " + build_info().commit + ")";
+  std::string why;
+  const auto saddle = find_saddle(spec, o, why);
+  if (!saddle) {
+    out.message = why;
+    out.search_seconds = seconds_since(t_start);
+    return out;
+  }
+  out.orbit.period = saddle->period;
+  out.orbit.theta = dbl(saddle->p.theta);
+  out.orbit.v = dbl(saddle->p.v);
+  out.orbit.lambda_u = dbl(saddle->lu);
+  out.orbit.lambda_s = dbl(saddle->ls);
+  out.certificate.k = saddle->period;
+  const Dynamics dyn(spec, o.search_bits, saddle->period);
+  std::ostringstream saddle_text;
+  saddle_text << "saddle of period " << saddle->period << " at (" << out.orbit.theta << ", " << out.orbit.v
+              << "), multipliers " << out.orbit.lambda_u << ", " << out.orbit.lambda_s;
+  out.search_seconds = seconds_since(t_start);
+  std::vector<std::string> failures;
+  for (int attempt = 0; attempt < std::max(1, o.attempts) && !out.proved; ++attempt) {
+    // Each further attempt starts 4 times closer to p with 4 times smaller h-sets.
+    ChaosSearchOptions oa = o;
+    // Near a strongly expanding saddle the first image of the fundamental domain is far from
+    // p: t0 scaled by 3 / |lambda_u| when that is below 1.
+    const double scale = std::min(1.0, 3.0 / std::fabs(out.orbit.lambda_u)) / std::pow(4.0, attempt);
+    oa.unstable_start = o.unstable_start * scale;
+    oa.cap = o.cap * scale;
+    std::ostringstream at;
+    at << "t0 = " << oa.unstable_start << ": ";
+    const auto t_search = std::chrono::steady_clock::now();
+    why.clear();
+    const std::vector<Homoclinic> candidates = find_homoclinic(dyn, *saddle, oa, why);
+    out.candidates += static_cast<int>(candidates.size());
+    out.search_seconds += seconds_since(t_search);
+    if (candidates.empty()) {
+      failures.push_back(at.str() + why);
+      continue;
+    }
+    const auto t_check = std::chrono::steady_clock::now();
+    try_candidates(spec, dyn, *saddle, candidates, oa, saddle_text.str(), at.str(), out, failures);
+    out.check_seconds += seconds_since(t_check);
+  }
   if (!out.proved) {
-    std::string s = "not proved (" + saddle_text.str() + "; " + std::to_string(candidates.size()) + " homoclinic candidates):";
+    std::string s = "not proved (" + saddle_text.str() + "):";
     for (const std::string& f : failures) s += " " + f + ";";
     out.message = s;
   }

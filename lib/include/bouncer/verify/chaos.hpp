@@ -12,12 +12,15 @@
 // local stable line {p + s e_s} near p; bisection on t then puts G^n(q0) on that line, and
 // further bisections on later iterates make the return deep (|s| small). No fixed start:
 // the search fails, and says so, when the model has no saddle or no homoclinic return.
+// When nothing is proved, up to `attempts` searches are made, each with t0 and the h-sets'
+// cap 4 times smaller than the one before.
 //
 // Along the homoclinic orbit q_0 = p + t e_u, q_i = G^i(q_0), the h-sets are N_0 around p
 // (frame e_u, e_s) and N_i around q_i, i = 1..m (q_m the deep return), with the unstable
 // direction carried forward by DG and the stable one backward from e_s at q_{m+1}, and radii
 // from the images of a grid of points of the previous h-set with a margin (unstable radii
-// capped). The coverings N_0 => N_0, N_0 => N_1, N_i => N_{i+1} and N_m => N_0 of G, each
+// capped), and every h-set inside 0 < theta < 1 (so that disjointness in the plane is
+// disjointness on the cylinder). The coverings N_0 => N_0, N_0 => N_1, N_i => N_{i+1} and N_m => N_0 of G, each
 // under G on the branch at the source h-set's centre (impact_set_map), are checked with
 // check_covering at `bits`, the h-sets' disjointness exactly; their graph has the cycles of
 // lengths 1 and m + 1, so rho is the largest root of x^(m+1) = x^m + 1 > 1 and the bound
@@ -45,7 +48,8 @@ struct ChaosSearchOptions {
   // Saddles are searched for the periods 1..max_period of F.
   int max_period = 4;
   // The fundamental domain of the unstable manifold starts at t0 = unstable_start (Euclidean
-  // distance from p along e_u in (theta, v)); N_0's unstable radius is about 0.6 |lambda_u| t.
+  // distance from p along e_u in (theta, v)), times 3 / |lambda_u| when that is below 1;
+  // N_0's unstable radius is about 0.6 |lambda_u| t.
   double unstable_start = 2e-3;
   // The most iterates of G followed from the fundamental domain in the homoclinic search.
   int max_return = 40;
@@ -67,8 +71,11 @@ struct ChaosSearchOptions {
   double stable_margin = 1.0;
   // Significant decimal digits of the h-sets' exact centres and frames.
   int digits = 40;
-  // The most homoclinic candidates tried (each a chain of h-sets checked in full).
+  // The most homoclinic candidates tried per attempt (each a chain of h-sets checked in full).
   int max_candidates = 4;
+  // Attempts: each further one divides unstable_start and cap by 4 (smaller h-sets, nearer
+  // p, a longer return), tried when the one before proved nothing.
+  int attempts = 3;
 };
 
 // The saddle and homoclinic orbit the search found (doubles, for reports).
@@ -111,9 +118,10 @@ struct ChaosSearchResult {
   std::vector<ChaosCovering> coverings;
   // The h-sets are pairwise certainly disjoint.
   bool disjoint = false;
-  // Seconds: finding the saddle and homoclinic orbit; building and checking the h-sets.
+  // Seconds: finding the saddle and homoclinic orbits; building and checking the h-sets
+  // (over all attempts).
   double search_seconds = 0, check_seconds = 0;
-  // Homoclinic candidates found and tried.
+  // Homoclinic candidates found (over all attempts).
   int candidates = 0;
 };
 

@@ -6,10 +6,11 @@
 namespace bouncer::cli {
 
 CommandSetup command_setup(std::string_view name) {
-  static constexpr std::array<std::pair<std::string_view, CommandSetup>, 19> setups{{
+  static constexpr std::array<std::pair<std::string_view, CommandSetup>, 20> setups{{
       {"orbit", setup_orbit},
       {"certify-sticking", setup_certify_sticking},
       {"certify-periodic", setup_certify_periodic},
+      {"certify-chaos", setup_certify_chaos},
       {"check-certificate", setup_check_certificate},
       {"sweep", setup_sweep},
       {"audit", setup_audit},

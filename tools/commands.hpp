@@ -23,6 +23,7 @@ CommandSetup command_setup(std::string_view name);
 BOUNCER_COMMAND(orbit)
 BOUNCER_COMMAND(certify_sticking)
 BOUNCER_COMMAND(certify_periodic)
+BOUNCER_COMMAND(certify_chaos)
 BOUNCER_COMMAND(check_certificate)
 BOUNCER_COMMAND(sweep)
 BOUNCER_COMMAND(audit)

@@ -13,7 +13,7 @@ namespace bouncer::cli {
 
 namespace {
 
-constexpr std::array<std::pair<std::string_view, std::string_view>, 78> kinds{{
+constexpr std::array<std::pair<std::string_view, std::string_view>, 79> kinds{{
     // decimals (exact: a run encloses or rounds them as its precision says)
     {"a", "NUMBER"}, {"eps", "NUMBER"}, {"c", "NUMBER"}, {"theta", "NUMBER"}, {"v", "NUMBER"},
     {"step", "NUMBER"}, {"beyond", "NUMBER"}, {"tolerance", "NUMBER"}, {"lift", "NUMBER"},
@@ -25,7 +25,7 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 78> kinds{{
     {"lyapunov-steps", "INT"}, {"lost-steps", "INT"}, {"jobs", "INT"}, {"hits", "INT"},
     {"every", "INT"}, {"confirm-bits", "INT"}, {"classify-steps", "INT"}, {"blocks", "INT"},
     {"bins", "INT"}, {"attractor-steps", "INT"}, {"period", "INT"}, {"dpi", "INT"},
-    {"reference-max-bits", "INT"}, {"record", "INT"}, {"ics", "INT"}, {"periods", "INT"}, {"bits", "INT"}, {"covering", "INT"},
+    {"reference-max-bits", "INT"}, {"record", "INT"}, {"ics", "INT"}, {"periods", "INT"}, {"bits", "INT"}, {"replay-bits", "INT"}, {"covering", "INT"},
     {"confirm-sample", "N|all"}, {"confirm", "[BITS]"},
     // files
     {"scene", "PATH"}, {"png", "PATH"}, {"out", "PREFIX"}, {"tiles-from", "PREFIX"},

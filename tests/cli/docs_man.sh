@@ -8,7 +8,7 @@
 #     grep, not with the generator's parser); bouncer.1 names every command;
 #   - the warning check can fail: a page with an unknown escape does give a warning;
 #   - the completion script, sourced in bash: `bouncer <TAB>` offers every command,
-#     `bouncer cert<TAB>` exactly certify-sticking and certify-periodic, `bouncer orbit --<TAB>`
+#     `bouncer cert<TAB>` exactly the three certify- commands, `bouncer orbit --<TAB>`
 #     every option of orbit's help, `bouncer orbit --precision <TAB>` the precisions,
 #     `bouncer help <TAB>` the commands, `bouncer orbit --a <TAB>` nothing (a number);
 #   - where the build has made them (target bouncer_man), `cmake --install --component man`
@@ -70,7 +70,7 @@ offered=$(complete_words bouncer "")
 for c in "${cmds[@]}" help; do
   grep -qx -- "$c" <<<"$offered" || fail completion "bouncer <TAB> does not offer $c"
 done
-[[ $(complete_words bouncer cert | sort | tr '\n' ' ') == "certify-periodic certify-sticking " ]] ||
+[[ $(complete_words bouncer cert | sort | tr '\n' ' ') == "certify-chaos certify-periodic certify-sticking " ]] ||
   fail completion "bouncer cert<TAB> offers '$(complete_words bouncer cert | tr '\n' ' ')'"
 offered=$(complete_words bouncer orbit --)
 while read -r opt; do

@@ -47,7 +47,7 @@ check_range precision "16 <= BITS <= 1048576"
 check_range model "elastic"
 check_range format "json"
 
-for cmd in orbit certify-sticking certify-periodic check-certificate sweep audit periodic lyapunov classify bifurcation \
+for cmd in orbit certify-sticking certify-periodic certify-chaos check-certificate sweep audit periodic lyapunov classify bifurcation \
   portrait basin scan merge continue trajectory tongues reproduce; do
   grep -qE "^[[:space:]]+$cmd[[:space:]]" "$TMP/top" || fail "bouncer --help" "does not list $cmd"
   rc=0

@@ -36,7 +36,7 @@ mkdir "$TMP/scene.toml"
 short_refusal scene_dir "scene: .* is a directory" orbit --scene "$TMP/scene.toml"
 short_refusal range_blame "^bouncer: range:" bifurcation --model constant --eps 0.5 --range x:30 --samples 3
 short_refusal range_blame_lyapunov "^bouncer: range:" lyapunov --model constant --eps 0.5 --vary a --range x:30 --samples 3
-for cmd in orbit certify-sticking certify-periodic check-certificate sweep audit periodic continue lyapunov classify bifurcation portrait basin scan trajectory tongues merge; do
+for cmd in orbit certify-sticking certify-periodic certify-chaos check-certificate sweep audit periodic continue lyapunov classify bifurcation portrait basin scan trajectory tongues merge; do
   rc=0
   out=$("$BOUNCER" "$cmd" --version 2>&1) || rc=$?
   [[ $rc -eq 0 && $out =~ commit ]] || fail "version_$cmd" "exit $rc: ${out:0:200}"

@@ -3,6 +3,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdio>
 #include <set>
 #include <string>
 
@@ -100,7 +102,8 @@ ModelSpec model_from_json(const json& j) {
 
 }  // namespace
 
-std::string certificate_json(const ChaosCertificate& c, const std::string& provenance) {
+std::string certificate_json(const ChaosCertificate& c, const std::string& provenance,
+                             const std::vector<std::pair<std::string, std::string>>& files) {
   json j;
   j["format"] = kFormat;
   j["version"] = 1;
@@ -126,14 +129,16 @@ std::string certificate_json(const ChaosCertificate& c, const std::string& prove
   j["entropy"] = {{"bound", c.entropy_bound}, {"quotient", rational_text(c.quotient)}};
   j["made_by"] = c.made_by;
   if (!provenance.empty()) j["provenance"] = json::parse(provenance);
+  for (const auto& [kind, path] : files) j["files"][kind] = path;
   return j.dump(1) + "\n";
 }
 
 ChaosCertificate parse_certificate(const std::string& text) {
   const json j = json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) bad("certificate", "is not valid JSON or not a JSON object");
-  only_keys(j, {"format", "version", "map", "model", "henon", "k", "bits", "sets", "coverings", "entropy", "made_by", "provenance"}, "");
-  if (j.contains("provenance") && !j["provenance"].is_object()) bad("provenance", "must be a JSON object");
+  only_keys(j, {"format", "version", "map", "model", "henon", "k", "bits", "sets", "coverings", "entropy", "made_by", "provenance", "files"}, "");
+  for (const char* skipped : {"provenance", "files"})
+    if (j.contains(skipped) && !j[skipped].is_object()) bad(skipped, "must be a JSON object");
   if (string_from(member(j, "format", "certificate"), "format") != kFormat)
     bad("format", std::string("must be \"") + kFormat + "\"");
   if (integer_from(member(j, "version", "certificate"), "version", 1, 1) != 1) bad("version", "must be 1");
@@ -223,6 +228,7 @@ Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samp
   fig.xlabel = "y_u (unstable)";
   fig.ylabel = "y_s (stable)";
   Series square{"N" + std::to_string(cov.to), {-1, 1, 1, -1, -1}, {-1, -1, 1, 1, -1}, Rgb{0, 0, 0}, true, false};
+  // The edges' images are short where the map stretches: markers keep them visible.
   // The four edges of N in its local coordinates, from (u0, s0) to (u1, s1).
   const struct {
     const char* label;
@@ -234,7 +240,7 @@ Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samp
                {"", -1, 1, 1, 1, Rgb{140, 140, 140}}};
   fig.series.push_back(square);
   for (const auto& e : edges) {
-    Series s{e.label, {}, {}, e.color, true, false};
+    Series s{e.label, {}, {}, e.color, true, e.u0 == e.u1, 2};
     for (int i = 0; i <= samples; ++i) {
       const mpq_class t(i, samples);
       const mpq_class xu = e.u0 + (e.u1 - e.u0) * t, xs = e.s0 + (e.s1 - e.s0) * t;
@@ -254,6 +260,37 @@ Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samp
     }
     if (!s.x.empty()) fig.series.push_back(s);
   }
+  return fig;
+}
+
+Figure horseshoe_figure(const ChaosCertificate& c, const std::vector<std::pair<double, double>>& attractor) {
+  Figure fig;
+  double largest = 0;  // the largest extent of an h-set along either coordinate
+  for (const HSet2& h : c.sets)
+    for (int r = 0; r < 2; ++r) largest = std::max(largest, mpq_class(abs(h.B[r][0]) + abs(h.B[r][1])).get_d());
+  fig.title = "A horseshoe of F^" + std::to_string(c.k) + ": " + std::to_string(c.sets.size()) + " h-sets, over an orbit (grey)";
+  char size[64];
+  std::snprintf(size, sizeof size, "%.1e", largest);
+  fig.subtitle = "h-set centres marked (each h-set at most " + std::string(size) + " across); entropy >= " +
+                 c.entropy_bound.substr(0, 8) + " per impact";
+  fig.xlabel = "theta";
+  fig.ylabel = "v";
+  Series orbit{"orbit on the attractor", {}, {}, Rgb{170, 170, 170}, false, true, 0};
+  for (const auto& [t, v] : attractor) {
+    orbit.x.push_back(t);
+    orbit.y.push_back(v);
+  }
+  Series chain{"N1, N2, ... (the homoclinic orbit)", {}, {}, Rgb{30, 60, 200}, true, true, 3};
+  Series home{"N0 (the saddle)", {}, {}, Rgb{200, 30, 30}, false, true, 5};
+  for (std::size_t i = 0; i < c.sets.size(); ++i) {
+    Series& s = i == 0 ? home : chain;
+    s.x.push_back(c.sets[i].c[0].get_d());
+    s.y.push_back(c.sets[i].c[1].get_d());
+  }
+  fig.series = {orbit, chain, home};
+  fig.x_min = 0;
+  fig.x_max = 1;
+  fig.legend_below = true;
   return fig;
 }
 

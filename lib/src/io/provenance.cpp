@@ -1,5 +1,7 @@
 #include "bouncer/io/provenance.hpp"
 
+#include "bouncer/verify/chaos_certificate.hpp"
+
 #include <gmp.h>
 #include <mpfi.h>
 #include <mpfr.h>
@@ -17,7 +19,8 @@ namespace bouncer {
 std::string library_versions() {
   std::ostringstream s;
   s << "boost " << BOOST_VERSION / 100000 << "." << BOOST_VERSION / 100 % 1000 << "." << BOOST_VERSION % 100
-    << ", mpfr " << mpfr_get_version() << ", mpfi " << MPFI_VERSION_STRING << ", gmp " << gmp_version << ", qd " << BOUNCER_QD_VERSION;
+    << ", mpfr " << mpfr_get_version() << ", mpfi " << MPFI_VERSION_STRING << ", gmp " << gmp_version << ", qd " << BOUNCER_QD_VERSION
+    << ", arb " << arb_library_version();
   return s.str();
 }
 

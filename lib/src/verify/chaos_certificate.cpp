@@ -33,6 +33,11 @@
 
 namespace bouncer {
 
+std::string arb_library_version() {
+  return std::to_string(__ARB_VERSION) + "." + std::to_string(__ARB_VERSION_MINOR) + "." +
+         std::to_string(__ARB_VERSION_PATCHLEVEL);
+}
+
 const char* name(ChaosMap m) {
   switch (m) {
     case ChaosMap::impact: return "impact";

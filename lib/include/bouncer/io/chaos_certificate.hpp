@@ -3,6 +3,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bouncer/io/plot.hpp"
 #include "bouncer/verify/chaos_certificate.hpp"
@@ -13,10 +15,14 @@ namespace bouncer {
 // the model as a scene's model keys (model, a, eps, c, wall, downward-sticking,
 // veldep-collapse), every field named; `provenance`, when given, is a Provenance::as_json()
 // object written as the field "provenance" (what made the file, for audit and for humans;
-// the replay does not read it).
-std::string certificate_json(const ChaosCertificate& c, const std::string& provenance = "");
+// the replay does not read it); `files`, when given, is written as the object "files" (kind to
+// path of the outputs written with it, as a picture command's JSON lists them: where they
+// were written, which audit ignores).
+std::string certificate_json(const ChaosCertificate& c, const std::string& provenance = "",
+                             const std::vector<std::pair<std::string, std::string>>& files = {});
 
-// Parses certificate_json's text, treating it as hostile (a "provenance" object is skipped). Throws InputError naming the field
+// Parses certificate_json's text, treating it as hostile ("provenance" and "files" objects are
+// skipped). Throws InputError naming the field
 // and what was expected on anything else: not JSON, a missing, unknown or mistyped field, a
 // singular frame, a covering naming no h-set or given twice, an out-of-range parameter, or
 // numbers beyond the limits (at most 1024 h-sets and 4096 coverings, rationals of at most
@@ -30,5 +36,12 @@ ChaosCertificate parse_certificate(const std::string& text);
 // blue, the stable sides' in grey), each point mapped by the replay's map (replay_iterate)
 // at its centre. An illustration: the proof is the interval check, not these points.
 Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samples = 200);
+
+// The h-sets of a certificate of the impact map in the phase plane (theta, v), over points
+// of an orbit on the attractor (`attractor`, grey; e.g. from portrait()): each h-set's centre
+// marked, N_0 in red, the others in blue joined in the chain's order (the homoclinic orbit
+// the coverings follow). The h-sets themselves are far smaller than a pixel; the title says
+// how small.
+Figure horseshoe_figure(const ChaosCertificate& c, const std::vector<std::pair<double, double>>& attractor);
 
 }  // namespace bouncer

@@ -10,7 +10,7 @@
 
 namespace bouncer {
 
-std::string library_versions();  // "boost 1.74.0, mpfr 4.2.0, mpfi 1.5.3, gmp 6.2.1"
+std::string library_versions();  // "boost 1.74.0, mpfr 4.2.0, mpfi 1.5.3, gmp 6.2.1, qd 2.3.23, arb 2.23.0"
 
 // An input value as the "# inputs:" line writes it: plain, or quoted ("..." with \" and \\)
 // when it holds white space, quotes, backslashes or control characters, or is empty.

@@ -115,6 +115,9 @@ struct ReplayResult {
 // see the header comment). Never throws on a false certificate: it says what failed.
 ReplayResult replay_certificate(const ChaosCertificate& c, long bits = 256);
 
+// The version of the Arb library the replay was built with ("2.23.0"), for provenance.
+std::string arb_library_version();
+
 // The replay's own map at a point, for tests against bouncer's map: G = F^k of the
 // certificate's map at (x0, x1) (exact), enclosed in Arb at `bits`, as [lo, hi] per
 // coordinate (exact rationals); nullopt if a branch is not decided there.

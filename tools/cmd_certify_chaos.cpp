@@ -1,8 +1,8 @@
 // bouncer certify-chaos: a computer-assisted proof that the impact map has positive
 // topological entropy (a horseshoe of covering relations, verify/chaos.hpp), replayed at once
 // by the second interval library (Arb, verify/chaos_certificate.hpp); --out PREFIX writes the
-// certificate PREFIX.json (for `bouncer check-certificate`), PREFIX.png (the h-sets on the
-// attractor) and PREFIX-covering.png (the covering that closes the horseshoe, in its target's
+// certificate PREFIX.json (for `bouncer check-certificate`), PREFIX.csv (its h-sets in
+// doubles), PREFIX.png (the h-sets over an orbit) and PREFIX-covering.png (the covering that closes the horseshoe, in its target's
 // local coordinates).
 #include <chrono>
 #include <cstdio>
@@ -51,9 +51,11 @@ CommandRunner setup_certify_chaos(CLI::App* sub) {
   opts->add("replay-bits", "Arb precision of the certificate's replay, integer in [32, 65536] (default 256)");
   opts->add("max-period", "Search saddles of period 1..Q, integer in [1, 8] (default 4)");
   opts->add("max-pieces", "Finest subdivision of an h-set per side, integer in [1, 1024] (default 64)");
-  opts->add("out", "Also write PREFIX.json (the certificate), PREFIX.png (the h-sets on the attractor) and "
-                   "PREFIX-covering.png (the closing covering), all or none");
+  opts->add("out", "Also write PREFIX.json (the certificate), PREFIX.csv (its h-sets), PREFIX.png (the h-sets "
+                   "over an orbit) and PREFIX-covering.png (the closing covering), all or none");
   sub->add_flag("--json", *as_json, "JSON output");
+  auto quiet = std::make_shared<bool>(false);
+  sub->add_flag("--quiet", *quiet, "Accepted like the picture commands (certify-chaos prints no progress)");
 
   auto run = [opts, scene, as_json](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "certify-chaos", certify_chaos_keys()),
@@ -66,7 +68,7 @@ CommandRunner setup_certify_chaos(CLI::App* sub) {
     OutputSet outputs;  // reserved before the work: a path that cannot be written is found at once
     if (prefix) {
       check_prefix("out", *prefix, "-covering.png");
-      for (const char* suffix : {".json", ".png", "-covering.png"}) outputs.reserve("out", *prefix + suffix);
+      for (const char* suffix : {".json", ".csv", ".png", "-covering.png"}) outputs.reserve("out", *prefix + suffix);
     }
     // --out is where, not what: not an input (audit reruns into its own directory).
     Options inputs = o;
@@ -106,9 +108,10 @@ CommandRunner setup_certify_chaos(CLI::App* sub) {
       write_output_set({{*prefix + ".json",
                          [&](std::ostream& s) {
                            s << certificate_json(r.certificate, p.as_json(),
-                                                 {{"json", *prefix + ".json"}, {"png", *prefix + ".png"},
+                                                 {{"json", *prefix + ".json"}, {"csv", *prefix + ".csv"}, {"png", *prefix + ".png"},
                                                   {"covering_png", *prefix + "-covering.png"}});
                          }},
+                        {*prefix + ".csv", [&](std::ostream& s) { write_hsets_csv(s, r.certificate, p.as_comment_lines()); }},
                         {*prefix + ".png", [&](std::ostream& s) { write_figure(s, sets, ImageFormat::png); }},
                         {*prefix + "-covering.png", [&](std::ostream& s) { write_figure(s, cover, ImageFormat::png); }}},
                        &outputs);

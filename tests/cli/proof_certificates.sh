@@ -19,7 +19,7 @@ PROOFS="$(dirname "$BOUNCER")/../proofs"
 declare -A VERDICT=(
   [elastic_period2]=refuted [fixed_point_family]=corrected [inelastic_period2]=corrected
   [sticking_period]=refuted [trapping_region]=corrected [veldep_collapse]=refuted
-  [veldep_fixed_points]=corrected)
+  [veldep_fixed_points]=corrected [horseshoes]=confirmed)
 # Proofs fast enough (< 0.2 s) to run a second time for the text certificate.
 QUICK=" elastic_period2 fixed_point_family inelastic_period2 veldep_fixed_points "
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <set>
 #include <string>
@@ -214,6 +215,24 @@ ChaosCertificate parse_certificate(const std::string& text) {
   c.quotient = rational_from(member(e, "quotient", "entropy"), "entropy.quotient");
   if (j.contains("made_by")) c.made_by = string_from(j["made_by"], "made_by");
   return c;
+}
+
+void write_hsets_csv(std::ostream& out, const ChaosCertificate& c, const std::string& provenance_lines) {
+  out << provenance_lines;
+  out << "# the h-sets of the certificate (doubles nearest its exact rationals); coverings: ";
+  for (std::size_t i = 0; i < c.coverings.size(); ++i)
+    out << (i ? " " : "") << c.coverings[i].from << "=>" << c.coverings[i].to;
+  out << "\nset,theta,v,u_theta,u_v,s_theta,s_v\n";
+  const auto number = [](const mpq_class& q) {
+    char text[32];
+    const auto r = std::to_chars(text, text + sizeof text, q.get_d());
+    return std::string(text, r.ptr);
+  };
+  for (std::size_t i = 0; i < c.sets.size(); ++i) {
+    const HSet2& h = c.sets[i];
+    out << i << ',' << number(h.c[0]) << ',' << number(h.c[1]) << ',' << number(h.B[0][0]) << ',' << number(h.B[1][0])
+        << ',' << number(h.B[0][1]) << ',' << number(h.B[1][1]) << '\n';
+  }
 }
 
 Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samples) {

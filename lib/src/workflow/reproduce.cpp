@@ -416,7 +416,10 @@ ManifestCheck check_manifest(const Manifest& m, const CommandValidator& validate
     }
   } remove{tmp};
   ManifestCheck out;
-  auto check = [&](const std::string& id, const std::string& which, std::vector<std::string> argv, bool panel) {
+  // kind: what reproduce appends when it runs the item: a panel --out, --quiet and --format; a
+  // documentation picture --out and --quiet (as run_items does); a claim nothing.
+  enum class Kind { panel, picture, claim };
+  auto check = [&](const std::string& id, const std::string& which, std::vector<std::string> argv, Kind kind) {
     if (argv.empty()) return;
     const size_t checked = out.commands.size() + 1;
     std::string verdict;
@@ -427,8 +430,9 @@ ManifestCheck check_manifest(const Manifest& m, const CommandValidator& validate
     } else if (const std::string problem = resolve_scenes(argv, tmp / "scenes"); !problem.empty()) {
       verdict = "refused: " + problem;
     } else {
-      if (panel)
-        argv.insert(argv.end(), {"--out", (tmp / (std::to_string(checked) + "-x")).string(), "--quiet", "--format", "png,pdf,svg"});
+      if (kind != Kind::claim)
+        argv.insert(argv.end(), {"--out", (tmp / (std::to_string(checked) + "-x")).string(), "--quiet"});
+      if (kind == Kind::panel) argv.insert(argv.end(), {"--format", "png,pdf,svg"});
       const std::atomic<bool> stop{true};
       const CancelScope cancel(&stop);
       const CommandValidation v = validate(argv);
@@ -442,14 +446,14 @@ ManifestCheck check_manifest(const Manifest& m, const CommandValidator& validate
     out.commands.push_back({id, which, verdict, ok});
   };
   for (const Panel& p : m.panels) {
-    check(p.label, "quick", p.quick, true);
-    check(p.label, "full", p.full, true);
+    check(p.label, "quick", p.quick, Kind::panel);
+    check(p.label, "full", p.full, Kind::panel);
   }
   for (const Claim& c : m.claims) {
-    check(c.id, "run", c.run, false);
-    if (c.full_run != c.run) check(c.id, "full_run", c.full_run, false);
+    check(c.id, "run", c.run, Kind::claim);
+    if (c.full_run != c.run) check(c.id, "full_run", c.full_run, Kind::claim);
   }
-  for (const Picture& p : m.pictures) check(p.id(), "command", p.command, true);
+  for (const Picture& p : m.pictures) check(p.id(), "command", p.command, Kind::picture);
   return out;
 }
 

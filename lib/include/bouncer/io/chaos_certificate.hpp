@@ -2,6 +2,7 @@
 // "bouncer-chaos-certificate", version 1. docs/guide/chaos.md describes every field.
 #pragma once
 
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -29,6 +30,12 @@ std::string certificate_json(const ChaosCertificate& c, const std::string& prove
 // 4096 characters, k at most 100000, pieces per side at most 4096, and at most 2^24
 // evaluations of F in the replay: k (pieces^2 + 2 pieces) summed over the coverings).
 ChaosCertificate parse_certificate(const std::string& text);
+
+// The h-sets as CSV, for plotting: provenance comment lines (`provenance_lines`, "# ..."),
+// then one row per h-set: set, theta, v (its centre), u_theta, u_v (the unstable column of
+// its frame), s_theta, s_v (the stable column), each the double nearest the exact rational of
+// the certificate (shortest round-trip digits); the exact values are the certificate's.
+void write_hsets_csv(std::ostream& out, const ChaosCertificate& c, const std::string& provenance_lines);
 
 // A picture of one covering N => M of a certificate (its index in `coverings`), in M's local
 // coordinates (y_u, y_s): M is the square [-1, 1]^2, and the image under G of N's boundary is

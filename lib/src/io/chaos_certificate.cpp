@@ -247,7 +247,6 @@ Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samp
   fig.xlabel = "y_u (unstable)";
   fig.ylabel = "y_s (stable)";
   Series square{"N" + std::to_string(cov.to), {-1, 1, 1, -1, -1}, {-1, -1, 1, 1, -1}, Rgb{0, 0, 0}, true, false};
-  // The edges' images are short where the map stretches: markers keep them visible.
   // The four edges of N in its local coordinates, from (u0, s0) to (u1, s1).
   const struct {
     const char* label;
@@ -259,6 +258,7 @@ Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samp
                {"", -1, 1, 1, 1, Rgb{140, 140, 140}}};
   fig.series.push_back(square);
   for (const auto& e : edges) {
+    // The unstable edges' images are short where the map stretches: markers keep them visible.
     Series s{e.label, {}, {}, e.color, true, e.u0 == e.u1, 2};
     for (int i = 0; i <= samples; ++i) {
       const mpq_class t(i, samples);
@@ -284,9 +284,9 @@ Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samp
 
 Figure horseshoe_figure(const ChaosCertificate& c, const std::vector<std::pair<double, double>>& attractor) {
   Figure fig;
-  double largest = 0;  // the largest extent of an h-set along either coordinate
+  double largest = 0;  // the largest extent of an h-set along either coordinate: 2 (|B_r0| + |B_r1|)
   for (const HSet2& h : c.sets)
-    for (int r = 0; r < 2; ++r) largest = std::max(largest, mpq_class(abs(h.B[r][0]) + abs(h.B[r][1])).get_d());
+    for (int r = 0; r < 2; ++r) largest = std::max(largest, mpq_class(2 * (abs(h.B[r][0]) + abs(h.B[r][1]))).get_d());
   fig.title = "A horseshoe of F^" + std::to_string(c.k) + ": " + std::to_string(c.sets.size()) + " h-sets, over an orbit (grey)";
   char size[64];
   std::snprintf(size, sizeof size, "%.1e", largest);

@@ -58,6 +58,9 @@
 #include "bouncer/io/requests/attractors.hpp"
 #include "bouncer/io/requests/certify_periodic.hpp"
 #include "bouncer/io/requests/certify_sticking.hpp"
+#include "bouncer/io/chaos_certificate.hpp"
+#include "bouncer/io/reports/certify_chaos.hpp"
+#include "bouncer/io/requests/certify_chaos.hpp"
 #include "bouncer/io/requests/continue.hpp"
 #include "bouncer/io/requests/guess.hpp"
 #include "bouncer/io/requests/portrait.hpp"
@@ -885,6 +888,38 @@ class ModelCore {
     return d;
   }
 
+  // bouncer certify-chaos (its request: io/requests/certify_chaos.hpp): the horseshoe proved
+  // with MPFI and, when proved, its certificate replayed in Arb.
+  py::dict certify_chaos(const Texts& texts) const {
+    const CertifyChaosRequest req = certify_chaos_request(with_model(texts));
+    const ChaosSearchResult r = interruptible([&] { return bouncer::certify_chaos(req.model, req.search); });
+    std::optional<ReplayResult> replay;
+    if (r.proved) replay = replay_certificate(r.certificate, req.replay_bits);
+    py::dict d;
+    d["certified"] = r.proved && replay && replay->valid;
+    d["statement"] = chaos_statement(r, replay);
+    d["bound"] = r.proved ? py::object(py::str(r.entropy.bound)) : py::object(py::none());
+    d["bound_double"] = r.proved ? py::object(py::float_(r.entropy.bound_double)) : py::object(py::none());
+    d["quotient"] = r.proved ? py::object(py::str(r.entropy.quotient.get_str())) : py::object(py::none());
+    d["k"] = r.certificate.k;
+    d["hsets"] = r.certificate.sets.size();
+    if (r.orbit.period) {
+      py::dict saddle;
+      saddle["period"] = r.orbit.period;
+      saddle["theta"] = r.orbit.theta;
+      saddle["v"] = r.orbit.v;
+      saddle["lambda_u"] = r.orbit.lambda_u;
+      saddle["lambda_s"] = r.orbit.lambda_s;
+      d["saddle"] = saddle;
+    } else {
+      d["saddle"] = py::none();
+    }
+    d["replay_valid"] = replay ? py::object(py::bool_(replay->valid)) : py::object(py::none());
+    d["certificate"] = r.proved ? py::object(py::str(certificate_json(r.certificate))) : py::object(py::none());
+    d["seconds"] = r.search_seconds + r.check_seconds;
+    return d;
+  }
+
   // bouncer certify-sticking without --a-range (its request: io/requests/certify_sticking.hpp).
   py::dict certify_sticking(const Texts& texts) const {
     const StickingQuestion q = certify_sticking_request(with_model(texts)).question;
@@ -1471,6 +1506,27 @@ PYBIND11_MODULE(_core, mod) {
   });
   py::register_exception<Undecided>(mod, "Undecided", PyExc_ArithmeticError);
 
+  // bouncer check-certificate on a certificate's text (io/chaos_certificate.hpp: read as
+  // hostile; InputError -> ValueError), replayed in Arb at `bits`.
+  mod.def(
+      "_check_certificate",
+      [](const std::string& text, long bits) {
+        if (bits < 32 || bits > 65536) throw InputError("bits", "must be an integer in [32, 65536] (got " + std::to_string(bits) + ")");
+        const ChaosCertificate c = parse_certificate(text);
+        const ReplayResult r = interruptible([&] { return replay_certificate(c, bits); });
+        py::dict d;
+        d["valid"] = r.valid;
+        d["disjoint"] = r.disjoint;
+        py::list coverings;
+        for (const ReplayedCovering& v : r.coverings) coverings.append(py::make_tuple(v.proved, v.message));
+        d["coverings"] = coverings;
+        d["bound"] = c.entropy_bound;
+        d["recomputed_bound"] = r.recomputed_bound;
+        d["problems"] = r.problems;
+        d["bits"] = r.bits;
+        return d;
+      },
+      py::arg("text"), py::arg("bits"));
   mod.def("run", &run, py::arg("words"),
           "run(words: list[str]) -> dict\n\nRun a bouncer command line (words[0] is the program name) in this process, with the GIL released; "
           "returns {status, kind, message, unknown_option, out, csv}. Ctrl-C cancels it (KeyboardInterrupt).");
@@ -1544,6 +1600,7 @@ PYBIND11_MODULE(_core, mod) {
       .def("_continue_branch", &ModelCore::continue_branch, py::arg("options"))
       .def("_certify_sticking", &ModelCore::certify_sticking, py::arg("options"))
       .def("_certify_periodic", &ModelCore::certify_periodic, py::arg("options"))
+      .def("_certify_chaos", &ModelCore::certify_chaos, py::arg("options"))
       .def("_basin", &ModelCore::basin, py::arg("options"))
       .def("_scan", &ModelCore::scan, py::arg("options"))
       .def("_bifurcation", &ModelCore::bifurcation, py::arg("options"))

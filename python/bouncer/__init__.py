@@ -6,11 +6,12 @@ The library, typed. ``Model(model=, a=, eps= | c=, wall=, precision=)`` is built
 validated once; ``m.step(theta, v)`` is one step of the impact map (a Step),
 ``m.orbit(theta, v, steps)`` an orbit as numpy arrays filled in C++ (an Orbit), and
 ``m.classify``, ``m.lyapunov``, ``m.periodic``, ``m.continue_branch``,
-``m.certify_sticking``, ``m.certify_periodic``, and the grids ``m.basin``, ``m.scan``,
-``m.bifurcation``, ``m.portrait``, ``m.lyapunov_curve`` call the library's analyses and
-return dataclasses (Classification, Lyapunov, PeriodicOrbit, Branch, StickingCertificate,
-PeriodicCertificate, Basin, Scan, Bifurcation, Portrait, ExponentCurve), with the command
-line's defaults. Numbers are float in double, decimal
+``m.certify_sticking``, ``m.certify_periodic``, ``m.certify_chaos``, and the grids
+``m.basin``, ``m.scan``, ``m.bifurcation``, ``m.portrait``, ``m.lyapunov_curve`` call the
+library's analyses and return dataclasses (Classification, Lyapunov, PeriodicOrbit, Branch,
+StickingCertificate, PeriodicCertificate, ChaosProof, Basin, Scan, Bifurcation, Portrait,
+ExponentCurve), with the command line's defaults; ``check_certificate(text)`` replays a chaos
+certificate in Arb (a CertificateCheck). Numbers are float in double, decimal
 texts (str) in the other point precisions, Interval (exact ends ``lo``/``hi``,
 ``to_mpmath()``) in interval precisions.
 
@@ -42,8 +43,9 @@ from ._cli import (
 )
 from ._cli import _words  # the CLI's words for a call (tests/python compare with the executable)
 from ._model import (
-    EVENTS, Attractor, Attractors, Basin, Bifurcation, Branch, BranchEnd, Classification, ExponentCurve, Interval, Lyapunov, Model, Number,
-    Orbit, PeriodicCertificate, PeriodicOrbit, Portrait, Real, Scan, Step, StickingCertificate, Undecided,
+    EVENTS, Attractor, Attractors, Basin, Bifurcation, Branch, BranchEnd, CertificateCheck, ChaosProof, Classification,
+    ExponentCurve, Interval, Lyapunov, Model, Number, Orbit, PeriodicCertificate, PeriodicOrbit, Portrait, Real, Scan,
+    Step, StickingCertificate, Undecided, check_certificate,
 )
 
 __version__ = _core.version
@@ -52,6 +54,7 @@ __all__ = [
     "Model", "Step", "Orbit", "Interval", "Undecided", "EVENTS", "Number", "Real",
     "Classification", "Lyapunov", "PeriodicOrbit", "Branch", "BranchEnd", "StickingCertificate",
     "PeriodicCertificate", "Basin", "Scan", "Bifurcation", "Portrait", "ExponentCurve", "Attractor", "Attractors",
+    "ChaosProof", "CertificateCheck", "check_certificate",
     # the command line, in-process
     "Result", "CLASSES", "run", "step", "orbit", "certify_sticking", "sweep", "periodic", "certify_periodic",
     "continue_branch", "lyapunov", "classify", "basin", "scan", "bifurcation", "to_mpmath",

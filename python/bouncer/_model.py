@@ -257,6 +257,68 @@ class StickingCertificate:
 
 
 @dataclasses.dataclass(frozen=True)
+class ChaosProof:
+    """A proof of chaos: a horseshoe of covering relations with a certified lower bound on the
+    topological entropy (``bouncer certify-chaos``), replayed by a second interval library.
+
+    certified: proved with MPFI and the certificate replayed valid in Arb
+    statement: what is proved and what is not (a horseshoe is an invariant set, not
+        necessarily the attractor), or why nothing was proved
+    bound: h_top(F) >= bound per impact, an exact decimal text rounded down (None: not proved);
+        bound_double: the same as a float rounded down; quotient: the exact rational q with
+        bound = log(q)/k rounded down
+    k: the coverings are of F^k; hsets: how many h-sets
+    saddle: the saddle periodic orbit the horseshoe is built on (period, theta, v, lambda_u,
+        lambda_s), or None
+    replay_valid: the Arb replay's verdict (None: nothing to replay)
+    certificate: the certificate as JSON text (save it; ``bouncer.check_certificate`` or
+        ``bouncer check-certificate FILE`` replays it), or None
+    seconds: the search and the coverings (not the replay)
+    """
+    certified: bool
+    statement: str
+    bound: Optional[str]
+    bound_double: Optional[float]
+    quotient: Optional[str]
+    k: int
+    hsets: int
+    saddle: Optional[Dict[str, Any]]
+    replay_valid: Optional[bool]
+    certificate: Optional[str]
+    seconds: float
+
+
+@dataclasses.dataclass(frozen=True)
+class CertificateCheck:
+    """The replay of a chaos certificate in Arb (``bouncer check-certificate``).
+
+    valid: every check held: the certificate proves its stated bound
+    disjoint: the h-sets are pairwise disjoint (exact)
+    coverings: (proved, message) per covering of the certificate, in its order
+    bound: the certificate's stated bound; recomputed_bound: log(q)/k as an Arb ball (text)
+    problems: every failed check, or ["valid"]; bits: Arb's precision
+    """
+    valid: bool
+    disjoint: bool
+    coverings: List[Tuple[bool, str]]
+    bound: str
+    recomputed_bound: str
+    problems: List[str]
+    bits: int
+
+
+def check_certificate(certificate: str, bits: int = 256) -> CertificateCheck:
+    """Replays a chaos certificate (its JSON text, as ``Model.certify_chaos`` returns it or
+    ``bouncer certify-chaos --out`` writes it) with Arb, an interval library independent of the
+    one that made it, and its own implementation of the map. A malformed certificate raises
+    ValueError naming the field; a false one gives valid False and its problems.
+
+    bits: Arb's precision, an integer in [32, 65536] (default 256)
+    """
+    return _build(CertificateCheck, _core._check_certificate(certificate, bits))
+
+
+@dataclasses.dataclass(frozen=True)
 class PeriodicCertificate:
     """A period-Q orbit proved by the Krawczyk operator (``bouncer certify-periodic``).
 
@@ -774,6 +836,20 @@ class Model(_core.Model):
             period=period, guess=guess, vary=vary, family=family, max_bits=max_bits, start_bits=start_bits,
             max_iter=max_iter, grid=grid)))
 
+
+    def certify_chaos(self, *, bits: Optional[int] = None, max_period: Optional[int] = None,
+                      max_pieces: Optional[int] = None, replay_bits: Optional[int] = None) -> ChaosProof:
+        """A proof that the map has positive topological entropy (``bouncer certify-chaos``):
+        a saddle periodic orbit and a homoclinic orbit found from the model, h-sets along it,
+        their covering relations proved with MPFI, and the certificate replayed in Arb.
+
+        bits: MPFI precision of the coverings, an integer in [32, 4096] (default 128)
+        max_period: saddles of period 1..Q are searched, an integer in [1, 8] (default 4)
+        max_pieces: finest subdivision of an h-set per side, an integer in [1, 1024] (default 64)
+        replay_bits: Arb's precision of the replay, an integer in [32, 65536] (default 256)
+        """
+        return _build(ChaosProof, self._certify_chaos(_texts(
+            bits=bits, max_period=max_period, max_pieces=max_pieces, replay_bits=replay_bits)))
 
     def basin(self, *, grid: Tuple[int, int] = (100, 100), theta_range: Optional[Tuple[Number, Number]] = None,
               v_range: Optional[Tuple[Number, Number]] = None, transient: Optional[int] = None,

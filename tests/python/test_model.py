@@ -422,6 +422,35 @@ def test_certify_sticking_sticks_with_the_exact_release():
     assert (release.certified, release.outcome, release.period) == (True, "sticks", 3)
 
 
+def test_certify_chaos_matches_the_cli_and_its_certificate_replays():
+    # veldep c = 1000, a = 27: the horseshoe of claims row 12. The typed call and the command
+    # line give the same bound; the certificate replays valid in Arb through Python, and a
+    # certificate with one h-set moved does not; malformed text is a ValueError naming the field.
+    proof = bouncer.Model(model="veldep", a="27", c="1000").certify_chaos()
+    assert proof.certified and proof.replay_valid
+    assert 0 < proof.bound_double < 0.2 and proof.k == 2 and proof.hsets >= 3
+    assert proof.saddle["period"] == 2 and abs(proof.saddle["lambda_u"] + 2.87) < 0.01
+    assert "Not proved: that the attractor is this set" in proof.statement
+    r = json.loads(bouncer.run("certify-chaos", model="veldep", a="27", c="1000", json=True))
+    assert r["entropy"]["bound"] == proof.bound and r["certified"] is True
+    check = bouncer.check_certificate(proof.certificate)
+    assert check.valid and check.disjoint and check.bound == proof.bound
+    assert all(ok for ok, _ in check.coverings) and check.problems == ["valid"]
+    doc = json.loads(proof.certificate)
+    p, q = (doc["sets"][2]["centre"][1].split("/") + ["1"])[:2]
+    doc["sets"][2]["centre"][1] = f"{int(p) + int(q) // 100}/{q}"  # v moved by 0.01
+    moved = bouncer.check_certificate(json.dumps(doc))
+    assert not moved.valid  # the moved set meets a neighbour or is no longer covered
+    assert any("may intersect" in p or "not proved" in p for p in moved.problems), moved.problems
+    with pytest.raises(ValueError, match=r"^k: must be an integer"):
+        bouncer.check_certificate(proof.certificate.replace('"k": 2', '"k": 0'))
+    with pytest.raises(ValueError, match=r"^bits: "):
+        bouncer.check_certificate(proof.certificate, bits=8)
+    none = bouncer.Model(model="veldep", a="20", c="1000").certify_chaos()
+    assert not none.certified and none.bound is None and none.certificate is None
+    assert "no saddle periodic orbit found" in none.statement
+
+
 def test_certify_periodic_matches_the_cli():
     m = bouncer.Model(model="constant", a="20", eps="0.3")
     for opts in (dict(period=1, guess=("0.3", "9")), dict(period=3, guess=("0.3", "9"))):

@@ -440,10 +440,15 @@ std::array<mpq_class, 2> bounds(const Ball& b) {
   return out;
 }
 
-// Sets the thread's Arb precision for a scope.
+// Sets the thread's Arb precision for a scope, and at its end frees FLINT's caches of this
+// thread (Arb keeps constants such as log 2 per thread; a worker thread that ends without
+// flint_cleanup would leak them; they are recomputed when next needed).
 struct PrecisionScope {
   explicit PrecisionScope(long bits) : saved(prec) { prec = bits; }
-  ~PrecisionScope() { prec = saved; }
+  ~PrecisionScope() {
+    prec = saved;
+    flint_cleanup();
+  }
   slong saved;
 };
 

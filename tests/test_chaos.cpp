@@ -125,5 +125,15 @@ TEST(Chaos, TooFewIteratesForTheReturnSaysWhy) {
   EXPECT_NE(r.message.find("no homoclinic return found"), std::string::npos) << r.message;
 }
 
+// With --veldep-collapse on the interval step bounces where a point of a box may stick: no
+// proof is attempted, and the message says why.
+TEST(Chaos, VeldepCollapseOnIsNotAttempted) {
+  ModelSpec spec = test_support::spec(Law::veldep, "27", "1", "1000");
+  spec.veldep_collapse = true;
+  const ChaosSearchResult r = certify_chaos(spec);
+  EXPECT_FALSE(r.proved);
+  EXPECT_NE(r.message.find("veldep-collapse"), std::string::npos) << r.message;
+}
+
 }  // namespace
 }  // namespace bouncer

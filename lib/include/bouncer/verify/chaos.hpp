@@ -126,7 +126,9 @@ struct ChaosSearchResult {
 };
 
 // Searches a horseshoe of the impact map of `spec` and proves its entropy bound (header
-// comment). Never guesses: without a proof, `proved` is false and `message` says why.
+// comment). Never guesses: without a proof, `proved` is false and `message` says why. Not
+// attempted for the velocity-dependent model with veldep_collapse (its interval step does not
+// decide the collapse test over a box: see the message).
 ChaosSearchResult certify_chaos(const ModelSpec& spec, const ChaosSearchOptions& options = {});
 
 }  // namespace bouncer

@@ -86,8 +86,8 @@ CommandRunner setup_certify_chaos(CLI::App* sub) {
       replay_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     if (prefix && r.proved) {
-      // The attractor under the h-sets: 20000 points of the orbit from the saddle's
-      // neighbourhood (it leaves along the unstable manifold), after 1000 steps.
+      // An orbit under the h-sets: 20000 points of the orbit from the last h-set's centre
+      // (next to the saddle; it leaves along the unstable manifold), after 1000 steps.
       PortraitRequest orbit;
       orbit.model = req.model;
       const auto decimal = [](const mpq_class& q) {

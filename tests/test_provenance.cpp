@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bouncer/io/provenance.hpp"
+#include "bouncer/verify/chaos_certificate.hpp"
 
 namespace bouncer {
 namespace {
@@ -131,7 +132,9 @@ TEST(LibraryVersions, AreTheLinkedLibrariesOwnVersions) {
   EXPECT_TRUE(contains(v, std::string("mpfr ") + mpfr_get_version() + ", ")) << v;
   EXPECT_TRUE(contains(v, std::string("mpfi ") + MPFI_VERSION_STRING + ", ")) << v;
   EXPECT_TRUE(contains(v, std::string("gmp ") + gmp_version + ", ")) << v;
-  EXPECT_TRUE(std::regex_search(v, std::regex(", qd [^,]+$"))) << v;
+  EXPECT_TRUE(std::regex_search(v, std::regex(", qd [^,]+, "))) << v;
+  EXPECT_TRUE(contains(v, ", arb " + arb_library_version())) << v;  // the chaos replay's library
+  EXPECT_TRUE(std::regex_search(v, std::regex(", arb [0-9]+\\.[0-9]+\\.[0-9]+$"))) << v;
 }
 
 TEST(Provenance, CommentLinesCarryEveryField) {

@@ -57,7 +57,8 @@ CommandRunner setup_certify_chaos(CLI::App* sub) {
   auto quiet = std::make_shared<bool>(false);
   sub->add_flag("--quiet", *quiet, "Accepted like the picture commands (certify-chaos prints no progress)");
 
-  auto run = [opts, scene, as_json](const std::string& argv_text) {
+  // quiet is captured so that the flag's target lives as long as the command (CLI11 writes it).
+  auto run = [opts, scene, as_json, quiet](const std::string& argv_text) {
     Options o = merge(scene->empty() ? Options{} : load_scene(*scene, "certify-chaos", certify_chaos_keys()),
                       opts->collected());
     if (*as_json) o.set("json", "true");

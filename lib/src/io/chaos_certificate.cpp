@@ -129,6 +129,10 @@ std::string certificate_json(const ChaosCertificate& c, const std::string& prove
   j["coverings"] = covs;
   j["entropy"] = {{"bound", c.entropy_bound}, {"quotient", rational_text(c.quotient)}};
   j["made_by"] = c.made_by;
+  // What the file states, in one place for a reader (and as every picture's JSON has one);
+  // the replay recomputes all of it and does not read it.
+  j["summary"] = {{"map", name(c.map)}, {"k", c.k}, {"hsets", c.sets.size()}, {"coverings", c.coverings.size()},
+                  {"bound", c.entropy_bound}, {"per", "iterate of F"}};
   if (!provenance.empty()) j["provenance"] = json::parse(provenance);
   for (const auto& [kind, path] : files) j["files"][kind] = path;
   return j.dump(1) + "\n";
@@ -137,8 +141,8 @@ std::string certificate_json(const ChaosCertificate& c, const std::string& prove
 ChaosCertificate parse_certificate(const std::string& text) {
   const json j = json::parse(text, nullptr, false);
   if (j.is_discarded() || !j.is_object()) bad("certificate", "is not valid JSON or not a JSON object");
-  only_keys(j, {"format", "version", "map", "model", "henon", "k", "bits", "sets", "coverings", "entropy", "made_by", "provenance", "files"}, "");
-  for (const char* skipped : {"provenance", "files"})
+  only_keys(j, {"format", "version", "map", "model", "henon", "k", "bits", "sets", "coverings", "entropy", "made_by", "provenance", "files", "summary"}, "");
+  for (const char* skipped : {"provenance", "files", "summary"})
     if (j.contains(skipped) && !j[skipped].is_object()) bad(skipped, "must be a JSON object");
   if (string_from(member(j, "format", "certificate"), "format") != kFormat)
     bad("format", std::string("must be \"") + kFormat + "\"");

@@ -14,7 +14,8 @@ namespace bouncer {
 
 // The certificate as JSON text: rationals as "p/q" strings (or integers), decimals as written,
 // the model as a scene's model keys (model, a, eps, c, wall, downward-sticking,
-// veldep-collapse), every field named; `provenance`, when given, is a Provenance::as_json()
+// veldep-collapse), every field named, and a "summary" object (map, k, counts, the stated
+// bound: for a reader; the replay does not read it); `provenance`, when given, is a Provenance::as_json()
 // object written as the field "provenance" (what made the file, for audit and for humans;
 // the replay does not read it); `files`, when given, is written as the object "files" (kind to
 // path of the outputs written with it, as a picture command's JSON lists them: where they
@@ -22,8 +23,8 @@ namespace bouncer {
 std::string certificate_json(const ChaosCertificate& c, const std::string& provenance = "",
                              const std::vector<std::pair<std::string, std::string>>& files = {});
 
-// Parses certificate_json's text, treating it as hostile ("provenance" and "files" objects are
-// skipped). Throws InputError naming the field
+// Parses certificate_json's text, treating it as hostile ("provenance", "files" and "summary"
+// objects are skipped). Throws InputError naming the field
 // and what was expected on anything else: not JSON, a missing, unknown or mistyped field, a
 // singular frame, a covering naming no h-set or given twice, an out-of-range parameter, or
 // numbers beyond the limits (at most 1024 h-sets and 4096 coverings, rationals of at most

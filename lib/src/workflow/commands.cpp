@@ -14,7 +14,7 @@ constexpr std::array kCommands{
     CommandInfo{"certify-sticking", "Certified sticking period from the release state (1/2, 4), with precision escalation", C},
     CommandInfo{"certify-periodic", "Certified period-Q orbit (Krawczyk): existence, uniqueness, multipliers, stability", C},
     CommandInfo{"certify-chaos", "Certified chaos: a horseshoe of covering relations, h_top >= a bound, its certificate replayed in Arb", C},
-    CommandInfo{"check-certificate", "Replay a chaos certificate with Arb, a second interval library; exit 0 if it proves its bound", C},
+    CommandInfo{"check-certificate", "Replay a chaos certificate with Arb, a second interval library; exit 0 if it proves its bound", W},
     CommandInfo{"sweep", "One orbit in every precision against a certified interval reference", C},
     CommandInfo{"audit", "Rerun a recorded result from its provenance; exit 0 if bit-identical", W},
     CommandInfo{"periodic", "Find a period-q orbit (Newton) and its stability multipliers", C},

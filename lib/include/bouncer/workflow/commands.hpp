@@ -12,7 +12,8 @@ namespace bouncer {
 
 enum class CommandKind {
   computing,  // computes a result from its options (a manifest may run it, audit may rerun it)
-  workflow,   // runs or joins other commands' work: reproduce, audit, merge (never in a manifest)
+  workflow,   // runs, joins or checks other commands' work: reproduce, audit, merge, check-certificate
+              // (never in a manifest, never rerun by audit: a file names none of them)
 };
 
 struct CommandInfo {

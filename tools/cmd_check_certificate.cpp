@@ -22,14 +22,6 @@ namespace {
 // Certificates of 1024 h-sets with rationals of 4096 characters fit in 64 MiB.
 constexpr std::size_t kMaxCertificateBytes = std::size_t(64) << 20;
 
-std::string map_text(const ChaosCertificate& c) {
-  if (c.map == ChaosMap::henon) return "the Henon map, a = " + c.henon_a.text() + ", b = " + c.henon_b.text();
-  std::string s = "the impact map, --model " + std::string(name(c.model.law)) + " --a " + c.model.a.text();
-  if (c.model.law == Law::constant) s += " --eps " + c.model.eps.text();
-  if (c.model.law == Law::veldep) s += " --c " + c.model.c.text();
-  return s + " --wall " + c.model.wall.text;
-}
-
 }  // namespace
 
 CommandRunner setup_check_certificate(CLI::App* sub) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bouncer/base/error.hpp"
+#include "bouncer/io/grid_figures.hpp"
 #include "bouncer/io/scene.hpp"
 
 namespace bouncer {
@@ -221,6 +222,13 @@ ChaosCertificate parse_certificate(const std::string& text) {
   return c;
 }
 
+std::string map_text(const ChaosCertificate& c) {
+  if (c.map == ChaosMap::henon) return "the Hénon map, a = " + c.henon_a.text() + ", b = " + c.henon_b.text();
+  std::string s = "the impact map, " + model_title(c.model.law) + ", " + parameters_text(c.model);
+  if (c.model.wall.text != "triangle") s += ", wall " + c.model.wall.text;
+  return s;
+}
+
 void write_hsets_csv(std::ostream& out, const ChaosCertificate& c, const std::string& provenance_lines) {
   out << provenance_lines;
   out << "# the h-sets of the certificate (doubles nearest its exact rationals); coverings: ";
@@ -246,8 +254,8 @@ Figure covering_figure(const ChaosCertificate& c, std::size_t covering, int samp
   const mpq_class det = M.B[0][0] * M.B[1][1] - M.B[0][1] * M.B[1][0];
   Figure fig;
   fig.title = "Covering N" + std::to_string(cov.from) + " => N" + std::to_string(cov.to) + " under F^" + std::to_string(c.k);
-  fig.subtitle = "in N" + std::to_string(cov.to) + "'s local coordinates; image of N" + std::to_string(cov.from) +
-                 "'s boundary sampled at points (the proof is the interval check)";
+  fig.subtitle = map_text(c) + "; in N" + std::to_string(cov.to) + "'s local coordinates, the image of N" +
+                 std::to_string(cov.from) + "'s boundary at sampled points (the proof is the interval check)";
   fig.xlabel = "y_u (unstable)";
   fig.ylabel = "y_s (stable)";
   Series square{"N" + std::to_string(cov.to), {-1, 1, 1, -1, -1}, {-1, -1, 1, 1, -1}, Rgb{0, 0, 0}, true, false};
@@ -294,11 +302,11 @@ Figure horseshoe_figure(const ChaosCertificate& c, const std::vector<std::pair<d
   fig.title = "A horseshoe of F^" + std::to_string(c.k) + ": " + std::to_string(c.sets.size()) + " h-sets, over an orbit (grey)";
   char size[64];
   std::snprintf(size, sizeof size, "%.1e", largest);
-  fig.subtitle = "h-set centres marked (each h-set at most " + std::string(size) + " across); entropy >= " +
+  fig.subtitle = map_text(c) + "; h-set centres marked (each at most " + std::string(size) + " across); h_top >= " +
                  c.entropy_bound.substr(0, 8) + " per impact";
   fig.xlabel = "theta";
   fig.ylabel = "v";
-  Series orbit{"orbit on the attractor", {}, {}, Rgb{170, 170, 170}, false, true, 0};
+  Series orbit{"an orbit of F (double, numerical)", {}, {}, Rgb{170, 170, 170}, false, true, 0};
   for (const auto& [t, v] : attractor) {
     orbit.x.push_back(t);
     orbit.y.push_back(v);

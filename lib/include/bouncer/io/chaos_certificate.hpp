@@ -32,6 +32,11 @@ std::string certificate_json(const ChaosCertificate& c, const std::string& prove
 // evaluations of F in the replay: k (pieces^2 + 2 pieces) summed over the coverings).
 ChaosCertificate parse_certificate(const std::string& text);
 
+// The certificate's map in words, for reports and figure titles: "the impact map,
+// velocity-dependent restitution, a = 27, c = 1000" (with ", wall W" when the wall is not the triangle), or
+// "the Hénon map, a = 6, b = 0.3".
+std::string map_text(const ChaosCertificate& c);
+
 // The h-sets as CSV, for plotting: provenance comment lines (`provenance_lines`, "# ..."),
 // then one row per h-set: set, theta, v (its centre), u_theta, u_v (the unstable column of
 // its frame), s_theta, s_v (the stable column), each the double nearest the exact rational of

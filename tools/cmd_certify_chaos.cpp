@@ -10,7 +10,6 @@
 #include <optional>
 #include <set>
 
-#include "bouncer/base/build_info.hpp"
 #include "bouncer/io/chaos_certificate.hpp"
 #include "bouncer/io/reports/certify_chaos.hpp"
 #include "bouncer/io/requests/certify_chaos.hpp"
@@ -77,8 +76,7 @@ CommandRunner setup_certify_chaos(CLI::App* sub) {
     Provenance p = provenance_for("certify-chaos", inputs, Precision{Precision::Kind::interval, req.search.bits}, argv_text);
     p.precision = "interval (MPFI " + std::to_string(req.search.bits) + " bits; replay: Arb " +
                   std::to_string(req.replay_bits) + " bits)";
-    ChaosSearchResult r = certify_chaos(req.model, req.search);
-    r.certificate.made_by = "bouncer " + build_info().version + " certify-chaos (commit " + build_info().commit + ")";
+    const ChaosSearchResult r = certify_chaos(req.model, req.search);  // its made_by names bouncer and the commit
     std::optional<ReplayResult> replay;
     double replay_seconds = 0;
     if (r.proved) {

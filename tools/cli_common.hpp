@@ -253,7 +253,7 @@ inline void add_model_options(OptionSet& o) {
   o.add("a", "Dimensionless gravity a = g T^2 / A, a decimal > 0 (<= 1e9)");
   o.add("eps", "Restitution coefficient for --model constant, decimal in [0, 1]");
   o.add("c", "Scale of eps(v) = exp(-|(v- - fdot)/c|^(3/5)) for --model veldep, decimal > 0");
-  o.add("wall", "Wall profile: triangle (default) | sawtooth | asymmetric:R (0<R<1) | knots:0:H0,S1:H1,...");
+  o.add("wall", "Wall profile: triangle (default) | sawtooth | asymmetric:R (0<R<1) | knots:0:H0,S1:H1,... | sine (needs a < 4 pi^2)");
   o.add("downward-sticking", "Collapse on a downward wall at its upward turn: paper (default) | impact");
   o.add("veldep-collapse", "For --model veldep: on = stick when the chatter provably collapses before the wall turns; off (default)");
 }

@@ -69,7 +69,7 @@ void finish(const TrajectoryRequest& r, const Trajectory<T>& tr, const RunFlags&
   if (!stuck.x.empty()) fig.series.push_back(std::move(stuck));
   if (!chat.x.empty()) fig.series.push_back(std::move(chat));
   fig.series.push_back(std::move(hits));
-  fig.title = "Particle and wall heights against time, " + model_title(r.model.law) + " model";
+  fig.title = "Particle and wall heights against time, " + model_name(r.model);
   std::string par = "a = " + r.model.a.text();
   if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
   if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();

@@ -44,8 +44,20 @@ all_panels = m.get("panel", [])
 # Certified twins (twin_of) are bouncer's, not the paper's: label = the twin's label +
 # "-certified", same figure, a `basin --certify` command; the rest of the checks are on the
 # paper's panels.
-panels = [p for p in all_panels if "twin_of" not in p]
+panels = [p for p in all_panels if "twin_of" not in p and "beside" not in p]
 twins = [p for p in all_panels if "twin_of" in p]
+# Sine-wall panels (beside): label = the triangle panel's + "-sine", same figure and caption,
+# and exactly its commands with --wall sine appended: the same parameters and resolution.
+for t in [p for p in all_panels if "beside" in p]:
+    of = next((p for p in panels if p["label"] == t["beside"]), None)
+    if of is None:
+        errors.append(f"{t['label']}: beside {t['beside']!r} is not a panel of the manifest")
+        continue
+    if t["label"] != of["label"] + "-sine" or t["figure"] != of["figure"] or t["caption"] != of["caption"]:
+        errors.append(f"{t['label']}: a sine panel is labelled {of['label']}-sine, in figure {of['figure']}, with its caption")
+    for v in ("quick", "full"):
+        if t.get(v) != of.get(v, []) + ["--wall", "sine"]:
+            errors.append(f"{t['label']}: its '{v}' command must be {of['label']}'s with --wall sine appended")
 panel_labels = [p["label"] for p in panels]
 figure_labels = {p["figure"] for p in panels}
 if len(set(panel_labels)) != len(panel_labels):

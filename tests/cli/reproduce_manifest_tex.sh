@@ -14,7 +14,7 @@ import re, sys, tomllib
 manifest, labels_file, tex = sys.argv[1:4]
 m = tomllib.load(open(manifest, "rb"))
 labels = [l.strip() for l in open(labels_file) if l.strip() and not l.startswith("#")]
-panels = [p for p in m.get("panel", []) if "twin_of" not in p]
+panels = [p for p in m.get("panel", []) if "twin_of" not in p and "beside" not in p]
 errors = []
 src = open(tex, encoding="utf-8").read()
 tex_labels = re.findall(r"\\label\{(fig:[^}]*)\}", src)

@@ -259,7 +259,7 @@ ImageFigure attractors_figure(const AttractorsResult& r, Palette palette) {
   bool any_cert = false;
   for (const FoundAttractor& a : r.attractors) any_cert = any_cert || (a.certificate && a.certificate->certified);
   if (any_cert) ras.legend.emplace_back("✓ proved by Krawczyk", Rgb{255, 255, 255});
-  fig.title = "Attractors and their basins, " + model_title(q.model.law) + " model";
+  fig.title = "Attractors and their basins, " + model_name(q.model);
   fig.subtitle = parameters_text(q.model) + "; " + std::to_string(q.nx) + " x " + std::to_string(q.ny) + " " +
                  (q.sampling == StartSampling::grid ? "grid" : "Halton") + " starts, shares ± 1 standard error; " +
                  q.precision.text();
@@ -707,7 +707,7 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
   ras.legend_below = families.size() > 6;
   ras.legend.emplace_back("undecided", undecided);
   const std::string vary = name(r.request.vary);
-  fig.title = "Basin shares of the attractors against " + vary + ", " + model_title(q.model.law) + " model";
+  fig.title = "Basin shares of the attractors against " + vary + ", " + model_name(q.model);
   // "a = 22.5..23.7, c = 1000": the model's parameters with the varied one's range.
   const ModelSpec& m = q.model;
   auto par = [&](Parameter p, const char* label, const Decimal& d) {

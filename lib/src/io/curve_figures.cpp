@@ -84,7 +84,7 @@ Figure portrait_figure(const PortraitResult& p, const PortraitView& view) {
     more.color = Rgb{160, 160, 160};
     fig.series.push_back(more);
   }
-  fig.title = std::string(view.polar ? "Polar phase portrait, " : "Phase portrait, ") + model_title(r.model.law) + " model";
+  fig.title = std::string(view.polar ? "Polar phase portrait, " : "Phase portrait, ") + model_name(r.model);
   std::string par = "a = " + r.model.a.text();
   if (r.model.law == Law::constant) par += ", ε = " + r.model.eps.text();
   if (r.model.law == Law::veldep) par += ", c = " + r.model.c.text();
@@ -175,7 +175,7 @@ Figure exponent_curve_figure(const ExponentCurveResult& c, Palette palette) {
     fig.series.push_back(std::move(s));
   }
   const std::string vary = name(r.vary);
-  fig.title = "Leading Lyapunov exponent, " + model_title(r.model.law) + " model";
+  fig.title = "Leading Lyapunov exponent, " + model_name(r.model);
   std::string fixed;
   if (r.vary != Parameter::a) fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != Parameter::eps) fixed += "ε = " + r.model.eps.text() + ", ";

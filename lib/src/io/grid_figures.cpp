@@ -44,6 +44,13 @@ std::string parameter_label(Parameter p) {
   return name(p);
 }
 
+std::string model_name(const ModelSpec& m) {
+  std::string s = model_title(m.law) + " model";
+  if (m.wall.shape == WallShape::sine) s += ", sine wall";
+  else if (m.wall.text != "triangle") s += ", " + m.wall.text + " wall";
+  return s;
+}
+
 std::string model_title(Law law) {
   switch (law) {
     case Law::constant: return "constant restitution";
@@ -159,7 +166,7 @@ ImageFigure basin_figure(const BasinResult& b, Palette palette) {
                             entries[k].color);
   if (shown < entries.size()) ras.legend.emplace_back("+" + std::to_string(entries.size() - shown) + " more types", Rgb{255, 255, 255});
 
-  fig.title = "Basins of attraction, " + model_title(r.model.law) + " model";
+  fig.title = "Basins of attraction, " + model_name(r.model);
   fig.subtitle = parameters_text(r.model) + "; " + std::to_string(r.nx) + " x " + std::to_string(r.ny) + " points, " +
                  std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
                  r.precision.text();
@@ -410,7 +417,7 @@ ImageFigure scan_figure(const ScanResult& s, std::optional<OrbitClass> show, boo
     }
   }
   fig.title = "Parameter scan: " + shown + " solutions";
-  fig.subtitle = model_title(r.model.law) + " model; " + std::to_string(r.p) + " x " + std::to_string(r.q) +
+  fig.subtitle = model_name(r.model) + "; " + std::to_string(r.p) + " x " + std::to_string(r.q) +
                  " parameters, " + std::to_string(r.k) + " x " + std::to_string(r.k) + " initial conditions, " +
                  std::to_string(r.classify.transient) + " + " + std::to_string(r.classify.steps) + " steps, " +
                  r.precision.text();
@@ -519,7 +526,10 @@ ImageFigure bifurcation_figure(const BifurcationResult& b, bool show_theta, long
                                           std::to_string(m * decade));
         }
   }
-  ras.legend = {{show_theta ? "sticking release (θ = 1/2)" : "sticking release (v = 4)", red}};
+  const bool sine = r.model.wall.shape == WallShape::sine;
+  ras.legend = {{show_theta ? (sine ? "sticking release (θ where the wall's acceleration is -a)" : "sticking release (θ = 1/2)")
+                            : (sine ? "sticking release (v = the wall's velocity there)" : "sticking release (v = 4)"),
+                 red}};
   if (r.certify) {
     ras.legend.emplace_back("double refuted by the certificate (" + std::to_string(differs) + " values)", refuted_bg);
     if (orbit_only > 0)
@@ -527,7 +537,7 @@ ImageFigure bifurcation_figure(const BifurcationResult& b, bool show_theta, long
     ras.legend.emplace_back("no certified answer (" + std::to_string(undecided - orbit_only) + " values)", undecided_bg);
   }
   ras.legend_below = true;
-  fig.title = "Bifurcation diagram, " + model_title(r.model.law) + " model";
+  fig.title = "Bifurcation diagram, " + model_name(r.model);
   std::string fixed;
   if (r.vary != Parameter::a) fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != Parameter::eps) fixed += "ε = " + r.model.eps.text() + ", ";

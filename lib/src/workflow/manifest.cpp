@@ -65,6 +65,10 @@ Panel parse_panel(const toml::table& t, const std::string& source, const std::ve
   p.reason = str(t, "reason", where, false);
   p.twin_of = str(t, "twin_of", where, false);
   p.tiles_from = str(t, "tiles_from", where, false);
+  p.beside = str(t, "beside", where, false);
+  if (!p.beside.empty() &&
+      std::none_of(earlier.begin(), earlier.end(), [&](const Panel& q) { return q.label == p.beside; }))
+    throw InputError("manifest", where + ": beside '" + p.beside + "' is not the label of an earlier panel");
   if (!p.tiles_from.empty() &&
       std::none_of(earlier.begin(), earlier.end(), [&](const Panel& q) { return q.label == p.tiles_from; }))
     throw InputError("manifest", where + ": tiles_from '" + p.tiles_from + "' is not the label of an earlier panel");

@@ -278,7 +278,8 @@ std::string report_markdown(const ReproduceResult& r) {
       md << "\n### " << figure << "\n\n> " << caption << "\n";
     }
     md << "\n#### " << p.label << (p.panel.empty() ? "" : " " + p.panel)
-       << (p.twin_of.empty() ? "" : " (certified twin of " + p.twin_of + ", not a panel of the paper)") << "\n\n";
+       << (p.twin_of.empty() ? "" : " (certified twin of " + p.twin_of + ", not a panel of the paper)")
+       << (p.beside.empty() ? "" : " (sine wall, beside " + p.beside + ": not a panel of the paper)") << "\n\n";
     if (drawn(it)) {
       md << "![" << p.label << "](panels/" << p.name() << ".png)\n\n";
       if (!p.twin_of.empty()) md << "![where double is wrong](panels/" << p.name() << "-artefacts.png)\n\n";
@@ -401,6 +402,7 @@ std::string report_html(const ReproduceResult& r) {
     std::string t = p.label;
     if (!p.panel.empty()) t.append(" ").append(p.panel);
     if (!p.twin_of.empty()) t.append(" (certified twin)");
+    if (!p.beside.empty()) t.append(" (sine wall)");
     return t;
   };
 
@@ -502,6 +504,7 @@ std::string report_html(const ReproduceResult& r) {
       h << "<figcaption>" << html_escape(p.label);
       if (!p.panel.empty()) h << " " << html_escape(p.panel);
       if (!p.twin_of.empty()) h << " (certified twin of " << html_escape(p.twin_of) << ", not a panel of the paper)";
+      if (!p.beside.empty()) h << " (sine wall, beside " << html_escape(p.beside) << ": not a panel of the paper)";
       h << ". Paper: " << html_escape(latex_text(p.caption)) << "</figcaption>\n";
       if (!p.params.empty()) {
         h << "<p>Parameters:";

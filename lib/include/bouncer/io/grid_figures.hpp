@@ -18,6 +18,9 @@ namespace bouncer {
 
 // "constant restitution", "velocity-dependent restitution", "elastic" (figure titles).
 std::string model_title(Law law);
+// "constant restitution model", with the wall named unless it is the paper's triangle
+// (", sine wall"), for figure titles.
+std::string model_name(const ModelSpec& m);
 // A parameter's axis title, symbol and meaning: "a (dimensionless gravity)", "ε (restitution)",
 // "c (restitution velocity scale)" (every figure with a parameter axis).
 std::string parameter_label(Parameter p);

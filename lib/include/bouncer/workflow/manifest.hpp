@@ -29,6 +29,10 @@ struct Panel {
   // twin_of: not a panel of the paper but bouncer's certified twin of one (label
   // fig:NAME-certified): the same picture from `basin --certify`, with its artefact map.
   std::string label, figure, panel, caption, note, scene, status, reason, twin_of;
+  // beside: not a panel of the paper but the same picture for the sine wall (label
+  // fig:NAME-sine, the commands of panel `beside` with --wall sine), drawn beside it in its
+  // figure: the paper's headline comparison of the two walls, panel by panel.
+  std::string beside;
   // tiles_from: the label of an earlier panel whose grid is this one's too (only the
   // picture differs, e.g. --show): computed once, drawn twice.
   std::string tiles_from;

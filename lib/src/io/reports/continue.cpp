@@ -435,7 +435,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
   fig.x_offset = zx.offset();
   fig.y_offset = zy.offset();
   fig.legend_below = true;
-  fig.title = "Period-" + std::to_string(r.period) + " branch, " + model_title(r.model.law) + " model";
+  fig.title = "Period-" + std::to_string(r.period) + " branch, " + model_name(r.model);
   std::string fixed;
   if (r.vary != Parameter::a) fixed += "a = " + r.model.a.text() + ", ";
   if (r.model.law == Law::constant && r.vary != Parameter::eps) fixed += "ε = " + r.model.eps.text() + ", ";

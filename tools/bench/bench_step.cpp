@@ -1452,6 +1452,28 @@ bench::Table step_table() {
   return t;
 }
 
+// The sine wall's step (issue 27) against the triangle's, same model and scalar, same rounds:
+// the price of the certified first root (a march of Taylor-bounded stretches, sin and cos per
+// stretch) over the triangle's closed-form roots.
+bench::Table sine_table() {
+  bench::Table t = step_table();
+  t.name = "sine";
+  t.title = "ns per impact-map step, the sine wall against the triangle";
+  return t;
+}
+
+// The sine wall twin of a triangle case: the same law and parameters, from (0.1, 8) (the
+// triangle cases' (0.1, 5) lies inside the sine wall, whose velocity there is 5.08).
+Case sine_case(Case k) {
+  k.name += " sine";
+  k.spec.wall = parse_wall("wall", "sine");
+  k.ic.theta = parse_decimal("theta", "0.1");
+  k.ic.v = parse_decimal("v", "8");
+  validate(k.spec);
+  validate(k.spec, k.ic, "theta", "v");
+  return k;
+}
+
 void add_row(bench::Table& table, const Row& r) {
   const double spread = r.t.median_ns > 0 ? 100.0 * (r.t.max_ns - r.t.min_ns) / r.t.median_ns : 0;
   table.add_and_print({r.model, r.scalar, std::to_string(r.bits), fmt("%.1f", r.t.median_ns), fmt("%.0f%%", spread),
@@ -1521,7 +1543,8 @@ Options parse_args(int argc, char** argv) {
 int main(int argc, char** argv) {
   const bench::Run run = bench::Run::start("bench_step", argc, argv);
   bench::Table table = step_table();
-  if (run.columns_only) return run.print_columns({&table});
+  bench::Table sine_columns = sine_table();
+  if (run.columns_only) return run.print_columns({&table, &sine_columns});
   const Options opt = parse_args(argc, argv);
 
   if (!opt.profile.empty()) {
@@ -1640,8 +1663,36 @@ int main(int argc, char** argv) {
       add_row(table, {k.name, "interval", bits, t[3], &t[2], "raw-mpfi"});
     }
   }
+  // --- the sine wall against the triangle ------------------------------------------------
+  bench::Table sine = sine_table();
+  std::printf("#\n");
+  sine.print_header();
+  for (const Case& k : cases) {
+    const Case ks = sine_case(k);
+    MapRunner<double> td(k, 53), sd(ks, 53);
+    MapRunner<DoubleInterval> ti(k, 53), si(ks, 53);
+    std::vector<Runner*> g{&td, &sd, &ti, &si};
+    std::unique_ptr<MapRunner<Mpfr>> tm, sm;
+    std::unique_ptr<MapRunner<Mpfi>> tn, sn;
+    if (!opt.quick) {
+      tm = std::make_unique<MapRunner<Mpfr>>(k, 128);
+      sm = std::make_unique<MapRunner<Mpfr>>(ks, 128);
+      tn = std::make_unique<MapRunner<Mpfi>>(k, 128);
+      sn = std::make_unique<MapRunner<Mpfi>>(ks, 128);
+      for (Runner* r : {static_cast<Runner*>(tm.get()), static_cast<Runner*>(sm.get()), static_cast<Runner*>(tn.get()),
+                        static_cast<Runner*>(sn.get())})
+        g.push_back(r);
+    }
+    const std::vector<Timing> t = measure_group(g, opt.time_s, opt.reps);
+    add_row(sine, {ks.name, "double", 53, t[1], &t[0], "triangle"});
+    add_row(sine, {ks.name, "interval:double", 53, t[3], &t[2], "triangle"});
+    if (!opt.quick) {
+      add_row(sine, {ks.name, "mpfr", 128, t[5], &t[4], "triangle"});
+      add_row(sine, {ks.name, "interval", 128, t[7], &t[6], "triangle"});
+    }
+  }
   std::printf("# load average at end: %s\n", bench::read_first_line("/proc/loadavg").c_str());
-  if (!run.finish({&table})) return 1;
+  if (!run.finish({&table, &sine})) return 1;
   if (!all_ok) std::printf("# FAILED: a floor does not reproduce ImpactMap bitwise (see the checks above)\n");
   return all_ok ? 0 : 1;
 }

@@ -228,9 +228,10 @@ template <class T>
 // proved root-free, and p converges to the first root from the left (quadratically where
 // the root is simple; a near-tangency slows it, but only a true tangency stops it).
 // A point type marches with h* itself and stops where its own rounding says g(p) <= 0 or
-// p + h = p, then polishes with Newton. An interval type marches with 15/16 h* and checks
-// the bound's positivity in interval arithmetic; at each point where g' < 0 is certain it
-// tries to isolate the root: q = p + 2 d (d = g(p) / -g'(p), Newton's distance), and where
+// p + h = p, then polishes with Newton. An interval type marches with 15/16 h* from thin
+// points and checks the bound's positivity in interval arithmetic; at each point where
+// g' < 0 is certain it tries to isolate the root: q = a point near p + 2 d (d = g(p) / -g'(p),
+// Newton's distance), and where
 // g(q) < 0 and g'(hull(p, q)) < 0 are certain the root is the unique one in hull(p, q),
 // refined there by interval Newton. Where neither decides, the step is undecided (grazing).
 template <class V>
@@ -281,13 +282,19 @@ bool sine_first_root(const SineFlight<V>& f, const V& a, const V& two_pi, V p, c
       if (!certainly(Tr::lt(zero, gp))) throw Undecided(Reason::grazing);
       if (certainly(Tr::lt(dp, zero))) {
         const V d = gp / -dp;
-        const V q = p + 2 * d;
+        const V q = detail::thin_mid(V(p + 2 * d));  // a point: g(q)'s enclosure as thin as g allows
         const V X = hull(p, q);
         if (certainly(Tr::lt(sine_gap(f, a, q), zero)) && certainly(Tr::lt(sine_gap_rate(f, a, two_pi, X), zero))) {
+          // Interval Newton, quadratic until rounding: stopped where a step no longer halves
+          // the width (each step costs a sine and a cosine enclosure).
           V x = X;
-          for (int k = 0; k < 8 + bits / 64; ++k) {
+          double w = detail::width_of(x);
+          for (int k = 0; k < 8 + bits / 16; ++k) {
             const V m = detail::thin_mid(x);
             x = intersect(x, V(m - sine_gap(f, a, m) / sine_gap_rate(f, a, two_pi, x)));
+            const double w_new = detail::width_of(x);
+            if (!(w_new < w / 2)) break;
+            w = w_new;
           }
           if (!Tr::is_finite(x)) throw Undecided(Reason::nonfinite);
           root = x;
@@ -296,7 +303,9 @@ bool sine_first_root(const SineFlight<V>& f, const V& a, const V& two_pi, V p, c
       }
       V h = safe_step(gp, dp) * 15 / 16;
       if (!certainly(Tr::lt(zero, V(gp + h * (dp - M * h / 2))))) throw Undecided(Reason::grazing);
-      p += h;
+      // g > 0 is proved up to p + h; the march goes on from a point there (p + h itself
+      // would widen step by step, h depending on p).
+      p = detail::thin_lower(V(p + h));
     }
   }
   // Point types: Newton from where the march stopped (a step at most; a tangency stays put).
@@ -362,7 +371,7 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
   // s_down = (v + R)/a, R = sqrt(v^2 - 2a(1 - f0)); the search jumps over that stretch. The
   // fall below the bottom (-1) bounds it: g < 0 there.
   const T rise = s.v * s.v - 2 * a * (1 - f0);
-  const bool over_top = certainly(Tr::lt(zero_, rise));
+  const bool over_top = certainly(Tr::lt(zero_, s.v)) && certainly(Tr::lt(zero_, rise));  // rising, and above the top
   detail::SineFlight<V> flight{VO::of(s.theta), VO::of(f0), VO::of(s.v)};
   V root;
   bool jumped = false;

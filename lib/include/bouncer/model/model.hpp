@@ -130,6 +130,19 @@ inline DoubleInterval thin_mid(const DoubleInterval& x) {
   const double m = x.mid();
   return DoubleInterval(m, m);
 }
+// A thin interval at an interval's lower end.
+inline Mpfi thin_lower(const Mpfi& x) {
+  const Mpfr lo = x.lower();
+  return Mpfi(lo, lo);
+}
+inline DoubleInterval thin_lower(const DoubleInterval& x) { return DoubleInterval(x.lower(), x.lower()); }
+// An interval's width, rounded up to a double (for stopping criteria only).
+inline double width_of(const Mpfi& x) {
+  Mpfr w(53);
+  mpfi_diam_abs(w.get(), x.get());
+  return w.to_double();
+}
+inline double width_of(const DoubleInterval& x) { return x.upper() - x.lower(); }
 }  // namespace detail
 
 // The sine wall's release phase theta_r (Wall::release) for gravity 0 < a < 4 pi^2: the root

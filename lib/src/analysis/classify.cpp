@@ -303,8 +303,7 @@ struct WindowRun {
       win.push_back(s);
       kinds.push_back(r.kind);
       segs.push_back(r.segment);
-      const int j = model.wall.segment_of(s.theta);
-      rel.push_back(Tr::to_double(s.v - model.wall.velocity[j]));
+      rel.push_back(Tr::to_double(s.v - model.wall.velocity_at(s.theta)));
     }
     ++n;
   }

@@ -46,8 +46,7 @@ double residual_norm(const T& ft, const T& fv, const T& v) {
 template <class T>
 bool valid_state(const Model<T>& m, const State<T>& s) {
   if (!Tr<T>::is_finite(s.theta) || !Tr<T>::is_finite(s.v)) return false;
-  const int j = m.wall.segment_of(s.theta);
-  return !(s.v < m.wall.velocity[j]);
+  return !(s.v < m.wall.velocity_at(s.theta));
 }
 
 template <class T>
@@ -277,8 +276,7 @@ PeriodicOrbit<T> search_periodic(const Model<T>& m, long q, const NewtonOptions&
     for (int k = 0; k < G; ++k) {
       const double th = (k + 0.5) / G;
       State<T> g{Tr<T>::from_decimal(std::to_string(th), bits), Tr<T>::from_int(0, bits)};
-      const int seg = m.wall.segment_of(g.theta);
-      const double u = Tr<T>::to_double(m.wall.velocity[seg]);
+      const double u = Tr<T>::to_double(m.wall.velocity_at(g.theta));
       const double v = u + 0.25 + (vmax - u - 0.25) * (i + 0.5) / G;
       g.v = Tr<T>::from_decimal(std::to_string(v), bits);
       PeriodicOrbit<T> o = find_periodic(m, q, g, opt);

@@ -51,7 +51,7 @@ class Tracer {
         }
         const StepResult<T> st = map_.step(s);
         T t_next = tn + st.tau;
-        const T y0 = wall_.height_at(segment(s.theta), s.theta);
+        const T y0 = wall_.height_at_phase(s.theta);
         if (st.kind == EventKind::impact) {
           flight(tn, y0, s.v, t_next, Ev::flight);
           if (t_next <= t_end_) {
@@ -69,7 +69,7 @@ class Tracer {
           const T ts = t_next - after;
           // A start on the wall with its velocity (W = 0) rides to the corner first; with
           // --downward-sticking impact the collision there may be the one that sticks.
-          const bool rode = !(wall_.velocity[segment(s.theta)] < s.v);
+          const bool rode = !(wall_.velocity_at(s.theta) < s.v);
           if (rode) {
             on_wall(tn, ts, Ev::ride);
             if (ts <= t_end_) add(ts, wall_at(ts), Ev::impact);
@@ -111,7 +111,7 @@ class Tracer {
     T p = t - Tr::floor(t);
     return p;
   }
-  T height(const T& theta) const { return wall_.height_at(segment(theta), theta); }
+  T height(const T& theta) const { return wall_.height_at_phase(theta); }
   T wall_at(const T& t) const { return height(phase(t)); }
   T parabola(const T& y0, const T& v0, const T& s) const {
     T y = y0 + v0 * s - m_.a * s * s / 2;

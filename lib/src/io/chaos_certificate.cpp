@@ -99,7 +99,9 @@ ModelSpec model_from_json(const json& j) {
     if (!model_keys().count(k)) bad("model." + k, "is not a model key");
     o.set(k, string_from(v, "model." + k, 256));
   }
-  return model_from(o);
+  ModelSpec m = model_from(o);
+  require_piecewise_wall(m, "a chaos certificate");
+  return m;
 }
 
 }  // namespace

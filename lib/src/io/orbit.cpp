@@ -118,6 +118,15 @@ void put_empty_scalar(std::vector<std::string>& row) {
 }
 
 const char* direction_name(int d) { return d > 0 ? "up" : d < 0 ? "down" : "flat"; }
+
+// The wall's direction at the step's last contact (stuck: at the collision that stuck): its
+// segment's, or for the sine wall the sign of its velocity there.
+template <class T>
+int contact_direction(const Model<T>& m, const StepResult<T>& r, bool stuck) {
+  if (!m.wall.smooth()) return m.wall.direction[stuck ? r.stick_segment : r.segment];
+  const double u = ScalarTraits<T>::to_double(m.wall.velocity_at(stuck ? r.stuck_theta : r.next.theta));
+  return u > 0 ? 1 : u < 0 ? -1 : 0;
+}
 const char* truth_name(Truth t, const char* yes, const char* no) {
   return t == Truth::yes ? yes : t == Truth::no ? no : "undecided";
 }
@@ -291,11 +300,11 @@ std::vector<std::string> step_row(long long n, const StepResult<T>& r, const Mod
   put_scalar(row, r.tau);
   row.push_back(std::to_string(r.periods));
   row.push_back(std::to_string(r.segment));
-  row.emplace_back(direction_name(m.wall.direction[r.segment]));
+  row.emplace_back(direction_name(contact_direction(m, r, false)));
   row.emplace_back(r.corner ? "1" : "0");
   row.emplace_back(truth_name(r.indirect, "indirect", "direct"));
   if (r.kind == EventKind::sticking) {
-    std::string s = direction_name(m.wall.direction[r.stick_segment]);
+    std::string s = direction_name(contact_direction(m, r, true));
     if (r.passed_upward_turn) s += std::string(":") + name(m.downward);
     row.push_back(s);
     put_scalar(row, r.stuck_theta);
@@ -334,11 +343,11 @@ void csv_step_row(std::string& b, long long n, const StepResult<T>& r, const Mod
   csv_scalar(b, r.tau);
   csv_int(b, r.periods);
   csv_int(b, r.segment);
-  csv_text(b, direction_name(m.wall.direction[r.segment]));
+  csv_text(b, direction_name(contact_direction(m, r, false)));
   csv_text(b, r.corner ? "1" : "0");
   csv_text(b, truth_name(r.indirect, "indirect", "direct"));
   if (r.kind == EventKind::sticking) {
-    b += direction_name(m.wall.direction[r.stick_segment]);
+    b += direction_name(contact_direction(m, r, true));
     if (r.passed_upward_turn) {
       b += ':';
       b += name(m.downward);
@@ -456,10 +465,10 @@ class NpySink final : public OrbitSink<double> {
                           r.tau,
                           static_cast<double>(r.periods),
                           static_cast<double>(r.segment),
-                          static_cast<double>(m_.wall.direction[r.segment]),
+                          static_cast<double>(contact_direction(m_, r, false)),
                           r.corner ? 1.0 : 0.0,
                           r.indirect == Truth::yes ? 1.0 : r.indirect == Truth::no ? 0.0 : -1.0,
-                          stuck ? static_cast<double>(m_.wall.direction[r.stick_segment]) : kEmpty,
+                          stuck ? static_cast<double>(contact_direction(m_, r, true)) : kEmpty,
                           stuck ? (r.passed_upward_turn ? 1.0 : 0.0) : kEmpty,
                           stuck ? r.stuck_theta : kEmpty,
                           stuck ? r.stuck_v : kEmpty,

@@ -1,7 +1,11 @@
 #include "bouncer/model/spec.hpp"
 
+#include <mpfr.h>
+
 #include <map>
 #include <sstream>
+
+#include "bouncer/scalar/traits.hpp"
 
 namespace bouncer {
 
@@ -75,6 +79,7 @@ WallSpec asymmetric(const std::string& field, const std::string& text, const std
 
 WallSpec parse_wall(const std::string& field, const std::string& text) {
   if (text == "triangle") return asymmetric(field, text, "0.5");
+  if (text == "sine") return WallSpec{text, {}, {}, WallShape::sine};
   // A continuous stand-in for a sawtooth: slow rise for 9/10 of the period, fast drop.
   if (text == "sawtooth") return asymmetric(field, text, "0.9");
   const std::string asym = "asymmetric:", knots = "knots:";
@@ -90,7 +95,7 @@ WallSpec parse_wall(const std::string& field, const std::string& text) {
     }
     return w;
   }
-  throw InputError(field, "unknown wall '" + text + "' (allowed: triangle, sawtooth, asymmetric:R with 0<R<1, knots:0:H0,S1:H1,...)");
+  throw InputError(field, "unknown wall '" + text + "' (allowed: triangle, sawtooth, asymmetric:R with 0<R<1, knots:0:H0,S1:H1,..., sine)");
 }
 
 void validate(const ModelSpec& m) {
@@ -101,6 +106,14 @@ void validate(const ModelSpec& m) {
     throw InputError("eps", "must be in [0, 1] (got " + m.eps.text() + ")");
   if (m.law == Law::veldep && !(m.c > zero)) throw InputError("c", "must be > 0 (got " + m.c.text() + ")");
   const WallSpec& w = m.wall;
+  if (w.shape == WallShape::sine) {
+    if (!(m.a < *Decimal::parse(kFourPiSquaredBelow)))
+      throw InputError("a", "must be < 4 pi^2 = " + std::string(kFourPiSquaredBelow) +
+                                "... with --wall sine (got " + m.a.text() +
+                                "; at larger gravity the wall never throws a riding particle off)");
+    if (m.veldep_collapse) throw InputError("veldep-collapse", "is not available with --wall sine (allowed: off)");
+    return;
+  }
   if (w.knots.size() < 2 || w.knots.size() != w.heights.size())
     throw InputError("wall", "needs at least two knots THETA:HEIGHT");
   if (!(w.knots[0] == zero)) throw InputError("wall", "the first knot must be at theta = 0");
@@ -110,6 +123,11 @@ void validate(const ModelSpec& m) {
   bool flat = true;
   for (size_t j = 1; j < w.heights.size(); ++j) flat = flat && w.heights[j] == w.heights[0];
   if (flat) throw InputError("wall", "a flat wall never turns: at least two different heights");
+}
+
+void require_piecewise_wall(const ModelSpec& m, const std::string& what) {
+  if (m.wall.shape == WallShape::sine)
+    throw InputError("wall", what + " knows only piecewise-linear walls (allowed: triangle, sawtooth, asymmetric:R, knots:...; not sine)");
 }
 
 int wall_segment_exact(const WallSpec& w, const mpq_class& theta) {
@@ -133,6 +151,43 @@ void validate(const ModelSpec& m, const InitialCondition& ic, const std::string&
   const Decimal zero = Decimal::from_int(0), one = Decimal::from_int(1);
   if (!(ic.theta >= zero && ic.theta < one))
     throw InputError(theta_field, "must be in [0, 1) (got " + ic.theta.text() + ")");
+  if (m.wall.shape == WallShape::sine) {
+    // u = 2 pi cos(2 pi theta), irrational but for theta in {0, 1/4, 1/2, 3/4}: compared with
+    // v by MPFR's correctly rounded cospi at 256 bits, directed both ways.
+    mpfr_t x, lo, hi;
+    mpfr_inits2(256, x, lo, hi, (mpfr_ptr)nullptr);
+    mpfr_set_q(x, ic.theta.value().get_mpq_t(), MPFR_RNDN);  // theta's decimal: exact or within 2^-256
+    mpfr_mul_2ui(x, x, 1, MPFR_RNDN);
+    mpfr_cospi(lo, x, MPFR_RNDD);
+    mpfr_cospi(hi, x, MPFR_RNDU);
+    mpfr_t pi_lo, pi_hi;
+    mpfr_inits2(256, pi_lo, pi_hi, (mpfr_ptr)nullptr);
+    mpfr_const_pi(pi_lo, MPFR_RNDD);
+    mpfr_const_pi(pi_hi, MPFR_RNDU);
+    // 2 pi cos: the ends' products, widened by theta's rounding (|d cos(2 pi t)/dt| <= 2 pi).
+    mpfr_mul(lo, lo, mpfr_sgn(lo) >= 0 ? pi_lo : pi_hi, MPFR_RNDD);
+    mpfr_mul(hi, hi, mpfr_sgn(hi) >= 0 ? pi_hi : pi_lo, MPFR_RNDU);
+    mpfr_mul_2ui(lo, lo, 1, MPFR_RNDD);
+    mpfr_mul_2ui(hi, hi, 1, MPFR_RNDU);
+    mpfr_sub_d(lo, lo, 0x1p-240, MPFR_RNDD);
+    mpfr_add_d(hi, hi, 0x1p-240, MPFR_RNDU);
+    mpq_class v = ic.v.value();
+    mpfr_t vv;
+    mpfr_init2(vv, 320);  // v <= 1e15 < 2^50: rounded by less than 2^-270
+    mpfr_set_q(vv, v.get_mpq_t(), MPFR_RNDN);
+    const bool below = mpfr_less_p(vv, lo) != 0, above = mpfr_greater_p(vv, hi) != 0;
+    const std::string u_text = mpfr_to_string_digits(lo, MPFR_RNDD, 12);
+    mpfr_clears(x, lo, hi, pi_lo, pi_hi, vv, (mpfr_ptr)nullptr);
+    if (below)
+      throw InputError(v_field, "must be >= the wall velocity 2 pi cos(2 pi theta) = " + u_text + "... at theta = " +
+                                    ic.theta.text() + " (got " + ic.v.text() + "; the particle would be inside the wall)");
+    if (!above)
+      throw InputError(v_field, "is within 2^-240 of the wall velocity 2 pi cos(2 pi theta) at theta = " + ic.theta.text() +
+                                    " (got " + ic.v.text() + "): start a little above it");
+    if (ic.v > Decimal::parse("1e15").value())
+      throw InputError(v_field, "must be <= 1e15 (got " + ic.v.text() + ")");
+    return;
+  }
   const mpq_class u = wall_velocity_exact(m.wall, ic.theta.value());
   if (ic.v.value() < u) {
     std::ostringstream msg;

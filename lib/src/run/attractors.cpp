@@ -187,6 +187,7 @@ class Mapper {
     const Model<T>& m = map.model();
     double lowest = 0;
     for (const T& u : m.wall.velocity) lowest = std::min(lowest, Tr::to_double(u));
+    if (m.wall.smooth()) lowest = -Tr::to_double(m.wall.two_pi);  // min 2 pi cos(2 pi theta)
     grid.ct = r.cells_theta;
     grid.cv = r.cells_v;
     grid.v_lo = lowest;
@@ -643,7 +644,7 @@ AttractorsResult run_mapper(const AttractorsRequest& req, const GridOptions& run
   for (long i = 0; i < N; ++i) {
     const long s = static_cast<long>((static_cast<__int128>(i) * stride) % N);
     const State<T>& x = starts[static_cast<size_t>(s)];
-    if (x.v < wall.velocity[wall.segment_of(x.theta)]) {
+    if (x.v < wall.velocity_at(x.theta)) {
       res.label[static_cast<size_t>(s)] = AttractorsResult::kOutside;
       continue;
     }

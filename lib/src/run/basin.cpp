@@ -67,7 +67,7 @@ struct Grid final : GridBase {
   T v_at(long row) const { return cell_centre(v0, v1, row, r.ny); }
   bool outside(const T& theta, const T& v) const {
     const auto& wall = map.model().wall;
-    return v < wall.velocity[wall.segment_of(theta)];
+    return v < wall.velocity_at(theta);
   }
 
   bool outside(long i) const override { return outside(theta_at(i % r.nx), v_at(i / r.nx)); }

@@ -93,7 +93,7 @@ struct Grid final : GridBase {
     const T vhi = r.v_range ? v1 : trapping_top(m).value();
     return {cell_centre(t0, t1, j % r.k, r.k), cell_centre(vlo, vhi, j / r.k, r.k)};
   }
-  static bool outside_at(const Model<T>& m, const State<T>& x) { return x.v < m.wall.velocity[m.wall.segment_of(x.theta)]; }
+  static bool outside_at(const Model<T>& m, const State<T>& x) { return x.v < m.wall.velocity_at(x.theta); }
 
   bool outside(long i, long j) const override {
     const Model<T> m = model_at(i);

@@ -1,5 +1,6 @@
 #include <quadmath.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cstdlib>
 #include <limits>
@@ -22,6 +23,7 @@ const char* describe(Reason r) {
     case Reason::riding: return "the relative velocity straddles zero (riding the wall or flying)";
     case Reason::period_boundary: return "theta + flight time straddles a whole period";
     case Reason::walk_limit: return "the flight crosses more wall segments than the walk allows";
+    case Reason::grazing: return "the flight may graze the smooth wall before its impact (the first root is undecided)";
     case Reason::nonfinite: return "a value is NaN or infinite (overflow)";
   }
   return "unknown reason";
@@ -349,6 +351,135 @@ std::string ScalarTraits<DoubleInterval>::to_string(const DoubleInterval& x) {
   s += upper_string(x);
   s += ']';
   return s;
+}
+
+// ---- sin(2 pi x) and cos(2 pi x) (the sine wall) ----------------------------------------
+
+namespace {
+
+// [lo, hi] (in turns, exact MPFR ends) -> an enclosure [out_lo, out_hi] of sin(2 pi x)
+// (cosine = false) or cos(2 pi x) over it, each end rounded outward at out's precision.
+// MPFR's sinpi/cospi of 2x are correctly rounded and 2x is exact, so no rounded pi enters.
+// Between the ends the function is monotone unless a maximum (x = 1/4 + k for the sine, k
+// for the cosine) or a minimum (3/4 + k, 1/2 + k) lies in [lo, hi]; the extremum test rounds
+// the candidate k down, which can only admit an extremum (a wider, still valid enclosure).
+void trig_2pi_enclosure(mpfr_srcptr lo, mpfr_srcptr hi, bool cosine, mpfr_ptr out_lo, mpfr_ptr out_hi) {
+  if (mpfr_nan_p(lo) || mpfr_nan_p(hi) || !mpfr_number_p(lo) || !mpfr_number_p(hi)) {
+    mpfr_set_nan(out_lo);
+    mpfr_set_nan(out_hi);
+    return;
+  }
+  const mpfr_prec_t p = std::max(mpfr_get_prec(lo), mpfr_get_prec(hi)) + 2;
+  mpfr_t x2, y, width, k, c;
+  mpfr_inits2(p, x2, y, width, (mpfr_ptr)nullptr);
+  mpfr_inits2(64, k, c, (mpfr_ptr)nullptr);
+  mpfr_sub(width, hi, lo, MPFR_RNDU);
+  if (mpfr_cmp_ui(width, 1) >= 0) {
+    mpfr_set_si(out_lo, -1, MPFR_RNDD);
+    mpfr_set_si(out_hi, 1, MPFR_RNDU);
+  } else {
+    auto f = [&](mpfr_srcptr x, mpfr_ptr out, mpfr_rnd_t rnd) {
+      mpfr_mul_2ui(x2, x, 1, MPFR_RNDN);  // exact (p > prec(x))
+      if (cosine) mpfr_cospi(out, x2, rnd);
+      else mpfr_sinpi(out, x2, rnd);
+    };
+    f(lo, out_lo, MPFR_RNDD);
+    f(hi, y, MPFR_RNDD);
+    mpfr_min(out_lo, out_lo, y, MPFR_RNDD);
+    f(lo, out_hi, MPFR_RNDU);
+    f(hi, y, MPFR_RNDU);
+    mpfr_max(out_hi, out_hi, y, MPFR_RNDU);
+    // Is there an integer k with lo <= k + offset <= hi?
+    auto contains = [&](double offset) {
+      mpfr_sub_d(k, lo, offset, MPFR_RNDD);
+      mpfr_ceil(k, k);
+      mpfr_add_d(c, k, offset, MPFR_RNDN);  // exact: k is a modest integer at 64 bits
+      return mpfr_lessequal_p(c, hi) != 0;
+    };
+    if (contains(cosine ? 0.0 : 0.25)) mpfr_set_si(out_hi, 1, MPFR_RNDU);
+    if (contains(cosine ? 0.5 : 0.75)) mpfr_set_si(out_lo, -1, MPFR_RNDD);
+  }
+  mpfr_clears(x2, y, width, k, c, (mpfr_ptr)nullptr);
+}
+
+Mpfi trig_mpfi(const Mpfi& x, bool cosine) {
+  Mpfi r(x.bits());
+  trig_2pi_enclosure(&x.get()->left, &x.get()->right, cosine, &r.get()->left, &r.get()->right);
+  return r;
+}
+
+DoubleInterval trig_double_interval(const DoubleInterval& x, bool cosine) {
+  mpfr_t lo, hi, out_lo, out_hi;
+  mpfr_inits2(53, lo, hi, out_lo, out_hi, (mpfr_ptr)nullptr);
+  mpfr_set_d(lo, x.lower(), MPFR_RNDN);  // exact
+  mpfr_set_d(hi, x.upper(), MPFR_RNDN);
+  trig_2pi_enclosure(lo, hi, cosine, out_lo, out_hi);
+  const DoubleInterval r(mpfr_get_d(out_lo, MPFR_RNDD), mpfr_get_d(out_hi, MPFR_RNDU));
+  mpfr_clears(lo, hi, out_lo, out_hi, (mpfr_ptr)nullptr);
+  return r;
+}
+
+Mpfr trig_mpfr(const Mpfr& x, bool cosine) {
+  Mpfr x2(x.bits() + 1), r(x.bits());
+  mpfr_mul_2ui(x2.get(), x.get(), 1, MPFR_RNDN);  // exact
+  if (cosine) mpfr_cospi(r.get(), x2.get(), MPFR_RNDN);
+  else mpfr_sinpi(r.get(), x2.get(), MPFR_RNDN);
+  return r;
+}
+
+}  // namespace
+
+Mpfr ScalarTraits<Mpfr>::two_pi(long bits) {
+  Mpfr r(bits);
+  mpfr_const_pi(r.get(), MPFR_RNDN);
+  mpfr_mul_2ui(r.get(), r.get(), 1, MPFR_RNDN);
+  return r;
+}
+Mpfr ScalarTraits<Mpfr>::sin_2pi(const Mpfr& x) { return trig_mpfr(x, false); }
+Mpfr ScalarTraits<Mpfr>::cos_2pi(const Mpfr& x) { return trig_mpfr(x, true); }
+
+Mpfi ScalarTraits<Mpfi>::two_pi(long bits) {
+  Mpfi r(bits);
+  mpfi_const_pi(r.get());
+  mpfi_mul_2ui(r.get(), r.get(), 1);
+  return r;
+}
+Mpfi ScalarTraits<Mpfi>::sin_2pi(const Mpfi& x) { return trig_mpfi(x, false); }
+Mpfi ScalarTraits<Mpfi>::cos_2pi(const Mpfi& x) { return trig_mpfi(x, true); }
+
+DoubleInterval ScalarTraits<DoubleInterval>::two_pi(long) {
+  static const DoubleInterval r = [] {
+    mpfr_t lo, hi;
+    mpfr_inits2(53, lo, hi, (mpfr_ptr)nullptr);
+    mpfr_const_pi(lo, MPFR_RNDD);
+    mpfr_const_pi(hi, MPFR_RNDU);
+    const DoubleInterval out(2 * mpfr_get_d(lo, MPFR_RNDD), 2 * mpfr_get_d(hi, MPFR_RNDU));  // x2 exact
+    mpfr_clears(lo, hi, (mpfr_ptr)nullptr);
+    return out;
+  }();
+  return r;
+}
+DoubleInterval ScalarTraits<DoubleInterval>::sin_2pi(const DoubleInterval& x) { return trig_double_interval(x, false); }
+DoubleInterval ScalarTraits<DoubleInterval>::cos_2pi(const DoubleInterval& x) { return trig_double_interval(x, true); }
+
+DoubleDouble ScalarTraits<DoubleDouble>::two_pi(long) { return from_qd(dd_real::_2pi); }
+DoubleDouble ScalarTraits<DoubleDouble>::sin_2pi(const DoubleDouble& x) {
+  if (!x.is_finite()) return DoubleDouble::nan_value();
+  return from_qd(sin(dd_real::_2pi * to_qd(x - bouncer::floor(x))));
+}
+DoubleDouble ScalarTraits<DoubleDouble>::cos_2pi(const DoubleDouble& x) {
+  if (!x.is_finite()) return DoubleDouble::nan_value();
+  return from_qd(cos(dd_real::_2pi * to_qd(x - bouncer::floor(x))));
+}
+
+Quad ScalarTraits<Quad>::two_pi(long) { return Quad(2 * M_PIq); }
+Quad ScalarTraits<Quad>::sin_2pi(const Quad& x) {
+  const __float128 v = x.backend().value();
+  return Quad(sinq(2 * M_PIq * (v - floorq(v))));
+}
+Quad ScalarTraits<Quad>::cos_2pi(const Quad& x) {
+  const __float128 v = x.backend().value();
+  return Quad(cosq(2 * M_PIq * (v - floorq(v))));
 }
 
 }  // namespace bouncer

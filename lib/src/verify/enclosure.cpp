@@ -162,7 +162,8 @@ struct OrbitEnclosureOf<S>::Impl {
   EnclosedStepOf<S> lohner() {
     using Tr = ScalarTraits<S>;
     using std::sqrt;
-    const State<D> ds{D::variable(box.theta, 0), D::variable(box.v, 1)};
+    // The knot mark travels with the box (the sine wall's release phase needs it to start).
+    const State<D> ds{D::variable(box.theta, 0), D::variable(box.v, 1), box.knot};
     StepResult<D> rd = dmap->step(ds);  // decides every branch for the whole box
     EnclosedStepOf<S> out;
     out.event = values_of(rd);
@@ -183,7 +184,7 @@ struct OrbitEnclosureOf<S>::Impl {
         if (!Tr::is_finite(x)) return fall_back(true);
     StepResult<S> yc;
     try {
-      yc = map.step(State<S>{thin<S>(c[0]), thin<S>(c[1])});
+      yc = map.step(State<S>{thin<S>(c[0]), thin<S>(c[1]), box.knot});
     } catch (const Undecided&) {
       return fall_back(true);
     }

@@ -94,6 +94,12 @@ class ImpactMap {
                std::vector<Collapse>* collapses = nullptr) const;
   void ride(StepResult<T>& r, int j, const T& from, std::vector<Collapse>* collapses = nullptr) const;
   bool veldep_collapse_certain(const T& out, const T& time_left) const;
+  // The sine wall's step (docs/model.md "The sine wall"): the first root of the gap after the
+  // launch, a collision, and the sticking and riding rules of the smooth wall.
+  void sine_step(const State<T>& s, StepResult<T>& r) const;
+  void sine_collide(StepResult<T>& r, T theta, const T& speed) const;
+  // Rides the sine wall from phase `from` to the release phase (the next one after it).
+  void sine_ride(StepResult<T>& r, const T& from) const;
   Truth left_zone(const State<T>& s, int j0, const T& u, const T& q) const;
 };
 

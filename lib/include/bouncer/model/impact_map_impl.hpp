@@ -36,8 +36,22 @@ Model<T> make_model(const ModelSpec& spec, long bits) {
   m.collapse = m.a * (1 - m.eps) / 2;
 
   const WallSpec& ws = spec.wall;
-  const size_t n = ws.knots.size();
   Wall<T>& w = m.wall;
+  if (ws.shape == WallShape::sine) {
+    const T zero = Tr::from_int(0, bits);
+    w.shape = WallShape::sine;
+    w.start = {zero};
+    w.end = {one};
+    w.height = {zero};
+    w.velocity = {zero};
+    w.turn = {Turn::none};
+    w.direction = {0};
+    w.top = one;
+    w.two_pi = Tr::two_pi(bits);
+    w.release = sine_release(m.a, w.two_pi, bits);
+    return m;
+  }
+  const size_t n = ws.knots.size();
   size_t top = 0;
   for (size_t j = 0; j < n; ++j) {
     w.start.push_back(num(ws.knots[j]));
@@ -202,7 +216,273 @@ template <class T>
   return theta < wall.end[static_cast<size_t>(j)] ? j : -1;
 }
 
+// ---- The sine wall (docs/model.md "The sine wall") ---------------------------------------
+//
+// A flight from phase phi (time 0) at height x with velocity xdot has the gap
+//     g(s) = x + xdot s - (a/2) s^2 - sin(2 pi (phi + s)),
+//     g'(s) = xdot - a s - 2 pi cos(2 pi (phi + s)),   g''(s) = -a + 4 pi^2 sin(...) >= -M,
+// M = a + 4 pi^2. The impact is g's first root after the launch. Taylor's theorem with that
+// bound gives, from any s = p where g(p) > 0, a root-free stretch:
+//     g(p + h) >= g(p) + g'(p) h - (M/2) h^2 > 0   for 0 <= h < h*(p),
+// h* the positive root of the quadratic. The search marches p -> p + h*: every stretch is
+// proved root-free, and p converges to the first root from the left (quadratically where
+// the root is simple; a near-tangency slows it, but only a true tangency stops it).
+// A point type marches with h* itself and stops where its own rounding says g(p) <= 0 or
+// p + h = p, then polishes with Newton. An interval type marches with 15/16 h* and checks
+// the bound's positivity in interval arithmetic; at each point where g' < 0 is certain it
+// tries to isolate the root: q = p + 2 d (d = g(p) / -g'(p), Newton's distance), and where
+// g(q) < 0 and g'(hull(p, q)) < 0 are certain the root is the unique one in hull(p, q),
+// refined there by interval Newton. Where neither decides, the step is undecided (grazing).
+template <class V>
+struct SineFlight {
+  V phase, x, xdot;
+};
+template <class V>
+V sine_gap(const SineFlight<V>& f, const V& a, const V& s) {
+  return f.x + s * (f.xdot - a * s / 2) - ScalarTraits<V>::sin_2pi(f.phase + s);
+}
+template <class V>
+V sine_gap_rate(const SineFlight<V>& f, const V& a, const V& two_pi, const V& s) {
+  return f.xdot - a * s - two_pi * ScalarTraits<V>::cos_2pi(f.phase + s);
+}
+
+// Longest march (steps of the search) before the step is given up.
+constexpr int kSineMarchLimit = 1 << 16;
+
+// The first root of the flight's gap in (p, end), p given with g > 0 on (0, p] (proved by the
+// caller); `end` bounds the search (the rise above the top, or the fall below the bottom):
+// returns false when the march passed `end` with no root.
+template <class V>
+bool sine_first_root(const SineFlight<V>& f, const V& a, const V& two_pi, V p, const V& end, V& root) {
+  using Tr = ScalarTraits<V>;
+  using std::sqrt;
+  const long bits = Tr::bits(p);
+  const V zero = Tr::from_int(0, bits);
+  const V M = a + two_pi * two_pi;
+  // The root-free step h* from g(p) = gp > 0 and g'(p) = dp, without cancellation.
+  auto safe_step = [&M](const V& gp, const V& dp) {
+    V D = dp * dp + 2 * M * gp;
+    make_nonneg(D);
+    D = sqrt(D);
+    if (Tr::likely_negative(dp)) return V(2 * gp / (D - dp));
+    return V((dp + D) / M);
+  };
+  for (int it = 0;; ++it) {
+    if (it > kSineMarchLimit) throw Undecided(Reason::walk_limit);
+    if (certainly(Tr::le(end, p))) return false;
+    const V gp = sine_gap(f, a, p), dp = sine_gap_rate(f, a, two_pi, p);
+    if constexpr (!Tr::is_interval) {
+      if (!(gp > zero)) break;  // at the root within this type's rounding (NaN: nonfinite later)
+      const V h = safe_step(gp, dp);
+      const V q = p + h;
+      if (!(q > p)) break;
+      p = q;
+    } else {
+      if (!certainly(Tr::lt(zero, gp))) throw Undecided(Reason::grazing);
+      if (certainly(Tr::lt(dp, zero))) {
+        const V d = gp / -dp;
+        const V q = p + 2 * d;
+        const V X = hull(p, q);
+        if (certainly(Tr::lt(sine_gap(f, a, q), zero)) && certainly(Tr::lt(sine_gap_rate(f, a, two_pi, X), zero))) {
+          V x = X;
+          for (int k = 0; k < 8 + bits / 64; ++k) {
+            const V m = detail::thin_mid(x);
+            x = intersect(x, V(m - sine_gap(f, a, m) / sine_gap_rate(f, a, two_pi, x)));
+          }
+          if (!Tr::is_finite(x)) throw Undecided(Reason::nonfinite);
+          root = x;
+          return true;
+        }
+      }
+      V h = safe_step(gp, dp) * 15 / 16;
+      if (!certainly(Tr::lt(zero, V(gp + h * (dp - M * h / 2))))) throw Undecided(Reason::grazing);
+      p += h;
+    }
+  }
+  // Point types: Newton from where the march stopped (a step at most; a tangency stays put).
+  if constexpr (!Tr::is_interval) {
+    for (int k = 0; k < 3; ++k) {
+      const V dp = sine_gap_rate(f, a, two_pi, p);
+      if (!(dp < zero)) break;
+      p -= sine_gap(f, a, p) / dp;
+    }
+  }
+  root = p;
+  return true;
+}
+
 }  // namespace detail
+
+template <class T>
+void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
+  using Tr = ScalarTraits<T>;
+  using VO = ValueOf<T>;
+  using V = typename VO::type;
+  using TV = ScalarTraits<V>;
+  using std::sqrt;
+  const Wall<T>& wall = m_.wall;
+  const T& a = m_.a;
+  const T& two_pi = wall.two_pi;
+  r.tau = zero_;
+  r.segment = 0;
+  const T f0 = Tr::sin_2pi(s.theta);
+  T W = s.v - two_pi * Tr::cos_2pi(s.theta);  // the relative velocity at the launch
+  if constexpr (!Tr::is_interval) make_nonneg(W);
+
+  // The first point p0 of the search, with g > 0 on (0, p0] by Taylor's theorem at the launch
+  // (|g''| <= M = a + 4 pi^2, |g'''| <= 8 pi^3, |g''''| <= 16 pi^4):
+  //   launch W > 0:            g(s) >= W s - M s^2 / 2,          p0 = W / M;
+  //   at rest, g''(0) = c > 0: g(s) >= c s^2 / 2 - 8 pi^3 s^3 / 6, p0 = 3c / (16 pi^3);
+  //   at the release (g = g' = g'' = 0, g''' = 8 pi^3 cos(2 pi theta_r) > 0):
+  //                            g(s) >= g''' s^3 / 6 - 16 pi^4 s^4 / 24, p0 = g''' / (8 pi^4).
+  const V av = VO::of(a), tp = VO::of(two_pi);
+  const V tp2 = tp * tp;
+  V p0;
+  if (s.knot == 0) {
+    p0 = 2 * TV::cos_2pi(VO::of(s.theta)) / tp;  // half of 4 g'''(0) / (16 pi^4) = 2 cos / pi
+  } else if (decide(Tr::is_zero(W), Reason::riding)) {
+    const T curvature = two_pi * two_pi * Tr::sin_2pi(s.theta) - a;  // g''(0)
+    if (decide(Tr::le(curvature, zero_), Reason::riding)) {
+      // Pressed against the wall (or exactly at its release): it rides to the release.
+      r.kind = EventKind::ride;
+      sine_ride(r, s.theta);
+      return;
+    }
+    p0 = 3 * VO::of(curvature) / (2 * tp2 * tp);
+  } else {
+    const V w = VO::of(W);
+    if (!certainly(TV::lt(TV::from_int(0, m_.bits), w))) throw Undecided(Reason::riding);
+    const V M = av + tp2;
+    p0 = w / M;
+    if constexpr (TV::is_interval)
+      if (!certainly(TV::lt(p0, V(2 * w / M)))) throw Undecided(Reason::grazing);
+  }
+
+  // The flight rises above the top (1) when v^2 > 2a(1 - f0): no contact between s_up and
+  // s_down = (v + R)/a, R = sqrt(v^2 - 2a(1 - f0)); the search jumps over that stretch. The
+  // fall below the bottom (-1) bounds it: g < 0 there.
+  const T rise = s.v * s.v - 2 * a * (1 - f0);
+  const bool over_top = certainly(Tr::lt(zero_, rise));
+  detail::SineFlight<V> flight{VO::of(s.theta), VO::of(f0), VO::of(s.v)};
+  V root;
+  bool jumped = false;
+  T R = zero_;
+  if (over_top) {
+    R = sqrt(rise);
+    const V s_up = 2 * (1 - flight.x) / (flight.xdot + VO::of(R));
+    jumped = !detail::sine_first_root(flight, av, tp, p0, s_up, root);
+  } else {
+    V bottom = flight.xdot * flight.xdot + 2 * av * (flight.x + 1);
+    make_nonneg(bottom);
+    bottom = (flight.xdot + sqrt(bottom)) / av;
+    // Past the bottom the gap is negative: the march cannot pass it.
+    if (!detail::sine_first_root(flight, av, tp, p0, V(bottom * 2 + 1), root)) throw Undecided(Reason::nonfinite);
+  }
+  T whole = zero_, origin_phase = s.theta, origin_x = f0, origin_xdot = s.v;
+  T tau_before = zero_;
+  if (jumped) {
+    // Land on the top at s_down, and search from there.
+    const T tau_fall = (s.v + R) / a;
+    const T x = s.theta + tau_fall;
+    const Truth known = Tr::floor_certain(x, whole);
+    if (known == Truth::invalid) throw Undecided(Reason::nonfinite);
+    if (known != Truth::yes) throw Undecided(Reason::period_boundary);
+    origin_phase = x - whole;
+    clamp_into_segment(origin_phase, zero_, wall.end.back());
+    origin_x = Tr::from_int(1, m_.bits);
+    origin_xdot = -R;
+    tau_before = tau_fall;
+    r.periods = detail::whole_periods(whole);
+    r.phase_bits_lost = std::max(0, Tr::exponent(x));
+    flight = detail::SineFlight<V>{VO::of(origin_phase), TV::from_int(1, m_.bits), VO::of(origin_xdot)};
+    const V g0 = TV::from_int(1, m_.bits) - TV::sin_2pi(flight.phase);
+    const Truth above = TV::lt(TV::from_int(0, m_.bits), g0);
+    V p_start = TV::from_int(0, m_.bits);
+    if (above == Truth::yes) {
+      V bottom = flight.xdot * flight.xdot + 4 * av;
+      make_nonneg(bottom);
+      bottom = (flight.xdot + sqrt(bottom)) / av;
+      if (!detail::sine_first_root(flight, av, tp, p_start, V(bottom * 2 + 1), root)) throw Undecided(Reason::nonfinite);
+    } else if (above == Truth::no && !TV::is_interval) {
+      root = p_start;  // landed on a crest: the impact is the landing itself
+    } else {
+      throw Undecided(Reason::grazing);
+    }
+  }
+  // The root in T: a dual is given its derivatives by a Newton step on the gap in dual
+  // arithmetic (the value moves by g/g', the derivatives become -g_x/g' whatever they were;
+  // each further layer of a nested dual, a further order, needs one more step); for an
+  // interval dual, X - g(X)/g'(X) still encloses the root and its derivatives.
+  T sigma = VO::lift(std::move(root));
+  const auto gap_T = [&](const T& t) {
+    return T(origin_x + t * (origin_xdot - a * t / 2) - Tr::sin_2pi(T(origin_phase + t)));
+  };
+  const auto rate_T = [&](const T& t) { return T(origin_xdot - a * t - two_pi * Tr::cos_2pi(T(origin_phase + t))); };
+  for (int k = 0; k < VO::depth; ++k) sigma -= gap_T(sigma) / rate_T(sigma);
+  // The impact: its phase in [0, 1), the time, the relative speed -g'(sigma) >= 0.
+  T x = origin_phase + sigma;
+  T more = zero_;
+  const Truth known = Tr::floor_certain(x, more);
+  if (known == Truth::invalid) throw Undecided(Reason::nonfinite);
+  if (known != Truth::yes) throw Undecided(Reason::period_boundary);
+  r.periods += detail::whole_periods(more);
+  x -= more;
+  clamp_into_segment(x, zero_, wall.end.back());
+  r.tau = tau_before + sigma;
+  T speed = -rate_T(sigma);
+  make_nonneg(speed);
+  r.indirect = jumped ? Truth::yes : Truth::no;
+  sine_collide(r, std::move(x), speed);
+}
+
+// A collision with the sine wall at phase theta, relative impact speed `speed`: the collision
+// law, then sticking (constant eps): the chatter that follows, in the wall's frame under the
+// effective gravity G = a + f''(theta) = a - 4 pi^2 sin(2 pi theta) frozen at the impact,
+// collapses after 2 out / ((1 - eps) G) (the triangle's rule, where G = a); the particle
+// sticks iff G > 0 and the collapse ends before the release phase, then rides to it.
+template <class T>
+void ImpactMap<T>::sine_collide(StepResult<T>& r, T theta, const T& speed) const {
+  using Tr = ScalarTraits<T>;
+  const Wall<T>& wall = m_.wall;
+  const T u = wall.two_pi * Tr::cos_2pi(theta);
+  const T out = rebound(speed);
+  r.segment = 0;
+  r.next.v = u + out;
+  if (m_.law == Law::constant) {
+    const T G = m_.a - wall.two_pi * wall.two_pi * Tr::sin_2pi(theta);
+    if (decide(Tr::lt(zero_, G), Reason::sticking_threshold)) {
+      // G > 0 outside [theta_r, 1/2 - theta_r]: the release is the next theta_r.
+      const bool before = decide(Tr::lt(theta, wall.release), Reason::sticking_threshold);
+      const T left = before ? T(wall.release - theta) : T(wall.release + 1 - theta);
+      if (decide(Tr::le(T(2 * out), T((1 - m_.eps) * G * left)), Reason::sticking_threshold)) {
+        r.kind = EventKind::sticking;
+        r.stick_segment = 0;
+        r.stuck_theta = theta;
+        r.stuck_v = r.next.v;
+        sine_ride(r, theta);
+        return;
+      }
+    }
+  }
+  r.next.theta = std::move(theta);
+  r.next.knot = -1;
+}
+
+template <class T>
+void ImpactMap<T>::sine_ride(StepResult<T>& r, const T& from) const {
+  using Tr = ScalarTraits<T>;
+  const Wall<T>& wall = m_.wall;
+  if (decide(Tr::lt(from, wall.release), Reason::riding)) {
+    r.tau += wall.release - from;
+  } else {
+    r.tau += wall.release + 1 - from;
+    ++r.periods;
+  }
+  r.segment = 0;
+  r.next.theta = wall.release;
+  r.next.v = wall.two_pi * Tr::cos_2pi(wall.release);
+  r.next.knot = 0;  // the release phase: the next step starts from its Taylor bound
+}
 
 template <class T>
 StepResult<T> ImpactMap<T>::step(const State<T>& s) const {
@@ -247,6 +527,7 @@ bool ImpactMap<T>::common_step(const State<T>& s, StepResult<T>& r) const {
   } else {
     using Tr = ScalarTraits<T>;
     const Wall<T>& wall = m_.wall;
+    if (wall.smooth()) return false;
     const T a = m_.a;
     const T* start = wall.start.data();
     const T* end = wall.end.data();
@@ -334,6 +615,11 @@ void ImpactMap<T>::step_into(const State<T>& s, StepResult<T>& r) const {
   const T& a = m_.a;
   const T& zero = zero_;
 
+  if (wall.smooth()) {
+    sine_step(s, r);
+    if (!Tr::is_finite(r.next.theta) || !Tr::is_finite(r.next.v)) throw Undecided(Reason::nonfinite);
+    return;
+  }
   r.tau = zero;
   int j = s.knot >= 0 ? s.knot : wall.segment_of(s.theta);
   if constexpr (Tr::is_interval)
@@ -555,6 +841,11 @@ T ImpactMap<T>::after_sticking(const StepResult<T>& st, std::vector<Collapse>& c
   StepResult<T> r;  // the walk's own account: tau from the stuck collision
   r.tau = zero_;
   r.kind = EventKind::sticking;
+  if (m_.wall.smooth()) {
+    collapses.push_back({zero_, T(st.stuck_v - m_.wall.velocity_at(st.stuck_theta))});
+    sine_ride(r, st.stuck_theta);
+    return r.tau;
+  }
   const int j = st.stick_segment;
   collapses.push_back({zero_, T(st.stuck_v - m_.wall.velocity[j])});
   ride(r, j, st.stuck_theta, &collapses);

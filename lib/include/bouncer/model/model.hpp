@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bouncer/model/spec.hpp"
+#include "bouncer/scalar/dual.hpp"
 #include "bouncer/scalar/traits.hpp"
 
 namespace bouncer {
@@ -29,6 +30,13 @@ struct Wall {
   int fastest_up = 0;       // the segment of largest u_j (exact): U = u_j, the fastest rise
   int fastest_down = 0;     // the segment of smallest u_j (exact): D = -u_j, the fastest fall
   std::vector<mpq_class> knot_exact;  // s_j as exact rationals (from the decimal spec)
+  // The sine wall f(theta) = sin(2 pi theta) (shape == sine; the vectors above then hold one
+  // segment [0, 1) of velocity 0 that nothing reads for it, top = 1): 2 pi, and the release
+  // phase theta_r in (0, 1/4), where the wall's acceleration -4 pi^2 sin(2 pi theta) falls to
+  // -a on its way down: a particle riding the wall leaves it there (docs/model.md).
+  WallShape shape = WallShape::piecewise;
+  T two_pi{};
+  T release{};
 
   int segments() const { return static_cast<int>(start.size()); }
   int next(int j) const { return j + 1 == segments() ? 0 : j + 1; }
@@ -51,6 +59,17 @@ struct Wall {
     return -1;
   }
   T height_at(int j, const T& theta) const { return height[j] + velocity[j] * (theta - start[j]); }
+  bool smooth() const { return shape != WallShape::piecewise; }
+  // The wall's height at theta, for either shape.
+  T height_at_phase(const T& theta) const {
+    if (smooth()) return ScalarTraits<T>::sin_2pi(theta);
+    return height_at(segment_of(theta), theta);
+  }
+  // The wall's velocity at theta, for either shape (piecewise: right-continuous at a knot).
+  T velocity_at(const T& theta) const {
+    if (smooth()) return two_pi * ScalarTraits<T>::cos_2pi(theta);
+    return velocity[segment_of(theta)];
+  }
 };
 
 template <class T>
@@ -95,16 +114,70 @@ Model<U> convert_model(const Model<T>& m, F&& to) {
   r.wall.fastest_up = m.wall.fastest_up;
   r.wall.fastest_down = m.wall.fastest_down;
   r.wall.knot_exact = m.wall.knot_exact;
+  r.wall.shape = m.wall.shape;
+  r.wall.two_pi = to(m.wall.two_pi);
+  r.wall.release = to(m.wall.release);
   return r;
 }
 
-// The model with parameter p set to `value`. The sticking threshold `collapse` is derived
-// from a and eps (as make_model builds it), so it is rebuilt here and nowhere else.
+namespace detail {
+// A thin interval at the midpoint of an interval (interval Newton's centre).
+inline Mpfi thin_mid(const Mpfi& x) {
+  const Mpfr m = x.mid();
+  return Mpfi(m, m);
+}
+inline DoubleInterval thin_mid(const DoubleInterval& x) {
+  const double m = x.mid();
+  return DoubleInterval(m, m);
+}
+}  // namespace detail
+
+// The sine wall's release phase theta_r (Wall::release) for gravity 0 < a < 4 pi^2: the root
+// of sin(2 pi theta) = a / (2 pi)^2 in (0, 1/4), where sin(2 pi theta) increases. Bisection
+// on dyadic points (exact in every type) while the comparisons decide, then Newton: for an
+// interval type interval Newton on the bracket, N(X) = m - h(m)/h'(X) intersected with X,
+// an enclosure of the root; a dual's is its value's, with zero derivatives (a constant).
+template <class T>
+T sine_release(const T& a, const T& two_pi, long bits) {
+  if constexpr (ValueOf<T>::is_dual) {
+    using V = typename ValueOf<T>::type;
+    return ValueOf<T>::lift(sine_release<V>(ValueOf<T>::of(a), ValueOf<T>::of(two_pi), bits));
+  } else {
+    using Tr = ScalarTraits<T>;
+    const T target = a / (two_pi * two_pi);
+    T lo = Tr::from_int(0, bits), step = Tr::from_int(1, bits) / 4;
+    for (int i = 0; i < 48; ++i) {
+      step /= 2;
+      T mid = lo + step;
+      const Truth below = Tr::lt(Tr::sin_2pi(mid), target);
+      if (below == Truth::yes) lo = std::move(mid);
+      else if (below != Truth::no) break;
+    }
+    if constexpr (Tr::is_interval) {
+      // The bracket [lo, lo + 2 step] (or wider, after an undecided comparison: still valid).
+      T x = hull(lo, T(lo + 2 * step));
+      for (int i = 0; i < 24; ++i) {
+        const T m = detail::thin_mid(x);
+        x = intersect(x, T(m - (Tr::sin_2pi(m) - target) / (two_pi * Tr::cos_2pi(x))));
+      }
+      return x;
+    } else {
+      T t = lo + step;
+      for (int i = 0; i < 6; ++i) t -= (Tr::sin_2pi(t) - target) / (two_pi * Tr::cos_2pi(t));
+      return t;
+    }
+  }
+}
+
+// The model with parameter p set to `value`. The sticking threshold `collapse` (and the sine
+// wall's release phase) derive from a and eps as make_model builds them, so they are rebuilt
+// here and nowhere else.
 template <class T>
 Model<T> with_parameter(const Model<T>& m, Parameter p, const T& value) {
   Model<T> r = m;
   (p == Parameter::a ? r.a : p == Parameter::eps ? r.eps : r.c) = value;
   r.collapse = r.a * (1 - r.eps) / 2;
+  if (r.wall.smooth() && p == Parameter::a) r.wall.release = sine_release(r.a, r.wall.two_pi, r.bits);
   return r;
 }
 template <class T>

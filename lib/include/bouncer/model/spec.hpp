@@ -24,13 +24,25 @@ const char* name(Law);
 
 const char* name(DownwardSticking);
 
+// The wall's shape: piecewise linear (the paper's triangle and its relatives), or the smooth
+// sine wall f(theta) = sin(2 pi theta) of the classical bouncer (docs/model.md, "The sine wall").
+enum class WallShape : unsigned char { piecewise, sine };
+
 // A continuous periodic piecewise-linear wall: knots 0 = s_0 < s_1 < ... < s_{n-1} < 1 with
-// heights h_j; segment j runs from s_j to s_{j+1} (s_n = 1, h_n = h_0).
+// heights h_j; segment j runs from s_j to s_{j+1} (s_n = 1, h_n = h_0). The sine wall has no
+// knots.
 struct WallSpec {
-  std::string text;  // as given: triangle, sawtooth, asymmetric:R, knots:s1:h1,s2:h2,...
+  std::string text;  // as given: triangle, sawtooth, asymmetric:R, knots:s1:h1,s2:h2,..., sine
   std::vector<Decimal> knots;
   std::vector<Decimal> heights;
+  WallShape shape = WallShape::piecewise;
 };
+
+// 4 pi^2 = 39.4784176043574344753...: the sine wall's largest downward acceleration. The sine
+// wall needs a < 4 pi^2 (validate): at larger gravity the wall never throws a riding particle
+// off. These two decimals bracket it (exact), for validation without floating point.
+inline constexpr const char* kFourPiSquaredBelow = "39.4784176043574344";
+inline constexpr const char* kFourPiSquaredAbove = "39.4784176043574345";
 
 struct ModelSpec {
   Law law = Law::constant;
@@ -73,7 +85,12 @@ void validate(const ModelSpec& m);
 void validate(const ModelSpec& m, const InitialCondition& ic, const std::string& theta_field,
               const std::string& v_field);
 
-// Exact wall quantities (rationals) for validation and for classifying corners.
+// The commands and library calls that know only the piecewise-linear wall refuse the sine
+// wall with this (an InputError naming --wall and what does support it).
+void require_piecewise_wall(const ModelSpec& m, const std::string& what);
+
+// Exact wall quantities (rationals) for validation and for classifying corners; piecewise
+// walls only.
 mpq_class wall_velocity_exact(const WallSpec& w, const mpq_class& theta);
 int wall_segment_exact(const WallSpec& w, const mpq_class& theta);
 

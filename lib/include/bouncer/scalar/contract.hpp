@@ -36,7 +36,9 @@
 //                      is_finite(x), to_double(x) (an interval: its midpoint), exponent(x)
 //                                      (e with 2^(e-1) <= |x| < 2^e, 0 for 0; an interval: of
 //                                      its largest magnitude), pow_3_5(x) = x^(3/5) for
-//                                      x >= 0, to_string(x) (reads back to the same value;
+//                                      x >= 0, two_pi(bits) = 2 pi, sin_2pi(x) = sin(2 pi x)
+//                                      and cos_2pi(x) (the sine wall; enclosed for
+//                                      intervals), to_string(x) (reads back to the same value;
 //                                      an interval: "[lo, hi]" rounded outward).
 //   PointScalar<T>     Scalar<T>, not an interval, with bool comparisons < <= > >= == !=
 //                      and ScalarTraits<T>::below(x) (the next value below x) and
@@ -115,6 +117,9 @@ concept Traits = requires(const T& x, const T& y, const T& z, T& out, std::strin
   { Tr::to_double(x) } -> std::same_as<double>;
   { Tr::exponent(x) } -> std::same_as<int>;
   { Tr::pow_3_5(x) } -> std::same_as<T>;
+  { Tr::two_pi(n) } -> std::same_as<T>;
+  { Tr::sin_2pi(x) } -> std::same_as<T>;
+  { Tr::cos_2pi(x) } -> std::same_as<T>;
   { Tr::to_string(x) } -> std::same_as<std::string>;
 };
 

@@ -207,6 +207,16 @@ struct ScalarTraits<Dual<S>> {
     return {std::move(p), f * x.d[0], f * x.d[1]};
   }
   static std::string to_string(const D& x) { return B::to_string(x.v); }
+  // d sin(2 pi x) = 2 pi cos(2 pi x) dx, d cos(2 pi x) = -2 pi sin(2 pi x) dx.
+  static D two_pi(long bits) { return D(B::two_pi(bits)); }
+  static D sin_2pi(const D& x) {
+    S f = B::two_pi(B::bits(x.v)) * B::cos_2pi(x.v);
+    return {B::sin_2pi(x.v), f * x.d[0], f * x.d[1]};
+  }
+  static D cos_2pi(const D& x) {
+    S f = -(B::two_pi(B::bits(x.v)) * B::sin_2pi(x.v));
+    return {B::cos_2pi(x.v), f * x.d[0], f * x.d[1]};
+  }
 
   // Point duals only.
   static D below(const D& x) requires(!B::is_interval) { return {B::below(x.v), x.d[0], x.d[1]}; }
@@ -214,6 +224,29 @@ struct ScalarTraits<Dual<S>> {
   // Interval duals only: the value's ends.
   static std::string lower_string(const D& x) requires B::is_interval { return B::lower_string(x.v); }
   static std::string upper_string(const D& x) requires B::is_interval { return B::upper_string(x.v); }
+};
+
+// The value part of a scalar: x itself, or a dual's value (its derivatives dropped); lift
+// makes a value a scalar of the type again (a dual with zero derivatives). Code that solves
+// for a quantity on values (the sine wall's first impact) and differentiates the solution
+// afterwards uses these.
+// Nested duals (second derivatives) are unwrapped to their innermost value; depth counts the
+// layers.
+template <class T>
+struct ValueOf {
+  using type = T;
+  static constexpr bool is_dual = false;
+  static constexpr int depth = 0;
+  static const T& of(const T& x) { return x; }
+  static T lift(T x) { return x; }
+};
+template <class S>
+struct ValueOf<Dual<S>> {
+  using type = typename ValueOf<S>::type;
+  static constexpr bool is_dual = true;
+  static constexpr int depth = ValueOf<S>::depth + 1;
+  static const type& of(const Dual<S>& x) { return ValueOf<S>::of(x.v); }
+  static Dual<S> lift(type x) { return Dual<S>(ValueOf<S>::lift(std::move(x))); }
 };
 
 // In-place forms of nonneg and clamp (scalar/traits.hpp's make_nonneg and

@@ -88,6 +88,11 @@ struct ScalarTraits<double> : detail::PointTraits<double> {
   }
   static double floor(const double& x) { return std::floor(x); }
   static double pow_3_5(const double& x) { return std::pow(x, 0.6); }
+  // sin(2 pi x), cos(2 pi x) and 2 pi (the sine wall, model/model.hpp): x reduced to [0, 1)
+  // first (exact), so a long flight's phase costs no more than its own rounding.
+  static double two_pi(long) { return 6.283185307179586; }
+  static double sin_2pi(const double& x) { return std::sin(two_pi(0) * (x - std::floor(x))); }
+  static double cos_2pi(const double& x) { return std::cos(two_pi(0) * (x - std::floor(x))); }
   static std::string to_string(const double& x);
 };
 
@@ -101,6 +106,9 @@ struct ScalarTraits<long double> : detail::PointTraits<long double> {
   static int exponent(const long double& x) { int e; std::frexp(x, &e); return e; }
   static long double floor(const long double& x) { return std::floor(x); }
   static long double pow_3_5(const long double& x) { return std::pow(x, 0.6L); }
+  static long double two_pi(long) { return 6.283185307179586476925286766559005768L; }
+  static long double sin_2pi(const long double& x) { return std::sin(two_pi(0) * (x - std::floor(x))); }
+  static long double cos_2pi(const long double& x) { return std::cos(two_pi(0) * (x - std::floor(x))); }
   static std::string to_string(const long double& x);
 };
 
@@ -137,6 +145,9 @@ struct ScalarTraits<DoubleDouble> : detail::PointGuards<DoubleDouble> {
   static D pow_3_5(const D& x);
   static std::string to_string(const D& x);
   static bool nan(const D& x, const D& y) { return x.is_nan() || y.is_nan(); }
+  static D two_pi(long);
+  static D sin_2pi(const D& x);  // QD's sin and cos of 2 pi (x - floor x)
+  static D cos_2pi(const D& x);
 };
 
 template <>
@@ -149,6 +160,9 @@ struct ScalarTraits<Quad> : detail::PointTraits<Quad> {
   static int exponent(const Quad& x);
   static Quad floor(const Quad& x) { return boost::multiprecision::floor(x); }
   static Quad pow_3_5(const Quad& x);
+  static Quad two_pi(long);
+  static Quad sin_2pi(const Quad& x);
+  static Quad cos_2pi(const Quad& x);
   static std::string to_string(const Quad& x);
 };
 
@@ -171,6 +185,9 @@ struct ScalarTraits<Mpfr> : detail::PointGuards<Mpfr> {
   static int exponent(const Mpfr& x) { return mpfr_zero_p(x.get()) ? 0 : static_cast<int>(mpfr_get_exp(x.get())); }
   static Mpfr floor(const Mpfr& x) { return bouncer::floor(x); }
   static Mpfr pow_3_5(const Mpfr& x);
+  static Mpfr two_pi(long bits);
+  static Mpfr sin_2pi(const Mpfr& x);  // mpfr_sinpi(2x): correctly rounded, no rounded pi
+  static Mpfr cos_2pi(const Mpfr& x);
   static std::string to_string(const Mpfr& x) { return mpfr_to_string(x.get(), MPFR_RNDN); }
   static bool nan(const Mpfr& x, const Mpfr& y) { return mpfr_nan_p(x.get()) || mpfr_nan_p(y.get()); }
 };
@@ -203,6 +220,11 @@ struct ScalarTraits<Mpfi> {
   static bool is_finite(const Mpfi& x) { return !x.has_nan() && x.bounded(); }
   static double to_double(const Mpfi& x) { return x.mid().to_double(); }
   static Mpfi pow_3_5(const Mpfi& x);
+  // Enclosures: MPFR's sinpi/cospi of 2x (exact) at each end, rounded outward, with the
+  // extrema inside [x] (scalar.cpp, trig_2pi_enclosure).
+  static Mpfi two_pi(long bits);
+  static Mpfi sin_2pi(const Mpfi& x);
+  static Mpfi cos_2pi(const Mpfi& x);
   static int exponent(const Mpfi& x) { Mpfr u = abs(x).upper(); return mpfr_zero_p(u.get()) ? 0 : static_cast<int>(mpfr_get_exp(u.get())); }
   static std::string to_string(const Mpfi& x);  // "[lo, hi]"
   static std::string lower_string(const Mpfi& x);  // rounded down
@@ -253,6 +275,9 @@ struct ScalarTraits<DoubleInterval> {
   }
   static D pow_3_5(const D& x);
   static std::string to_string(const D& x);     // "[lo, hi]"
+  static D two_pi(long);
+  static D sin_2pi(const D& x);  // as for Mpfi, at 53 bits with directed roundings
+  static D cos_2pi(const D& x);
   static std::string lower_string(const D& x);  // rounded down
   static std::string upper_string(const D& x);  // rounded up
 };

@@ -28,6 +28,7 @@ enum class Reason : unsigned char {
   riding,              // the relative velocity straddles zero (riding the wall or not)
   period_boundary,     // theta + flight time straddles an integer
   walk_limit,          // the flight crosses more wall segments than the walk allows
+  grazing,             // smooth wall: the flight may touch the wall before its impact (first root)
   nonfinite,           // NaN or overflow
 };
 

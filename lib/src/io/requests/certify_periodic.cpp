@@ -38,6 +38,7 @@ CertifyPeriodicRequest certify_periodic_request(const Options& o) {
     parse.set(par, range->first.text());
   }
   q.model = model_from(parse);
+  require_piecewise_wall(q.model, "certify-periodic");
   if (range) {
     validate_range_ends(q.model, q.vary, *range_key, range->first, range->second);
     q.range = std::make_pair(range->first.value(), range->second.value());

@@ -42,6 +42,7 @@ CertifyStickingRequest certify_sticking_request(const Options& given) {
     parse.set("a", o.get("a-range").substr(0, o.get("a-range").find(':')));
   }
   q.model = model_from(parse);
+  require_piecewise_wall(q.model, "certify-sticking");
   if (q.model.law != Law::constant)
     throw InputError("model", "certify-sticking needs --model constant (its certified collapse test is the "
                               "constant-restitution threshold; velocity-dependent collapse, which does occur: "

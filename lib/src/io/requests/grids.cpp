@@ -49,6 +49,7 @@ BasinOptions basin_options(const Options& o) {
   r.classify = classify_options_from(o);
   r.precision = point_precision(o);
   b.certify = flag_from(o, "certify");
+  if (b.certify) require_piecewise_wall(r.model, "basin --certify");
   if (o.has("max-bits") && !b.certify) throw InputError("max-bits", "is only used with --certify");
   r.cert.max_steps = r.classify.transient + r.classify.steps;
   r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
@@ -98,13 +99,15 @@ ScanOptions scan_options(const Options& o) {
   }
   // The analytic fixed-point curves (paper eq. 5) belong to the (a, eps) plane of the
   // constant model: drawn there by default, never elsewhere.
-  const std::string curves = o.get_or("curves", y == "eps" ? "fixed-points" : "none");
+  const std::string curves = o.get_or("curves", y == "eps" && r.model.wall.shape == WallShape::piecewise ? "fixed-points" : "none");
   if (curves != "fixed-points" && curves != "none")
     throw InputError("curves", "must be fixed-points or none (got '" + curves + "')");
   if (curves == "fixed-points" && y != "eps")
     throw InputError("curves", "fixed-points needs --model constant (the curves are in the (a, eps) plane)");
   so.fixed_point_curves = curves == "fixed-points";
+  if (so.fixed_point_curves) require_piecewise_wall(r.model, "--curves fixed-points (the triangle's eq. 5)");
   so.certify = flag_from(o, "certify");
+  if (so.certify) require_piecewise_wall(r.model, "scan --certify");
   for (const char* k : {"max-bits", "theta", "v"})
     if (o.has(k) && !so.certify)
       throw InputError(k, "is only used with --certify (the certified start; the classified starts are --ics, --theta-range, --v-range)");
@@ -141,6 +144,7 @@ BifurcationOptions bifurcation_options(const Options& given) {
   b.show_theta = show == "theta";
   b.bins = integer_from(o, "bins", 10, 4000, 400);
   r.certify = flag_from(o, "certify");
+  if (r.certify) require_piecewise_wall(r.model, "bifurcation --certify");
   if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is only used with --certify");
   r.cert.max_steps = r.transient + r.record;
   r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);

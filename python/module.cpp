@@ -570,6 +570,7 @@ class TypedStepper final : public Stepper {
     }
   }
   bool certainly_valid(double theta, double v) const {
+    if (knot_below_.empty()) return false;  // the sine wall: no knots, the exact path decides
     if (!(theta >= 0 && theta < 1 && v <= 1e15)) return false;  // also NaN
     size_t j = 0;
     for (size_t k = 1; k < knot_below_.size(); ++k)

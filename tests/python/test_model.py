@@ -235,6 +235,25 @@ def test_eq5_fixed_points(eps, p):
     assert orbit.marginal
 
 
+@pytest.mark.parametrize("a,stable", [("20", False), ("30", True)])
+def test_sine_wall_period1_closed_form(a, stable):
+    """The sine wall (wall="sine") through the typed layer: the classical period-1 orbit
+    cos(2 pi theta*) = a (1 - eps) / (4 pi (1 + eps)), v* = a/2 (docs/guide/sine-wall.md,
+    derived by hand) is a fixed point of one step of one period, and Newton's multipliers have
+    the product eps^2 and are stable above a_pd = 25.8566 (eps = 1/2), not below."""
+    eps = 0.5
+    theta = math.acos(float(a) * (1 - eps) / (4 * math.pi * (1 + eps))) / (2 * math.pi)
+    m = bouncer.Model(model="constant", a=a, eps="0.5", wall="sine")
+    s = m.step(theta, float(a) / 2)
+    assert s.theta == pytest.approx(theta, abs=1e-12) and s.v == pytest.approx(float(a) / 2, rel=1e-12)
+    assert s.periods == 1 and s.event == "impact"
+    orbit = m.periodic(1, guess=(str(round(theta, 3)), str(float(a) / 2)))
+    assert orbit.converged
+    moduli = orbit.multiplier_moduli
+    assert moduli[0] * moduli[1] == pytest.approx(eps * eps, rel=1e-9)
+    assert (max(moduli) < 1) == stable
+
+
 def test_interval_orbit_encloses_the_512_bit_orbit():
     box = bouncer.Model(**CONSTANT, precision="interval:double").orbit("0.3", "9.5", 40)
     exact = bouncer.Model(**CONSTANT, precision="mpfr:512").orbit("0.3", "9.5", 40)

@@ -40,6 +40,7 @@
 #include "bouncer/model/impact_map.hpp"
 #include "bouncer/model/spec.hpp"
 #include "sine_truth.hpp"
+#include "test_support.hpp"
 
 namespace bouncer {
 namespace {
@@ -51,12 +52,9 @@ constexpr unsigned long kSeed = 20270127;
 constexpr long kMpfrBits = 256;
 constexpr long kMpfiBits = 128;
 
+// test_support's validated model, with the sine wall.
 ModelSpec sine_spec(Law law, const std::string& a, const std::string& eps = "1", const std::string& c = "1000") {
-  ModelSpec m;
-  m.law = law;
-  m.a = parse_decimal("a", a);
-  if (law == Law::constant) m.eps = parse_decimal("eps", eps);
-  m.c = parse_decimal("c", c);
+  ModelSpec m = bouncer::test_support::spec(law, a, eps, c);
   m.wall = parse_wall("wall", "sine");
   validate(m);
   return m;

@@ -10,8 +10,15 @@ namespace bouncer {
 
 namespace {
 
-// U and D exactly, from the rational knots and heights.
+// U and D exactly, from the rational knots and heights; for the sine wall (U = D = 2 pi, an
+// irrational) the rational 6.2831853072 > 2 pi: the lemma holds for any bounds of the wall's
+// speeds, and a larger U or D only raises the top.
 std::pair<mpq_class, mpq_class> wall_speeds_exact(const WallSpec& w) {
+  if (w.shape == WallShape::sine) {
+    mpq_class two_pi_above("62831853072/10000000000");
+    two_pi_above.canonicalize();
+    return {two_pi_above, two_pi_above};
+  }
   mpq_class up = 0, down = 0;
   for (const Decimal& k : w.knots) {
     const mpq_class u = wall_velocity_exact(w, k.value());

@@ -4,7 +4,7 @@
 // lyapunov's starts, the guesses of the periodic-orbit search.
 //
 // U = the wall's fastest upward velocity, D = its fastest downward speed (U = D = 4 on the
-// triangle). Lemma (proofs/trapping_region.cpp has it for the triangle): a flight from
+// triangle, 2 pi on the sine wall). Lemma (proofs/trapping_region.cpp has it for the triangle): a flight from
 // velocity v that meets the wall arrives with v^- >= -(v + 2D), because the wall cannot fall
 // faster than D while the particle falls; so the relative speed at an impact on a segment
 // of velocity u <= U is w = u - v^- <= U + 2D + v, and the particle leaves with
@@ -35,13 +35,14 @@
 
 namespace bouncer {
 
+// The sine wall's speeds are at most 2 pi both ways.
 template <class T>
 T wall_up_speed(const Wall<T>& w) {
-  return w.velocity[w.fastest_up];
+  return w.smooth() ? w.two_pi : w.velocity[w.fastest_up];
 }
 template <class T>
 T wall_down_speed(const Wall<T>& w) {
-  return -w.velocity[w.fastest_down];
+  return w.smooth() ? w.two_pi : -w.velocity[w.fastest_down];
 }
 
 // The top V, or nothing for the elastic map (and for constant eps not certainly below 1).

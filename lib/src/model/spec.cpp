@@ -1,7 +1,5 @@
 #include "bouncer/model/spec.hpp"
 
-#include <mpfr.h>
-
 #include <map>
 #include <sstream>
 
@@ -152,38 +150,19 @@ void validate(const ModelSpec& m, const InitialCondition& ic, const std::string&
   if (!(ic.theta >= zero && ic.theta < one))
     throw InputError(theta_field, "must be in [0, 1) (got " + ic.theta.text() + ")");
   if (m.wall.shape == WallShape::sine) {
-    // u = 2 pi cos(2 pi theta), irrational but for theta in {0, 1/4, 1/2, 3/4}: compared with
-    // v by MPFR's correctly rounded cospi at 256 bits, directed both ways.
-    mpfr_t x, lo, hi;
-    mpfr_inits2(256, x, lo, hi, (mpfr_ptr)nullptr);
-    mpfr_set_q(x, ic.theta.value().get_mpq_t(), MPFR_RNDN);  // theta's decimal: exact or within 2^-256
-    mpfr_mul_2ui(x, x, 1, MPFR_RNDN);
-    mpfr_cospi(lo, x, MPFR_RNDD);
-    mpfr_cospi(hi, x, MPFR_RNDU);
-    mpfr_t pi_lo, pi_hi;
-    mpfr_inits2(256, pi_lo, pi_hi, (mpfr_ptr)nullptr);
-    mpfr_const_pi(pi_lo, MPFR_RNDD);
-    mpfr_const_pi(pi_hi, MPFR_RNDU);
-    // 2 pi cos: the ends' products, widened by theta's rounding (|d cos(2 pi t)/dt| <= 2 pi).
-    mpfr_mul(lo, lo, mpfr_sgn(lo) >= 0 ? pi_lo : pi_hi, MPFR_RNDD);
-    mpfr_mul(hi, hi, mpfr_sgn(hi) >= 0 ? pi_hi : pi_lo, MPFR_RNDU);
-    mpfr_mul_2ui(lo, lo, 1, MPFR_RNDD);
-    mpfr_mul_2ui(hi, hi, 1, MPFR_RNDU);
-    mpfr_sub_d(lo, lo, 0x1p-240, MPFR_RNDD);
-    mpfr_add_d(hi, hi, 0x1p-240, MPFR_RNDU);
-    mpq_class v = ic.v.value();
-    mpfr_t vv;
-    mpfr_init2(vv, 320);  // v <= 1e15 < 2^50: rounded by less than 2^-270
-    mpfr_set_q(vv, v.get_mpq_t(), MPFR_RNDN);
-    const bool below = mpfr_less_p(vv, lo) != 0, above = mpfr_greater_p(vv, hi) != 0;
-    const std::string u_text = mpfr_to_string_digits(lo, MPFR_RNDD, 12);
-    mpfr_clears(x, lo, hi, pi_lo, pi_hi, vv, (mpfr_ptr)nullptr);
-    if (below)
-      throw InputError(v_field, "must be >= the wall velocity 2 pi cos(2 pi theta) = " + u_text + "... at theta = " +
+    // u = 2 pi cos(2 pi theta) is irrational but at four phases: compared with v by the
+    // interval type's own enclosures (scalar.cpp, trig_2pi_enclosure) at 256 bits.
+    using Ti = ScalarTraits<Mpfi>;
+    const Mpfi u = Ti::two_pi(256) * Ti::cos_2pi(Ti::from_decimal(ic.theta.text(), 256));
+    const Mpfi v = Ti::from_decimal(ic.v.text(), 256);
+    const Truth inside = Ti::lt(v, u);
+    if (inside == Truth::yes)
+      throw InputError(v_field, "must be >= the wall velocity 2 pi cos(2 pi theta) = " +
+                                    mpfr_to_string_digits(&u.get()->left, MPFR_RNDD, 12) + "... at theta = " +
                                     ic.theta.text() + " (got " + ic.v.text() + "; the particle would be inside the wall)");
-    if (!above)
-      throw InputError(v_field, "is within 2^-240 of the wall velocity 2 pi cos(2 pi theta) at theta = " + ic.theta.text() +
-                                    " (got " + ic.v.text() + "): start a little above it");
+    if (inside != Truth::no)
+      throw InputError(v_field, "cannot be told from the wall velocity 2 pi cos(2 pi theta) at theta = " + ic.theta.text() +
+                                    " at 256 bits (got " + ic.v.text() + "): start a little above it");
     if (ic.v > Decimal::parse("1e15").value())
       throw InputError(v_field, "must be <= 1e15 (got " + ic.v.text() + ")");
     return;

@@ -98,6 +98,8 @@ class ImpactMap {
   // launch, a collision, and the sticking and riding rules of the smooth wall.
   void sine_step(const State<T>& s, StepResult<T>& r) const;
   void sine_collide(StepResult<T>& r, T theta, const T& speed) const;
+  // The effective gravity a + f''(theta) in the sine wall's frame (impact_map_impl.hpp).
+  T sine_gravity(const T& theta) const;
   // Rides the sine wall from phase `from` to the release phase (the next one after it).
   void sine_ride(StepResult<T>& r, const T& from) const;
   Truth left_zone(const State<T>& s, int j0, const T& u, const T& q) const;

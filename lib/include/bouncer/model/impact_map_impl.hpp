@@ -335,7 +335,7 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
   r.tau = zero_;
   r.segment = 0;
   const T f0 = Tr::sin_2pi(s.theta);
-  T W = s.v - two_pi * Tr::cos_2pi(s.theta);  // the relative velocity at the launch
+  T W = s.v - wall.velocity_at(s.theta);  // the relative velocity at the launch
   if constexpr (!Tr::is_interval) make_nonneg(W);
 
   // The first point p0 of the search, with g > 0 on (0, p0] by Taylor's theorem at the launch
@@ -350,7 +350,7 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
   if (s.knot == 0) {
     p0 = 2 * TV::cos_2pi(VO::of(s.theta)) / tp;  // half of 4 g'''(0) / (16 pi^4) = 2 cos / pi
   } else if (decide(Tr::is_zero(W), Reason::riding)) {
-    const T curvature = two_pi * two_pi * Tr::sin_2pi(s.theta) - a;  // g''(0)
+    const T curvature = -sine_gravity(s.theta);  // g''(0)
     if (decide(Tr::le(curvature, zero_), Reason::riding)) {
       // Pressed against the wall (or exactly at its release): it rides to the release.
       r.kind = EventKind::ride;
@@ -424,9 +424,9 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
   // interval dual, X - g(X)/g'(X) still encloses the root and its derivatives.
   T sigma = VO::lift(std::move(root));
   const auto gap_T = [&](const T& t) {
-    return T(origin_x + t * (origin_xdot - a * t / 2) - Tr::sin_2pi(T(origin_phase + t)));
+    return T(origin_x + t * (origin_xdot - a * t / 2) - wall.height_at_phase(T(origin_phase + t)));
   };
-  const auto rate_T = [&](const T& t) { return T(origin_xdot - a * t - two_pi * Tr::cos_2pi(T(origin_phase + t))); };
+  const auto rate_T = [&](const T& t) { return T(origin_xdot - a * t - wall.velocity_at(T(origin_phase + t))); };
   for (int k = 0; k < VO::depth; ++k) sigma -= gap_T(sigma) / rate_T(sigma);
   // The impact: its phase in [0, 1), the time, the relative speed -g'(sigma) >= 0.
   T x = origin_phase + sigma;
@@ -453,12 +453,12 @@ template <class T>
 void ImpactMap<T>::sine_collide(StepResult<T>& r, T theta, const T& speed) const {
   using Tr = ScalarTraits<T>;
   const Wall<T>& wall = m_.wall;
-  const T u = wall.two_pi * Tr::cos_2pi(theta);
+  const T u = wall.velocity_at(theta);
   const T out = rebound(speed);
   r.segment = 0;
   r.next.v = u + out;
   if (m_.law == Law::constant) {
-    const T G = m_.a - wall.two_pi * wall.two_pi * Tr::sin_2pi(theta);
+    const T G = sine_gravity(theta);
     if (decide(Tr::lt(zero_, G), Reason::sticking_threshold)) {
       // G > 0 outside [theta_r, 1/2 - theta_r]: the release is the next theta_r.
       const bool before = decide(Tr::lt(theta, wall.release), Reason::sticking_threshold);
@@ -477,6 +477,14 @@ void ImpactMap<T>::sine_collide(StepResult<T>& r, T theta, const T& speed) const
   r.next.knot = -1;
 }
 
+// In the sine wall's frame the particle feels the effective gravity G = a + f''(theta) =
+// a - 4 pi^2 sin(2 pi theta): pressed against the wall where G > 0, thrown off where G < 0.
+template <class T>
+T ImpactMap<T>::sine_gravity(const T& theta) const {
+  const T& tp = m_.wall.two_pi;
+  return m_.a - tp * tp * ScalarTraits<T>::sin_2pi(theta);
+}
+
 template <class T>
 void ImpactMap<T>::sine_ride(StepResult<T>& r, const T& from) const {
   using Tr = ScalarTraits<T>;
@@ -489,7 +497,7 @@ void ImpactMap<T>::sine_ride(StepResult<T>& r, const T& from) const {
   }
   r.segment = 0;
   r.next.theta = wall.release;
-  r.next.v = wall.two_pi * Tr::cos_2pi(wall.release);
+  r.next.v = wall.velocity_at(wall.release);
   r.next.knot = 0;  // the release phase: the next step starts from its Taylor bound
 }
 

@@ -177,6 +177,22 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
       out.converged = true;
       break;
     }
+    // Through a sticking or ride step the orbit reaches the release state R, where P^q is
+    // locally constant: if R returns to itself exactly, R is the orbit (no Newton step lands
+    // on a release bit for bit, and beside a smooth wall's release the step is rounding noise).
+    if (e->orbit.contracted) {
+      long last = -1;
+      for (long i = 0; i < q; ++i)
+        if (e->orbit.kinds[i] != EventKind::impact) last = i;
+      State<T> R = e->orbit.points[last + 1];
+      std::optional<Eval<T>> er = evaluate(tm, R, q, bits);
+      if (er && er->norm == 0) {
+        x = std::move(R);
+        e = std::move(er);
+        out.converged = true;
+        break;
+      }
+    }
     Mat2<T> A = e->orbit.J;
     A.a11 = A.a11 - 1;
     A.a22 = A.a22 - 1;

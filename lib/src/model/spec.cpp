@@ -159,7 +159,9 @@ void validate(const ModelSpec& m, const InitialCondition& ic, const std::string&
     if (inside == Truth::yes)
       throw InputError(v_field, "must be >= the wall velocity 2 pi cos(2 pi theta) = " +
                                     mpfr_to_string_digits(&u.get()->left, MPFR_RNDD, 12) + "... at theta = " +
-                                    ic.theta.text() + " (got " + ic.v.text() + "; the particle would be inside the wall)");
+                                    ic.theta.text() + " (got " + ic.v.text() + "; the particle would be inside the wall; " +
+                                    "a state on the wall printed in double, such as a release, starts at rest with v = " +
+                                    mpfr_to_string_digits(&u.get()->right, MPFR_RNDU, 17) + ")");
     if (inside != Truth::no)
       throw InputError(v_field, "cannot be told from the wall velocity 2 pi cos(2 pi theta) at theta = " + ic.theta.text() +
                                     " at 256 bits (got " + ic.v.text() + "): start a little above it");

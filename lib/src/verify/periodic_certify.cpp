@@ -74,14 +74,18 @@ bool disjoint(const Mpfi& x, const Mpfi& y) {
 bool inside(const Mpfi& x, const Mpfi& y) { return y.contains(x); }
 
 
-// What a step was, in words ("impact(seg 1, corner)").
-std::string event_text(const StepResult<Mpfi>& r) {
+// What a step was, in words ("impact(seg 1, corner)"; a smooth wall has no segments:
+// "impact(indirect)").
+std::string event_text(const StepResult<Mpfi>& r, bool smooth_wall) {
+  std::vector<std::string> parts;
+  if (!smooth_wall) parts.push_back("seg " + std::to_string(r.segment));
+  if (r.corner) parts.push_back("corner");
+  if (r.indirect == Truth::yes) parts.push_back("indirect");
   std::string s = name(r.kind);
-  s += "(seg " + std::to_string(r.segment);
-  if (r.corner) s += ", corner";
-  if (r.indirect == Truth::yes) s += ", indirect";
-  s += ")";
-  return s;
+  if (parts.empty()) return s;
+  s += "(" + parts[0];
+  for (size_t i = 1; i < parts.size(); ++i) s += ", " + parts[i];
+  return s + ")";
 }
 
 // Q interval steps from a box; every step's result (throws Undecided, naming the step).
@@ -603,7 +607,7 @@ class Attempt1 {
     for (size_t i = 0; i + 1 < orbit.size(); ++i)
       c.points.push_back({enclosure(orbit[i].next.theta), enclosure(orbit[i].next.v)});
     for (const StepResult<Mpfi>& r : orbit) {
-      c.events.push_back(event_text(r));
+      c.events.push_back(event_text(r, m.wall.smooth()));
       c.wall_periods.push_back(r.periods);
     }
     boxes_.assign(1, start);
@@ -692,7 +696,7 @@ class Attempt1 {
       const size_t k = static_cast<size_t>(2 * i);
       c.points.push_back({enclosure(p.Y[k]), enclosure(p.Y[k + 1])});
       boxes_.push_back(State<Mpfi>{p.Y[k], p.Y[k + 1]});
-      c.events.push_back(event_text(steps[static_cast<size_t>(i)]));
+      c.events.push_back(event_text(steps[static_cast<size_t>(i)], model_.wall.smooth()));
       c.wall_periods.push_back(steps[static_cast<size_t>(i)].periods);
     }
     const auto [tr, det] = S.trace_det(p.Y);
@@ -776,8 +780,12 @@ class Attempt1 {
     const int k = newton.points[(last + 1) % q_.period].knot;
     if (k < 0) throw NotCertified("the Newton orbit's release state is not at a wall knot");
     const Wall<Mpfi>& w = model_.wall;
+    // A piecewise wall releases at knot k with the velocity of the segment before it; a smooth
+    // wall at its release phase (knot mark 0), with the wall's velocity there. The step builds
+    // the release state the same way, so the comparison below is exact.
     const int before = (k + w.segments() - 1) % w.segments();
-    const State<Mpfi> R{w.start[k], w.velocity[before], k};
+    const State<Mpfi> R = w.smooth() ? State<Mpfi>{w.release, w.velocity_at(w.release), k}
+                                     : State<Mpfi>{w.start[k], w.velocity[before], k};
     const std::vector<StepResult<Mpfi>> orbit = interval_orbit(model_, R, q_.period);
     for (long i = 0; i < q_.period; ++i) {
       if (orbit[i].kind == EventKind::impact) continue;

@@ -234,6 +234,14 @@ template <class T>
 // Newton's distance), and where
 // g(q) < 0 and g'(hull(p, q)) < 0 are certain the root is the unique one in hull(p, q),
 // refined there by interval Newton. Where neither decides, the step is undecided (grazing).
+// Where g rises like s^3 (a launch near the release phase, where g''(0) ~ 0) h* ~ sqrt(g / M)
+// is much shorter than p and the march would crawl; there a third-order stretch takes over:
+// with K = 8 pi^3 >= |g'''| and c = g''(p), for 0 <= s <= h
+//     g(p + s) >= g(p) + g'(p) s + c' s^2,   c' = c/2 - K h/6,
+// so [p, p + h] is root-free when g'(p) >= 0 and c' > 0. h = 3c/(2K) (c' = c/4; an interval
+// type takes 15/16 of it and checks c' > 0) is of the order of p there: the march grows
+// geometrically. It is tried where h* < p and g'(p) >= 0 only (the crawl; not the approach
+// to a root, where g' < 0).
 template <class V>
 struct SineFlight {
   V phase, x, xdot;
@@ -245,6 +253,10 @@ V sine_gap(const SineFlight<V>& f, const V& a, const V& s) {
 template <class V>
 V sine_gap_rate(const SineFlight<V>& f, const V& a, const V& two_pi, const V& s) {
   return f.xdot - a * s - two_pi * ScalarTraits<V>::cos_2pi(f.phase + s);
+}
+template <class V>
+V sine_gap_curvature(const SineFlight<V>& f, const V& a, const V& two_pi, const V& s) {
+  return two_pi * two_pi * ScalarTraits<V>::sin_2pi(f.phase + s) - a;
 }
 
 // Longest march (steps of the search) before the step is given up.
@@ -268,13 +280,18 @@ bool sine_first_root(const SineFlight<V>& f, const V& a, const V& two_pi, V p, c
     if (Tr::likely_negative(dp)) return V(2 * gp / (D - dp));
     return V((dp + D) / M);
   };
+  const V K = two_pi * two_pi * two_pi;  // >= |g'''|
   for (int it = 0;; ++it) {
     if (it > kSineMarchLimit) throw Undecided(Reason::walk_limit);
     if (certainly(Tr::le(end, p))) return false;
     const V gp = sine_gap(f, a, p), dp = sine_gap_rate(f, a, two_pi, p);
     if constexpr (!Tr::is_interval) {
       if (!(gp > zero)) break;  // at the root within this type's rounding (NaN: nonfinite later)
-      const V h = safe_step(gp, dp);
+      V h = safe_step(gp, dp);
+      if (h < p && !(dp < zero)) {
+        V h3 = 3 * sine_gap_curvature(f, a, two_pi, p) / (2 * K);
+        if (h3 > h) h = std::move(h3);
+      }
       const V q = p + h;
       if (!(q > p)) break;
       p = q;
@@ -303,6 +320,12 @@ bool sine_first_root(const SineFlight<V>& f, const V& a, const V& two_pi, V p, c
       }
       V h = safe_step(gp, dp) * 15 / 16;
       if (!certainly(Tr::lt(zero, V(gp + h * (dp - M * h / 2))))) throw Undecided(Reason::grazing);
+      if (certainly(Tr::lt(V(h * 4), p)) && certainly(Tr::le(zero, dp))) {
+        // The third-order stretch, checked: c' > 0 (g' >= 0 makes the quadratic positive).
+        const V cp = sine_gap_curvature(f, a, two_pi, p);
+        const V h3 = detail::thin_lower(V(detail::thin_mid(cp) * 45 / (32 * detail::thin_mid(K))));
+        if (certainly(Tr::lt(h, h3)) && certainly(Tr::lt(zero, V(cp / 2 - K * h3 / 6)))) h = h3;
+      }
       // g > 0 is proved up to p + h; the march goes on from a point there (p + h itself
       // would widen step by step, h depending on p).
       p = detail::thin_lower(V(p + h));
@@ -347,25 +370,33 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
   const V av = VO::of(a), tp = VO::of(two_pi);
   const V tp2 = tp * tp;
   V p0;
-  if (s.knot == 0) {
-    p0 = 2 * TV::cos_2pi(VO::of(s.theta)) / tp;  // half of 4 g'''(0) / (16 pi^4) = 2 cos / pi
-  } else if (decide(Tr::is_zero(W), Reason::riding)) {
-    const T curvature = -sine_gravity(s.theta);  // g''(0)
-    if (decide(Tr::le(curvature, zero_), Reason::riding)) {
-      // Pressed against the wall (or exactly at its release): it rides to the release.
-      r.kind = EventKind::ride;
-      sine_ride(r, s.theta);
-      return;
+  // A release state (marked, or at rest exactly at the release phase: a start there, or a
+  // release whose mark was lost) leaves as from the release.
+  bool release = s.knot == 0;
+  if (!release) {
+    if (decide(Tr::is_zero(W), Reason::riding)) {
+      const T curvature = -sine_gravity(s.theta);  // g''(0)
+      if (decide(Tr::le(curvature, zero_), Reason::riding)) {
+        if constexpr (!Tr::is_interval) release = VO::of(s.theta) == VO::of(wall.release);
+        if (!release) {
+          // Pressed against the wall: it rides to the release.
+          r.kind = EventKind::ride;
+          sine_ride(r, s.theta);
+          return;
+        }
+      } else {
+        p0 = 3 * VO::of(curvature) / (2 * tp2 * tp);
+      }
+    } else {
+      const V w = VO::of(W);
+      if (!certainly(TV::lt(TV::from_int(0, m_.bits), w))) throw Undecided(Reason::riding);
+      const V M = av + tp2;
+      p0 = w / M;
+      if constexpr (TV::is_interval)
+        if (!certainly(TV::lt(p0, V(2 * w / M)))) throw Undecided(Reason::grazing);
     }
-    p0 = 3 * VO::of(curvature) / (2 * tp2 * tp);
-  } else {
-    const V w = VO::of(W);
-    if (!certainly(TV::lt(TV::from_int(0, m_.bits), w))) throw Undecided(Reason::riding);
-    const V M = av + tp2;
-    p0 = w / M;
-    if constexpr (TV::is_interval)
-      if (!certainly(TV::lt(p0, V(2 * w / M)))) throw Undecided(Reason::grazing);
   }
+  if (release) p0 = 2 * TV::cos_2pi(VO::of(s.theta)) / tp;  // half of 4 g'''(0) / (16 pi^4) = 2 cos / pi
 
   // The flight rises above the top (1) when v^2 > 2a(1 - f0): no contact between s_up and
   // s_down = (v + R)/a, R = sqrt(v^2 - 2a(1 - f0)); the search jumps over that stretch. The
@@ -419,15 +450,22 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
     }
   }
   // The root in T: a dual is given its derivatives by a Newton step on the gap in dual
-  // arithmetic (the value moves by g/g', the derivatives become -g_x/g' whatever they were;
-  // each further layer of a nested dual, a further order, needs one more step); for an
-  // interval dual, X - g(X)/g'(X) still encloses the root and its derivatives.
+  // arithmetic (the derivatives become -g_x/g' whatever they were; each further layer of a
+  // nested dual, a further order, needs one more step); for an interval dual, X - g(X)/g'(X)
+  // still encloses the root and its derivatives. A point dual keeps the value's root: the
+  // step uses the gap less its value (0 in the value, exactly), since the gap's value at the
+  // root is rounding noise that g' ~ 0 (a launch or an impact near grazing) would turn into
+  // a large move, and the dual map is the plain map on values.
   T sigma = VO::lift(std::move(root));
   const auto gap_T = [&](const T& t) {
     return T(origin_x + t * (origin_xdot - a * t / 2) - wall.height_at_phase(T(origin_phase + t)));
   };
   const auto rate_T = [&](const T& t) { return T(origin_xdot - a * t - wall.velocity_at(T(origin_phase + t))); };
-  for (int k = 0; k < VO::depth; ++k) sigma -= gap_T(sigma) / rate_T(sigma);
+  for (int k = 0; k < VO::depth; ++k) {
+    T g = gap_T(sigma);
+    if constexpr (!TV::is_interval) g -= VO::lift(V(VO::of(g)));
+    sigma -= g / rate_T(sigma);
+  }
   // The impact: its phase in [0, 1), the time, the relative speed -g'(sigma) >= 0.
   T x = origin_phase + sigma;
   T more = zero_;
@@ -489,7 +527,8 @@ template <class T>
 void ImpactMap<T>::sine_ride(StepResult<T>& r, const T& from) const {
   using Tr = ScalarTraits<T>;
   const Wall<T>& wall = m_.wall;
-  if (decide(Tr::lt(from, wall.release), Reason::riding)) {
+  // At the release phase itself (a start at rest there) the ride takes no time.
+  if (decide(Tr::le(from, wall.release), Reason::riding)) {
     r.tau += wall.release - from;
   } else {
     r.tau += wall.release + 1 - from;

@@ -38,7 +38,6 @@ CertifyPeriodicRequest certify_periodic_request(const Options& o) {
     parse.set(par, range->first.text());
   }
   q.model = model_from(parse);
-  require_piecewise_wall(q.model, "certify-periodic");
   if (range) {
     validate_range_ends(q.model, q.vary, *range_key, range->first, range->second);
     q.range = std::make_pair(range->first.value(), range->second.value());
@@ -51,6 +50,7 @@ CertifyPeriodicRequest certify_periodic_request(const Options& o) {
   if (o.has("lift")) {
     r.lift = parse_decimal("lift", o.get("lift"));
     if (q.model.law != Law::elastic) throw InputError("lift", "needs --model elastic (accelerator modes are elastic)");
+    require_piecewise_wall(q.model, "certify-periodic --lift (its ladder's exact check uses the wall's rational knots)");
     if (q.period != 1)
       throw InputError("lift", "needs --period 1 (exact accelerator modes are ladders of period 1: docs/guide/certified.md, certify-periodic)");
     if (!q.guess) throw InputError("lift", "needs --guess THETA,V (the start of the ladder)");

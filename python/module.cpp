@@ -926,7 +926,7 @@ class ModelCore {
     const StickingQuestion q = certify_sticking_request(with_model(texts)).question;
     const auto [c, plain] = interruptible([&] {
       StickingCertificate cert = bouncer::certify_sticking(q);
-      PlainSticking d = plain_sticking_period<double>(q.model, q.start, 53, q.max_steps);
+      PlainSticking d = plain_sticking_period<double>(q.model, q.start, 53, q.max_steps, q.from_release);
       return std::make_pair(std::move(cert), d);
     });
     py::dict d;

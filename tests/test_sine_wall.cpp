@@ -22,7 +22,8 @@
 //  4. Launches a hair off the wall near its release phase (the gap grows like s^3 there):
 //     decided, against the sampler, and the point dual's value is the plain step's.
 //  5. certify_periodic on the sine wall: the period-1 saddle and focus hold the closed forms;
-//     a sticking cycle is certified through the closed-form release state.
+//     a sticking cycle is certified through the closed-form release state, and
+//     certify_sticking from that state (StickingQuestion::from_release) finds its period.
 //
 // No expected value comes from the program: each is a closed form or the sampler's.
 #include <gtest/gtest.h>
@@ -45,6 +46,7 @@
 #include "bouncer/model/spec.hpp"
 #include "bouncer/scalar/dual.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
+#include "bouncer/verify/sticking.hpp"
 #include "sine_truth.hpp"
 #include "test_support.hpp"
 
@@ -827,6 +829,19 @@ TEST(SineWallCertified, StickingCycleThroughTheRelease) {
   ASSERT_EQ(c.events.size(), 3u);
   EXPECT_EQ(c.events.back().rfind("sticking", 0), 0u) << c.events.back();
   EXPECT_EQ(c.stability, "superstable");
+  // The interval model's release state holds the closed form, and certify_sticking from it
+  // (a Lohner orbit, not the plain interval orbit of certify_periodic) sticks at step 3.
+  const State<Mpfi> R = release_state(make_model<Mpfi>(q.model, kMpfiBits));
+  EXPECT_TRUE(holds(R.theta, theta_r) && holds(R.v, v_r)) << text(R.theta) << " " << text(R.v);
+  StickingQuestion sq;
+  sq.model = q.model;
+  sq.from_release = true;
+  sq.max_steps = 50;
+  const StickingCertificate s = certify_sticking(sq);
+  ASSERT_TRUE(s.certified) << s.reason;
+  EXPECT_EQ(s.outcome, StickingOutcome::sticks);
+  EXPECT_EQ(s.period.value_or(0), 3);
+  EXPECT_EQ(plain_sticking_period<double>(q.model, InitialCondition{}, 53, 50, true).period.value_or(0), 3);
 }
 
 }  // namespace

@@ -79,7 +79,7 @@ CommandRunner setup_certify_sticking(CLI::App* sub) {
     };
     if (!r.q.a_range) {
       const StickingCertificate c = certify_sticking(r.q);
-      const PlainSticking d = plain_sticking_period<double>(r.q.model, r.q.start, 53, r.q.max_steps);
+      const PlainSticking d = plain_sticking_period<double>(r.q.model, r.q.start, 53, r.q.max_steps, r.q.from_release);
       p.bits = c.bits;
       write(c, d);
     } else {

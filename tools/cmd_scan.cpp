@@ -90,7 +90,8 @@ void write_certified_scan(const CertifiedScanResult& res, const RunFlags& f, con
   s["grid"] = {r.p, r.q};
   s["a_range"] = {r.a_lo.text(), r.a_hi.text()};
   s[std::string(name(res.y)) + "_range"] = {r.y_lo.text(), r.y_hi.text()};
-  s["start"] = {r.start.theta.text(), r.start.v.text()};
+  if (r.start_at_release) s["start"] = "release";
+  else s["start"] = {r.start.theta.text(), r.start.v.text()};
   write_certified_map(certified_map(res), res.a, res.y_values, res.cells, s, r.precision.text(), f, prov);
 }
 

@@ -188,7 +188,7 @@ CertifiedMap certified_map(const CertifiedBasinResult& b) {
   m.x1 = r.theta_hi.value();
   m.y0 = r.v_range->first.value();
   m.y1 = r.v_range->second.value();
-  m.title = "Certified basins, " + model_title(r.model.law) + " model: each coloured pixel is proved";
+  m.title = "Certified basins, " + model_name(r.model) + ": each coloured pixel is proved";
   m.subtitle = "a = " + r.model.a.text() +
                (r.model.law == Law::veldep ? ", c = " + r.model.c.text()
                 : r.model.law == Law::constant ? ", ε = " + r.model.eps.text()
@@ -216,8 +216,10 @@ CertifiedMap certified_map(const CertifiedScanResult& s) {
   m.x1 = r.a_hi.value();
   m.y0 = r.y_lo.value();
   m.y1 = r.y_hi.value();
-  m.title = "Certified parameter scan, " + model_title(r.model.law) + " model: each coloured pixel is proved";
-  m.subtitle = "the orbit of (θ₀, v₀) = (" + r.start.theta.text() + ", " + r.start.v.text() + "); " + std::to_string(r.p) +
+  m.title = "Certified parameter scan, " + model_name(r.model) + ": each coloured pixel is proved";
+  m.subtitle = (r.start_at_release ? std::string("the orbit of the release state (θ_r, 2π cos 2πθ_r)")
+                                   : "the orbit of (θ₀, v₀) = (" + r.start.theta.text() + ", " + r.start.v.text() + ")") +
+               "; " + std::to_string(r.p) +
                " x " + std::to_string(r.q) + " exact parameter points, " + std::to_string(r.cert.max_steps) +
                " steps, interval:double then MPFI up to " + std::to_string(r.cert.max_bits) + " bits";
   m.xlabel = parameter_label(Parameter::a);

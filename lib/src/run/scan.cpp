@@ -47,7 +47,7 @@ void check_scan(const ScanRequest& r, bool certified) {
     if (r.precision.kind != Precision::Kind::double_)
       throw InputError("precision", "with --certify the twin run is double (the artefact map compares double with the "
                                     "certified answer); got '" + r.precision.text() + "'");
-    validate(r.model, r.start, "theta", "v");  // the wall does not depend on (a, eps): valid at every point
+    if (!r.start_at_release) validate(r.model, r.start, "theta", "v");  // the wall does not depend on (a, eps): valid at every point
   }
 }
 
@@ -141,9 +141,12 @@ struct Grid final : GridBase {
     spec.a = *Decimal::parse(exact(a_at(i % r.p)).digits);
     (py == Parameter::eps ? spec.eps : spec.c) = *Decimal::parse(exact(y_at(i / r.p)).digits);
     ReleaseCache releases;  // parameters differ from point to point: nothing to share
-    const CertifiedPoint c = certify_point(spec, r.start, r.cert, releases);
-    const ImpactMap<T> map(model_at(i));
-    return certified_with_twin(c, classify<T>(map, make_state<T>(r.start, r.precision.bits), r.classify));
+    const CertifiedPoint c =
+        r.start_at_release ? certify_release_point(spec, r.cert, releases) : certify_point(spec, r.start, r.cert, releases);
+    const Model<T> m = model_at(i);
+    const ImpactMap<T> map(m);
+    return certified_with_twin(c, classify<T>(map, r.start_at_release ? release_state(m) : make_state<T>(r.start, r.precision.bits),
+                                              r.classify));
   }
 
   std::vector<Number> a(bool ex) const override {

@@ -67,13 +67,52 @@ StickingCertificate ReleaseCache::get(const ModelSpec& model, const std::string&
     if (it != done_.end()) return it->second;
   }
   // Computed outside the lock (two threads may both compute it: the same pure result).
-  const InitialCondition start{*Decimal::parse(theta), *Decimal::parse(v)};
-  StickingQuestion q = question(model, start, opt);
+  StickingQuestion q;
+  if (theta.empty()) {
+    q = question(model, InitialCondition{}, opt);
+    q.from_release = true;
+  } else {
+    q = question(model, InitialCondition{*Decimal::parse(theta), *Decimal::parse(v)}, opt);
+  }
   q.schedule.max_bits = std::max(opt.max_bits, 4096L);
   q.max_steps = std::max(opt.max_steps, 20000LL);
   StickingCertificate c = certify(q);
   std::lock_guard<std::mutex> lock(mutex_);
   return done_.emplace(key, std::move(c)).first->second;
+}
+
+StickingCertificate ReleaseCache::get_release(const ModelSpec& model, const CertifyPointOptions& opt) {
+  return get(model, "", "", opt);  // the empty start names the release state
+}
+
+namespace {
+
+// The class of an orbit after its first sticking at step `first`: the release orbit's.
+void from_release_certificate(CertifiedPoint& p, const StickingCertificate& r, const ModelSpec& model,
+                              const CertifyPointOptions& opt, long long first) {
+  if (r.outcome == StickingOutcome::sticks) {
+    p.cls = CertifiedClass::sticking;
+    p.period = *r.period;
+    return;
+  }
+  set_from_trap_or_none(p, r, model.law);
+  p.free_steps = r.steps_checked;
+  if (p.cls == CertifiedClass::undecided && r.steps_checked >= opt.max_steps) p.cls = CertifiedClass::no_sticking;
+  if (p.cls == CertifiedClass::undecided)
+    p.reason = (first ? "sticks at step " + std::to_string(first) + ", then " : std::string()) + "the release orbit: " + r.reason;
+}
+
+}  // namespace
+
+CertifiedPoint certify_release_point(const ModelSpec& model, const CertifyPointOptions& opt, ReleaseCache& releases) {
+  if (model.wall.shape != WallShape::sine)
+    throw InputError("wall", "the release state as a start is for smooth walls (a piecewise wall's is an exact knot: give it as theta, v)");
+  CertifiedPoint p;
+  const StickingCertificate r = releases.get_release(model, opt);
+  p.certified_steps = r.steps_checked;
+  p.scalar = r.scalar;
+  from_release_certificate(p, r, model, opt, 0);
+  return p;
 }
 
 CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& start, const CertifyPointOptions& opt,
@@ -87,21 +126,14 @@ CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& sta
     return p;
   }
   p.first_sticking = *c.period;
-  if (c.release_theta.empty()) {
+  const bool smooth = model.wall.shape == WallShape::sine;
+  if (c.release_theta.empty() && !smooth) {
     p.cls = CertifiedClass::undecided;
     p.reason = "sticks at step " + std::to_string(*c.period) + "; the release state is not a single number";
     return p;
   }
-  const StickingCertificate r = releases.get(model, c.release_theta, c.release_v, opt);
-  if (r.outcome == StickingOutcome::sticks) {
-    p.cls = CertifiedClass::sticking;
-    p.period = *r.period;
-    return p;
-  }
-  set_from_trap_or_none(p, r, model.law);
-  p.free_steps = r.steps_checked;
-  if (p.cls == CertifiedClass::undecided && r.steps_checked >= opt.max_steps) p.cls = CertifiedClass::no_sticking;
-  if (p.cls == CertifiedClass::undecided) p.reason = "sticks at step " + std::to_string(*c.period) + ", then the release orbit: " + r.reason;
+  const StickingCertificate r = smooth ? releases.get_release(model, opt) : releases.get(model, c.release_theta, c.release_v, opt);
+  from_release_certificate(p, r, model, opt, *c.period);
   return p;
 }
 

@@ -781,11 +781,9 @@ class Attempt1 {
     if (k < 0) throw NotCertified("the Newton orbit's release state is not at a wall knot");
     const Wall<Mpfi>& w = model_.wall;
     // A piecewise wall releases at knot k with the velocity of the segment before it; a smooth
-    // wall at its release phase (knot mark 0), with the wall's velocity there. The step builds
-    // the release state the same way, so the comparison below is exact.
+    // wall at its release phase (the step's own release_state, so the comparison below is exact).
     const int before = (k + w.segments() - 1) % w.segments();
-    const State<Mpfi> R = w.smooth() ? State<Mpfi>{w.release, w.velocity_at(w.release), k}
-                                     : State<Mpfi>{w.start[k], w.velocity[before], k};
+    const State<Mpfi> R = w.smooth() ? release_state(model_) : State<Mpfi>{w.start[k], w.velocity[before], k};
     const std::vector<StepResult<Mpfi>> orbit = interval_orbit(model_, R, q_.period);
     for (long i = 0; i < q_.period; ++i) {
       if (orbit[i].kind == EventKind::impact) continue;

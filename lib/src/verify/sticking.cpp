@@ -190,7 +190,7 @@ std::optional<AttractorProof> prove_trapped(const Model<S>& m, const Parallelogr
 template <class S>
 RunResult run_once(const StickingQuestion& q, long bits, Progress& progress) {
   const Model<S> m = interval_model_of<S>(q.model, bits, q.a_range);
-  OrbitEnclosureOf<S> orbit(m, make_state<S>(q.start, bits), q.method);
+  OrbitEnclosureOf<S> orbit(m, q.from_release ? release_state(m) : make_state<S>(q.start, bits), q.method);
   const size_t keep = q.prove_attractor ? static_cast<size_t>(q.max_attractor_period) + 1 : 0;
   std::deque<std::pair<double, double>> recent;
   RunResult r;
@@ -268,7 +268,14 @@ StickingCertificate certify_run(const StickingQuestion& q) {
 
 }  // namespace
 
+std::string start_text(const StickingQuestion& q) {
+  if (q.from_release) return "the release state (theta_r, 2 pi cos(2 pi theta_r)), theta_r = asin(a/(4 pi^2))/(2 pi)";
+  return "(theta, v) = (" + q.start.theta.text() + ", " + q.start.v.text() + ")";
+}
+
 StickingCertificate certify_sticking(const StickingQuestion& q) {
+  if (q.from_release && q.model.wall.shape != WallShape::sine)
+    throw InputError("wall", "a start at the release state is for smooth walls (a piecewise wall's release is an exact knot: give it as theta, v)");
   if (const std::string why = why_no_certified_answers(q.model); !why.empty())
     throw InputError("model", "certified long-run answers need --model constant, or --model veldep without "
                               "--veldep-collapse: " + why);
@@ -285,10 +292,11 @@ StickingCertificate certify_orbit_steps(const StickingQuestion& q) {
 
 template <class T>
 PlainSticking plain_sticking_period(const ModelSpec& model, const InitialCondition& start, long bits,
-                                    long long max_steps) {
+                                    long long max_steps, bool from_release) {
   PlainSticking out;
-  const ImpactMap<T> map(make_model<T>(model, bits));
-  State<T> s = make_state<T>(start, bits);
+  const Model<T> m = make_model<T>(model, bits);
+  const ImpactMap<T> map(m);
+  State<T> s = from_release ? release_state(m) : make_state<T>(start, bits);
   for (long long n = 1; n <= max_steps; ++n) {
     throw_if_cancelled(n);
     try {
@@ -308,7 +316,7 @@ PlainSticking plain_sticking_period(const ModelSpec& model, const InitialConditi
 }
 
 #define BOUNCER_X(T, kind) \
-  template PlainSticking plain_sticking_period<T>(const ModelSpec&, const InitialCondition&, long, long long);
+  template PlainSticking plain_sticking_period<T>(const ModelSpec&, const InitialCondition&, long, long long, bool);
 BOUNCER_FOR_EACH_POINT_SCALAR(BOUNCER_X)
 #undef BOUNCER_X
 
@@ -391,8 +399,8 @@ RangeReport certify_sticking_range(const StickingQuestion& q, const RangeOptions
   std::ostringstream t;
   t << "For every a in [" << exact_decimal(rep.lo) << ", " << exact_decimal(rep.hi)
     << "] except a set of total length L = " << exact_decimal(rep.uncertified_length)
-    << ", the sticking period of the orbit from (theta, v) = (" << q.start.theta.text() << ", " << q.start.v.text()
-    << ") (eps = " << q.model.eps.text() << ", " << q.model.wall.text << " wall, " << name(q.model.downward)
+    << ", the sticking period of the orbit from " << start_text(q)
+    << " (eps = " << q.model.eps.text() << ", " << q.model.wall.text << " wall, " << name(q.model.downward)
     << " downward-sticking convention) is:";
   bool first = true;
   for (const auto& [key, ivs] : groups) {
@@ -435,7 +443,7 @@ std::vector<PlainSticking> double_sticking_at_midpoints(const StickingQuestion& 
   for (const RangePiece& piece : rep.pieces) {
     ModelSpec at = q.model;
     at.a = *Decimal::parse(exact_decimal((piece.lo + piece.hi) / 2));
-    runs.push_back(plain_sticking_period<double>(at, q.start, 53, q.max_steps));
+    runs.push_back(plain_sticking_period<double>(at, q.start, 53, q.max_steps, q.from_release));
   }
   return runs;
 }

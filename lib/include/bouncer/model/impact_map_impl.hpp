@@ -535,9 +535,7 @@ void ImpactMap<T>::sine_ride(StepResult<T>& r, const T& from) const {
     ++r.periods;
   }
   r.segment = 0;
-  r.next.theta = wall.release;
-  r.next.v = wall.velocity_at(wall.release);
-  r.next.knot = 0;  // the release phase: the next step starts from its Taylor bound
+  r.next = release_state(m_);  // marked: the next step starts from its Taylor bound
 }
 
 template <class T>

@@ -221,6 +221,13 @@ State<T> make_state(const InitialCondition& ic, long bits) {
   return s;
 }
 
+// A smooth wall's release state: at rest on the wall at its release phase theta_r, marked as
+// the release (knot 0), where a stuck particle's ride ends (impact_map_impl.hpp, sine_ride).
+template <class T>
+State<T> release_state(const Model<T>& m) {
+  return State<T>{m.wall.release, m.wall.velocity_at(m.wall.release), 0};
+}
+
 // The same, recognising a start exactly at a wall knot (compared as exact rationals).
 template <class T>
 State<T> make_state(const Model<T>& m, const InitialCondition& ic) {

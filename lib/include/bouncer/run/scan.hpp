@@ -36,6 +36,9 @@ struct ScanRequest {
   Precision precision;  // an analysis scalar; certified: double, the twin run
   // certified_scan only: the certified start (exact) and the certificate's schedule.
   InitialCondition start{Decimal::from_int(0), Decimal::from_int(0)};
+  // certified_scan only: start at a smooth wall's release state instead of `start` (its theta_r
+  // is irrational: verify/certified_point.hpp, certify_release_point).
+  bool start_at_release = false;
   CertifyPointOptions cert;
   // scan only: the starts of a sample of parameter points classified again at higher
   // precision (run/cells.hpp; the lattice is over the p x q points, each with its k x k starts).

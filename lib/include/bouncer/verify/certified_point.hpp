@@ -82,6 +82,8 @@ class ReleaseCache {
  public:
   StickingCertificate get(const ModelSpec& model, const std::string& theta, const std::string& v,
                           const CertifyPointOptions& opt);
+  // A smooth wall's release state (StickingQuestion::from_release).
+  StickingCertificate get_release(const ModelSpec& model, const CertifyPointOptions& opt);
 
  private:
   std::mutex mutex_;
@@ -94,9 +96,15 @@ class ReleaseCache {
 // what is allowed and why, for any other model (velocity-dependent collapse).
 void require_certified_model(const ModelSpec& m, const std::string& command);
 
-// Certifies the orbit of the exact start (theta, v) (decimal text, exact).
+// Certifies the orbit of the exact start (theta, v) (decimal text, exact). After a first
+// sticking the orbit goes on from the release state: an exact knot of a piecewise wall, or a
+// smooth wall's release enclosed by the interval model (ReleaseCache::get_release).
 CertifiedPoint certify_point(const ModelSpec& model, const InitialCondition& start, const CertifyPointOptions& opt,
                              ReleaseCache& releases);
+
+// Certifies the orbit of a smooth wall's release state (the start every sticking orbit passes
+// through, as (1/2, 4) is the triangle's): its class, as certify_point's after a sticking.
+CertifiedPoint certify_release_point(const ModelSpec& model, const CertifyPointOptions& opt, ReleaseCache& releases);
 
 // Does a point answer agree with the certified one? agrees, differs (the point answer is an
 // artefact of its precision) or undecided (no certified answer to compare with).

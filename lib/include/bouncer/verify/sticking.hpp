@@ -43,6 +43,11 @@ const char* name(StickingOutcome o);
 struct StickingQuestion {
   ModelSpec model;                 // constant law
   InitialCondition start{Decimal::parse("0.5").value(), Decimal::from_int(4)};
+  // Start at the wall's release state (theta_r, u(theta_r)) instead of `start`: a smooth
+  // wall's theta_r = asin(a/(4 pi^2))/(2 pi) is irrational, so the run's interval model
+  // encloses it (and a range of a moves it). Smooth walls only: a piecewise wall's release is
+  // an exact knot, given as `start` (the triangle's (1/2, 4)).
+  bool from_release = false;
   std::optional<std::pair<mpq_class, mpq_class>> a_range;  // a as the interval [lo, hi]
   long long max_steps = 100000;
   // interval:double first, then MPFI at 64, 128, ... 4096 bits.
@@ -105,9 +110,13 @@ struct PlainSticking {
 };
 // T a point scalar (scalar/scalar_set.hpp); bits used by Mpfr only. With a_range the
 // midpoint of the range is used (as a decimal).
+// from_release: from the wall's release state, as StickingQuestion::from_release.
 template <class T>
 PlainSticking plain_sticking_period(const ModelSpec& model, const InitialCondition& start, long bits,
-                                    long long max_steps);
+                                    long long max_steps, bool from_release = false);
+
+// The start of a question in words: "(theta, v) = (0.5, 4)", or the release state.
+std::string start_text(const StickingQuestion& q);
 
 // Adaptive bisection of a parameter interval a in [lo, hi].
 struct RangeOptions {

@@ -50,8 +50,12 @@ json inputs_json(const StickingQuestion& q) {
   if (q.a_range) in["a_range"] = {exact_decimal(q.a_range->first), exact_decimal(q.a_range->second)};
   else in["a"] = q.model.a.text();
   in["eps"] = q.model.eps.text();
-  in["theta"] = q.start.theta.text();
-  in["v"] = q.start.v.text();
+  if (q.from_release) {
+    in["start"] = "release";
+  } else {
+    in["theta"] = q.start.theta.text();
+    in["v"] = q.start.v.text();
+  }
   in["wall"] = q.model.wall.text;
   in["downward_sticking"] = name(q.model.downward);
   in["max_steps"] = q.max_steps;

@@ -23,6 +23,8 @@ std::pair<mpq_class, mpq_class> parse_a_range(const std::string& text) {
 
 void certify_sticking_defaults(Options& o) {
   if (!o.has("model")) o.set("model", "constant");
+  // A smooth wall's default start is its release state (from_release), which no decimal is.
+  if (o.get_or("wall", "") == "sine") return;
   if (!o.has("theta")) o.set("theta", "0.5");
   if (!o.has("v")) o.set("v", "4");
 }
@@ -42,14 +44,16 @@ CertifyStickingRequest certify_sticking_request(const Options& given) {
     parse.set("a", o.get("a-range").substr(0, o.get("a-range").find(':')));
   }
   q.model = model_from(parse);
-  require_piecewise_wall(q.model, "certify-sticking");
   if (q.model.law != Law::constant)
     throw InputError("model", "certify-sticking needs --model constant (its certified collapse test is the "
                               "constant-restitution threshold; velocity-dependent collapse, which does occur: "
                               "bouncer orbit --model veldep --veldep-collapse on)");
-  const std::vector<InitialCondition> ic = initial_conditions_from(parse, q.model);
-  if (ic.size() != 1) throw InputError("theta", "takes one initial condition");
-  q.start = ic[0];
+  q.from_release = q.model.wall.shape == WallShape::sine && !o.has("theta") && !o.has("v");
+  if (!q.from_release) {
+    const std::vector<InitialCondition> ic = initial_conditions_from(parse, q.model);
+    if (ic.size() != 1) throw InputError("theta", "takes one initial condition");
+    q.start = ic[0];
+  }
   q.a_range = range;
   q.max_steps = integer_from(o, "max-steps", 1, 1000000000LL, 100000);
   q.schedule.max_bits = integer_from(o, "max-bits", kMinBits, kMaxBits, 4096);

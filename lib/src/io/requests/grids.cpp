@@ -49,7 +49,6 @@ BasinOptions basin_options(const Options& o) {
   r.classify = classify_options_from(o);
   r.precision = point_precision(o);
   b.certify = flag_from(o, "certify");
-  if (b.certify) require_piecewise_wall(r.model, "basin --certify");
   if (o.has("max-bits") && !b.certify) throw InputError("max-bits", "is only used with --certify");
   r.cert.max_steps = r.classify.transient + r.classify.steps;
   r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
@@ -107,13 +106,13 @@ ScanOptions scan_options(const Options& o) {
   so.fixed_point_curves = curves == "fixed-points";
   if (so.fixed_point_curves) require_piecewise_wall(r.model, "--curves fixed-points (the triangle's eq. 5)");
   so.certify = flag_from(o, "certify");
-  if (so.certify) require_piecewise_wall(r.model, "scan --certify");
   for (const char* k : {"max-bits", "theta", "v"})
     if (o.has(k) && !so.certify)
       throw InputError(k, "is only used with --certify (the certified start; the classified starts are --ics, --theta-range, --v-range)");
-  // --certify: the release state (1/2, 4) by default, which every sticking orbit of the
-  // triangle wall passes through.
+  // --certify: the release state by default, which every sticking orbit passes through: the
+  // triangle's (1/2, 4), or a smooth wall's (theta_r, u(theta_r)).
   r.start = {parse_decimal("theta", o.get_or("theta", "0.5")), parse_decimal("v", o.get_or("v", "4"))};
+  r.start_at_release = so.certify && r.model.wall.shape == WallShape::sine && !o.has("theta") && !o.has("v");
   r.cert.max_steps = r.classify.transient + r.classify.steps;
   r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);
   r.cert.max_attractor_period = r.classify.max_period;
@@ -144,7 +143,6 @@ BifurcationOptions bifurcation_options(const Options& given) {
   b.show_theta = show == "theta";
   b.bins = integer_from(o, "bins", 10, 4000, 400);
   r.certify = flag_from(o, "certify");
-  if (r.certify) require_piecewise_wall(r.model, "bifurcation --certify");
   if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is only used with --certify");
   r.cert.max_steps = r.transient + r.record;
   r.cert.max_bits = integer_from(o, "max-bits", 64, 4096, 256);

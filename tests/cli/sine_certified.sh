@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# End-to-end: the certified commands on the sine wall (--wall sine), whose release phase
+# theta_r = asin(a/(4 pi^2))/(2 pi) is irrational, so the release state is enclosed by the
+# interval model rather than given as a decimal (verify/sticking.hpp, from_release).
+#   certify-sticking: from the release state by default (inputs.start = "release"); at
+#     eps = 0.5, a = 8 it sticks again at step 3 (the sticking cycle that certify-periodic
+#     proves through the same release state), and double agrees; from a decimal start it
+#     sticks first and says when; audit reruns it IDENTICAL.
+#   certify-periodic: the period-3 sticking cycle through the release state (superstable),
+#     and the stable period-1 focus at a = 30 (multipliers of modulus eps = 1/2 = sqrt(det)).
+#   scan --certify: every cell is certified from the release state (JSON start "release"),
+#     and a sample cell's class is certify-sticking's at the cell's exact parameters.
+#   basin --certify: after a first sticking each orbit goes on from the release state, so
+#     every certified sticking pixel has the release orbit's period (3 at a = 8).
+#   bad input: certify-periodic --lift and certify-chaos still refuse the sine wall (exit 2).
+# Usage: bash sine_certified.sh <bouncer-binary> <source-dir>
+set -euo pipefail
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.sh" "$@"
+require python3
+cd "$TMP"
+sine=(--model constant --wall sine --eps 0.5)
+
+if run release certify-sticking "${sine[@]}" --a 8 --max-steps 200 --json; then
+  json_holds release 'j["certified"] is True and j["outcome"] == "sticks" and j["period"] == 3'
+  json_holds release 'j["inputs"]["start"] == "release" and "theta" not in j["inputs"] and j["inputs"]["wall"] == "sine"'
+  json_holds release 'j["double_period"] == 3 and j["agrees"] is True'
+fi
+"$BOUNCER" certify-sticking "${sine[@]}" --a 8 --max-steps 200 --json --out release.json || fail release-out "exit $?"
+audited release release.json
+if run decimal certify-sticking "${sine[@]}" --a 8 --theta 0.3 --v 3 --max-steps 200 --json; then
+  json_holds decimal 'j["certified"] is True and j["outcome"] == "sticks" and j["inputs"]["theta"] == "0.3"'
+fi
+
+if run cycle certify-periodic "${sine[@]}" --a 8 --period 3 --guess 0.0324764449261353,6.1528268841306 --json; then
+  json_holds cycle 'j["certified"] is True and j["outcome"] == "through_release" and j["minimal_period"] == 3'
+  json_holds cycle 'j["stability"] == "superstable" and j["events"][-1].startswith("sticking")'
+fi
+if run focus certify-periodic "${sine[@]}" --a 30 --period 1 --guess 0.1,15 --json; then
+  json_holds focus 'j["certified"] is True and j["outcome"] == "isolated" and j["stability"] == "stable"'
+  json_holds focus 'j["multipliers"]["kind"] == "complex" and inside("1/2", j["multipliers"]["modulus"])'
+  json_holds focus 'inside("1/4", j["multipliers"]["det"]) and inside("15", j["points"][0]["v"])'
+fi
+
+"$BOUNCER" scan --model constant --wall sine --a-range 7.5:8.5 --eps-range 0.45:0.55 --grid 2x2 --transient 200 --steps 100 \
+  --certify --max-bits 128 --quiet --out s || fail scan "exit $?"
+"$BOUNCER" basin "${sine[@]}" --a 8 --grid 4x3 --transient 200 --steps 100 --certify --max-bits 128 --quiet --out b \
+  || fail basin "exit $?"
+python3 - "$BOUNCER" <<'PY' || fail properties "see above"
+import csv, json, subprocess, sys
+bouncer = sys.argv[1]
+from clichecks import check, done
+def rows(name):
+    return list(csv.DictReader(l for l in open(name + ".csv") if not l.startswith("#")))
+js = json.load(open("s.json"))["summary"]
+check(js["certified"] is True and js["start"] == "release", "scan: certified from the release: %s" % js.get("start"))
+cells = rows("s")
+check(len(cells) == 4, "scan: 4 cells, got %d" % len(cells))
+decided = [c for c in cells if c["class"] not in ("undecided", "outside")]
+check(len(decided) > 0, "scan: no certified cell")
+for c in decided[:2]:
+    out = subprocess.run([bouncer, "certify-sticking", "--model", "constant", "--wall", "sine", "--a", c["a"], "--eps", c["eps"],
+                          "--max-steps", "300", "--max-bits", "4096", "--json"], capture_output=True, text=True)
+    h = json.loads(out.stdout)
+    if c["class"] == "sticking":
+        check(h["outcome"] == "sticks" and str(h["period"]) == c["period"], "scan cell %s: %s vs %s" % (c, h["outcome"], h["period"]))
+b = rows("b")
+stick = [r for r in b if r["class"] == "sticking"]
+check(len(stick) > 0, "basin: no certified sticking pixel")
+check(all(r["period"] == "3" for r in stick), "basin: sticking periods %s (the release orbit's is 3)" % {r["period"] for r in stick})
+done()
+PY
+
+refused lift "wall" certify-periodic --model elastic --wall sine --a 16 --period 1 --guess 0.1,8 --lift 8
+refused chaos "wall" certify-chaos "${sine[@]}" --a 20
+finish

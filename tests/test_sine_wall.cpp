@@ -213,6 +213,19 @@ void expect_enclosure(const st::FirstImpact& t, const StepResult<T>& r, const ch
   }
 }
 
+// The interval step of type T from the case's exact start must enclose the sampler's impact;
+// nullopt if it does, or the reason it was undecided.
+template <class T>
+std::optional<std::string> interval_step_encloses(const Case& c, const st::FirstImpact& t, long bits, const char* type) {
+  try {
+    const StepResult<T> r = ImpactMap<T>(make_model<T>(c.spec, bits)).step(exact_state<T>(c.theta, c.v));
+    expect_enclosure(t, r, type);
+    return std::nullopt;
+  } catch (const Undecided& u) {
+    return std::string(u.what());
+  }
+}
+
 void check_case(const Case& c, Stats& stats) {
   SCOPED_TRACE(c.text);
   ++stats.cases;
@@ -238,20 +251,13 @@ void check_case(const Case& c, Stats& stats) {
   } catch (const Undecided& u) {
     ADD_FAILURE() << "mpfr256: undecided (" << u.what() << ")";
   }
-  try {
-    const StepResult<Mpfi> r = ImpactMap<Mpfi>(make_model<Mpfi>(c.spec, kMpfiBits)).step(exact_state<Mpfi>(c.theta, c.v));
-    expect_enclosure(t, r, "mpfi128");
-  } catch (const Undecided& u) {
+  if (const auto why = interval_step_encloses<Mpfi>(c, t, kMpfiBits, "mpfi128")) {
     ++stats.undecided_mpfi;
-    ++stats.why[std::string("mpfi128: ") + u.what()];
+    ++stats.why["mpfi128: " + *why];
   }
-  try {
-    const StepResult<DoubleInterval> r =
-        ImpactMap<DoubleInterval>(make_model<DoubleInterval>(c.spec, 53)).step(exact_state<DoubleInterval>(c.theta, c.v));
-    expect_enclosure(t, r, "interval_double");
-  } catch (const Undecided& u) {
+  if (const auto why = interval_step_encloses<DoubleInterval>(c, t, 53, "interval_double")) {
     ++stats.undecided_double_interval;
-    ++stats.why[std::string("interval_double: ") + u.what()];
+    ++stats.why["interval_double: " + *why];
   }
 }
 
@@ -759,12 +765,7 @@ TEST(SineWallFirstImpact, LaunchesNearTheReleaseLeaveWithoutCrawling) {
         } catch (const Undecided& u) {
           ADD_FAILURE() << "mpfr256: undecided (" << u.what() << ")";
         }
-        try {
-          const StepResult<Mpfi> r = ImpactMap<Mpfi>(make_model<Mpfi>(c.spec, kMpfiBits)).step(exact_state<Mpfi>(c.theta, c.v));
-          expect_enclosure(t, r, "mpfi128");
-        } catch (const Undecided& u) {
-          ADD_FAILURE() << "mpfi128: undecided (" << u.what() << ")";
-        }
+        if (const auto why = interval_step_encloses<Mpfi>(c, t, kMpfiBits, "mpfi128")) ADD_FAILURE() << "mpfi128: undecided (" << *why << ")";
       }
     }
   }

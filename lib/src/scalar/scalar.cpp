@@ -363,43 +363,64 @@ namespace {
 // Between the ends the function is monotone unless a maximum (x = 1/4 + k for the sine, k
 // for the cosine) or a minimum (3/4 + k, 1/2 + k) lies in [lo, hi]; the extremum test rounds
 // the candidate k down, which can only admit an extremum (a wider, still valid enclosure).
+// Scratch variables of trig_2pi_enclosure, one set per thread, set up once (mpfr_set_prec
+// reuses their limbs: a step calls the enclosure dozens of times).
+struct TrigScratch {
+  mpfr_t x2, at_lo, at_hi, k, c;
+  TrigScratch() { mpfr_inits2(64, x2, at_lo, at_hi, k, c, (mpfr_ptr)nullptr); }
+  ~TrigScratch() { mpfr_clears(x2, at_lo, at_hi, k, c, (mpfr_ptr)nullptr); }
+  TrigScratch(const TrigScratch&) = delete;
+  TrigScratch& operator=(const TrigScratch&) = delete;
+};
+
+// sin(2 pi x) or cos(2 pi x) over [lo, hi] into [out_lo, out_hi] (both of one precision):
+// the directed roundings of the ends, widened to +-1 where the interval holds an extremum.
+// Each end costs one correctly rounded MPFR call: its ternary value says on which side of
+// the exact value the nearest rounding lies, so RD and RU are that rounding and its
+// neighbour (or both it, when exact) -- the same bits as two directed calls.
 void trig_2pi_enclosure(mpfr_srcptr lo, mpfr_srcptr hi, bool cosine, mpfr_ptr out_lo, mpfr_ptr out_hi) {
   if (mpfr_nan_p(lo) || mpfr_nan_p(hi) || !mpfr_number_p(lo) || !mpfr_number_p(hi)) {
     mpfr_set_nan(out_lo);
     mpfr_set_nan(out_hi);
     return;
   }
-  const mpfr_prec_t p = std::max(mpfr_get_prec(lo), mpfr_get_prec(hi)) + 2;
-  mpfr_t x2, y, width, k, c;
-  mpfr_inits2(p, x2, y, width, (mpfr_ptr)nullptr);
-  mpfr_inits2(64, k, c, (mpfr_ptr)nullptr);
-  mpfr_sub(width, hi, lo, MPFR_RNDU);
-  if (mpfr_cmp_ui(width, 1) >= 0) {
+  thread_local TrigScratch t;
+  const mpfr_prec_t p = std::max(mpfr_get_prec(lo), mpfr_get_prec(hi)) + 1, po = mpfr_get_prec(out_lo);
+  mpfr_set_prec(t.x2, p);
+  mpfr_set_prec(t.at_lo, po);
+  mpfr_set_prec(t.at_hi, po);
+  mpfr_sub(t.c, hi, lo, MPFR_RNDU);  // c at 64 bits: the width, rounded up
+  if (mpfr_cmp_ui(t.c, 1) >= 0) {
     mpfr_set_si(out_lo, -1, MPFR_RNDD);
     mpfr_set_si(out_hi, 1, MPFR_RNDU);
-  } else {
-    auto f = [&](mpfr_srcptr x, mpfr_ptr out, mpfr_rnd_t rnd) {
-      mpfr_mul_2ui(x2, x, 1, MPFR_RNDN);  // exact (p > prec(x))
-      if (cosine) mpfr_cospi(out, x2, rnd);
-      else mpfr_sinpi(out, x2, rnd);
-    };
-    f(lo, out_lo, MPFR_RNDD);
-    f(hi, y, MPFR_RNDD);
-    mpfr_min(out_lo, out_lo, y, MPFR_RNDD);
-    f(lo, out_hi, MPFR_RNDU);
-    f(hi, y, MPFR_RNDU);
-    mpfr_max(out_hi, out_hi, y, MPFR_RNDU);
-    // Is there an integer k with lo <= k + offset <= hi?
-    auto contains = [&](double offset) {
-      mpfr_sub_d(k, lo, offset, MPFR_RNDD);
-      mpfr_ceil(k, k);
-      mpfr_add_d(c, k, offset, MPFR_RNDN);  // exact: k is a modest integer at 64 bits
-      return mpfr_lessequal_p(c, hi) != 0;
-    };
-    if (contains(cosine ? 0.0 : 0.25)) mpfr_set_si(out_hi, 1, MPFR_RNDU);
-    if (contains(cosine ? 0.5 : 0.75)) mpfr_set_si(out_lo, -1, MPFR_RNDD);
+    return;
   }
-  mpfr_clears(x2, y, width, k, c, (mpfr_ptr)nullptr);
+  // f(x) rounded to nearest at po bits in `out`; returns MPFR's ternary value.
+  auto f = [&](mpfr_srcptr x, mpfr_ptr out) {
+    mpfr_mul_2ui(t.x2, x, 1, MPFR_RNDN);  // exact (p > prec(x))
+    return cosine ? mpfr_cospi(out, t.x2, MPFR_RNDN) : mpfr_sinpi(out, t.x2, MPFR_RNDN);
+  };
+  const int t_lo = f(lo, t.at_lo), t_hi = f(hi, t.at_hi);
+  // RD(f(x)) is the nearest rounding, or the number below it when that lies above f(x)
+  // (ternary > 0); RU(f(x)) likewise. The copies are exact (one precision).
+  mpfr_set(out_hi, t.at_lo, MPFR_RNDN);
+  if (t_lo < 0) mpfr_nextabove(out_hi);
+  mpfr_set(out_lo, t.at_lo, MPFR_RNDN);
+  if (t_lo > 0) mpfr_nextbelow(out_lo);
+  mpfr_set(t.at_lo, t.at_hi, MPFR_RNDN);
+  if (t_hi > 0) mpfr_nextbelow(t.at_lo);
+  mpfr_min(out_lo, out_lo, t.at_lo, MPFR_RNDD);
+  if (t_hi < 0) mpfr_nextabove(t.at_hi);
+  mpfr_max(out_hi, out_hi, t.at_hi, MPFR_RNDU);
+  // Is there an integer k with lo <= k + offset <= hi?
+  auto contains = [&](double offset) {
+    mpfr_sub_d(t.k, lo, offset, MPFR_RNDD);
+    mpfr_ceil(t.k, t.k);
+    mpfr_add_d(t.c, t.k, offset, MPFR_RNDN);  // exact: k is a modest integer at 64 bits
+    return mpfr_lessequal_p(t.c, hi) != 0;
+  };
+  if (contains(cosine ? 0.0 : 0.25)) mpfr_set_si(out_hi, 1, MPFR_RNDU);
+  if (contains(cosine ? 0.5 : 0.75)) mpfr_set_si(out_lo, -1, MPFR_RNDD);
 }
 
 Mpfi trig_mpfi(const Mpfi& x, bool cosine) {
@@ -409,21 +430,27 @@ Mpfi trig_mpfi(const Mpfi& x, bool cosine) {
 }
 
 DoubleInterval trig_double_interval(const DoubleInterval& x, bool cosine) {
-  mpfr_t lo, hi, out_lo, out_hi;
-  mpfr_inits2(53, lo, hi, out_lo, out_hi, (mpfr_ptr)nullptr);
-  mpfr_set_d(lo, x.lower(), MPFR_RNDN);  // exact
-  mpfr_set_d(hi, x.upper(), MPFR_RNDN);
-  trig_2pi_enclosure(lo, hi, cosine, out_lo, out_hi);
-  const DoubleInterval r(mpfr_get_d(out_lo, MPFR_RNDD), mpfr_get_d(out_hi, MPFR_RNDU));
-  mpfr_clears(lo, hi, out_lo, out_hi, (mpfr_ptr)nullptr);
-  return r;
+  struct Ends {  // the ends at 53 bits, one set per thread
+    mpfr_t lo, hi, out_lo, out_hi;
+    Ends() { mpfr_inits2(53, lo, hi, out_lo, out_hi, (mpfr_ptr)nullptr); }
+    ~Ends() { mpfr_clears(lo, hi, out_lo, out_hi, (mpfr_ptr)nullptr); }
+    Ends(const Ends&) = delete;
+    Ends& operator=(const Ends&) = delete;
+  };
+  thread_local Ends e;
+  mpfr_set_d(e.lo, x.lower(), MPFR_RNDN);  // exact
+  mpfr_set_d(e.hi, x.upper(), MPFR_RNDN);
+  trig_2pi_enclosure(e.lo, e.hi, cosine, e.out_lo, e.out_hi);
+  return DoubleInterval(mpfr_get_d(e.out_lo, MPFR_RNDD), mpfr_get_d(e.out_hi, MPFR_RNDU));
 }
 
 Mpfr trig_mpfr(const Mpfr& x, bool cosine) {
-  Mpfr x2(x.bits() + 1), r(x.bits());
-  mpfr_mul_2ui(x2.get(), x.get(), 1, MPFR_RNDN);  // exact
-  if (cosine) mpfr_cospi(r.get(), x2.get(), MPFR_RNDN);
-  else mpfr_sinpi(r.get(), x2.get(), MPFR_RNDN);
+  thread_local TrigScratch t;  // its x2
+  mpfr_set_prec(t.x2, x.bits() + 1);
+  Mpfr r(x.bits());
+  mpfr_mul_2ui(t.x2, x.get(), 1, MPFR_RNDN);  // exact
+  if (cosine) mpfr_cospi(r.get(), t.x2, MPFR_RNDN);
+  else mpfr_sinpi(r.get(), t.x2, MPFR_RNDN);
   return r;
 }
 

@@ -60,13 +60,19 @@ const char* const kMethod =
     "the sine wall through bouncer's certified step (ImpactMap<Mpfi>, first impacts certified over each box); "
     "certify_periodic (Krawczyk, as certify-periodic) for the period-1 orbits; closed forms enclosed by MPFI";
 
-Model<Mpfi> sine_model(Law law, const std::string& a, const std::string& eps, long bits) {
+// The sine wall's validated model: its spec (for the library's certificates) and its MPFI
+// model at `bits`.
+bouncer::ModelSpec sine_spec(Law law, const std::string& a, const std::string& eps) {
   bouncer::ModelSpec spec;
   spec.law = law;
   spec.wall = bouncer::parse_wall("wall", "sine");
   spec.a = bouncer::parse_decimal("a", a);
   spec.eps = bouncer::parse_decimal("eps", eps);
-  return bouncer::make_model<Mpfi>(spec, bits);
+  bouncer::validate(spec);
+  return spec;
+}
+Model<Mpfi> sine_model(Law law, const std::string& a, const std::string& eps, long bits) {
+  return bouncer::make_model<Mpfi>(sine_spec(law, a, eps), bits);
 }
 
 Mpfi pi_of(long bits) {
@@ -84,8 +90,6 @@ Mpfi asin_of(const Mpfi& x) {
   mpfi_asin(r.get(), x.get());
   return r;
 }
-Mpfi widen(const Mpfi& x, const Mpfi& r) { return Mpfi(Mpfi(x - r).lower(), Mpfi(x + r).upper()); }
-bool inside(const Mpfi& k, const Mpfi& x) { return lt(point(x.lower()), k) && lt(k, point(x.upper())); }
 
 // The stable period-1 orbit's closed form (sin(2 pi theta*) > 0): theta* = acos(c)/(2 pi).
 struct Period1 {
@@ -144,16 +148,6 @@ Certified1 certify_period1(const bouncer::ModelSpec& spec, const Period1& cf, lo
   return out;
 }
 
-bouncer::ModelSpec sine_spec(const std::string& a) {
-  bouncer::ModelSpec spec;
-  spec.law = Law::constant;
-  spec.wall = bouncer::parse_wall("wall", "sine");
-  spec.a = bouncer::parse_decimal("a", a);
-  spec.eps = bouncer::parse_decimal("eps", "0.5");
-  bouncer::validate(spec);
-  return spec;
-}
-
 std::string dec(double x) {
   char b[64];
   std::snprintf(b, sizeof b, "%.6f", x);
@@ -180,7 +174,7 @@ void period_one(Certificate& cert, SubClaim& sub) {
   for (const Case& c : cases) {
     const Model<Mpfi> m = sine_model(Law::constant, c.a, "0.5", bits);
     const Period1 cf = closed_form(m.a, m.eps);
-    const Certified1 r = certify_period1(sine_spec(c.a), cf, bits);
+    const Certified1 r = certify_period1(sine_spec(Law::constant, c.a, "0.5"), cf, bits);
     if (!r.ok) {
       sub.evidence.push_back("a = " + c.a + ": not certified: " + r.why);
       all = false;
@@ -276,7 +270,7 @@ void border(Certificate& cert, SubClaim& sub, const SubClaim& p1) {
   const long bits = cert.bits();
   const Model<Mpfi> m = sine_model(Law::constant, "37.699", "0.5", bits);  // just below a_SN = 37.6991...
   const Period1 cf = closed_form(m.a, m.eps);
-  const Certified1 r = certify_period1(sine_spec("37.699"), cf, bits);
+  const Certified1 r = certify_period1(sine_spec(Law::constant, "37.699", "0.5"), cf, bits);
   if (!r.ok || r.complex) {
     sub.evidence.push_back("a = 37.699 (just below a_SN): " + (r.ok ? std::string("a complex pair of multipliers") : r.why));
     return;
@@ -301,7 +295,7 @@ void border(Certificate& cert, SubClaim& sub, const SubClaim& p1) {
 void chaos(Certificate& cert, SubClaim& sub) {
   bouncer::ChaosSearchOptions options;
   options.bits = cert.bits();
-  const bouncer::ChaosSearchResult r = bouncer::certify_chaos(sine_spec("20"), options);
+  const bouncer::ChaosSearchResult r = bouncer::certify_chaos(sine_spec(Law::constant, "20", "0.5"), options);
   sub.evidence.push_back("sine wall, eps = 1/2, a = 20: " + r.message);
   if (!r.proved) return;
   sub.evidence.push_back("the horseshoe is proved with MPFI only: certify-chaos's second, independent replay (Arb) has its own "

@@ -483,7 +483,10 @@ HorseshoeResult check_horseshoe(const BoxMap2& G, const std::vector<HSet2>& sets
   HorseshoeResult out;
   const size_t m = sets.size();
   out.coverings.assign(m, std::vector<CoveringResult>(m));
-  out.matrix.assign(m, std::vector<int>(m, 0));
+  // Row by row: assign(m, std::vector<int>(m, 0)) draws GCC 12's false -Wfree-nonheap-object
+  // at -O3 (the temporary row's inlined destructor).
+  out.matrix.resize(m);
+  for (std::vector<int>& row : out.matrix) row.assign(m, 0);
   for (size_t i = 0; i < m; ++i)
     for (size_t j = 0; j < m; ++j) {
       out.coverings[i][j] = check_covering(G, sets[i], sets[j], options);

@@ -242,12 +242,17 @@ void OutputSet::reserve(const std::string& field, const std::string& path) {
     if (attempt == 20) throw OutputError("cannot create '" + e.staging + "': it keeps being replaced");
     int fd = ::open(e.staging.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd >= 0) {
+      // Created here: registered for the interrupt cleanup at once (an interrupt between the
+      // creation and a later registration left the file behind: cli.grid_edges saw it once
+      // in a tiled run, whose worker threads create staging files all the time).
+      e.registered = std::make_unique<PartialFile>(e.staging);
       // Locked, and still the file at that name (a racing run may have reclaimed it between
       // the two calls): then it is ours.
       if (lock_file(fd) && same_file(fd, e.staging)) {
         e.fd = fd;
         break;
       }
+      e.registered.reset();  // no longer ours to remove
       ::close(fd);
       continue;
     }
@@ -279,7 +284,6 @@ void OutputSet::reserve(const std::string& field, const std::string& path) {
     if (same_file(fd, e.staging)) ::unlink(e.staging.c_str());
     ::close(fd);
   }
-  e.registered = std::make_unique<PartialFile>(e.staging);
   hold(e.staging, true);
   impl_->entries.push_back(std::move(e));
 }

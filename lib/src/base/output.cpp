@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <ctime>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -151,6 +152,9 @@ const char* special_kind(mode_t m) {
   return "a special file";
 }
 
+// Set by the interrupt handler first: no staging file is created after it.
+std::atomic<bool> interrupted{false};
+
 }  // namespace
 
 OutputTarget output_target(const std::string& field, const std::string& path) {
@@ -240,6 +244,7 @@ void OutputSet::reserve(const std::string& field, const std::string& path) {
   e.staging = path + ".partial";
   for (int attempt = 0;; ++attempt) {
     if (attempt == 20) throw OutputError("cannot create '" + e.staging + "': it keeps being replaced");
+    if (interrupted.load()) throw OutputError("interrupted: '" + e.staging + "' not created");
     int fd = ::open(e.staging.c_str(), O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
     if (fd >= 0) {
       // Created here: registered for the interrupt cleanup at once (an interrupt between the
@@ -411,9 +416,19 @@ char slot_path[kSlots][kPathMax];
 std::atomic<int> hint_state{0};
 char hint_text[2048];
 
-void on_interrupt(int sig) {
+void remove_registered() {
   for (int i = 0; i < kSlots; ++i)
     if (slot_state[i].load() == 2) ::unlink(slot_path[i]);
+}
+
+void on_interrupt(int sig) {
+  interrupted.store(true);
+  remove_registered();
+  // Another thread may have created a staging file just before the flag and register it just
+  // after the scan: wait a moment and remove again (nanosleep is async-signal-safe).
+  struct timespec pause {0, 50 * 1000 * 1000};
+  ::nanosleep(&pause, nullptr);
+  remove_registered();
   const char* name = sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "SIGHUP";
   auto say = [](const char* t) {
     size_t n = 0;

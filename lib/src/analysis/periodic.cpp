@@ -141,6 +141,15 @@ void pinv_solve(const Mat2<T>& A, const T& b0, const T& b1, double rcond, T& x0,
   }
 }
 
+// The state after the orbit's last sticking or ride step: its release state.
+template <class T>
+const State<T>& release_point(const LinearOrbit<T>& orbit, long q) {
+  long last = -1;
+  for (long i = 0; i < q; ++i)
+    if (orbit.kinds[i] != EventKind::impact) last = i;
+  return orbit.points[last + 1];
+}
+
 template <class T>
 double mat_norm(const Mat2<T>& J) {
   double m = 0;
@@ -181,10 +190,7 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
     // locally constant: if R returns to itself exactly, R is the orbit (no Newton step lands
     // on a release bit for bit, and beside a smooth wall's release the step is rounding noise).
     if (e->orbit.contracted) {
-      long last = -1;
-      for (long i = 0; i < q; ++i)
-        if (e->orbit.kinds[i] != EventKind::impact) last = i;
-      State<T> R = e->orbit.points[last + 1];
+      State<T> R = release_point(e->orbit, q);
       std::optional<Eval<T>> er = evaluate(tm, R, q, bits);
       if (er && er->norm == 0) {
         x = std::move(R);
@@ -238,10 +244,7 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
   // Otherwise the residual only vanished in the limit at a discontinuity (e.g. creeping up
   // to a corner from the ride side): not an orbit.
   if (out.converged && e->orbit.contracted) {
-    long last = -1;
-    for (long i = 0; i < q; ++i)
-      if (e->orbit.kinds[i] != EventKind::impact) last = i;
-    const State<T> R = e->orbit.points[last + 1];
+    const State<T> R = release_point(e->orbit, q);
     std::optional<Eval<T>> er = evaluate(tm, R, q, bits);
     if (er && er->norm == 0) {
       e = std::move(er);

@@ -1362,16 +1362,20 @@ class ModelCore {
     py::list pts;
     for (const State<T>& s : p.points) pts.append(pair_of(s.theta, s.v));
     d["points"] = pts;
+    // As `bouncer periodic`: multipliers and events belong to an orbit, None and empty
+    // where Newton found none.
     py::list mu;
     for (int i = 0; i < 2; ++i) mu.append(pair_of(p.multipliers.re[i], p.multipliers.im[i]));
-    d["multipliers"] = mu;
-    d["multiplier_moduli"] = py::make_tuple(p.multipliers.modulus(0), p.multipliers.modulus(1));
-    d["complex_pair"] = p.multipliers.complex;
-    d["marginal"] = p.marginal;
+    d["multipliers"] = p.converged ? py::object(mu) : py::object(py::none());
+    d["multiplier_moduli"] = p.converged ? py::object(py::make_tuple(p.multipliers.modulus(0), p.multipliers.modulus(1)))
+                                         : py::object(py::none());
+    d["complex_pair"] = p.converged ? py::object(py::bool_(p.multipliers.complex)) : py::object(py::none());
+    d["marginal"] = p.converged ? py::object(py::bool_(p.marginal)) : py::object(py::none());
     py::list kinds;
-    for (EventKind k : p.kinds) kinds.append(name(k));
+    if (p.converged)
+      for (EventKind k : p.kinds) kinds.append(name(k));
     d["events"] = kinds;
-    d["wall_periods"] = p.wall_periods;
+    d["wall_periods"] = p.converged ? p.wall_periods : std::vector<long long>{};
     d["residual"] = p.residual;
     d["tolerance"] = p.tolerance;
     d["iterations"] = p.iterations;

@@ -34,21 +34,24 @@ nlohmann::ordered_json solve(const ModelSpec& spec, const Precision& prec, long 
   nlohmann::ordered_json pts = nlohmann::ordered_json::array();
   for (const State<T>& s : o.points) pts.push_back({Tr::to_string(s.theta), Tr::to_string(s.v)});
   j["points"] = pts;
+  // Multipliers and events belong to an orbit: null and empty where Newton found none.
   nlohmann::ordered_json mu = nlohmann::ordered_json::array();
   for (int i = 0; i < 2; ++i) mu.push_back({Tr::to_string(o.multipliers.re[i]), Tr::to_string(o.multipliers.im[i])});
-  j["multipliers"] = mu;  // [re, im] pairs, largest modulus first
-  j["multiplier_moduli"] = {json_number(o.multipliers.modulus(0)), json_number(o.multipliers.modulus(1))};
-  j["complex_pair"] = o.multipliers.complex;
-  j["marginal"] = o.marginal;
+  j["multipliers"] = o.converged ? mu : nlohmann::ordered_json();  // [re, im] pairs, largest modulus first
+  j["multiplier_moduli"] = o.converged ? nlohmann::ordered_json{json_number(o.multipliers.modulus(0)), json_number(o.multipliers.modulus(1))}
+                                       : nlohmann::ordered_json();
+  j["complex_pair"] = o.converged ? nlohmann::ordered_json(o.multipliers.complex) : nlohmann::ordered_json();
+  j["marginal"] = o.converged ? nlohmann::ordered_json(o.marginal) : nlohmann::ordered_json();
   const double m0 = o.multipliers.modulus(0);
   j["stability"] = !o.converged ? "unknown"
                    : o.marginal ? (m0 > 1 + 1e-6 ? "unstable" : "marginal")
                    : m0 < 1     ? "stable"
                                 : "unstable";
   nlohmann::ordered_json kinds = nlohmann::ordered_json::array();
-  for (EventKind k : o.kinds) kinds.push_back(name(k));
+  if (o.converged)
+    for (EventKind k : o.kinds) kinds.push_back(name(k));
   j["events"] = kinds;
-  j["wall_periods"] = o.wall_periods;
+  j["wall_periods"] = o.converged ? o.wall_periods : std::vector<long long>{};
   j["residual"] = json_number(o.residual);
   j["tolerance"] = json_number(o.tolerance);
   j["iterations"] = o.iterations;

@@ -137,17 +137,19 @@ class PeriodicOrbit:
     points: the q points (theta, v) in orbit order
     multipliers: the eigenvalues of DP^q as (re, im), largest modulus first;
         multiplier_moduli: their moduli; complex_pair; marginal: a multiplier within 1e-6 of 1
+        (all four None when Newton did not converge)
     events: what each step was (impact | sticking | ride); wall_periods: periods begun per step
+        (empty when Newton did not converge)
     residual, tolerance, iterations; note: why not converged, or remarks
     """
     converged: bool
     period: int
     minimal_period: int
     points: List[Tuple[Real, Real]]
-    multipliers: List[Tuple[Real, Real]]
-    multiplier_moduli: Tuple[float, float]
-    complex_pair: bool
-    marginal: bool
+    multipliers: Optional[List[Tuple[Real, Real]]]
+    multiplier_moduli: Optional[Tuple[float, float]]
+    complex_pair: Optional[bool]
+    marginal: Optional[bool]
     events: List[str]
     wall_periods: List[int]
     residual: float

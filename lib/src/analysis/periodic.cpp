@@ -165,6 +165,7 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
   out.period = q;
   const long bits = m.bits;
   const double ulp = std::ldexp(1.0, -static_cast<int>(std::min(bits, 1000L)));
+  const double rcond = bits > 53 ? std::pow(opt.rcond, static_cast<double>(std::min(bits, 1000L)) / 53) : opt.rcond;
   TangentMap<T> tm(m);
   const ImpactMap<T> map(m);
   State<T> x{wrap_unit(guess.theta), guess.v};
@@ -204,7 +205,7 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
     A.a22 = A.a22 - 1;
     T dt, dv;
     bool dropped = false;
-    pinv_solve(A, T(-e->ft), T(-e->fv), opt.rcond, dt, dv, dropped);
+    pinv_solve(A, T(-e->ft), T(-e->fv), rcond, dt, dv, dropped);
     dropped_any = dropped_any || dropped;
     double t = 1;
     bool accepted = false;

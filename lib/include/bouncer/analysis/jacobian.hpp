@@ -38,7 +38,7 @@ BOUNCER_FOR_EACH_ANALYSIS_SCALAR(BOUNCER_X)
 // A 2x2 matrix, row major.
 template <class S>
 struct Mat2 {
-  S a11, a12, a21, a22;
+  S a11{}, a12{}, a21{}, a22{};  // zero until set (a PeriodicOrbit that never converged)
 };
 
 template <class S>

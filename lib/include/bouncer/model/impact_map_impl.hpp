@@ -364,7 +364,8 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
   // The first point p0 of the search, with g > 0 on (0, p0] by Taylor's theorem at the launch
   // (|g''| <= M = a + 4 pi^2, |g'''| <= 8 pi^3, |g''''| <= 16 pi^4):
   //   launch W > 0:            g(s) >= W s - M s^2 / 2,          p0 = W / M;
-  //   at rest, g''(0) = c > 0: g(s) >= c s^2 / 2 - 8 pi^3 s^3 / 6, p0 = 3c / (16 pi^3);
+  //   at rest, g''(0) = c > 0: g(s) >= c s^2 / 2 - 8 pi^3 s^3 / 6, p0 = 3c / (16 pi^3), or
+  //                            the release's p0 below where that is longer (g'''(0) > 0);
   //   at the release (g = g' = g'' = 0, g''' = 8 pi^3 cos(2 pi theta_r) > 0):
   //                            g(s) >= g''' s^3 / 6 - 16 pi^4 s^4 / 24, p0 = g''' / (8 pi^4).
   const V av = VO::of(a), tp = VO::of(two_pi);
@@ -386,6 +387,12 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
         }
       } else {
         p0 = 3 * VO::of(curvature) / (2 * tp2 * tp);
+        // Where g'''(0) = 8 pi^3 cos(2 pi theta) > 0 the release's bound holds as well (its
+        // c s^2 / 2 >= 0 term only adds): at rest a rounding error from theta_r, c is rounding
+        // noise, and the quadratic stretch would end where the gap is below the rounding of
+        // its own evaluation, so that a point type's march reported a spurious impact there.
+        const V rel = 2 * TV::cos_2pi(VO::of(s.theta)) / tp;
+        if (certainly(TV::lt(p0, rel))) p0 = rel;
       }
     } else {
       const V w = VO::of(W);

@@ -12,6 +12,12 @@
 #     and a sample cell's class is certify-sticking's at the cell's exact parameters.
 #   basin --certify: after a first sticking each orbit goes on from the release state, so
 #     every certified sticking pixel has the release orbit's period (3 at a = 8).
+#   continue: the stable period-1 branch ends in the fold at a_SN = 12 pi and has its period
+#     doubling at the closed form a_PD = 4 pi^2 (1+eps)^2 / sqrt(4 (1+eps^2)^2 + pi^2 (1-eps^2)^2)
+#     (computed here with Python's decimal module), which --certify's enclosure holds; the
+#     fold's proof is refused (theta = 0, where the phase wraps); audit reruns it IDENTICAL.
+#     The saddle branch ends below in a grazing; the sticking cycle's ends are the sticking
+#     threshold and a grazing.
 #   bad input: certify-periodic --lift and certify-chaos still refuse the sine wall (exit 2).
 # Usage: bash sine_certified.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -69,6 +75,37 @@ check(len(stick) > 0, "basin: no certified sticking pixel")
 check(all(r["period"] == "3" for r in stick), "basin: sticking periods %s (the release orbit's is 3)" % {r["period"] for r in stick})
 done()
 PY
+
+if run branch continue "${sine[@]}" --a 30 --period 1 --guess 0.1,15 --vary a --range 20:39 --certify --json; then
+  python3 - "$TMP/branch.out" <<'PY' || fail branch "see above"
+import json, sys
+from decimal import Decimal as D, getcontext
+from clichecks import check, done
+getcontext().prec = 60
+pi = D("3.14159265358979323846264338327950288419716939937510582097494")
+e = D("0.5")
+a_pd = 4 * pi * pi * (1 + e) ** 2 / (4 * (1 + e * e) ** 2 + pi * pi * (1 - e * e) ** 2).sqrt()
+a_sn = 4 * pi * (1 + e) / (1 - e)
+s = json.load(open(sys.argv[1]))["summary"]
+check(s["low"]["reason"] == "range_end", "low end: %s" % s["low"]["reason"])
+check(s["high"]["reason"] == "fold" and abs(D(s["high"]["param"]) - a_sn) < D("1e-8"), "high end: %s at %s" % (s["high"]["reason"], s["high"]["param"]))
+check(s["high"]["certified"]["certified"] is False and "wraps" in s["high"]["certified"]["statement"], "the fold's proof is refused with the reason")
+pd = s["bifurcations"]
+check(len(pd) == 1 and pd[0]["kind"] == "period_doubling", "one period doubling: %s" % [b["kind"] for b in pd])
+enc = pd[0]["certified"]["enclosure"]
+check(pd[0]["certified"]["certified"] is True and D(enc[0]) <= a_pd <= D(enc[1]), "a_PD %s in %s" % (a_pd, enc))
+done()
+PY
+fi
+"$BOUNCER" continue "${sine[@]}" --a 30 --period 1 --guess 0.1,15 --vary a --range 20:39 --out branch || fail branch-out "exit $?"
+audited branch branch.json
+if run saddle continue "${sine[@]}" --a 30 --period 1 --guess 0.896,15 --vary a --range 5:39 --json; then
+  json_holds saddle 'j["summary"]["low"]["reason"] == "border" and j["summary"]["low"]["margin"] == "clearance" and "grazes the wall at theta" in j["summary"]["low"]["detail"]'
+  json_holds saddle 'j["summary"]["high"]["reason"] == "fold" and j["summary"]["start"]["stability"] == "unstable"'
+fi
+if run stuck continue "${sine[@]}" --a 8 --period 3 --guess 0.5,3 --vary a --range 4:20 --json; then
+  json_holds stuck 'j["summary"]["low"]["margin"] == "sticking_margin" and j["summary"]["high"]["margin"] == "clearance"'
+fi
 
 refused lift "wall" certify-periodic --model elastic --wall sine --a 16 --period 1 --guess 0.1,8 --lift 8
 refused chaos "wall" certify-chaos "${sine[@]}" --a 20

@@ -104,8 +104,71 @@ T wrap_unit(const T& x) {
 // theta difference on the circle, in [-1/2, 1/2), as a double.
 double circle_diff(double d) { return d - std::floor(d + 0.5); }
 
+// The margins on a smooth wall (see Margin). The least local minimum of the gap
+// g(s) = f0 + v s - a s^2/2 - f(theta0 + s) inside the flight (0, tau): the sign changes of
+// g' from - to + on a grid of 1/128 period (g''' is bounded by 8 pi^3, so a minimum and a
+// maximum closer than that are a tangency's unfolding, not missed in practice), located by
+// bisection in double; g is then evaluated in T there (g' = 0 there, so the location's error
+// enters g only to second order).
+template <class T>
+ImpactMargins smooth_margins_of_step(const Model<T>& m, const State<T>& from, const StepResult<T>& r) {
+  ImpactMargins out;
+  out.value.fill(kNaN);
+  if (r.kind == EventKind::ride) return out;
+  const Wall<T>& w = m.wall;
+  const bool stuck = r.kind == EventKind::sticking;
+  const T& th = stuck ? r.stuck_theta : r.next.theta;
+  const T& vout = stuck ? r.stuck_v : r.next.v;
+  // The flight: the step less the ride from the collision to the release (under a period).
+  T tau = r.tau;
+  if (stuck) tau = tau - wrap_unit<T>(r.next.theta - th);
+  const T u = w.velocity_at(th);
+  out.value[static_cast<int>(Margin::speed)] = Tr<T>::to_double(T(u - (from.v - m.a * tau)));
+  if (m.law == Law::constant) {
+    const T rebound = vout - u;
+    const T G = m.a - w.two_pi * w.two_pi * Tr<T>::sin_2pi(th);
+    T margin = 2 * rebound;
+    if (Tr<T>::to_double(G) > 0) {
+      const T left = Tr<T>::to_double(T(w.release - th)) >= 0 ? T(w.release - th) : T(w.release + 1 - th);
+      margin = margin - (1 - m.eps) * G * left;
+    }
+    out.value[static_cast<int>(Margin::sticking)] = Tr<T>::to_double(margin);
+  }
+  const double th0 = Tr<T>::to_double(from.theta), v0 = Tr<T>::to_double(from.v), a = Tr<T>::to_double(m.a);
+  const double tp = 2 * 3.14159265358979323846;
+  const auto rate = [&](double s) { return v0 - a * s - tp * std::cos(tp * (th0 + s)); };
+  const double tau_d = Tr<T>::to_double(tau), h = 1.0 / 128;
+  const T f0 = Tr<T>::sin_2pi(from.theta);
+  double best = std::numeric_limits<double>::infinity();
+  double prev_s = h, prev_rate = rate(h);
+  for (long i = 2; i * h < tau_d && i < 1000000; ++i) {
+    const double s = i * h, gs = rate(s);
+    if (prev_rate < 0 && gs >= 0) {
+      double lo = prev_s, hi = s;
+      for (int k = 0; k < 60 && lo < hi; ++k) {
+        const double mid = lo + (hi - lo) / 2;
+        if (mid <= lo || mid >= hi) break;
+        (rate(mid) < 0 ? lo : hi) = mid;
+      }
+      const T sm = from_double<T>(lo + (hi - lo) / 2, m.bits);
+      const T gap = f0 + sm * (from.v - m.a * sm / 2) - Tr<T>::sin_2pi(T(from.theta + sm));
+      const double g = Tr<T>::to_double(gap);
+      if (g < best) {
+        best = g;
+        const double ph = th0 + lo;
+        out.graze_theta = ph - std::floor(ph);
+      }
+    }
+    prev_s = s;
+    prev_rate = gs;
+  }
+  out.value[static_cast<int>(Margin::clearance)] = best;
+  return out;
+}
+
 template <class T>
 ImpactMargins margins_of_step(const Model<T>& m, const State<T>& from, const StepResult<T>& r) {
+  if (m.wall.smooth()) return smooth_margins_of_step(m, from, r);
   ImpactMargins out;
   out.value.fill(kNaN);
   if (r.kind == EventKind::ride) return out;
@@ -151,6 +214,19 @@ ImpactMargins margins_of_step(const Model<T>& m, const State<T>& from, const Ste
   return out;
 }
 
+// Newton's start for the orbit with these events in m, predicted at `predicted`. An orbit
+// through a smooth wall's sticking (or ride) passes through the release state, which moves
+// with the parameter along a curve: a prediction (a secant, or a point of another
+// precision) lands off it, a hair above the wall, where the particle chatters instead of
+// leaving and Newton fails. The release state of m is the orbit's point exactly, if the
+// orbit persists.
+template <class T>
+State<T> newton_start(const Model<T>& m, const std::vector<StepEvent>& events, const State<T>& predicted) {
+  const bool through_release =
+      m.wall.smooth() && std::any_of(events.begin(), events.end(), [](const StepEvent& e) { return e.kind != EventKind::impact; });
+  return through_release ? release_state(m) : predicted;
+}
+
 template <class T>
 std::string stability_of(const PeriodicOrbit<T>& o) {
   const double m0 = o.multipliers.modulus(0);
@@ -186,12 +262,14 @@ BranchPoint<T> analyse_orbit(const Model<T>& m, Parameter p, PeriodicOrbit<T> or
       }
     }
   }
-  const double a11 = Tr<T>::to_double(orbit.J.a11), a12 = Tr<T>::to_double(orbit.J.a12);
-  const double a21 = Tr<T>::to_double(orbit.J.a21), a22 = Tr<T>::to_double(orbit.J.a22);
-  const double tr = a11 + a22, det = a11 * a22 - a12 * a21;
-  b.test_fold = 1 - tr + det;
-  b.test_pd = 1 + tr + det;
-  b.test_ns = det - 1;
+  // In T, rounded to double at the end: next to a zero the sums cancel, and in double they
+  // would keep only ~1e-16 of absolute accuracy (a bifurcation located by them no closer
+  // than that at any precision).
+  const Mat2<T>& J = orbit.J;
+  const T tr = J.a11 + J.a22, det = J.a11 * J.a22 - J.a12 * J.a21;
+  b.test_fold = Tr<T>::to_double(T(1 - tr + det));
+  b.test_pd = Tr<T>::to_double(T(1 + tr + det));
+  b.test_ns = Tr<T>::to_double(T(det - 1));
   b.stability = stability_of(orbit);
   b.orbit = std::move(orbit);
   return b;
@@ -244,10 +322,11 @@ struct Continuer {
     return {wrap_unit<T>(x.theta + s * from_double<T>(dth, bits)), x.v + s * (x.v - y.v)};
   }
 
-  Trial<T> correct(const T& p, const BranchPoint<T>& ref, const State<T>& guess) {
+  Trial<T> correct(const T& p, const BranchPoint<T>& ref, const State<T>& predicted) {
     Trial<T> t;
     ++runs;
     const Model<T> m = at(p);
+    const State<T> guess = newton_start(m, ref.events, predicted);
     try {
       PeriodicOrbit<T> o = find_periodic(m, q, guess, opt.newton);
       if (!o.converged) {
@@ -362,6 +441,12 @@ struct Continuer {
   }
 
   std::string knot_text(int k) const { return base.wall.knot_exact[k].get_str(); }
+  static std::string phase_text(double theta) {
+    std::ostringstream o;
+    o.precision(6);
+    o << theta;
+    return o.str();
+  }
 
   // A doubling end's a* from the period-q/2 orbit, where it is a simple zero of det(DP^{q/2} + I)
   // on an orbit that exists on both sides. Next to a* the period-q corrector cannot tell its
@@ -509,7 +594,11 @@ struct Continuer {
       case EndReason::border:
         switch (static_cast<Margin>(e.margin)) {
           case Margin::knot: e.detail = "impact " + i1 + " reaches the knot theta = " + knot_text(e.knot); break;
-          case Margin::clearance: e.detail = "flight " + i1 + " grazes the wall at the knot theta = " + knot_text(e.knot); break;
+          case Margin::clearance:
+            e.detail = "flight " + i1 + " grazes the wall at " +
+                       (base.wall.smooth() ? "theta ~ " + phase_text(good.margins[e.impact].graze_theta)
+                                           : "the knot theta = " + knot_text(e.knot));
+            break;
           case Margin::speed: e.detail = "impact " + i1 + " reaches zero relative speed (touchdown)"; break;
           case Margin::sticking: e.detail = "impact " + i1 + " reaches the sticking threshold"; break;
         }
@@ -579,7 +668,7 @@ struct Continuer {
     }
     const Model<T> m = at(e.beyond_param);
     try {
-      const PeriodicOrbit<T> o = find_periodic(m, q, good.orbit.points[0], opt.newton);
+      const PeriodicOrbit<T> o = find_periodic(m, q, newton_start(m, good.events, good.orbit.points[0]), opt.newton);
       if (o.converged) {
         const std::vector<StepEvent> events = analyse_orbit(m, par, o).events;
         e.beyond_orbit = event_text(events);
@@ -749,7 +838,7 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
   const auto reference = [&](const BranchPoint<T>& x) -> std::optional<BranchPoint<Mpfr>> {
     try {
       const Model<Mpfr> m = c.at(up(x.param));
-      PeriodicOrbit<Mpfr> orbit = find_periodic(m, b.period, up_state(x.orbit.points[0]), o.newton);
+      PeriodicOrbit<Mpfr> orbit = find_periodic(m, b.period, newton_start(m, x.events, up_state(x.orbit.points[0])), o.newton);
       if (!orbit.converged || orbit.minimal_period != b.period) return std::nullopt;
       BranchPoint<Mpfr> r = analyse_orbit(m, b.parameter, std::move(orbit));
       if (!same_cycle(r.events, x.events)) return std::nullopt;
@@ -881,7 +970,7 @@ EndEstimate estimate_smooth(const ModelSpec& spec, const Branch<T>& b, const Bif
   const auto orbit_at = [&](const Mpfr& v) -> std::optional<BranchPoint<Mpfr>> {
     try {
       const Model<Mpfr> m = c.at(v);
-      PeriodicOrbit<Mpfr> o = find_periodic(m, b.period, guess, opt.newton);
+      PeriodicOrbit<Mpfr> o = find_periodic(m, b.period, newton_start(m, near->events, guess), opt.newton);
       if (!o.converged || o.minimal_period != b.period) return std::nullopt;
       BranchPoint<Mpfr> bp = analyse_orbit(m, b.parameter, std::move(o));
       if (!same_cycle(bp.events, near->events)) return std::nullopt;

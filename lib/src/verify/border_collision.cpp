@@ -1723,6 +1723,16 @@ PeriodDoublingCertificate smooth_attempts(const PeriodDoublingQuestion& q, Proof
     }
     if (c.certified || 2 * at.bits > q.max_bits) {
       c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();  // every attempt
+      // The map's phase coordinate wraps at theta = 0, which is no knot of a smooth wall: an
+      // orbit through it (the sine wall's period-1 saddle-node is at theta = 0 exactly) puts
+      // the boxes across the wrap, where no Newton step or floor is decided.
+      const double th = q.point.theta.approx();
+      if (!c.certified && q.model.wall.shape != WallShape::piecewise && std::fabs(th - std::round(th)) < 1e-2) {
+        c.reason += " (the orbit's phase " + q.point.theta.text() +
+                    " is next to theta = 0, where the map's phase coordinate wraps: a smooth wall's bifurcation there is "
+                    "not certified by this method)";
+        c.statement = "Not certified at " + std::to_string(at.bits) + " bits: " + c.reason + ". Nothing is claimed.";
+      }
       return c;
     }
     at.bits *= 2;

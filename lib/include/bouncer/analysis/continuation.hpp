@@ -22,6 +22,7 @@
 #pragma once
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,11 @@ namespace bouncer {
 //   sticking:  for the constant-eps law, eps*speed - a(1-eps)/2 * (time left in the
 //              segment), the test of ImpactMap::collide (<= 0: the collapse completes, the
 //              particle sticks); NaN for the other laws.
+// A smooth wall (the sine wall) has no knots: knot is NaN; clearance is the least local
+// minimum of the gap x(t) - f(t) inside the flight (0: the flight touches the wall
+// tangentially, a grazing); speed as above; sticking is 2 out - (1-eps) G (time to the
+// release) where the effective gravity G = a + f''(theta) > 0, else 2 out (out: the relative
+// rebound speed), the test of ImpactMap::sine_collide (<= 0: the particle sticks).
 enum class Margin { knot, clearance, speed, sticking };
 constexpr int kMargins = 4;
 
@@ -80,6 +86,7 @@ struct ImpactMargins {
   std::array<double, kMargins> value{};  // NaN: not defined (a ride; sticking for other laws)
   int knot = -1;                         // the nearest knot (knot margin)
   int graze_knot = -1;                   // the knot of the least clearance (-1: none passed)
+  double graze_theta = std::numeric_limits<double>::quiet_NaN();  // a smooth wall: the phase of the least clearance
 };
 
 template <class T>

@@ -298,6 +298,13 @@ CertifiedBranchEnds certify_branch_ends(const ModelSpec& model, Parameter vary, 
     c.hi = parse_decimal("certify", r.hi);
     c.high_end = high;
     if (one_sided) r.certificate = certify_branch_end(c);
+    if (model.wall.shape != WallShape::piecewise) {
+      // The two-sided proof is built on the piecewise wall's margins (knots, corners, the
+      // flight's clearance at a knot); a smooth wall's grazing is a tangency, not one of them.
+      r.two_sided.reason = "the two-sided proof of a border collision knows only piecewise-linear walls";
+      r.two_sided.statement = "Not certified: " + r.two_sided.reason + ". Nothing is claimed about a* beyond the one-sided bound.";
+      return r;
+    }
     BorderCollisionQuestion bq;
     bq.end = c;
     if (e.margin >= 0) bq.margin = static_cast<Margin>(e.margin);

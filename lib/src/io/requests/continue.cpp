@@ -25,7 +25,6 @@ ContinueRequest continue_request(const Options& given) {
   // The varied parameter starts at the range's low end unless given.
   default_to_range_start(o, vary);
   r.model = model_from(o);
-  require_piecewise_wall(r.model, "continue (its border collisions are corners of the wall)");
   std::tie(r.lo, r.hi) = parse_range("range", o.get("range"));
   validate_range_ends(r.model, r.vary, "range", r.lo, r.hi);
   const Decimal& start = parameter_of(r.model, r.vary);

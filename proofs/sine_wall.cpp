@@ -38,6 +38,7 @@
 
 #include <string>
 
+#include "bouncer/analysis/continuation.hpp"
 #include "bouncer/verify/chaos.hpp"
 #include "bouncer/verify/periodic_certify.hpp"
 #include "certificate.hpp"
@@ -265,8 +266,9 @@ void fermi(Certificate& cert, SubClaim& sub) {
 }
 
 void border(Certificate& cert, SubClaim& sub, const SubClaim& p1) {
-  // The sine wall has no corner; the period-1 branch's ends are the closed forms' saddle-node
-  // (multiplier 1 at a_SN) and period doubling (-1 at a_PD), certified on either side in p1.
+  // The sine wall has no corner; the stable period-1 branch's ends are the closed forms'
+  // saddle-node (multiplier 1 at a_SN) and period doubling (-1 at a_PD), certified on either
+  // side in p1.
   const long bits = cert.bits();
   const Model<Mpfi> m = sine_model(Law::constant, "37.699", "0.5", bits);  // just below a_SN = 37.6991...
   const Period1 cf = closed_form(m.a, m.eps);
@@ -282,11 +284,53 @@ void border(Certificate& cert, SubClaim& sub, const SubClaim& p1) {
   sub.evidence.push_back("a = 37.699, 1e-4 below a_SN = 12 pi: certified period-1 orbit with multipliers " + s(r.mu_hi) + ", " +
                          s(r.mu_lo) + " (the saddle-node's 1 and eps^2 = 1/4 as a -> a_SN)");
   const bool near_one = lt(r.mu_hi, Mpfi(1, bits)) && lt(Mpfi(99, bits) / 100, r.mu_hi);
-  if (near_one)
-    sub.settle(Verdict::confirmed,
-               "unique to the triangle: the sine wall's period-1 branch ends in smooth bifurcations (a saddle-node at a_SN, a period "
-               "doubling at a_PD), with the relative impact speed a/(1+eps) > 0 along it (no grazing); the triangle's branches end "
-               "where an impact reaches a corner (border collisions, continue)");
+  if (!near_one) return;
+  // The saddle (sin(2 pi theta*) < 0) going down in a: a certified orbit at a = 15.77; at
+  // a = 15.76 the closed form's flight meets the wall before one period (a certified first
+  // impact), so the closed form is no orbit there: the branch ends in between, where its
+  // flight touches the wall (a grazing). continue_branch locates it (an estimate).
+  const auto saddle = [&](const std::string& a) {
+    const Model<Mpfi> ms = sine_model(Law::constant, a, "0.5", bits);
+    Period1 c = closed_form(ms.a, ms.eps);
+    c.theta = 1 - c.theta;
+    return std::pair<Model<Mpfi>, Period1>(ms, c);
+  };
+  const auto [m_above, cf_above] = saddle("15.77");
+  const Certified1 above = certify_period1(sine_spec(Law::constant, "15.77", "0.5"), cf_above, bits);
+  const bool above_ok = above.ok && !disjoint(above.theta, cf_above.theta) && !disjoint(above.v, cf_above.v);
+  sub.evidence.push_back("the saddle branch (sin(2 pi theta*) < 0) at a = 15.77: " +
+                         (above.ok ? "certify_periodic proves a unique period-1 point in (" + s(above.theta) + ", " + s(above.v) +
+                                         "), which meets the closed form: " + (above_ok ? "yes" : "NO")
+                                   : "not certified: " + above.why));
+  const auto [m_below, cf_below] = saddle("15.76");
+  bool early = false;
+  try {
+    const StepResult<Mpfi> st = ImpactMap<Mpfi>(m_below).step(State<Mpfi>{cf_below.theta, cf_below.v});
+    early = lt(st.tau, Mpfi(1, bits));
+    sub.evidence.push_back("at a = 15.76 the closed form's saddle point (" + s(cf_below.theta) + ", " + s(cf_below.v) +
+                           ") meets the wall after tau in " + s(st.tau) + (early ? " < 1 (certified first impact): no orbit" : ""));
+  } catch (const bouncer::Undecided& u) {
+    sub.evidence.push_back(std::string("at a = 15.76 the closed form's first impact is undecided: ") + u.what());
+  }
+  const Model<double> md = bouncer::make_model<double>(sine_spec(Law::constant, "30", "0.5"), 53);
+  const double th = 1 - std::acos(30 * 0.5 / (4 * M_PI * 1.5)) / (2 * M_PI);
+  bouncer::ContinuationOptions co;
+  co.classify_beyond = false;
+  const bouncer::Branch<double> br = bouncer::continue_branch(md, bouncer::Parameter::a, 1, State<double>{th, 15.0}, 5.0, 39.0, co);
+  const bool grazing = br.started && br.low.reason == bouncer::EndReason::border &&
+                       br.low.margin == static_cast<int>(bouncer::Margin::clearance) && br.low.param > 15.76 && br.low.param < 15.77;
+  char where[160];
+  std::snprintf(where, sizeof where, "continue (double) from a = 30: the saddle branch ends below at a* = %.10f by %s", br.low.param,
+                bouncer::name(br.low.reason));
+  sub.evidence.push_back(std::string(where) + " (" + br.low.detail + "), above at a* = " + std::to_string(br.high.param) + " (" +
+                         bouncer::name(br.high.reason) + ")");
+  if (above_ok && early && grazing)
+    sub.settle(Verdict::corrected,
+               "corner collisions are unique to the triangle, border collisions are not: the sine wall's stable period-1 branch ends "
+               "in smooth bifurcations (a saddle-node at a_SN, a period doubling at a_PD) with the relative impact speed a/(1+eps) > 0 "
+               "along it, but its saddle branch ends in a grazing (its flight touches the wall, between a = 15.76 and 15.77), the "
+               "border collision of smooth impact oscillators; the triangle's branches end where an impact reaches a corner "
+               "(continue, rows 16-18), which a smooth wall has not");
 }
 
 // Chaos on the sine wall: a horseshoe of covering relations (the library's certify_chaos, the
@@ -323,7 +367,7 @@ int main(int argc, char** argv) {
   chaos(cert, ch);
   cert.conclude(Verdict::corrected,
                 "Sticking, release, Fermi acceleration and chaos (a horseshoe) are captured; the period-1 structure is not (the sine wall's period-1 orbits "
-                "are isolated and period-double; the triangle's are a neutral family at one a); border-collision ends are the "
-                "triangle's alone");
+                "are isolated and period-double; the triangle's are a neutral family at one a); corner collisions are the "
+                "triangle's alone, grazing border collisions happen on both walls");
   return cert.finish();
 }

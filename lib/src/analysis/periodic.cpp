@@ -169,6 +169,15 @@ PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess,
   TangentMap<T> tm(m);
   const ImpactMap<T> map(m);
   State<T> x{wrap_unit(guess.theta), guess.v};
+  // A guess a rounding error inside the wall starts at rest on it: a state on the wall
+  // printed in decimal (a smooth wall's release state is irrational) rounds to either side,
+  // by up to a double's rounding when it was computed in double (2^-48 relative allows 16
+  // ulps of a double, or 1024 of T where T is wider).
+  if (Tr<T>::is_finite(x.theta) && Tr<T>::is_finite(x.v)) {
+    const T u = m.wall.velocity_at(x.theta);
+    const double deficit = Tr<T>::to_double(T(u - x.v));
+    if (deficit > 0 && deficit <= std::max(1024 * ulp, std::ldexp(1.0, -48)) * std::max(1.0, std::fabs(Tr<T>::to_double(u)))) x.v = u;
+  }
   if (!valid_state(m, x)) {
     out.note = "the guess is not a valid state (v below the wall velocity)";
     return out;

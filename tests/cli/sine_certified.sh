@@ -18,6 +18,12 @@
 #     fold's proof is refused (theta = 0, where the phase wraps); audit reruns it IDENTICAL.
 #     The saddle branch ends below in a grazing; the sticking cycle's ends are the sticking
 #     threshold and a grazing.
+#   attractors: at eps = 0.5, a = 30 exactly two, the focus at the closed form (theta*, a/2),
+#     cos 2 pi theta* = a (1-eps) / (4 pi (1+eps)), and the sticking cycle of period 1 through
+#     the release state (theta_r, 2 pi cos 2 pi theta_r), theta_r = asin(a / 4 pi^2) / (2 pi),
+#     both certified with enclosures holding the closed forms, shares summing to 1; at a = 8
+#     the one attractor is the period-3 sticking cycle, certified; --vary a finds the focus's
+#     period doubling at a_PD (certified) and its fold.
 #   bad input: certify-periodic --lift and certify-chaos still refuse the sine wall (exit 2).
 # Usage: bash sine_certified.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -105,6 +111,62 @@ if run saddle continue "${sine[@]}" --a 30 --period 1 --guess 0.896,15 --vary a 
 fi
 if run stuck continue "${sine[@]}" --a 8 --period 3 --guess 0.5,3 --vary a --range 4:20 --json; then
   json_holds stuck 'j["summary"]["low"]["margin"] == "sticking_margin" and j["summary"]["high"]["margin"] == "clearance"'
+fi
+
+if run att30 attractors "${sine[@]}" --a 30 --cells 64x64 --json; then
+  python3 - "$TMP/att30.out" <<'PY' || fail att30 "see above"
+import json, sys
+from decimal import Decimal as D, getcontext
+from clichecks import check, done
+getcontext().prec = 50
+pi = D("3.14159265358979323846264338327950288419716939937510582097494")
+def acos_or_asin(x, asin):  # by bisection on cos (decimal has no trigonometry)
+    def cos(t):  # Taylor series of cos(t), |t| <= 2
+        s, term, k = D(1), D(1), 0
+        while abs(term) > D("1e-45"):
+            k += 2
+            term *= -t * t / (k * (k - 1))
+            s += term
+        return s
+    lo, hi = D(0), pi / 2 if asin else pi
+    for _ in range(170):
+        mid = (lo + hi) / 2
+        if (cos(pi / 2 - mid) < x) if asin else (cos(mid) > x):
+            lo = mid
+        else:
+            hi = mid
+    return lo, cos
+a, e = D(30), D("0.5")
+t_star = acos_or_asin(a * (1 - e) / (4 * pi * (1 + e)), False)[0] / (2 * pi)
+t_r, cos = acos_or_asin(a / (4 * pi * pi), True)
+t_r /= 2 * pi
+v_r = 2 * pi * cos(2 * pi * t_r)
+s = json.load(open(sys.argv[1]))["summary"]
+atts = s["attractors"]
+check(len(atts) == 2, "two attractors, got %d" % len(atts))
+check(abs(sum(x["fraction"] for x in atts) + s["undecided"]["fraction"] - 1) < 1e-12, "the shares sum to 1")
+def holds(enc, x):
+    return D(enc[0]) <= x <= D(enc[1])
+for x in atts:
+    c = x["certificate"]
+    check(c["certified"] is True, "%s certified" % x["name"])
+    p = c["points"][0]
+    if x["kind"] == "sticking":
+        check(x["period"] == 1 and c["outcome"] == "through_release", "the sticking cycle has period 1 through the release")
+        check(holds(p["theta"], t_r) and holds(p["v"], v_r), "the release state %s holds (%s, %s)" % (p, t_r, v_r))
+    else:
+        check(x["period"] == 1 and c["stability"] == "stable", "the other is the stable fixed point: %s" % x["name"])
+        check(holds(p["theta"], t_star) and holds(p["v"], a / 2), "the focus %s holds (%s, 15)" % (p, t_star))
+done()
+PY
+fi
+if run att8 attractors "${sine[@]}" --a 8 --cells 32x32 --json; then
+  json_holds att8 'len(j["summary"]["attractors"]) == 1 and j["summary"]["attractors"][0]["kind"] == "sticking" and j["summary"]["attractors"][0]["period"] == 3 and j["summary"]["attractors"][0]["certificate"]["certified"] is True'
+fi
+if run sweep attractors "${sine[@]}" --a 20 --vary a --range 20:38 --values 4 --cells 48x48 --json; then
+  # a_PD = 25.856565883105104434161963729485610166... (the closed form, as in the branch check above)
+  json_holds sweep 'any(e["kind"] == "period_doubling" and e["certified"] is True and inside("25.8565658831051044341619637294856101663", e["enclosure"]) for b in j["summary"]["branches"] for e in b["events"])'
+  json_holds sweep 'any(e["kind"] == "fold" and abs(float(e["param"]) - 37.69911184307752) < 1e-8 for b in j["summary"]["branches"] for e in b["events"])'
 fi
 
 refused lift "wall" certify-periodic --model elastic --wall sine --a 16 --period 1 --guess 0.1,8 --lift 8

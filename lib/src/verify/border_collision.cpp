@@ -1728,9 +1728,9 @@ PeriodDoublingCertificate smooth_attempts(const PeriodDoublingQuestion& q, Proof
       // the boxes across the wrap, where no Newton step or floor is decided.
       const double th = q.point.theta.approx();
       if (!c.certified && q.model.wall.shape != WallShape::piecewise && std::fabs(th - std::round(th)) < 1e-2) {
-        c.reason += " (the orbit's phase " + q.point.theta.text() +
-                    " is next to theta = 0, where the map's phase coordinate wraps: a smooth wall's bifurcation there is "
-                    "not certified by this method)";
+        c.reason = "the orbit's phase " + q.point.theta.text() +
+                   " is next to theta = 0, where the map's phase coordinate wraps: a smooth wall's bifurcation there is not "
+                   "certified by this method (the attempt: " + c.reason + ")";
         c.statement = "Not certified at " + std::to_string(at.bits) + " bits: " + c.reason + ". Nothing is claimed.";
       }
       return c;

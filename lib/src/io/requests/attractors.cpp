@@ -31,8 +31,6 @@ AttractorsRequest attractors_request(const Options& o) {
   r.classify = classify_options_from(o);
   r.max_period = r.classify.max_period;
   r.certify = !flag_from(o, "no-certify");
-  // Its recurrence grid is bounded by the piecewise wall's trapping region (model/trapping.hpp).
-  require_piecewise_wall(r.model, "attractors");
   if (o.has("max-bits") && !r.certify) throw InputError("max-bits", "is not used with --no-certify");
   r.max_bits = integer_from(o, "max-bits", 64, 4096, 1024);
   r.precision = point_precision(o);

@@ -135,7 +135,7 @@ ImpactMargins smooth_margins_of_step(const Model<T>& m, const State<T>& from, co
     out.value[static_cast<int>(Margin::sticking)] = Tr<T>::to_double(margin);
   }
   const double th0 = Tr<T>::to_double(from.theta), v0 = Tr<T>::to_double(from.v), a = Tr<T>::to_double(m.a);
-  const double tp = 2 * 3.14159265358979323846;
+  const double tp = Tr<T>::to_double(w.two_pi);
   const auto rate = [&](double s) { return v0 - a * s - tp * std::cos(tp * (th0 + s)); };
   const double tau_d = Tr<T>::to_double(tau), h = 1.0 / 128;
   const T f0 = Tr<T>::sin_2pi(from.theta);

@@ -1013,8 +1013,15 @@ PeriodicRangeReport certify_periodic_range(const PeriodicQuestion& q) {
   const std::string par = name(q.vary);
   t << "For every " << par << " in [" << exact_decimal(q.range->first) << ", " << exact_decimal(q.range->second) << "]";
   if (rep.uncertified_length != 0) t << " except a set of total length " << exact_decimal(rep.uncertified_length);
-  t << ", the map has a period-" << q.period << " orbit, proved by the Krawczyk operator on " << rep.pieces.size()
-    << " piece(s), each with its own box (unique in it)";
+  size_t released = 0, krawczyk = 0;  // certified pieces by how they were proved
+  for (const PeriodicPiece& p : rep.pieces)
+    if (p.cert.certified) ++(p.cert.outcome == PeriodicOutcome::through_release ? released : krawczyk);
+  t << ", the map has a period-" << q.period << " orbit, proved on " << rep.pieces.size() << " piece(s)";
+  if (released == 0) t << " by the Krawczyk operator, each with its own box (unique in it)";
+  else if (krawczyk == 0)
+    t << " through the release state, whose interval orbit over each piece sticks and returns to it (a superstable sticking orbit)";
+  else
+    t << " (" << released << " through the release state, " << krawczyk << " by the Krawczyk operator, each with its own box, unique in it)";
   if (sequences.size() == 1) t << ", all with the same event sequence";
   else if (sequences.size() > 1) t << "; the event sequence changes between pieces (" << sequences.size() << " sequences)";
   t << ".";

@@ -15,12 +15,16 @@
 //  4. continue --certify's proofs on the sine wall: the period doubling's enclosure holds the
 //     closed form; the fold at a_sn, at theta = 0 exactly where the phase coordinate wraps,
 //     is refused with that reason (no claim).
+//  5. The tongues of `tongues --wall sine` (analysis/tongues.hpp, sine_tongues): a_pd and a_sn
+//     are sine_truth's closed forms, and between them the map's Newton finds the closed-form
+//     orbit with a flight of p periods, stable; just below a_pd a multiplier is below -1.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 
 #include "bouncer/analysis/continuation.hpp"
+#include "bouncer/analysis/tongues.hpp"
 #include "bouncer/model/spec.hpp"
 #include "bouncer/verify/border_collision.hpp"
 #include "bouncer/verify/sticking.hpp"
@@ -221,6 +225,44 @@ TEST(SineContinuation, CertifiedPeriodDoublingHoldsTheClosedFormAndTheFoldAtThet
   ASSERT_TRUE(c.high_smooth.has_value());
   EXPECT_FALSE(c.high_smooth->certified);
   EXPECT_NE(c.high_smooth->reason.find("phase coordinate wraps"), std::string::npos) << c.high_smooth->reason;
+}
+
+TEST(SineTongues, AreTheClosedFormsAndBoundTheStableOrbitOfTheMap) {
+  TonguesRequest r;
+  r.p_max = 6;
+  r.samples = 11;  // eps = 0, 1/10, ..., 1: the ends are left out
+  const SineTongues t = sine_tongues(r);
+  ASSERT_EQ(t.curves.size(), 6u);
+  for (const SineTongueCurve& c : t.curves) {
+    ASSERT_EQ(c.points.size(), 9u) << c.p;
+    for (const SineTonguePoint& q : c.points) {
+      Mpfr eps(st::kBits);
+      mpfr_set_q(eps.get(), q.eps.get_mpq_t(), MPFR_RNDN);
+      const Mpfr a_pd = st::a_period_doubling(eps, c.p), a_sn = st::a_saddle_node(eps, c.p);
+      SCOPED_TRACE("p = " + std::to_string(c.p) + ", eps = " + q.eps.get_str());
+      EXPECT_TRUE(st::abs(wide(q.a_pd) - a_pd) < num(1e-35) * a_pd) << st::show(a_pd);
+      EXPECT_TRUE(st::abs(wide(q.a_sn) - a_sn) < num(1e-35) * a_sn) << st::show(a_sn);
+      // The map, in double, at the middle of the tongue (within the sine wall's a < 4 pi^2)
+      // and 1e-4 below a_pd.
+      const double e = d(eps), lo = d(a_pd), hi = std::min(d(a_sn), 39.4);
+      for (const double a : {(lo + hi) / 2, lo * (1 - 1e-4)}) {
+        char text[64];
+        std::snprintf(text, sizeof text, "%.12f", a);
+        const std::string eps_text = std::to_string(e);
+        const ModelSpec spec = sine_spec(text, eps_text);
+        const st::Period1 cf = st::period1(st::dec(text), st::dec(eps_text), c.p, 1);
+        ASSERT_TRUE(cf.exists);
+        const Model<double> m = make_model<double>(spec, 53);
+        const PeriodicOrbit<double> o = find_periodic(m, 1, State<double>{d(cf.theta), d(cf.v)});
+        SCOPED_TRACE(std::string("a = ") + text);
+        ASSERT_TRUE(o.converged) << o.note;
+        EXPECT_EQ(o.wall_periods[0], c.p);
+        EXPECT_LT(d(circle_distance(num(o.points[0].theta), cf.theta)), 1e-9);
+        if (a > lo) EXPECT_LT(o.multipliers.modulus(0), 1.0);
+        else EXPECT_LT(o.multipliers.re[1] < o.multipliers.re[0] ? o.multipliers.re[1] : o.multipliers.re[0], -1.0);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -24,6 +24,8 @@
 #     both certified with enclosures holding the closed forms, shares summing to 1; at a = 8
 #     the one attractor is the period-3 sticking cycle, certified; --vary a finds the focus's
 #     period doubling at a_PD (certified) and its fold.
+#   tongues --wall sine: the p = 1 row at eps = 1/2 has a_PD (as above) and a_SN = 12 pi, every
+#     row a_PD < a_SN, audit reruns it IDENTICAL; a wall other than triangle or sine: exit 2.
 #   bad input: certify-periodic --lift and certify-chaos still refuse the sine wall (exit 2).
 # Usage: bash sine_certified.sh <bouncer-binary> <source-dir>
 set -euo pipefail
@@ -168,6 +170,27 @@ if run sweep attractors "${sine[@]}" --a 20 --vary a --range 20:38 --values 4 --
   json_holds sweep 'any(e["kind"] == "period_doubling" and e["certified"] is True and inside("25.8565658831051044341619637294856101663", e["enclosure"]) for b in j["summary"]["branches"] for e in b["events"])'
   json_holds sweep 'any(e["kind"] == "fold" and abs(float(e["param"]) - 37.69911184307752) < 1e-8 for b in j["summary"]["branches"] for e in b["events"])'
 fi
+
+if "$BOUNCER" tongues --wall sine --p-max 3 --samples 601 --out tongues --quiet; then
+  python3 - <<'PY' || fail tongues "see above"
+import csv
+from decimal import Decimal as D, getcontext
+from clichecks import check, done
+getcontext().prec = 50
+rows = list(csv.DictReader(l for l in open("tongues.csv") if not l.startswith("#")))
+check(len(rows) == 3 * 599, "599 rows per curve (eps = 0 and 1 left out): %d" % len(rows))
+check(all(D(r["a_pd"]) < D(r["a_sn"]) for r in rows), "a_PD < a_SN on every row")
+half = [r for r in rows if r["p"] == "1" and r["eps"] == "1/2"]
+check(len(half) == 1, "a p = 1 row at eps = 1/2")
+check(abs(D(half[0]["a_pd"]) - D("25.8565658831051044341619637294856101663")) < D("1e-35"), "a_PD %s" % half[0]["a_pd"])
+check(abs(D(half[0]["a_sn"]) - D("37.6991118430775188615517205993540346102")) < D("1e-35"), "a_SN %s" % half[0]["a_sn"])
+done()
+PY
+  audited tongues tongues.json
+else
+  fail tongues "exit $?"
+fi
+refused tongues-wall "wall" tongues --wall sawtooth
 
 refused lift "wall" certify-periodic --model elastic --wall sine --a 16 --period 1 --guess 0.1,8 --lift 8
 refused chaos "wall" certify-chaos "${sine[@]}" --a 20

@@ -54,6 +54,50 @@ Tongues arnold_tongues(const TonguesRequest& r) {
   return t;
 }
 
+SineTongues sine_tongues(const TonguesRequest& r) {
+  SineTongues t;
+  const mpfr_prec_t bits = kSineTongueBits;
+  Mpfr pi(bits), e(bits), x(bits), y(bits), num(bits);
+  mpfr_const_pi(pi.get(), MPFR_RNDN);
+  const mpq_class lo = r.eps_range.first.value(), hi = r.eps_range.second.value();
+  const long n = r.samples;
+  for (long p = 1; p <= r.p_max; ++p) {
+    SineTongueCurve c;
+    c.p = p;
+    for (long i = 0; i < n; ++i) {
+      const mpq_class eps = lo + (hi - lo) * i / (n - 1);
+      if (eps <= 0 || eps >= 1) continue;  // eps = 0: every collision sticks; eps = 1: a_sn is infinite
+      SineTonguePoint q{eps, Mpfr(bits), Mpfr(bits)};
+      mpfr_set_q(e.get(), eps.get_mpq_t(), MPFR_RNDN);
+      // a_sn = 4 pi (1 + e) / (p (1 - e))
+      mpfr_add_ui(x.get(), e.get(), 1, MPFR_RNDN);
+      mpfr_mul(num.get(), pi.get(), x.get(), MPFR_RNDN);
+      mpfr_mul_ui(num.get(), num.get(), 4, MPFR_RNDN);
+      mpfr_ui_sub(y.get(), 1, e.get(), MPFR_RNDN);
+      mpfr_mul_ui(y.get(), y.get(), static_cast<unsigned long>(p), MPFR_RNDN);
+      mpfr_div(q.a_sn.get(), num.get(), y.get(), MPFR_RNDN);
+      // a_pd = 4 pi^2 (1 + e)^2 / sqrt(4 (1 + e^2)^2 + pi^2 p^2 (1 - e^2)^2)
+      mpfr_mul(num.get(), num.get(), pi.get(), MPFR_RNDN);
+      mpfr_mul(num.get(), num.get(), x.get(), MPFR_RNDN);  // 4 pi^2 (1 + e)^2
+      mpfr_sqr(x.get(), e.get(), MPFR_RNDN);
+      mpfr_ui_sub(y.get(), 1, x.get(), MPFR_RNDN);           // 1 - e^2
+      mpfr_add_ui(x.get(), x.get(), 1, MPFR_RNDN);           // 1 + e^2
+      mpfr_sqr(x.get(), x.get(), MPFR_RNDN);
+      mpfr_mul_ui(x.get(), x.get(), 4, MPFR_RNDN);
+      mpfr_mul(y.get(), y.get(), pi.get(), MPFR_RNDN);
+      mpfr_mul_ui(y.get(), y.get(), static_cast<unsigned long>(p), MPFR_RNDN);
+      mpfr_sqr(y.get(), y.get(), MPFR_RNDN);
+      mpfr_add(x.get(), x.get(), y.get(), MPFR_RNDN);
+      mpfr_sqrt(x.get(), x.get(), MPFR_RNDN);
+      mpfr_div(q.a_pd.get(), num.get(), x.get(), MPFR_RNDN);
+      c.points.push_back(std::move(q));
+    }
+    t.points += static_cast<long>(c.points.size());
+    t.curves.push_back(std::move(c));
+  }
+  return t;
+}
+
 double nearest_double(const mpq_class& q) {
   mpfr_t x;
   mpfr_init2(x, 53);

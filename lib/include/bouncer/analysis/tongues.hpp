@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "bouncer/scalar/decimal.hpp"
+#include "bouncer/scalar/mpfr.hpp"
 
 namespace bouncer {
 
@@ -49,6 +50,36 @@ struct Tongues {
 // The curves p = 1..p_max inside the window: `samples` points uniform in a over the part of
 // the window the curve crosses, plus the switch point when it is strictly inside.
 Tongues arnold_tongues(const TonguesRequest& r);
+
+// The sine wall's tongues (`bouncer tongues --wall sine`; docs/guide/sine-wall.md). Its
+// period-p orbits (flight time p, v* = a p / 2, cos(2 pi theta*) = a p (1-eps) / (4 pi (1+eps)),
+// derived in tests/test_sine_wall.cpp) exist for a <= a_sn and the one with
+// sin(2 pi theta*) > 0 is stable for a_pd < a < a_sn:
+//     a_sn(p, eps) = 4 pi (1+eps) / (p (1-eps))                       (saddle-node),
+//     a_pd(p, eps) = 4 pi^2 (1+eps)^2 / sqrt(4 (1+eps^2)^2 + pi^2 p^2 (1-eps^2)^2)   (period doubling):
+// tongues of positive width, where the triangle's eq. 5 curves have none. Points uniform in
+// eps over the window (exact rationals; eps = 0 is left out, where every collision sticks,
+// and eps = 1, where a_sn is infinite), both
+// values computed at kSineTongueBits (a dozen rounded MPFR operations: a relative error of a
+// few 2^-128, far below what a picture or a double shows).
+constexpr long kSineTongueBits = 128;
+
+struct SineTonguePoint {
+  mpq_class eps;
+  Mpfr a_pd, a_sn;
+};
+
+struct SineTongueCurve {
+  long p = 1;
+  std::vector<SineTonguePoint> points;  // by increasing eps
+};
+
+struct SineTongues {
+  std::vector<SineTongueCurve> curves;  // p = 1..p_max
+  long points = 0;
+};
+
+SineTongues sine_tongues(const TonguesRequest& r);
 
 // The double nearest to q (mpq_class::get_d truncates).
 double nearest_double(const mpq_class& q);

@@ -48,6 +48,30 @@ Series line(std::string label, Rgb color, bool dashed) {
   return s;
 }
 
+// Either wall's figure frame (the window in (a, eps)), summary and files.
+void write_tongues(const TonguesRequest& r, const char* wall, long points, nlohmann::ordered_json curves, const std::string& csv,
+                   Figure& fig, const RunFlags& f, const Provenance& prov) {
+  fig.xlabel = parameter_label(Parameter::a);
+  fig.ylabel = parameter_label(Parameter::eps);
+  fig.x_min = r.a_range.first.approx();
+  fig.x_max = r.a_range.second.approx();
+  fig.y_min = r.eps_range.first.approx();
+  fig.y_max = r.eps_range.second.approx();
+  fig.width = 1000;
+  fig.height = 760;
+  fig.legend_below = true;  // the keys of the marks and line styles: the plot keeps the figure's width
+  fig.metadata = png_metadata(prov, fig.title);
+  nlohmann::ordered_json s;
+  s["command"] = "tongues";
+  s["wall"] = wall;
+  s["p_max"] = r.p_max;
+  s["a_range"] = {r.a_range.first.text(), r.a_range.second.text()};
+  s["eps_range"] = {r.eps_range.first.text(), r.eps_range.second.text()};
+  s["points"] = points;
+  s["curves"] = std::move(curves);
+  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
+}
+
 void finish(const TonguesRequest& r, const Tongues& tongues, const RunFlags& f, const Provenance& prov) {
   std::string csv = "p,a,eps,theta_min,full,a_double,eps_double\n";
   Figure fig;
@@ -86,24 +110,7 @@ void finish(const TonguesRequest& r, const Tongues& tongues, const RunFlags& f, 
   fig.series.push_back(line("dashed: θ* > 1/2 − 2pε/(1+ε) > 0", Rgb{110, 110, 110}, true));
   fig.title = "Period-p fixed points (eq. 5): a = 8(1+ε)/(p(1−ε))";
   fig.subtitle = "p = 1.." + std::to_string(r.p_max) + "; family θ* in (max(0, 1/2 − 2pε/(1+ε)), 1/2), proved";
-  fig.xlabel = parameter_label(Parameter::a);
-  fig.ylabel = parameter_label(Parameter::eps);
-  fig.x_min = r.a_range.first.approx();
-  fig.x_max = r.a_range.second.approx();
-  fig.y_min = r.eps_range.first.approx();
-  fig.y_max = r.eps_range.second.approx();
-  fig.width = 1000;
-  fig.height = 760;
-  fig.legend_below = true;  // the keys of the marks and line styles: the plot keeps the figure's width
-  fig.metadata = png_metadata(prov, fig.title);
-  nlohmann::ordered_json s;
-  s["command"] = "tongues";
-  s["p_max"] = r.p_max;
-  s["a_range"] = {r.a_range.first.text(), r.a_range.second.text()};
-  s["eps_range"] = {r.eps_range.first.text(), r.eps_range.second.text()};
-  s["points"] = tongues.points;
-  s["curves"] = curves;
-  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
+  write_tongues(r, "triangle", tongues.points, std::move(curves), csv, fig, f, prov);
 }
 
 // The sine wall's tongues (analysis/tongues.hpp: sine_tongues): for each p the period
@@ -139,25 +146,7 @@ void finish_sine(const TonguesRequest& r, const SineTongues& tongues, const RunF
   fig.series.push_back(line("dashed: saddle-node a_SN (stable between the two)", Rgb{110, 110, 110}, true));
   fig.title = "Sine wall: stable period-p orbits for a_PD < a < a_SN";
   fig.subtitle = "p = 1.." + std::to_string(r.p_max) + "; flights of p periods, closed forms (tongues of positive width)";
-  fig.xlabel = parameter_label(Parameter::a);
-  fig.ylabel = parameter_label(Parameter::eps);
-  fig.x_min = r.a_range.first.approx();
-  fig.x_max = r.a_range.second.approx();
-  fig.y_min = r.eps_range.first.approx();
-  fig.y_max = r.eps_range.second.approx();
-  fig.width = 1000;
-  fig.height = 760;
-  fig.legend_below = true;
-  fig.metadata = png_metadata(prov, fig.title);
-  nlohmann::ordered_json s;
-  s["command"] = "tongues";
-  s["wall"] = "sine";
-  s["p_max"] = r.p_max;
-  s["a_range"] = {r.a_range.first.text(), r.a_range.second.text()};
-  s["eps_range"] = {r.eps_range.first.text(), r.eps_range.second.text()};
-  s["points"] = tongues.points;
-  s["curves"] = curves;
-  write_outputs(f, prov, csv, [&](std::ostream& out, ImageFormat fmt) { write_figure(out, fig, fmt, f.picture.render); }, s);
+  write_tongues(r, "sine", tongues.points, std::move(curves), csv, fig, f, prov);
 }
 
 const std::set<std::string>& tongues_keys() {

@@ -5,7 +5,8 @@
 //     test_sine_wall.cpp): along the stable branch every point is the closed-form fixed
 //     point, its stability changes at the closed-form period doubling a_pd, where the
 //     branch's located period doubling is, and the branch ends in a fold at the closed-form
-//     saddle-node a_sn; in double and in Mpfr at 128 bits (there a_pd and a_sn to 30 digits).
+//     saddle-node a_sn; in double and in Mpfr at 128 bits (there a_pd and a_sn to 30 digits);
+//     continued in eps at a = 30, the fold and the doubling where a_sn and a_pd equal 30.
 //  2. The saddle branch ends where the closed-form orbit stops being an orbit of the map: the
 //     flight's gap touches the wall (a grazing), found here by a bisection on the least gap of
 //     the closed-form flight in MPFR, with no bouncer code.
@@ -109,6 +110,28 @@ TEST(SineContinuation, StableBranchIsTheClosedFormAndEndsInTheSaddleNode) {
     EXPECT_EQ(b.bifurcations[0].kind, SmoothKind::period_doubling);
     EXPECT_NEAR(b.bifurcations[0].param, a_pd, 1e-10 * a_pd);
   }
+}
+
+TEST(SineContinuation, InEpsTheBranchFoldsAndDoublesWhereTheClosedFormsMeetA) {
+  // At a = 30 the stable period-1 orbit is born where a_sn(eps) = 30, eps = (30 - 4 pi) /
+  // (30 + 4 pi), and period-doubles where a_pd(eps) = 30 (found here by bisection on the
+  // closed form, which increases with eps).
+  const ModelSpec spec = sine_spec("30", "0.5");
+  const Model<double> m = make_model<double>(spec, 53);
+  const st::Period1 p = st::period1(st::dec("30"), st::dec("0.5"), 1, 1);
+  const Branch<double> b = continue_branch(m, Parameter::eps, 1, State<double>{d(p.theta), d(p.v)}, 0.3, 0.95, quick());
+  ASSERT_TRUE(b.started) << b.note;
+  const double fold = d(Mpfr((num(30L) - 4 * st::pi()) / (num(30L) + 4 * st::pi())));
+  EXPECT_EQ(b.low.reason, EndReason::fold) << b.low.detail;
+  EXPECT_NEAR(b.low.param, fold, 1e-9);
+  Mpfr lo = num(0.45), hi = num(0.9);
+  for (int k = 0; k < 80; ++k) {
+    const Mpfr mid = (lo + hi) / 2;
+    (st::a_period_doubling(mid, 1) < num(30L) ? lo : hi) = mid;
+  }
+  ASSERT_EQ(b.bifurcations.size(), 1u);
+  EXPECT_EQ(b.bifurcations[0].kind, SmoothKind::period_doubling);
+  EXPECT_NEAR(b.bifurcations[0].param, d(lo), 1e-10);
 }
 
 TEST(SineContinuation, Mpfr128LocatesThePeriodDoublingAndTheFoldToThirtyDigits) {

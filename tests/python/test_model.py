@@ -752,3 +752,28 @@ def test_continue_branch_certify_proves_the_ends_against_closed_forms():
     c = f.low.certified
     assert c is not None and c["kind"] == "smooth" and c["certified"], c
     assert F(c["other_multiplier"].lo) <= F(9, 10) ** 22 <= F(c["other_multiplier"].hi)
+
+
+def test_sine_wall_branch_and_attractors():
+    """continue_branch and attractors on the sine wall through the typed layer, against the
+    closed forms at eps = 1/2 (docs/guide/sine-wall.md): the stable period-1 branch from a = 30
+    ends in the saddle-node a_sn = 4 pi (1 + eps)/(1 - eps) = 12 pi and period-doubles at
+    a_pd = 4 pi^2 (1 + eps)^2 / sqrt(4 (1 + eps^2)^2 + pi^2 (1 - eps^2)^2); at a = 30 the
+    attractors are the focus (theta*, a/2) and the period-1 sticking cycle through the release
+    state (theta_r, 2 pi cos 2 pi theta_r), theta_r = asin(a / 4 pi^2) / (2 pi), both certified."""
+    eps, a = 0.5, 30.0
+    m = bouncer.Model(model="constant", a="30", eps="0.5", wall="sine")
+    b = m.continue_branch(1, ("0.1", "15"), ("20", "39"))
+    assert b.high.reason == "fold" and b.high.param == pytest.approx(12 * math.pi, rel=1e-9)
+    a_pd = 4 * math.pi ** 2 * (1 + eps) ** 2 / math.sqrt(4 * (1 + eps ** 2) ** 2 + math.pi ** 2 * (1 - eps ** 2) ** 2)
+    assert [x["kind"] for x in b.bifurcations] == ["period_doubling"]
+    assert b.bifurcations[0]["param"] == pytest.approx(a_pd, rel=1e-10)
+    found = {x.kind: x for x in m.attractors(starts=(30, 30)).attractors}
+    assert set(found) == {"periodic", "sticking"}
+    theta_star = math.acos(a * (1 - eps) / (4 * math.pi * (1 + eps))) / (2 * math.pi)
+    theta_r = math.asin(a / (4 * math.pi ** 2)) / (2 * math.pi)
+    focus, cycle = found["periodic"], found["sticking"]
+    assert focus.theta[0] == pytest.approx(theta_star, abs=1e-12) and focus.v[0] == pytest.approx(a / 2, rel=1e-12)
+    assert cycle.theta[0] == pytest.approx(theta_r, abs=1e-12)
+    assert cycle.v[0] == pytest.approx(2 * math.pi * math.cos(2 * math.pi * theta_r), rel=1e-12)
+    assert focus.certificate["certified"] and cycle.certificate["certified"]

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bouncer/model/impact_map_impl.hpp"  // the sine gap (detail::sine_gap) of the smooth margins
 #include "bouncer/scalar/decimal.hpp"
 
 namespace bouncer {
@@ -134,11 +135,13 @@ ImpactMargins smooth_margins_of_step(const Model<T>& m, const State<T>& from, co
     }
     out.value[static_cast<int>(Margin::sticking)] = Tr<T>::to_double(margin);
   }
-  const double th0 = Tr<T>::to_double(from.theta), v0 = Tr<T>::to_double(from.v), a = Tr<T>::to_double(m.a);
-  const double tp = Tr<T>::to_double(w.two_pi);
-  const auto rate = [&](double s) { return v0 - a * s - tp * std::cos(tp * (th0 + s)); };
-  const double tau_d = Tr<T>::to_double(tau), h = 1.0 / 128;
+  // The map's own gap and its rate (model/impact_map_impl.hpp), the rate in double.
   const T f0 = Tr<T>::sin_2pi(from.theta);
+  const detail::SineFlight<T> flight{from.theta, f0, from.v};
+  const detail::SineFlight<double> flight_d{Tr<T>::to_double(from.theta), Tr<T>::to_double(f0), Tr<T>::to_double(from.v)};
+  const double a = Tr<T>::to_double(m.a), tp = Tr<T>::to_double(w.two_pi), th0 = flight_d.phase;
+  const auto rate = [&](double s) { return detail::sine_gap_rate(flight_d, a, tp, s); };
+  const double tau_d = Tr<T>::to_double(tau), h = 1.0 / 128;
   double best = std::numeric_limits<double>::infinity();
   double prev_s = h, prev_rate = rate(h);
   for (long i = 2; i * h < tau_d && i < 1000000; ++i) {
@@ -151,8 +154,7 @@ ImpactMargins smooth_margins_of_step(const Model<T>& m, const State<T>& from, co
         (rate(mid) < 0 ? lo : hi) = mid;
       }
       const T sm = from_double<T>(lo + (hi - lo) / 2, m.bits);
-      const T gap = f0 + sm * (from.v - m.a * sm / 2) - Tr<T>::sin_2pi(T(from.theta + sm));
-      const double g = Tr<T>::to_double(gap);
+      const double g = Tr<T>::to_double(detail::sine_gap(flight, m.a, sm));
       if (g < best) {
         best = g;
         const double ph = th0 + lo;
@@ -595,9 +597,9 @@ struct Continuer {
         switch (static_cast<Margin>(e.margin)) {
           case Margin::knot: e.detail = "impact " + i1 + " reaches the knot theta = " + knot_text(e.knot); break;
           case Margin::clearance:
+            if (base.wall.smooth()) e.graze_theta = good.margins[e.impact].graze_theta;
             e.detail = "flight " + i1 + " grazes the wall at " +
-                       (base.wall.smooth() ? "theta ~ " + phase_text(good.margins[e.impact].graze_theta)
-                                           : "the knot theta = " + knot_text(e.knot));
+                       (base.wall.smooth() ? "theta ~ " + phase_text(e.graze_theta) : "the knot theta = " + knot_text(e.knot));
             break;
           case Margin::speed: e.detail = "impact " + i1 + " reaches zero relative speed (touchdown)"; break;
           case Margin::sticking: e.detail = "impact " + i1 + " reaches the sticking threshold"; break;

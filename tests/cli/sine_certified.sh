@@ -113,6 +113,7 @@ if run saddle continue "${sine[@]}" --a 30 --period 1 --guess 0.896,15 --vary a 
 fi
 if run stuck continue "${sine[@]}" --a 8 --period 3 --guess 0.5,3 --vary a --range 4:20 --json; then
   json_holds stuck 'j["summary"]["low"]["margin"] == "sticking_margin" and j["summary"]["high"]["margin"] == "clearance"'
+  json_holds stuck 'abs(j["summary"]["high"]["graze_theta"] - 0.40998) < 1e-3 and "graze_theta" not in j["summary"]["low"]'
 fi
 
 if run att30 attractors "${sine[@]}" --a 30 --cells 64x64 --json; then

@@ -136,6 +136,7 @@ struct BranchEnd {
   int margin = -1;    // Margin that reached 0 (border)
   int impact = -1;    // its step
   int knot = -1;      // the knot involved (knot, clearance)
+  double graze_theta = std::numeric_limits<double>::quiet_NaN();  // a smooth wall's grazing: its phase
   long mother_period = 0;  // doubling: q/2, the period of the orbit the branch is born from
   std::string detail; // one phrase, e.g. "impact 3 reaches the knot theta = 1/2"
   State<T> last_point;  // the orbit's first point at the branch side of the bracket

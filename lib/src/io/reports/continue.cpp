@@ -63,6 +63,7 @@ json end_json(const Branch<T>& b, const BranchEnd<T>& e, Parameter vary, const W
   j["margin"] = e.margin >= 0 ? json(name(static_cast<Margin>(e.margin))) : json(nullptr);
   j["impact"] = e.impact >= 0 ? json(e.impact + 1) : json(nullptr);
   j["knot"] = e.knot >= 0 ? json(wall.knot_exact[e.knot].get_str()) : json(nullptr);
+  if (!std::isnan(e.graze_theta)) j["graze_theta"] = e.graze_theta;  // a smooth wall's grazing phase
   j["detail"] = e.detail;
   if (e.reason == EndReason::doubling) j["mother_period"] = e.mother_period;
   add_accuracy(j, e.estimate);
@@ -405,6 +406,11 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     }
     return short_num(x);
   };
+  const auto phase = [](double theta) {
+    std::ostringstream s;
+    s << std::setprecision(6) << theta;
+    return s.str();
+  };
   // Legend labels short enough for one line: the cause and the impact.
   auto end_label = [&](const BranchEnd<T>& e) {
     const std::string i = std::to_string(e.impact + 1);
@@ -414,7 +420,9 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     if (e.reason == EndReason::border) {
       switch (static_cast<Margin>(e.margin)) {
         case Margin::knot: what = "border collision, impact " + i + " at θ = " + knot; break;
-        case Margin::clearance: what = "grazing, flight " + i + " at θ = " + knot; break;
+        case Margin::clearance:
+          what = "grazing, flight " + i + " at θ " + (std::isnan(e.graze_theta) ? "= " + knot : "≈ " + phase(e.graze_theta));
+          break;
         case Margin::speed: what = "touchdown, impact " + i; break;
         case Margin::sticking: what = "sticking threshold, impact " + i; break;
       }

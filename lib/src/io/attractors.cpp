@@ -703,7 +703,7 @@ ImageFigure attractors_sweep_figure(const AttractorsSweepResult& r, Palette pale
     if (tallest[c][1] - tallest[c][0] >= 0.1)
       fig.annotations.push_back({zoom.first(r.values[tallest_at[c]].value()), (tallest[c][0] + tallest[c][1]) / 2,
                                  chain_tag(r.chains[c]), Rgb{0, 0, 0}});
-  ras.notes.push_back("in the bands: P3 period 3, F2 family of period-2 points, k4 sticking cycle k = 4");
+  ras.notes.push_back("tags in the bands, e.g. P3: period 3, F2: family of period-2 points, k4: sticking cycle k = 4");  // a key, not a list of what is drawn
   ras.legend_below = families.size() > 6;
   ras.legend.emplace_back("undecided", undecided);
   const std::string vary = name(r.request.vary);

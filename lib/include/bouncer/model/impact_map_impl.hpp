@@ -370,6 +370,9 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
   //                            g(s) >= g''' s^3 / 6 - 16 pi^4 s^4 / 24, p0 = g''' / (8 pi^4).
   const V av = VO::of(a), tp = VO::of(two_pi);
   const V tp2 = tp * tp;
+  // The release's bound, for a start at rest where g'''(0) = 8 pi^3 cos(2 pi theta) > 0:
+  // half of 4 g'''(0) / (16 pi^4) = 2 cos / pi.
+  const auto release_p0 = [&] { return V(2 * TV::cos_2pi(VO::of(s.theta)) / tp); };
   V p0;
   // A release state (marked, or at rest exactly at the release phase: a start there, or a
   // release whose mark was lost) leaves as from the release.
@@ -391,7 +394,7 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
         // c s^2 / 2 >= 0 term only adds): at rest a rounding error from theta_r, c is rounding
         // noise, and the quadratic stretch would end where the gap is below the rounding of
         // its own evaluation, so that a point type's march reported a spurious impact there.
-        const V rel = 2 * TV::cos_2pi(VO::of(s.theta)) / tp;
+        const V rel = release_p0();
         if (certainly(TV::lt(p0, rel))) p0 = rel;
       }
     } else {
@@ -403,7 +406,7 @@ void ImpactMap<T>::sine_step(const State<T>& s, StepResult<T>& r) const {
         if (!certainly(TV::lt(p0, V(2 * w / M)))) throw Undecided(Reason::grazing);
     }
   }
-  if (release) p0 = 2 * TV::cos_2pi(VO::of(s.theta)) / tp;  // half of 4 g'''(0) / (16 pi^4) = 2 cos / pi
+  if (release) p0 = release_p0();
 
   // The flight rises above the top (1) when v^2 > 2a(1 - f0): no contact between s_up and
   // s_down = (v + R)/a, R = sqrt(v^2 - 2a(1 - f0)); the search jumps over that stretch. The

@@ -499,18 +499,82 @@ struct Continuer {
     return true;
   }
 
+  // At a border a margin reaches 0 at a*, smoothly and linearly on the branch side, so
+  // secant steps on it get to the tolerance in a few corrector runs where bisection takes
+  // one per bit (~44 in double, ~116 at 128 bits), half of them trials past a*, where Newton
+  // creeps along the border for hundreds of evaluations before it gives up (~50x a
+  // converging run). The margin is the one that shrank the most since `first`. Its root r
+  // is estimated by the secant through the last two accepted points; the step aims short of
+  // r by twice the distance to the estimate from the two points before (the older
+  // estimate's error, much larger than the newer one's while the secant converges), and
+  // halfway to r without such an estimate, so that it lands on the branch side. Once r is
+  // within half the tolerance, it aims just past it, to close the bracket. Nothing where the
+  // step leaves (good, bad): the caller bisects or halves its step, so the bracket [good, bad]
+  // is kept either way, and a margin that is not the cause, or a smooth end such as a fold,
+  // costs at most one extra corrector run. `hist`: accepted points, the last one nearest.
+  std::optional<T> border_secant(const std::vector<const BranchPoint<T>*>& hist, const T& bad, int dir,
+                                 const BranchPoint<T>& first) const {
+    const size_t n = hist.size();
+    if (n < 2) return std::nullopt;
+    const BranchPoint<T>& good = *hist[n - 1];
+    for (const BranchPoint<T>* x : hist)
+      if (x->margins.size() != first.margins.size()) return std::nullopt;
+    int mi = -1, mk = -1;
+    double least = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < good.margins.size(); ++i)
+      for (int k = 0; k < kMargins; ++k) {
+        const double now = std::fabs(good.margins[i].value[k]), then = std::fabs(first.margins[i].value[k]);
+        if (!std::isfinite(now) || !std::isfinite(then) || !(then > 0)) continue;
+        if (now / then < least) {
+          least = now / then;
+          mi = static_cast<int>(i);
+          mk = k;
+        }
+      }
+    if (mi < 0) return std::nullopt;
+    // The margin at hist[j] and its parameter as an offset from good's.
+    const auto g = [&](size_t j) { return std::fabs(hist[j]->margins[mi].value[mk]); };
+    const auto x = [&](size_t j) { return Tr<T>::to_double(T(hist[j]->param - good.param)); };
+    const auto root = [&](size_t j) {  // the secant through hist[j - 1] and hist[j]
+      return x(j) + g(j) * (x(j) - x(j - 1)) / (g(j - 1) - g(j));
+    };
+    const double r = root(n - 1);
+    if (!std::isfinite(r) || !(r * dir > 0)) return std::nullopt;
+    const double tol = tolerance_rel() * std::max(1.0, std::fabs(Tr<T>::to_double(good.param)));
+    double aim;
+    if (std::fabs(r) < tol / 2) {
+      aim = dir * 0.9 * tol;
+    } else {
+      const double older = n >= 3 ? root(n - 2) : kNaN;
+      const double short_by = std::isfinite(older) ? std::max(tol / 4, 2 * std::fabs(r - older))
+                                                         : std::numeric_limits<double>::infinity();
+      aim = short_by < std::fabs(r) / 2 ? r - dir * short_by : r / 2;
+    }
+    T at = good.param + from_double<T>(aim, bits);
+    if (dir > 0 ? (good.param < at && at < bad) : (bad < at && at < good.param)) return at;
+    return std::nullopt;
+  }
+
   // Locates the end between the accepted point `good` (with its predecessor) and the
-  // refused value `bad`, names its cause and looks beyond it.
+  // refused value `bad` (secant steps on a vanishing margin, else bisection), names its
+  // cause and looks beyond it.
   // `first` is the branch's start point: the margins are compared with their values there
   // (the accepted points may already have crept close to a* before the location begins).
   BranchEnd<T> locate_end(BranchPoint<T> good, std::optional<BranchPoint<T>> prev, T bad, int dir,
                           const BranchPoint<T>& first) {
     Trial<T> last_bad;
     bool have_bad = false;
+    std::optional<BranchPoint<T>> prev2;
     for (long it = 0; it < max_bisections() && wide(good.param, bad); ++it) {
-      const T p = good.param + (bad - good.param) / 2;
+      T p = good.param + (bad - good.param) / 2;
+      if (prev) {
+        std::vector<const BranchPoint<T>*> hist{&*prev, &good};
+        if (prev2) hist.insert(hist.begin(), &*prev2);
+        if (std::optional<T> s = border_secant(hist, bad, dir, first)) p = std::move(*s);
+      }
       Trial<T> t = correct(p, good, predict(good, prev ? &*prev : nullptr, p));
       if (t.good) {
+        prev2 = std::move(prev);
         prev = std::move(good);
         good = std::move(*t.point);
       } else {
@@ -728,6 +792,8 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
     BranchEnd<T>& e = d > 0 ? br.high : br.low;
     BranchPoint<T> cur = start;
     std::optional<BranchPoint<T>> prev;
+    T refused = end;  // the nearest value refused since cur was accepted, if have_refused
+    bool have_refused = false;
     double h = h0;
     for (;;) {
       if (!c.wide(cur.param, end)) {
@@ -746,6 +812,16 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
       }
       T t = cur.param + from_double<T>(d * h, m.bits);
       if (d > 0 ? !(t < end) : !(end < t)) t = end;
+      // Short of a value already refused from cur.
+      if (have_refused && (d > 0 ? !(t < refused) : !(refused < t))) t = cur.param + (refused - cur.param) / 2;
+      // A margin heading for 0 within the step: aim at its root (border_secant), so that the
+      // trial lands on the branch side of a border instead of past it.
+      std::vector<const BranchPoint<T>*> hist;
+      if (prev) {
+        hist = {&*prev, &cur};
+        if (pts.size() >= 3) hist.insert(hist.begin(), &pts[pts.size() - 3]);
+        if (std::optional<T> s = c.border_secant(hist, t, d, start)) t = std::move(*s);
+      }
       Trial<T> tr = c.correct(t, cur, c.predict(cur, prev ? &*prev : nullptr, t));
       if (tr.good) {
         BranchPoint<T> next = std::move(*tr.point);
@@ -757,11 +833,17 @@ Branch<T> continue_branch(const Model<T>& m, Parameter p, long q, const State<T>
         cur = std::move(next);
         pts.push_back(cur);
         ++accepted;
+        have_refused = false;
         if (easy) h = std::min(h * 1.5, hmax);
         continue;
       }
       h /= 2;
-      if (h < hmin) {
+      refused = t;
+      have_refused = true;
+      // A margin heading for 0 inside the refused step: the next step aims at its root.
+      if (!hist.empty())
+        if (std::optional<T> s = c.border_secant(hist, t, d, start)) h = std::min(h, std::fabs(Tr<T>::to_double(T(*s - cur.param))));
+      if (h < hmin || !c.wide(cur.param, t)) {
         e = c.locate_end(cur, prev, t, d, start);
         break;
       }
@@ -812,8 +894,8 @@ void widen(EndEstimate& out, const Mpfr& refined, const Mpfr& refined_width, dou
 // point on that side (inside the branch, far from a* compared with T's errors), which gives
 // the reference events; T's bracket is then checked at the new precision: its branch side
 // is stepped back (16x per step) until it is on the branch, its far side out until it is not,
-// and the end is narrowed between them with the same corrector and tests as in T (secant
-// steps on the vanishing margin at a border, then locate_end's bisection and cause).
+// and the end is narrowed between them by locate_end, as in T (the same corrector, secant
+// steps on a vanishing margin, bisection and cause).
 template <class T>
 EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const BranchEnd<T>& e, int dir,
                          const ContinuationOptions& opt) {
@@ -862,17 +944,24 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
           std::max(1.0, std::fabs(Tr<T>::to_double(e.param))), p);
     return out;
   }
-  const std::optional<BranchPoint<Mpfr>> ref0 = reference(edge);
+  const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(e.param)));
+  double w = std::max(Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)), std::ldexp(scale, -static_cast<int>(p)));
+  // The reference is the outermost accepted point at least max(1e-9 max(1, |a*|), 1000 w)
+  // inside: the continuation's steps aim at a border's root, so its last points can lie
+  // within T's error of a*, and at hb bits such a point may be past a*.
+  const double inside = std::max(1e-9 * scale, 1e3 * w);
+  const long n = static_cast<long>(b.points.size());
+  long k = dir > 0 ? n - 1 : 0;
+  while (k != static_cast<long>(b.start) && std::fabs(Tr<T>::to_double(T(b.points[k].param - e.param))) < inside) k -= dir;
+  const std::optional<BranchPoint<Mpfr>> ref0 = reference(b.points[k]);
   if (!ref0) {
     out.note = "at " + std::to_string(hb) + " bits Newton does not find the branch's last orbit";
     return out;
   }
   const BranchPoint<Mpfr>& ref = *ref0;
   std::optional<BranchPoint<Mpfr>> ref_prev;
-  if (b.points.size() >= 2) ref_prev = reference(dir > 0 ? b.points[b.points.size() - 2] : b.points[1]);
+  if (k - dir >= 0 && k - dir < n) ref_prev = reference(b.points[k - dir]);
   const Mpfr near0 = up(dir > 0 ? e.bracket_lo : e.bracket_hi), far0 = up(dir > 0 ? e.bracket_hi : e.bracket_lo);
-  const double scale = std::max(1.0, std::fabs(Tr<T>::to_double(e.param)));
-  double w = std::max(Tr<T>::to_double(T(e.bracket_hi - e.bracket_lo)), std::ldexp(scale, -static_cast<int>(p)));
   const double span = std::fabs(Tr<Mpfr>::to_double(Mpfr(near0 - ref.param)));
   const auto shifted = [&](const Mpfr& x, double by) { return Mpfr(x + from_double<Mpfr>(by, hb)); };
   // The branch side: T's, or stepped back towards the reference point.
@@ -904,38 +993,6 @@ EndEstimate estimate_one(const ModelSpec& spec, const Branch<T>& b, const Branch
   if (!bad) {
     out.note = "at " + std::to_string(hb) + " bits the branch goes on past the bracket";
     return out;
-  }
-  // At a border the margin that reached 0 is smooth on the branch side and 0 at a*: secant
-  // steps on it from the branch side (a step that leaves (good, bad), or a trial that fails,
-  // is replaced by the bisection's midpoint) reach the tolerance in a few corrector runs
-  // where bisection takes ~40; locate_end then bisects what is left and names the cause.
-  if (e.reason == EndReason::border && e.margin >= 0 && e.impact >= 0) {
-    const auto g = [&](const BranchPoint<Mpfr>& x) {
-      return static_cast<size_t>(e.impact) < x.margins.size() ? std::fabs(x.margins[e.impact].value[e.margin]) : kNaN;
-    };
-    const double tol = c.stop_rel * scale;
-    for (int it = 0; it < 60 && c.wide(good.param, *bad); ++it) {
-      Mpfr pick = good.param + (*bad - good.param) / 2;
-      if (prev) {
-        const double g1 = g(good), g0 = g(*prev), dp = Tr<Mpfr>::to_double(Mpfr(good.param - prev->param));
-        double delta = g1 * dp / (g0 - g1);
-        if (std::isfinite(delta) && delta * dir > 0) {
-          // Aim a quarter tolerance short of the estimated root (at the root itself the impact
-          // is on the knot and the trial is refused); once that is closer than half the
-          // tolerance, probe just past it.
-          delta = std::fabs(delta) < tol / 2 ? dir * 0.9 * tol : delta - dir * tol / 4;
-          const Mpfr at = good.param + from_double<Mpfr>(delta, hb);
-          if (dir > 0 ? (good.param < at && at < *bad) : (*bad < at && at < good.param)) pick = at;
-        }
-      }
-      Trial<Mpfr> t = c.correct(pick, good, c.predict(good, prev ? &*prev : nullptr, pick));
-      if (t.good) {
-        prev = std::move(good);
-        good = std::move(*t.point);
-      } else {
-        bad = pick;
-      }
-    }
   }
   // The cause is named as in T: by the margins' shrinking since the branch's start point
   // (locate_end reads only its margins and det(J - I)).

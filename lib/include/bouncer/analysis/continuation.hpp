@@ -13,10 +13,12 @@
 // the new parameter value. A step is accepted when Newton converges, the minimal period is
 // still q, the event sequence is unchanged (up to a rotation of the orbit) and the orbit
 // did not jump away from the prediction; otherwise the step is halved. It grows by 3/2
-// after a step Newton took in at most 3 iterations (to at most range/40). When the step falls below 1e-4 of the
-// first step, the end is located by bisection between the last accepted value and the
-// first refused one (the corrector runs at every trial value), down to the working
-// precision (2^-44 relative for double, 2^-(bits-12) for the others).
+// after a step Newton took in at most 3 iterations (to at most range/40). A step inside
+// which a margin's secant puts its root aims short of that root. When a refused step falls
+// below 1e-4 of the first step, the end is located between the last accepted value and the
+// first refused one (the corrector runs at every trial value: secant steps on a vanishing
+// margin, else bisection), down to the working precision (2^-44 relative for double,
+// 2^-(bits-12) for the others).
 // Implemented in lib/src/analysis/continuation.cpp for the analysis scalars
 // (scalar/scalar_set.hpp).
 #pragma once

@@ -1371,6 +1371,7 @@ class ModelCore {
                                          : py::object(py::none());
     d["complex_pair"] = p.converged ? py::object(py::bool_(p.multipliers.complex)) : py::object(py::none());
     d["marginal"] = p.converged ? py::object(py::bool_(p.marginal)) : py::object(py::none());
+    d["stability"] = stability_of(p);
     py::list kinds;
     if (p.converged)
       for (EventKind k : p.kinds) kinds.append(name(k));

@@ -42,11 +42,7 @@ nlohmann::ordered_json solve(const ModelSpec& spec, const Precision& prec, long 
                                        : nlohmann::ordered_json();
   j["complex_pair"] = o.converged ? nlohmann::ordered_json(o.multipliers.complex) : nlohmann::ordered_json();
   j["marginal"] = o.converged ? nlohmann::ordered_json(o.marginal) : nlohmann::ordered_json();
-  const double m0 = o.multipliers.modulus(0);
-  j["stability"] = !o.converged ? "unknown"
-                   : o.marginal ? (m0 > 1 + 1e-6 ? "unstable" : "marginal")
-                   : m0 < 1     ? "stable"
-                                : "unstable";
+  j["stability"] = stability_of(o);
   nlohmann::ordered_json kinds = nlohmann::ordered_json::array();
   if (o.converged)
     for (EventKind k : o.kinds) kinds.push_back(name(k));

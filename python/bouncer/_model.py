@@ -138,6 +138,7 @@ class PeriodicOrbit:
     multipliers: the eigenvalues of DP^q as (re, im), largest modulus first;
         multiplier_moduli: their moduli; complex_pair; marginal: a multiplier within 1e-6 of 1
         (all four None when Newton did not converge)
+    stability: stable | unstable | marginal, or unknown when Newton did not converge
     events: what each step was (impact | sticking | ride); wall_periods: periods begun per step
         (empty when Newton did not converge)
     residual, tolerance, iterations; note: why not converged, or remarks
@@ -150,6 +151,7 @@ class PeriodicOrbit:
     multiplier_moduli: Optional[Tuple[float, float]]
     complex_pair: Optional[bool]
     marginal: Optional[bool]
+    stability: str
     events: List[str]
     wall_periods: List[int]
     residual: float

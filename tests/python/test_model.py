@@ -232,7 +232,7 @@ def test_eq5_fixed_points(eps, p):
     theta, v = orbit.points[0]
     assert v == pytest.approx(float(v_star), rel=1e-12) and 0 < theta < 0.5
     assert sorted(orbit.multiplier_moduli) == pytest.approx(sorted([1.0, float(e * e)]), abs=1e-9)
-    assert orbit.marginal
+    assert orbit.marginal and orbit.stability == "marginal"
 
 
 @pytest.mark.parametrize("a,stable", [("20", False), ("30", True)])
@@ -252,6 +252,7 @@ def test_sine_wall_period1_closed_form(a, stable):
     moduli = orbit.multiplier_moduli
     assert moduli[0] * moduli[1] == pytest.approx(eps * eps, rel=1e-9)
     assert (max(moduli) < 1) == stable
+    assert orbit.stability == ("stable" if stable else "unstable")
 
 
 def test_interval_orbit_encloses_the_512_bit_orbit():
@@ -353,8 +354,8 @@ def test_periodic_matches_the_cli():
         else:  # no orbit, so no multipliers and no events (not the last iterate's)
             assert r["multipliers"] is None and p.multipliers is None and p.multiplier_moduli is None
             assert r["events"] == [] and p.events == []
-        assert (p.events, p.wall_periods, p.iterations, p.note, p.marginal, p.complex_pair) == (
-            r["events"], r["wall_periods"], r["iterations"], r["note"], r["marginal"], r["complex_pair"])
+        assert (p.events, p.wall_periods, p.iterations, p.note, p.marginal, p.complex_pair, p.stability) == (
+            r["events"], r["wall_periods"], r["iterations"], r["note"], r["marginal"], r["complex_pair"], r["stability"])
         assert same_double(p.residual, r["residual"]) and same_double(p.tolerance, r["tolerance"])
 
 

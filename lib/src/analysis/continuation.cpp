@@ -229,12 +229,6 @@ State<T> newton_start(const Model<T>& m, const std::vector<StepEvent>& events, c
   return through_release ? release_state(m) : predicted;
 }
 
-template <class T>
-std::string stability_of(const PeriodicOrbit<T>& o) {
-  const double m0 = o.multipliers.modulus(0);
-  return o.marginal ? (m0 > 1 + 1e-6 ? "unstable" : "marginal") : m0 < 1 ? "stable" : "unstable";
-}
-
 }  // namespace
 
 template <class T>

@@ -55,7 +55,6 @@ struct Piece {
   long periods = 0;
   bool sticks = false;
   int release_knot = -1;
-  int release_segment = -1;
 };
 
 // Margin kinds: continuation.hpp's Margin, and the departure speed v - u (> 0: the particle
@@ -136,9 +135,7 @@ State<T> piece_step(const ImpactMap<T>& map, const State<T>& s, const Piece& pc,
   if (margins && m.law == Law::constant)
     push(static_cast<int>(Margin::sticking), -1, T(out - m.collapse * (w.end[j] - next.theta)));
   if (pc.sticks) {
-    next.theta = w.start[pc.release_knot];
-    next.v = w.velocity[pc.release_segment];
-    next.knot = pc.release_knot;
+    next = release_state(m, pc.release_knot);
   } else {
     next.v = u + out;
   }
@@ -625,7 +622,6 @@ Piece piece_of(const Model<Mpfr>& m, const State<Mpfr>& s, const StepResult<Mpfr
     if (r.passed_upward_turn && r.corner)
       throw Fail("the sticking step's ride ends in a collision at an upward turn (--downward-sticking impact): not supported");
     pc.release_knot = r.next.knot;
-    pc.release_segment = r.segment;
     if (pc.release_knot < 0) throw Fail("the sticking step does not end at a wall knot");
   }
   return pc;
@@ -751,7 +747,8 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   S.high = e.high_end;
   // The reference orbit is taken at the interval's far end pf: the interval's end next to a*
   // comes from a double bracket, which may lie past a* (issue 23: by 1.8e-11 at the veldep
-  // period-7 end), where the branch's orbit no longer exists.
+  // period-7 end when it was bisected; by 2.6e-14 at the unstable one's grazing end), where
+  // the branch's orbit no longer exists.
   const Decimal& pb = e.high_end ? e.hi : e.lo;  // the end next to a*
   const Decimal& pf = e.high_end ? e.lo : e.hi;  // the far end, on the branch side
   // The events: from the step's Newton orbit at pf, or, where that Newton fails (an
@@ -785,10 +782,9 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
   };
   S.base = interval_model(with_parameter(e.model, e.vary, pf), bits);
   if (S.release) {
-    const Wall<Mpfi>& w = S.base.wall;
     const int k = ref.start.knot;
     if (k < 0) throw Fail("the release state is not at a wall knot");
-    S.R = State<Mpfi>{w.start[k], w.velocity[S.pieces.back().release_segment], k};
+    S.R = release_state(S.base, k);
   }
   if (via_piece) {
     // Newton on the piece at pf, then the step itself from its solution: the same events.

@@ -779,11 +779,8 @@ class Attempt1 {
       if (newton.kinds[i] != EventKind::impact) last = i;
     const int k = newton.points[(last + 1) % q_.period].knot;
     if (k < 0) throw NotCertified("the Newton orbit's release state is not at a wall knot");
-    const Wall<Mpfi>& w = model_.wall;
-    // A piecewise wall releases at knot k with the velocity of the segment before it; a smooth
-    // wall at its release phase (the step's own release_state, so the comparison below is exact).
-    const int before = (k + w.segments() - 1) % w.segments();
-    const State<Mpfi> R = w.smooth() ? release_state(model_) : State<Mpfi>{w.start[k], w.velocity[before], k};
+    // The step's own release state (exact, so the comparison below is exact too).
+    const State<Mpfi> R = release_state(model_, k);
     const std::vector<StepResult<Mpfi>> orbit = interval_orbit(model_, R, q_.period);
     for (long i = 0; i < q_.period; ++i) {
       if (orbit[i].kind == EventKind::impact) continue;

@@ -158,6 +158,16 @@ struct PeriodicOrbit {
   std::string note;           // why not converged, or remarks
 };
 
+// The orbit's stability from its multipliers: "stable" (largest modulus below 1),
+// "unstable", "marginal" (a multiplier within 1e-6 of 1, none beyond 1 + 1e-6: a family), or
+// "unknown" where Newton did not converge. `periodic`, `continue` and Python print it.
+template <class T>
+std::string stability_of(const PeriodicOrbit<T>& o) {
+  if (!o.converged) return "unknown";
+  const double m0 = o.multipliers.modulus(0);
+  return o.marginal ? (m0 > 1 + 1e-6 ? "unstable" : "marginal") : m0 < 1 ? "stable" : "unstable";
+}
+
 // Newton from one guess.
 template <class T>
 PeriodicOrbit<T> find_periodic(const Model<T>& m, long q, const State<T>& guess, const NewtonOptions& opt = {});

@@ -877,9 +877,7 @@ void ImpactMap<T>::ride(StepResult<T>& r, int j, const T& from, std::vector<Coll
     r.segment = j;
     switch (wall.turn[j]) {
       case Turn::down:
-        r.next.theta = wall.start[k];
-        r.next.v = wall.velocity[j];
-        r.next.knot = k;
+        r.next = release_state(m_, k);
         return;
       case Turn::none:
         break;

@@ -228,6 +228,17 @@ State<T> release_state(const Model<T>& m) {
   return State<T>{m.wall.release, m.wall.velocity_at(m.wall.release), 0};
 }
 
+// Where a ride on a piecewise wall ends: at the downward turn at knot k, at rest on the wall,
+// with the velocity of the segment that ends there (ImpactMap::ride; the certifiers start
+// orbits through a sticking step here, where the state is exact). On a smooth wall, the
+// release state above.
+template <class T>
+State<T> release_state(const Model<T>& m, int k) {
+  if (m.wall.smooth()) return release_state(m);
+  const int before = k == 0 ? m.wall.segments() - 1 : k - 1;
+  return State<T>{m.wall.start[k], m.wall.velocity[before], k};
+}
+
 // The same, recognising a start exactly at a wall knot (compared as exact rationals).
 template <class T>
 State<T> make_state(const Model<T>& m, const InitialCondition& ic) {

@@ -370,7 +370,9 @@ int main(int argc, char** argv) {
       seconds[is_double ? 0 : 1][beyond ? 0 : 1] = t;
       const std::string lo = ScalarTraits<T>::to_string(br.low.param);
       if (a_double.empty()) a_double = lo;
-      std::string note = "mean of " + std::to_string(reps) + " runs; " + std::to_string(br.points.size()) + " points, " + std::to_string(br.corrector_runs) +
+      char each[96];
+      std::snprintf(each, sizeof each, "%.3g ms per run (%ld run%s); ", t * 1e3, reps, reps == 1 ? "" : "s");
+      std::string note = each + std::to_string(br.points.size()) + " points, " + std::to_string(br.corrector_runs) +
                          " Newton runs; low end " + name(br.low.reason) + " at a* = " + lo.substr(0, 22);
       if (!is_double && seconds[0][beyond ? 0 : 1] > 0) {
         char ratio[64];

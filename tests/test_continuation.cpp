@@ -23,6 +23,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "bouncer/analysis/continuation.hpp"
 #include "test_support.hpp"
@@ -76,6 +77,24 @@ TEST(Continuation, KnotBorderCollisionAt32) {
       << b.high.detail;
   EXPECT_EQ(b.high.knot, 0) << b.high.detail;
   EXPECT_NEAR(b.high.param, 32.0, 32e-10) << b.high.detail;
+}
+
+// The same end at 128 bits. The location goes to 2^-116 relative: bisection took one corrector
+// run per bit there, about half of them past a* (each of those hundreds of evaluations while
+// Newton creeps along the border). The secant steps on the vanishing margin (the impact's
+// distance to the knot, sqrt(8/a) - 1/2 above: smooth in a, not linear) take a handful, so
+// the whole branch, 24 -> 32, takes fewer corrector runs than bisection would for the end alone.
+TEST(Continuation, AKnotEndAt128BitsTakesAFewCorrectorRunsNotOnePerBit) {
+  const Model<Mpfr> m = make_model<Mpfr>(spec(Law::constant, "26", "0.25"), 128);
+  const State<Mpfr> r{ScalarTraits<Mpfr>::from_decimal("0.5", 128), Mpfr(4, 128)};
+  const Branch<Mpfr> b = continue_branch(m, Parameter::a, 1, r, Mpfr(24, 128), ScalarTraits<Mpfr>::from_decimal("33.5", 128));
+  ASSERT_TRUE(b.started) << b.note;
+  ASSERT_EQ(b.high.reason, EndReason::border) << b.high.detail;
+  EXPECT_EQ(b.high.knot, 0) << b.high.detail;
+  const Mpfr err = b.high.param - Mpfr(32, 128);
+  EXPECT_LT(std::fabs(err.to_double()), 32 * std::ldexp(1.0, -110)) << ScalarTraits<Mpfr>::to_string(b.high.param);
+  EXPECT_LT(b.corrector_runs, 100) << "points " << b.points.size();
+  std::printf("knot end at 32, 128 bits: %ld corrector runs, %zu points\n", b.corrector_runs, b.points.size());
 }
 
 TEST(Continuation, StickingThresholdInEpsMatchesClosedForm) {

@@ -60,7 +60,7 @@ std::string event_text(const std::vector<StepEvent>& events) {
   for (const StepEvent& e : events) {
     if (!s.empty()) s += ' ';
     s += e.kind == EventKind::impact ? 'I' : e.kind == EventKind::sticking ? 'S' : 'R';
-    s += std::to_string(e.segment);
+    if (!e.smooth_wall) s += std::to_string(e.segment);
     if (e.corner) s += 'c';
     if (e.indirect) s += '^';
   }
@@ -241,12 +241,7 @@ BranchPoint<T> analyse_orbit(const Model<T>& m, Parameter p, PeriodicOrbit<T> or
   b.min_impact.fill(-1);
   for (long i = 0; i < q; ++i) {
     const StepResult<T> r = map.step(orbit.points[i]);
-    StepEvent e;
-    e.kind = r.kind;
-    e.segment = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
-    e.corner = r.corner;
-    e.indirect = r.indirect == Truth::yes;
-    b.events.push_back(e);
+    b.events.push_back(step_event(r, m.wall.smooth()));
     b.margins.push_back(margins_of_step(m, orbit.points[i], r));
     for (int k = 0; k < kMargins; ++k) {
       // The sticking margin is signed (negative on a sticking step): its distance to 0.

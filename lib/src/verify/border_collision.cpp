@@ -627,15 +627,6 @@ Piece piece_of(const Model<Mpfr>& m, const State<Mpfr>& s, const StepResult<Mpfr
   return pc;
 }
 
-StepEvent event_of(const StepResult<Mpfr>& r) {
-  StepEvent e;
-  e.kind = r.kind;
-  e.segment = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
-  e.corner = r.corner;
-  e.indirect = r.indirect == Truth::yes;
-  return e;
-}
-
 // A decimal parameter value, enclosed at `bits`.
 Mpfi parameter_interval_of(const Decimal& p, long bits) {
   Mpfi x(bits);
@@ -766,7 +757,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     State<Mpfr> s = ref.start;
     for (const StepResult<Mpfr>& r : ref.steps) {
       S.pieces.push_back(piece_of(mref, s, r));
-      S.events.push_back(event_of(r));
+      S.events.push_back(step_event(r, mref.wall.smooth()));
       s = r.next;
     }
   }
@@ -795,7 +786,7 @@ void run(const BorderCollisionQuestion& q, BorderCollisionCertificate& c, std::v
     }
     const Reference at_pf = steps_from(e, mref, x);
     for (size_t i = 0; i < at_pf.steps.size(); ++i)
-      if (!event_of(at_pf.steps[i]).same_piece(S.events[i]))
+      if (!step_event(at_pf.steps[i], mref.wall.smooth()).same_piece(S.events[i]))
         throw Fail("the branch side's events at " + std::string(name(e.vary)) + " = " + pf.text() +
                    " differ from those of the last point at " + pb.text());
     ref = at_pf;
@@ -1173,14 +1164,7 @@ State<IDual> orbit_dual(const Model<Mpfi>& base, Parameter par, const Mpfi x[3],
       throw Fail("step " + std::to_string(i) + " of the period is undecided over the box: " + u.what());
     }
     if (r.kind != EventKind::impact) throw Fail("the orbit sticks: no multiplier -1 (superstable)");
-    if (events) {
-      StepEvent e;
-      e.kind = r.kind;
-      e.segment = r.segment;
-      e.corner = r.corner;
-      e.indirect = r.indirect == Truth::yes;
-      events->push_back(e);
-    }
+    if (events) events->push_back(step_event(r, base.wall.smooth()));
     s = r.next;
   }
   return s;
@@ -1260,12 +1244,7 @@ void step_jacobian(const Model<Mpfi>& base, Parameter par, const Mpfi& th, const
     throw Fail("step " + std::to_string(i) + " of the period is undecided over its box: " + u.what());
   }
   if (r.kind != EventKind::impact) throw Fail("the orbit sticks: no multiplier -1 or +1 (superstable)");
-  if (event) {
-    event->kind = r.kind;
-    event->segment = r.segment;
-    event->corner = r.corner;
-    event->indirect = r.indirect == Truth::yes;
-  }
+  if (event) *event = step_event(r, base.wall.smooth());
   const IDual* rows[2] = {&r.next.theta, &r.next.v};
   for (int a = 0; a < 2; ++a) {
     F[a] = rows[a]->v;

@@ -76,10 +76,24 @@ struct StepEvent {
   bool corner = false;    // the impact was exactly at a wall corner
   bool indirect = false;  // the flight rose above the wall's top (reported, not compared:
                           // the map is smooth across apex = top)
+  bool smooth_wall = false;  // a smooth wall: segment 0 is the whole period (not printed)
   bool same_piece(const StepEvent& o) const { return kind == o.kind && segment == o.segment && corner == o.corner; }
 };
-// Compact text: one token per step, I = impact, S = sticking, R = ride, then the segment;
-// "c" = at a corner, "^" = indirect flight. E.g. "I0 I1^ S0".
+
+// The event of one step of the map (what same_cycle compares and event_text prints).
+template <class T>
+StepEvent step_event(const StepResult<T>& r, bool smooth_wall) {
+  StepEvent e;
+  e.kind = r.kind;
+  e.segment = r.kind == EventKind::sticking ? r.stick_segment : r.segment;
+  e.corner = r.corner;
+  e.indirect = r.indirect == Truth::yes;
+  e.smooth_wall = smooth_wall;
+  return e;
+}
+// Compact text: one token per step, I = impact, S = sticking, R = ride, then the segment
+// (none on a smooth wall); "c" = at a corner, "^" = indirect flight. E.g. "I0 I1^ S0", and
+// "I^ S" on the sine wall.
 std::string event_text(const std::vector<StepEvent>& events);
 // The same sequences up to a rotation (the same orbit started at another point).
 bool same_cycle(const std::vector<StepEvent>& x, const std::vector<StepEvent>& y);

@@ -488,24 +488,6 @@ struct Continuer {
     return true;
   }
 
-  // The margin that shrank the most between `first` and `good` (|now| / |then|, finite values
-  // only): the candidate cause of an end (locate_end) and the margin secant steps aim on.
-  struct Shrunk {
-    int impact = -1, margin = -1;
-    double ratio = std::numeric_limits<double>::infinity();
-  };
-  static Shrunk most_shrunk(const BranchPoint<T>& good, const BranchPoint<T>& first) {
-    Shrunk out;
-    const size_t n = std::min(good.margins.size(), first.margins.size());
-    for (size_t i = 0; i < n; ++i)
-      for (int k = 0; k < kMargins; ++k) {
-        const double now = std::fabs(good.margins[i].value[k]), then = std::fabs(first.margins[i].value[k]);
-        if (!std::isfinite(now) || !std::isfinite(then) || !(then > 0) || !(now / then < out.ratio)) continue;
-        out = {static_cast<int>(i), k, now / then};
-      }
-    return out;
-  }
-
   // At a border a margin reaches 0 at a*, smoothly and linearly on the branch side, so
   // secant steps on it get to the tolerance in a few corrector runs where bisection takes
   // one per bit (~44 in double, ~116 at 128 bits), half of them trials past a*, where Newton
@@ -526,9 +508,19 @@ struct Continuer {
     const BranchPoint<T>& good = *hist[n - 1];
     for (const BranchPoint<T>* x : hist)
       if (x->margins.size() != first.margins.size()) return std::nullopt;
-    const Shrunk most = most_shrunk(good, first);
-    if (most.impact < 0) return std::nullopt;
-    const int mi = most.impact, mk = most.margin;
+    int mi = -1, mk = -1;
+    double least = std::numeric_limits<double>::infinity();
+    for (size_t i = 0; i < good.margins.size(); ++i)
+      for (int k = 0; k < kMargins; ++k) {
+        const double now = std::fabs(good.margins[i].value[k]), then = std::fabs(first.margins[i].value[k]);
+        if (!std::isfinite(now) || !std::isfinite(then) || !(then > 0)) continue;
+        if (now / then < least) {
+          least = now / then;
+          mi = static_cast<int>(i);
+          mk = k;
+        }
+      }
+    if (mi < 0) return std::nullopt;
     // The margin at hist[j] and its parameter as an offset from good's.
     const auto g = [&](size_t j) { return std::fabs(hist[j]->margins[mi].value[mk]); };
     const auto x = [&](size_t j) { return Tr<T>::to_double(T(hist[j]->param - good.param)); };
@@ -586,16 +578,20 @@ struct Continuer {
     e.bracket_hi = dir > 0 ? bad : good.param;
     e.last_point = good.orbit.points[0];
     // The cause: the margin (or det(J - I)) that shrank the most since the location began.
-    const Shrunk most = most_shrunk(good, first);
     double best = 1e-3;
-    if (most.ratio < best) {
-      best = most.ratio;
-      e.reason = EndReason::border;
-      e.margin = most.margin;
-      e.impact = most.impact;
-      const ImpactMargins& g = good.margins[most.impact];
-      e.knot = most.margin == static_cast<int>(Margin::clearance) ? g.graze_knot : g.knot;
-    }
+    for (size_t i = 0; i < good.margins.size(); ++i)
+      for (int k = 0; k < kMargins; ++k) {
+        const double now = std::fabs(good.margins[i].value[k]), then = std::fabs(first.margins[i].value[k]);
+        if (std::isnan(now) || std::isnan(then) || std::isinf(now) || !(then > 0)) continue;
+        const double ratio = now / then;
+        if (ratio < best) {
+          best = ratio;
+          e.reason = EndReason::border;
+          e.margin = k;
+          e.impact = static_cast<int>(i);
+          e.knot = k == static_cast<int>(Margin::clearance) ? good.margins[i].graze_knot : good.margins[i].knot;
+        }
+      }
     // An impact landing on a knot also makes the clearance of a neighbouring flight vanish
     // at that knot (the flight starts or ends next to it), and a corner impact can make
     // several margins vanish together: among the margins within a factor 100 of the

@@ -63,6 +63,12 @@ find_package(tomlplusplus QUIET CONFIG)
 if(NOT tomlplusplus_FOUND)
   message(FATAL_ERROR "bouncer: toml++ not found: install the Debian package 'libtomlplusplus-dev'")
 endif()
+# Dragonbox (header only) for the shortest digits of a double, in src/scalar/shortest.cpp
+# alone (its headers only: no installed target refers to it).
+find_package(dragonbox 1.1 QUIET CONFIG)
+if(NOT dragonbox_FOUND)
+  message(FATAL_ERROR "bouncer: Dragonbox not found: install the Debian package 'libdragonbox-dev'")
+endif()
 find_package(PNG QUIET)
 if(NOT PNG_FOUND)
   message(FATAL_ERROR "bouncer: libpng not found: install the Debian package 'libpng-dev'")

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <iomanip>
 #include <limits>
+#include <memory>
 #include <ostream>
 #include <sstream>
 #include <type_traits>
@@ -23,6 +24,7 @@
 #pragma GCC diagnostic pop
 
 #include "bouncer/model/impact_map.hpp"
+#include "bouncer/scalar/shortest.hpp"
 
 namespace bouncer {
 
@@ -100,23 +102,6 @@ std::vector<std::string> header_names(bool interval) {
   return out;
 }
 
-template <class T>
-void put_scalar(std::vector<std::string>& row, const T& x) {
-  using Tr = ScalarTraits<T>;
-  if constexpr (Tr::is_interval) {
-    row.push_back(Tr::lower_string(x));
-    row.push_back(Tr::upper_string(x));
-  } else {
-    row.push_back(Tr::to_string(x));
-  }
-}
-
-template <class T>
-void put_empty_scalar(std::vector<std::string>& row) {
-  row.emplace_back();
-  if constexpr (ScalarTraits<T>::is_interval) row.emplace_back();
-}
-
 const char* direction_name(int d) { return d > 0 ? "up" : d < 0 ? "down" : "flat"; }
 
 // The wall's direction at the step's last contact (stuck: at the collision that stuck): its
@@ -131,59 +116,143 @@ const char* truth_name(Truth t, const char* yes, const char* no) {
   return t == Truth::yes ? yes : t == Truth::no ? no : "undecided";
 }
 
-// CSV cells appended to one buffer, each followed by ',' (the row's last ',' becomes '\n'):
-// no per-cell strings, no iostream formatting.
-template <size_t N>
-void append_chars(std::string& b, const char (&t)[N], const char* end) {
-  // The bound is explicit: GCC 12 otherwise warns that the length might be negative.
-  const size_t len = static_cast<size_t>(end - t);
-  b.append(t, len <= N ? len : 0);
-}
-void csv_int(std::string& b, long long x) {
-  char t[24];
-  append_chars(b, t, std::to_chars(t, t + sizeof t, x).ptr);
-  b += ',';
-}
-void csv_text(std::string& b, const char* x) {
-  b += x;
-  b += ',';
-}
-void csv_empty(std::string& b) { b += ','; }
-template <class T>
-void csv_scalar(std::string& b, const T& x) {
-  using Tr = ScalarTraits<T>;
-  if constexpr (std::is_same_v<T, double>) {
-    // The shortest decimal that reads back to x: the same call as ScalarTraits<double>::
-    // to_string (scalar/scalar.cpp), into a stack buffer instead of a string.
-    char t[32];
-    append_chars(b, t, std::to_chars(t, t + sizeof t, x).ptr);
-  } else if constexpr (Tr::is_interval) {
-    b += Tr::lower_string(x);
-    b += ',';
-    b += Tr::upper_string(x);
-  } else {
-    b += Tr::to_string(x);
+// A row's cells, written by start_cells and step_cells (which say once what a row holds)
+// into one of two writers: StringCells collects strings (the table and JSON formats);
+// CsvCells writes each cell and its ',' straight into the CSV block (CsvBlock), with no
+// per-cell strings or iostream formatting.
+class StringCells {
+ public:
+  void integer(long long x) { row.push_back(std::to_string(x)); }
+  void text(const char* x) { row.emplace_back(x); }
+  void empty() { row.emplace_back(); }
+  template <class T>
+  void scalar(const T& x) {
+    using Tr = ScalarTraits<T>;
+    if constexpr (Tr::is_interval) {
+      row.push_back(Tr::lower_string(x));
+      row.push_back(Tr::upper_string(x));
+    } else {
+      row.push_back(Tr::to_string(x));
+    }
   }
-  b += ',';
-}
-template <class T>
-void csv_empty_scalar(std::string& b) {
-  b += ScalarTraits<T>::is_interval ? ",," : ",";
-}
+  template <class T>
+  void empty_scalar() {
+    row.emplace_back();
+    if constexpr (ScalarTraits<T>::is_interval) row.emplace_back();
+  }
+  std::vector<std::string> row;
+};
+
+// The CSV text waiting for the stream: rows are written straight into it, and it goes out in
+// blocks of at least 64 KiB (one write each, no copy per row).
+class CsvBlock {
+ public:
+  explicit CsvBlock(std::ostream& out) : out_(out), data_(std::make_unique<char[]>(kCapacity)) {}
+  char* begin() { return data_.get(); }
+  char* cursor() { return data_.get() + used_; }
+  char* limit() { return data_.get() + kCapacity; }
+  // The text up to `end` is kept (and written once a block is full).
+  void commit(const char* end) {
+    used_ = static_cast<size_t>(end - begin());
+    if (used_ >= kBlock) flush();
+  }
+  void flush() {
+    if (used_ == 0) return;
+    out_.write(begin(), static_cast<std::streamsize>(used_));
+    used_ = 0;
+  }
+  // Text longer than the block (a cell of a very high precision) goes to the stream at once.
+  void write(const char* text, size_t n) {
+    flush();
+    out_.write(text, static_cast<std::streamsize>(n));
+  }
+
+ private:
+  static constexpr size_t kBlock = size_t{1} << 16;
+  static constexpr size_t kCapacity = kBlock + 4096;
+  std::ostream& out_;
+  std::unique_ptr<char[]> data_;
+  size_t used_ = 0;
+};
+
+class CsvCells {
+ public:
+  explicit CsvCells(CsvBlock& block) : block_(block), p_(block.cursor()) {}
+  CsvCells(const CsvCells&) = delete;
+  CsvCells& operator=(const CsvCells&) = delete;
+  void integer(long long x) {
+    room(24);
+    p_ = std::to_chars(p_, p_ + 24, x).ptr;
+    *p_++ = ',';
+  }
+  void text(const char* x) { text(x, std::strlen(x)); }
+  void text(const char* x, size_t n) {
+    if (n + 1 > kRoom) {
+      block_.commit(p_);
+      block_.write(x, n);
+      p_ = block_.cursor();
+    } else {
+      room(n + 1);
+      std::memcpy(p_, x, n);
+      p_ += n;
+    }
+    *p_++ = ',';
+  }
+  void empty() {
+    room(1);
+    *p_++ = ',';
+  }
+  template <class T>
+  void scalar(const T& x) {
+    using Tr = ScalarTraits<T>;
+    if constexpr (std::is_same_v<T, double>) {
+      // The shortest decimal that reads back to x, as ScalarTraits<double>::to_string.
+      room(kShortestChars + 1);
+      p_ = shortest_chars(p_, x);
+      *p_++ = ',';
+    } else if constexpr (Tr::is_interval) {
+      string(Tr::lower_string(x));
+      string(Tr::upper_string(x));
+    } else {
+      string(Tr::to_string(x));
+    }
+  }
+  template <class T>
+  void empty_scalar() {
+    empty();
+    if constexpr (ScalarTraits<T>::is_interval) empty();
+  }
+  // Ends the line (its last ',' becomes '\n').
+  void finish() {
+    p_[-1] = '\n';
+    block_.commit(p_);
+  }
+
+ private:
+  // Room for a cell of at most kRoom bytes; longer ones go through CsvBlock::write.
+  static constexpr size_t kRoom = 1024;
+  void string(const std::string& x) { text(x.data(), x.size()); }
+  void room(size_t n) {
+    if (static_cast<size_t>(block_.limit() - p_) < n) {
+      block_.commit(p_);
+      block_.flush();
+      p_ = block_.cursor();
+    }
+  }
+  CsvBlock& block_;
+  char* p_;
+};
 
 // Streams rows in one of the three text formats.
 class RowWriter {
  public:
-  RowWriter(std::ostream& out, Format f, bool interval, long bits) : out_(out), f_(f), names_(header_names(interval)) {
+  RowWriter(std::ostream& out, Format f, bool interval, long bits)
+      : out_(out), f_(f), names_(header_names(interval)), csv_(out) {
     width_ = static_cast<int>(bits * 0.30103) + 9;
   }
-  // CSV rows go through csv_line(): cells appended to one buffer written in 64 KiB blocks.
+  // CSV rows are written with CsvCells into csv_block(), which goes out in 64 KiB blocks.
   bool fast_csv() const { return f_ == Format::csv; }
-  std::string& csv_line() { return buf_; }
-  void csv_line_done() {
-    buf_.back() = '\n';
-    if (buf_.size() >= kBlock) flush_csv();
-  }
+  CsvBlock& csv_block() { return csv_; }
   void begin(const Provenance& p) {
     if (f_ == Format::json) {
       out_ << "{\"provenance\": " << p.as_json() << ",\n \"columns\": [";
@@ -254,12 +323,7 @@ class RowWriter {
   }
 
  private:
-  static constexpr size_t kBlock = size_t{1} << 16;
-  void flush_csv() {
-    if (buf_.empty()) return;
-    out_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
-    buf_.clear();
-  }
+  void flush_csv() { csv_.flush(); }
   void table_row(const std::vector<std::string>& cells) {
     for (size_t i = 0; i < cells.size(); ++i) {
       const bool wide = names_[i].rfind("theta", 0) == 0 || names_[i].rfind("v", 0) == 0 ||
@@ -273,95 +337,48 @@ class RowWriter {
   std::vector<std::string> names_;
   int width_ = 24;
   bool first_row_ = true;
-  std::string buf_;
+  CsvBlock csv_;
 };
 
-template <class T>
-std::vector<std::string> start_row(const State<T>& s, size_t orbit) {
-  std::vector<std::string> row{"0"};
-  put_scalar(row, s.theta);
-  put_scalar(row, s.v);
-  row.emplace_back("start");
-  put_empty_scalar<T>(row);
-  for (int i = 0; i < 6; ++i) row.emplace_back();
-  put_empty_scalar<T>(row);
-  put_empty_scalar<T>(row);
-  row.emplace_back();
-  row.push_back(std::to_string(orbit));
-  return row;
+template <class Cells, class T>
+void start_cells(Cells& c, const State<T>& s, size_t orbit) {
+  c.integer(0);
+  c.scalar(s.theta);
+  c.scalar(s.v);
+  c.text("start");
+  c.template empty_scalar<T>();
+  for (int i = 0; i < 6; ++i) c.empty();
+  c.template empty_scalar<T>();
+  c.template empty_scalar<T>();
+  c.empty();
+  c.integer(static_cast<long long>(orbit));
 }
 
-template <class T>
-std::vector<std::string> step_row(long long n, const StepResult<T>& r, const Model<T>& m, size_t orbit) {
-  std::vector<std::string> row{std::to_string(n)};
-  put_scalar(row, r.next.theta);
-  put_scalar(row, r.next.v);
-  row.emplace_back(name(r.kind));
-  put_scalar(row, r.tau);
-  row.push_back(std::to_string(r.periods));
-  row.push_back(std::to_string(r.segment));
-  row.emplace_back(direction_name(contact_direction(m, r, false)));
-  row.emplace_back(r.corner ? "1" : "0");
-  row.emplace_back(truth_name(r.indirect, "indirect", "direct"));
+template <class Cells, class T>
+void step_cells(Cells& c, long long n, const StepResult<T>& r, const Model<T>& m, size_t orbit) {
+  c.integer(n);
+  c.scalar(r.next.theta);
+  c.scalar(r.next.v);
+  c.text(name(r.kind));
+  c.scalar(r.tau);
+  c.integer(r.periods);
+  c.integer(r.segment);
+  c.text(direction_name(contact_direction(m, r, false)));
+  c.text(r.corner ? "1" : "0");
+  c.text(truth_name(r.indirect, "indirect", "direct"));
   if (r.kind == EventKind::sticking) {
-    std::string s = direction_name(contact_direction(m, r, true));
-    if (r.passed_upward_turn) s += std::string(":") + name(m.downward);
-    row.push_back(s);
-    put_scalar(row, r.stuck_theta);
-    put_scalar(row, r.stuck_v);
+    std::string wall = direction_name(contact_direction(m, r, true));
+    if (r.passed_upward_turn) wall += std::string(":") + name(m.downward);
+    c.text(wall.c_str());
+    c.scalar(r.stuck_theta);
+    c.scalar(r.stuck_v);
   } else {
-    row.emplace_back();
-    put_empty_scalar<T>(row);
-    put_empty_scalar<T>(row);
+    c.empty();
+    c.template empty_scalar<T>();
+    c.template empty_scalar<T>();
   }
-  row.push_back(std::to_string(ScalarTraits<T>::bits(r.next.theta) - r.phase_bits_lost));
-  row.push_back(std::to_string(orbit));
-  return row;
-}
-
-// The CSV lines of start_row and step_row, appended to b (the same cells, in the same order).
-template <class T>
-void csv_start_row(std::string& b, const State<T>& s, size_t orbit) {
-  csv_int(b, 0);
-  csv_scalar(b, s.theta);
-  csv_scalar(b, s.v);
-  csv_text(b, "start");
-  csv_empty_scalar<T>(b);
-  for (int i = 0; i < 6; ++i) csv_empty(b);
-  csv_empty_scalar<T>(b);
-  csv_empty_scalar<T>(b);
-  csv_empty(b);
-  csv_int(b, static_cast<long long>(orbit));
-}
-
-template <class T>
-void csv_step_row(std::string& b, long long n, const StepResult<T>& r, const Model<T>& m, size_t orbit) {
-  csv_int(b, n);
-  csv_scalar(b, r.next.theta);
-  csv_scalar(b, r.next.v);
-  csv_text(b, name(r.kind));
-  csv_scalar(b, r.tau);
-  csv_int(b, r.periods);
-  csv_int(b, r.segment);
-  csv_text(b, direction_name(contact_direction(m, r, false)));
-  csv_text(b, r.corner ? "1" : "0");
-  csv_text(b, truth_name(r.indirect, "indirect", "direct"));
-  if (r.kind == EventKind::sticking) {
-    b += direction_name(contact_direction(m, r, true));
-    if (r.passed_upward_turn) {
-      b += ':';
-      b += name(m.downward);
-    }
-    b += ',';
-    csv_scalar(b, r.stuck_theta);
-    csv_scalar(b, r.stuck_v);
-  } else {
-    csv_empty(b);
-    csv_empty_scalar<T>(b);
-    csv_empty_scalar<T>(b);
-  }
-  csv_int(b, ScalarTraits<T>::bits(r.next.theta) - r.phase_bits_lost);
-  csv_int(b, static_cast<long long>(orbit));
+  c.integer(ScalarTraits<T>::bits(r.next.theta) - r.phase_bits_lost);
+  c.integer(static_cast<long long>(orbit));
 }
 
 // The text sink of the orbit driver (run/orbit.hpp): each row as the writer's cells (CSV:
@@ -372,18 +389,24 @@ class TextSink final : public OrbitSink<T> {
   TextSink(RowWriter& w, const Model<T>& m, size_t orbit) : w_(w), m_(m), orbit_(orbit) {}
   void start(const State<T>& s) override {
     if (w_.fast_csv()) {
-      csv_start_row(w_.csv_line(), s, orbit_);
-      w_.csv_line_done();
+      CsvCells c(w_.csv_block());
+      start_cells(c, s, orbit_);
+      c.finish();
     } else {
-      w_.row(start_row(s, orbit_));
+      StringCells c;
+      start_cells(c, s, orbit_);
+      w_.row(c.row);
     }
   }
   void row(long long n, const StepResult<T>& r) override {
     if (w_.fast_csv()) {
-      csv_step_row(w_.csv_line(), n, r, m_, orbit_);
-      w_.csv_line_done();
+      CsvCells c(w_.csv_block());
+      step_cells(c, n, r, m_, orbit_);
+      c.finish();
     } else {
-      w_.row(step_row(n, r, m_, orbit_));
+      StringCells c;
+      step_cells(c, n, r, m_, orbit_);
+      w_.row(c.row);
     }
   }
   void check() override { w_.check(); }

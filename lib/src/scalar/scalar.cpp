@@ -10,6 +10,7 @@
 #include <qd/dd_real.h>
 
 #include "bouncer/scalar/decimal.hpp"
+#include "bouncer/scalar/shortest.hpp"
 #include "bouncer/scalar/traits.hpp"
 
 namespace bouncer {
@@ -96,9 +97,8 @@ double ScalarTraits<double>::from_decimal(std::string_view text, long) {
 }
 
 std::string ScalarTraits<double>::to_string(const double& x) {
-  char buf[64];
-  auto r = std::to_chars(buf, buf + sizeof buf, x);  // shortest string that round-trips
-  return std::string(buf, r.ptr);
+  char buf[kShortestChars];
+  return std::string(buf, shortest_chars(buf, x));  // shortest string that round-trips
 }
 
 long double ScalarTraits<long double>::from_decimal(std::string_view text, long) {

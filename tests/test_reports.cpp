@@ -455,6 +455,36 @@ TEST(ContinueReport, FigureSeparatesStableFromUnstablePoints) {
   EXPECT_EQ(plain.rfind("a* = 0.4375123", 0), 0u) << plain;
 }
 
+// A branch that fills less than 1/20 of the range, both ends inside it, is drawn in a window
+// around it: its hull (by hand: the low end 0.4375 and the points 0.5, 0.6, with the high end
+// at 0.6 a fold: [0.4375, 0.6], spread 0.1625) and a tenth of the spread beyond each
+// side, [0.42125, 0.61625], inside the range [0, 10]. The range 0.4:0.6 itself (the branch
+// fills 81% of it) keeps its axis, as does a branch one of whose ends is the range's end.
+TEST(ContinueReport, FigureZoomsOnABranchMuchNarrowerThanTheRange) {
+  ContinueRequest r = continue_request_for_test();
+  r.lo = parse_decimal("range", "0");
+  r.hi = parse_decimal("range", "10");
+  const Model<double> m = make_model<double>(r.model, 53);
+  Branch<double> b = branch();
+  b.high.reason = EndReason::fold;  // inside the range (the fixture's ends at its end)
+  const Figure f = branch_figure(r, m, b, false, sample_provenance("continue"));
+  EXPECT_DOUBLE_EQ(f.x_min, 0.42125);
+  EXPECT_DOUBLE_EQ(f.x_max, 0.61625);
+  EXPECT_TRUE(contains(f.subtitle, "the branch's part of the range 0:10")) << f.subtitle;
+  // One more point at 2.5: the spread is 0.2 of the range, the whole range is drawn.
+  b.points.push_back(b.points.back());
+  b.points.back().param = 2.5;
+  const Figure wide = branch_figure(r, m, b, false, sample_provenance("continue"));
+  EXPECT_DOUBLE_EQ(wide.x_min, 0);
+  EXPECT_DOUBLE_EQ(wide.x_max, 10);
+  EXPECT_FALSE(contains(wide.subtitle, "part of the range")) << wide.subtitle;
+  // A branch that runs into the range's end is drawn over the whole range.
+  b.points.pop_back();
+  b.high.reason = EndReason::range_end;
+  const Figure open = branch_figure(r, m, b, false, sample_provenance("continue"));
+  EXPECT_DOUBLE_EQ(open.x_max, 10);
+}
+
 // ---- certify-periodic and certify-sticking ----------------------------------------------
 
 CertifyPeriodicRequest periodic_request() {

@@ -345,9 +345,33 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
   Series un{"unstable", {}, {}, Rgb{230, 97, 1}, false, true, 2};
   Series mg{"marginal", {}, {}, Rgb{150, 150, 150}, false, true, 1};
   double y0 = show_theta ? 0 : INFINITY, y1 = show_theta ? 1 : -INFINITY;
-  // A range a double cannot resolve (a zoom) is drawn relative to an offset, from the
+  // The window in the parameter: the range, or where the branch is when it fills less than
+  // 1/20 of the range and both its ends lie inside (a branch 0.02 wide in a range 16 wide is
+  // otherwise one vertical line): its points and ends, and a tenth of their spread beyond each.
+  mpq_class x_lo = r.lo.value(), x_hi = r.hi.value();
+  const auto inside = [](const BranchEnd<T>& e) {
+    return e.reason != EndReason::range_end && e.reason != EndReason::max_points;
+  };
+  bool window = false;
+  if (inside(b.low) && inside(b.high)) {
+    mpq_class h_lo = exact_value(b.low.param), h_hi = h_lo;
+    const auto widen = [&](const T& x) {
+      const mpq_class q = exact_value(x);
+      if (q < h_lo) h_lo = q;
+      if (h_hi < q) h_hi = q;
+    };
+    widen(b.high.param);
+    for (const BranchPoint<T>& p : b.points) widen(p.param);
+    const mpq_class spread = h_hi - h_lo;
+    if (sgn(spread) > 0 && spread * 20 < x_hi - x_lo) {
+      window = true;
+      x_lo = std::max(x_lo, mpq_class(h_lo - spread / 10));
+      x_hi = std::min(x_hi, mpq_class(h_hi + spread / 10));
+    }
+  }
+  // A window a double cannot resolve (a zoom) is drawn relative to an offset, from the
   // exact values; so is v then, whose spread over such a range is as small.
-  const AxisZoom zx(r.lo.value(), r.hi.value());
+  const AxisZoom zx(x_lo, x_hi);
   AxisZoom zy;
   if (zx.active() && !show_theta) {
     const T* lo_v = nullptr;
@@ -436,8 +460,8 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     vline(x.param, par + "* = " + backed_short(x.param, x.estimate) + ": " +
                        (x.kind == SmoothKind::fold ? "fold (+1)" : x.kind == SmoothKind::period_doubling ? "period doubling (-1)" : "Neimark-Sacker"),
           Rgb{27, 120, 55});
-  fig.x_min = zx(r.lo.value());
-  fig.x_max = zx(r.hi.value());
+  fig.x_min = zx(x_lo);
+  fig.x_max = zx(x_hi);
   fig.y_min = y0;
   fig.y_max = y1;
   fig.x_offset = zx.offset();
@@ -450,6 +474,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
   if (r.model.law == Law::veldep && r.vary != Parameter::c) fixed += "c = " + r.model.c.text() + ", ";
   fig.subtitle = fixed + "started at " + par + " = " + short_num(s0.param) + "; " + std::to_string(b.points.size()) + " points, " +
                  r.precision.text();
+  if (window) fig.subtitle += "; the branch's part of the range " + r.lo.text() + ":" + r.hi.text();
   fig.xlabel = parameter_label(r.vary);
   fig.ylabel = show_theta ? "θ (phase of impact)" : "v (velocity after impact)";
   fig.metadata = png_metadata(prov, fig.title);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bouncer/base/text.hpp"
 #include "bouncer/model/impact_map_impl.hpp"  // the sine gap (detail::sine_gap) of the smooth margins
 #include "bouncer/scalar/decimal.hpp"
 
@@ -432,13 +433,6 @@ struct Continuer {
   }
 
   std::string knot_text(int k) const { return base.wall.knot_exact[k].get_str(); }
-  static std::string phase_text(double theta) {
-    std::ostringstream o;
-    o.precision(6);
-    o << theta;
-    return o.str();
-  }
-
   // A doubling end's a* from the period-q/2 orbit, where it is a simple zero of det(DP^{q/2} + I)
   // on an orbit that exists on both sides. Next to a* the period-q corrector cannot tell its
   // orbit from the period-q/2 one traversed twice (the residual there is ~ (mu - 1) x gap, under
@@ -652,7 +646,7 @@ struct Continuer {
           case Margin::clearance:
             if (base.wall.smooth()) e.graze_theta = good.margins[e.impact].graze_theta;
             e.detail = "flight " + i1 + " grazes the wall at " +
-                       (base.wall.smooth() ? "theta ~ " + phase_text(e.graze_theta) : "the knot theta = " + knot_text(e.knot));
+                       (base.wall.smooth() ? "theta ~ " + approximate_text(e.graze_theta) : "the knot theta = " + knot_text(e.knot));
             break;
           case Margin::speed: e.detail = "impact " + i1 + " reaches zero relative speed (touchdown)"; break;
           case Margin::sticking: e.detail = "impact " + i1 + " reaches the sticking threshold"; break;

@@ -1,11 +1,12 @@
 // Text for messages: the distance used to suggest close names for a typo (options, commands,
-// reproduce's item ids, scene names) and the closest name itself. (One printable line of any
+// reproduce's item ids, scene names) and the closest name itself; approximate values. (One printable line of any
 // value: one_line, base/input.hpp.)
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,16 @@ inline std::optional<std::string> closest(const std::string& word, const std::ve
     }
   }
   return best;
+}
+
+// x to `digits` significant digits as iostream prints it ("0.409976", "1e-07"): an
+// approximate value in a sentence or a label (the phase where a flight grazes the sine wall,
+// found by a march, not located).
+inline std::string approximate_text(double x, int digits = 6) {
+  std::ostringstream o;
+  o.precision(digits);
+  o << x;
+  return o.str();
 }
 
 }  // namespace bouncer

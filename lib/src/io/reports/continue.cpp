@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bouncer/base/text.hpp"
 #include "bouncer/io/grid_figures.hpp"
 #include "bouncer/scalar/decimal.hpp"
 #include "json.hpp"
@@ -430,11 +431,6 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     }
     return short_num(x);
   };
-  const auto phase = [](double theta) {
-    std::ostringstream s;
-    s << std::setprecision(6) << theta;
-    return s.str();
-  };
   // Legend labels short enough for one line: the cause and the impact.
   auto end_label = [&](const BranchEnd<T>& e) {
     const std::string i = std::to_string(e.impact + 1);
@@ -445,7 +441,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
       switch (static_cast<Margin>(e.margin)) {
         case Margin::knot: what = "border collision, impact " + i + " at θ = " + knot; break;
         case Margin::clearance:
-          what = "grazing, flight " + i + " at θ " + (std::isnan(e.graze_theta) ? "= " + knot : "≈ " + phase(e.graze_theta));
+          what = "grazing, flight " + i + " at θ " + (std::isnan(e.graze_theta) ? "= " + knot : "≈ " + approximate_text(e.graze_theta));
           break;
         case Margin::speed: what = "touchdown, impact " + i; break;
         case Margin::sticking: what = "sticking threshold, impact " + i; break;

@@ -1,6 +1,6 @@
 // Text for messages: the distance used to suggest close names for a typo (options, commands,
-// reproduce's item ids, scene names) and the closest name itself; approximate values. (One printable line of any
-// value: one_line, base/input.hpp.)
+// reproduce's item ids, scene names) and the closest name itself; approximate values. (One
+// printable line of any value: one_line, base/input.hpp.)
 #pragma once
 
 #include <algorithm>

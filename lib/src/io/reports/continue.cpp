@@ -383,8 +383,8 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
         if (!hi_v || *hi_v < x.v) hi_v = &x.v;
       }
     const mpq_class v_lo = exact_value(*lo_v), v_hi = exact_value(*hi_v);
-    // 6% beyond the data, at least 1e-6 of the range's width (1e-6 for ordinary ranges).
-    const mpq_class pad = std::max(mpq_class((v_hi - v_lo) * 6 / 100), mpq_class((r.hi.value() - r.lo.value()) / 1000000));
+    // 6% beyond the data, at least 1e-6 of the window's width (1e-6 for ordinary ranges).
+    const mpq_class pad = std::max(mpq_class((v_hi - v_lo) * 6 / 100), mpq_class((x_hi - x_lo) / 1000000));
     zy = AxisZoom(v_lo - pad, v_hi + pad);
     y0 = zy(mpq_class(v_lo - pad));
     y1 = zy(mpq_class(v_hi + pad));

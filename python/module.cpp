@@ -253,8 +253,6 @@ py::object scalar(const T& x) {
 
 py::object interval_of(const Enclosure& e) { return py::cast(Interval{e.lo, e.hi}); }
 
-const char* direction_name(int d) { return d > 0 ? "up" : d < 0 ? "down" : "flat"; }
-
 // numpy arrays that own a std::vector's buffer (no copy).
 template <class X>
 py::array numpy_of(std::vector<X>&& v, std::vector<py::ssize_t> shape, py::dtype dtype = py::dtype::of<X>()) {
@@ -319,7 +317,7 @@ PyStructSequence_Field kStepFields[] = {
     {"event", "impact | sticking | ride"},
     {"periods", "Whole wall periods begun during the step"},
     {"segment", "Wall segment of the last contact"},
-    {"wall", "Direction of that segment: up | down | flat"},
+    {"wall", "Direction of the wall at the impact: up | down | flat (its segment's; on the sine wall the sign of its velocity)"},
     {"corner", "The last impact was exactly at a wall corner"},
     {"indirect", "The flight rose above the wall's top (None: undecided)"},
     {"stick_segment", "Sticking only (else None): segment of the collision that stuck"},
@@ -348,7 +346,7 @@ py::object step_of(const StepResult<T>& r, const Model<T>& m) {
   put(py::str(name(r.kind)));
   put(py::int_(r.periods));
   put(py::int_(r.segment));
-  put(py::str(direction_name(m.wall.direction[r.segment])));
+  put(py::str(direction_name(contact_direction(m, r))));
   put(py::bool_(r.corner));
   put(r.indirect == Truth::yes ? py::object(py::bool_(true))
       : r.indirect == Truth::no ? py::object(py::bool_(false))
@@ -418,7 +416,7 @@ struct OrbitColumns {
     tau.push(r.tau);
     periods.push_back(r.periods);
     segment.push_back(r.segment);
-    wall.push_back(static_cast<std::int8_t>(m.wall.direction[r.segment]));
+    wall.push_back(static_cast<std::int8_t>(contact_direction(m, r)));
     corner.push_back(r.corner ? 1 : 0);
     indirect.push_back(r.indirect == Truth::yes ? 1 : r.indirect == Truth::no ? 0 : -1);
     const bool stuck = r.kind == EventKind::sticking;
@@ -1570,7 +1568,7 @@ PYBIND11_MODULE(_core, mod) {
       .def_readonly("tau", &Orbit::tau, "time of the step (NaN in the start row)")
       .def_readonly("periods", &Orbit::periods, "int64: wall periods begun during the step")
       .def_readonly("segment", &Orbit::segment, "int32: wall segment of the last contact")
-      .def_readonly("wall", &Orbit::wall, "int8: direction of that segment, +1 up, -1 down, 0 flat (0 at the start)")
+      .def_readonly("wall", &Orbit::wall, "int8: direction of the wall at the impact, +1 up, -1 down, 0 flat (its segment's; on the sine wall the sign of its velocity; 0 at the start)")
       .def_readonly("corner", &Orbit::corner, "bool: the impact was exactly at a wall corner")
       .def_readonly("indirect", &Orbit::indirect, "int8: 1 the flight rose above the wall's top, 0 not, -1 undecided")
       .def_readonly("stick_segment", &Orbit::stick_segment, "int32: segment of the collision that stuck (-1: none)")

@@ -45,7 +45,7 @@ def same_double(x, cli_value):
 
 # ---- step and orbit against the CLI's orbit ---------------------------------------------------
 
-def orbit_matches_cli_orbit(o, r, precision):
+def orbit_matches_cli_orbit(o, r, precision, sine=False):
     """Model.orbit's arrays against bouncer.orbit's (the CLI's columns), column by column."""
     assert o.n.tolist() == r["n"].tolist()
     reals = ("theta", "v", "tau", "stuck_theta", "stuck_v")
@@ -74,8 +74,16 @@ def orbit_matches_cli_orbit(o, r, precision):
     assert r["corner"].tolist() == [-1] + [int(c) for c in o.corner[1:]]
     assert r["flight"].tolist() == [""] + [{1: "indirect", 0: "direct", -1: "undecided"}[f] for f in o.indirect[1:]]
     sticking = [""]
-    for seg, passed in zip(o.stick_segment[1:].tolist(), o.passed_upward_turn[1:].tolist()):
-        sticking.append("" if seg < 0 else TRIANGLE_DIRECTION[seg] + (":paper" if passed else ""))
+    for k, (seg, passed) in enumerate(zip(o.stick_segment[1:].tolist(), o.passed_upward_turn[1:].tolist()), 1):
+        if seg < 0:
+            sticking.append("")
+            continue
+        if sine:  # the sine wall's velocity 2 pi cos(2 pi theta) where the collision stuck
+            theta = float(np.mean(np.asarray(o.stuck_theta[k], dtype=np.float64)))
+            direction = "up" if math.cos(2 * math.pi * theta) > 0 else "down"
+        else:
+            direction = TRIANGLE_DIRECTION[seg]
+        sticking.append(direction + (":paper" if passed else ""))
     # (a column with no entry at all comes as int64 -1 from the CLI-parity layer)
     assert ["" if x == -1 else x for x in r["sticking"].tolist()] == sticking
 
@@ -84,6 +92,7 @@ def orbit_matches_cli_orbit(o, r, precision):
 @pytest.mark.parametrize("params,start", [
     (dict(model="constant", a="28.82", eps="0.96"), ("0.3", "7.5")),
     (dict(model="constant", a="20", eps="0.3"), ("0.3", "9")),  # sticks every 3 steps
+    (dict(model="constant", a="8", eps="0.5", wall="sine"), ("0.5", "3")),  # the wall's direction from its velocity
 ])
 def test_orbit_is_the_cli_orbit_bit_for_bit(precision, params, start):
     steps = 120
@@ -94,7 +103,13 @@ def test_orbit_is_the_cli_orbit_bit_for_bit(precision, params, start):
     assert len(o) == o.steps_done + 1 and o.precision == precision
     if precision != "interval:double":
         assert o.status == "completed" and o.steps_done == steps
-    orbit_matches_cli_orbit(o, r, precision)
+    orbit_matches_cli_orbit(o, r, precision, sine=params.get("wall") == "sine")
+    if params.get("wall") == "sine":
+        # The wall column is the sign of the wall's velocity 2 pi cos(2 pi theta) at the
+        # impact (its one segment has no direction), here both up and down.
+        theta = np.asarray(o.theta[1:], dtype=np.float64).reshape(len(o) - 1, -1).mean(axis=1)
+        assert o.wall[1:].tolist() == np.where(np.cos(2 * np.pi * theta) > 0, 1, -1).tolist()
+        assert set(o.wall[1:].tolist()) == {1, -1}
     if params["a"] == "20" and precision != "interval:double":
         # first sticking at step 9, then every 3 steps (the release state's period)
         sticks = np.flatnonzero(o.event == bouncer.EVENTS.index("sticking"))
@@ -113,7 +128,9 @@ def test_orbit_every_keeps_every_kth_step_and_the_last():
 
 def test_step_is_row_one_of_the_cli_orbit():
     for params, start in [(CONSTANT, (0.3, 9.5)), (dict(model="constant", a="20", eps="0.3"), ("0.3", "9")),
-                          (dict(model="veldep", a="25", c="1000"), (0.7, 13.25))]:
+                          (dict(model="veldep", a="25", c="1000"), (0.7, 13.25)),
+                          # an impact where the sine wall moves down (its one segment says nothing)
+                          (dict(model="constant", a="8", eps="0.5", wall="sine"), ("0.06787999488684382", "9.35200896148589"))]:
         m = bouncer.Model(**params)
         s = m.step(*start)
         r = bouncer.step(**params, theta=start[0], v=start[1])

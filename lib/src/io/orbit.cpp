@@ -102,16 +102,6 @@ std::vector<std::string> header_names(bool interval) {
   return out;
 }
 
-const char* direction_name(int d) { return d > 0 ? "up" : d < 0 ? "down" : "flat"; }
-
-// The wall's direction at the step's last contact (stuck: at the collision that stuck): its
-// segment's, or for the sine wall the sign of its velocity there.
-template <class T>
-int contact_direction(const Model<T>& m, const StepResult<T>& r, bool stuck) {
-  if (!m.wall.smooth()) return m.wall.direction[stuck ? r.stick_segment : r.segment];
-  const double u = ScalarTraits<T>::to_double(m.wall.velocity_at(stuck ? r.stuck_theta : r.next.theta));
-  return u > 0 ? 1 : u < 0 ? -1 : 0;
-}
 const char* truth_name(Truth t, const char* yes, const char* no) {
   return t == Truth::yes ? yes : t == Truth::no ? no : "undecided";
 }

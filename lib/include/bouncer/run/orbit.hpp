@@ -33,6 +33,19 @@ struct OrbitSteps {
   EnclosureMethod method = EnclosureMethod::naive;
 };
 
+// The wall's direction at a step's last contact, an orbit row's `wall` (stuck = true: at the
+// collision that stuck, the `sticking` column's): +1 up, -1 down, 0 flat; its segment's, or on
+// the smooth wall the sign of the wall's velocity there (of an interval's midpoint). Every
+// sink (the CSV, JSON, table and npy writers, Python's Step and Orbit) takes it from here.
+template <class T>
+int contact_direction(const Model<T>& m, const StepResult<T>& r, bool stuck = false) {
+  if (!m.wall.smooth()) return m.wall.direction[static_cast<size_t>(stuck ? r.stick_segment : r.segment)];
+  const double u = ScalarTraits<T>::to_double(m.wall.velocity_at(stuck ? r.stuck_theta : r.next.theta));
+  return u > 0 ? 1 : u < 0 ? -1 : 0;
+}
+// Its name in text: up, down or flat.
+inline const char* direction_name(int d) { return d > 0 ? "up" : d < 0 ? "down" : "flat"; }
+
 // Receives the rows of one orbit, in order: start once, then row for each kept step.
 template <class T>
 class OrbitSink {

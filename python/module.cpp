@@ -360,9 +360,9 @@ py::object step_of(const StepResult<T>& r, const Model<T>& m) {
   return s;
 }
 
-// Codes of Orbit.event (bouncer.EVENTS): the start row, then EventKind.
-constexpr std::int8_t kStartEvent = 0;
-std::int8_t event_code(EventKind k) { return static_cast<std::int8_t>(1 + static_cast<int>(k)); }
+// Codes of Orbit.event (bouncer.EVENTS) and Orbit.indirect: run/orbit.hpp's, as int8.
+std::int8_t event_int8(EventKind k) { return static_cast<std::int8_t>(event_code(k)); }
+constexpr std::int8_t kStartEvent = kStartEventCode;
 
 struct Orbit {
   py::object n, theta, v, event, tau, periods, segment, wall, corner, indirect, stick_segment, stuck_theta, stuck_v,
@@ -412,13 +412,13 @@ struct OrbitColumns {
     n.push_back(k);
     theta.push(r.next.theta);
     v.push(r.next.v);
-    event.push_back(event_code(r.kind));
+    event.push_back(event_int8(r.kind));
     tau.push(r.tau);
     periods.push_back(r.periods);
     segment.push_back(r.segment);
     wall.push_back(static_cast<std::int8_t>(contact_direction(m, r)));
     corner.push_back(r.corner ? 1 : 0);
-    indirect.push_back(r.indirect == Truth::yes ? 1 : r.indirect == Truth::no ? 0 : -1);
+    indirect.push_back(static_cast<std::int8_t>(flight_code(r.indirect)));
     const bool stuck = r.kind == EventKind::sticking;
     stick_segment.push_back(stuck ? r.stick_segment : -1);
     if (stuck) {
@@ -1253,7 +1253,7 @@ class ModelCore {
         n.mutable_at(at) = pt.n;
         theta.mutable_at(at) = pt.theta.value;
         v.mutable_at(at) = pt.v.value;
-        event.mutable_at(at) = pt.event ? event_code(*pt.event) : kStartEvent;
+        event.mutable_at(at) = pt.event ? event_int8(*pt.event) : kStartEvent;
         if (texts_too) {
           theta_text.append(pt.theta.digits);
           v_text.append(pt.v.digits);

@@ -433,8 +433,6 @@ std::vector<OrbitOutcome> run(const OrbitRequest& req, const Provenance& p, std:
 
 // Codes of the text columns: event as bouncer.Model.orbit's Orbit.event (python/module.cpp,
 // bouncer.EVENTS: the start row, then EventKind in order), wall directions as Wall::direction.
-double event_code(EventKind k) { return 1.0 + static_cast<double>(static_cast<int>(k)); }
-constexpr double kStartEvent = 0;
 constexpr double kEmpty = std::numeric_limits<double>::quiet_NaN();
 
 // Rows of float64 appended to one buffer written in 64 KiB blocks.
@@ -465,8 +463,8 @@ class NpySink final : public OrbitSink<double> {
  public:
   NpySink(NpyWriter& w, const Model<double>& m, size_t orbit) : w_(w), m_(m), orbit_(static_cast<double>(orbit)) {}
   void start(const State<double>& s) override {
-    const double row[] = {0,      s.theta, s.v,    kStartEvent, kEmpty, kEmpty, kEmpty, kEmpty,
-                          kEmpty, kEmpty,  kEmpty, kEmpty,      kEmpty, kEmpty, kEmpty, orbit_};
+    const double row[] = {0,      s.theta, s.v,    kStartEventCode, kEmpty, kEmpty, kEmpty, kEmpty,
+                          kEmpty, kEmpty,  kEmpty, kEmpty,          kEmpty, kEmpty, kEmpty, orbit_};
     put(row);
   }
   void row(long long n, const StepResult<double>& r) override {
@@ -474,13 +472,13 @@ class NpySink final : public OrbitSink<double> {
     const double row[] = {static_cast<double>(n),
                           r.next.theta,
                           r.next.v,
-                          event_code(r.kind),
+                          static_cast<double>(event_code(r.kind)),
                           r.tau,
                           static_cast<double>(r.periods),
                           static_cast<double>(r.segment),
                           static_cast<double>(contact_direction(m_, r, false)),
                           r.corner ? 1.0 : 0.0,
-                          r.indirect == Truth::yes ? 1.0 : r.indirect == Truth::no ? 0.0 : -1.0,
+                          static_cast<double>(flight_code(r.indirect)),
                           stuck ? static_cast<double>(contact_direction(m_, r, true)) : kEmpty,
                           stuck ? (r.passed_upward_turn ? 1.0 : 0.0) : kEmpty,
                           stuck ? r.stuck_theta : kEmpty,
@@ -578,11 +576,14 @@ std::string orbit_npy_sidecar(const OrbitRequest& r, const Provenance& p, const 
   doc["empty"] = "NaN: a cell the CSV leaves empty (tau, periods, segment, wall, corner, indirect of the start row "
                  "n = 0; stick_wall, passed_upward_turn, stuck_theta, stuck_v of rows without sticking; phase_bits "
                  "of the start row)";
-  doc["codes"] = {{"event", {{"0", "start"}, {"1", name(EventKind::impact)}, {"2", name(EventKind::sticking)},
-                             {"3", name(EventKind::ride)}}},
+  const auto code = [](int c) { return std::to_string(c); };
+  doc["codes"] = {{"event", {{code(kStartEventCode), "start"}, {code(event_code(EventKind::impact)), name(EventKind::impact)},
+                             {code(event_code(EventKind::sticking)), name(EventKind::sticking)},
+                             {code(event_code(EventKind::ride)), name(EventKind::ride)}}},
                   {"wall", {{"1", "up"}, {"-1", "down"}, {"0", "flat"}}},
                   {"stick_wall", {{"1", "up"}, {"-1", "down"}, {"0", "flat"}}},
-                  {"indirect", {{"1", "indirect"}, {"0", "direct"}, {"-1", "undecided"}}},
+                  {"indirect", {{code(flight_code(Truth::yes)), "indirect"}, {code(flight_code(Truth::no)), "direct"},
+                                {code(flight_code(Truth::unknown)), "undecided"}}},
                   {"passed_upward_turn", {{"1", std::string("the ride passed an upward turn (CSV sticking ':") +
                                                     name(r.model.downward) + "')"},
                                           {"0", "it did not"}}}};

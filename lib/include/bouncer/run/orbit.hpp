@@ -46,6 +46,13 @@ int contact_direction(const Model<T>& m, const StepResult<T>& r, bool stuck = fa
 // Its name in text: up, down or flat.
 inline const char* direction_name(int d) { return d > 0 ? "up" : d < 0 ? "down" : "flat"; }
 
+// The numeric codes of a row's text columns, in the npy format (its sidecar lists them) and
+// Python's Orbit (bouncer.EVENTS): event 0 for the start row, 1 + EventKind for a step
+// (impact, sticking, ride); flight 1 indirect, 0 direct, -1 undecided.
+inline constexpr int kStartEventCode = 0;
+inline int event_code(EventKind k) { return 1 + static_cast<int>(k); }
+inline int flight_code(Truth indirect) { return indirect == Truth::yes ? 1 : indirect == Truth::no ? 0 : -1; }
+
 // Receives the rows of one orbit, in order: start once, then row for each kept step.
 template <class T>
 class OrbitSink {

@@ -56,7 +56,8 @@ constexpr std::uint64_t kPowers[] = {
 
 // The number of decimal digits of x > 0 (at most 17 here).
 int digit_count(std::uint64_t x) {
-  // floor(log10(2^(bits-1))) digits at least, one more if x reaches the next power of ten.
+  // With 2^(bits-1) <= x < 2^bits, x has n or n + 1 digits for n = floor(bits log10 2)
+  // (1233 / 2^12 for log10 2), n + 1 where x reaches 10^n.
   const int bits = 64 - __builtin_clzll(x);
   const int n = (bits * 1233) >> 12;
   return n + (x >= kPowers[n] ? 1 : 0);

@@ -9,11 +9,13 @@ namespace bouncer {
 
 namespace {
 
+// A step's branch: its event (step_event) without the indirect flag, which over a box may be
+// undecided and is not part of a branch (chaos certificates record the branch without it),
+// and its wraps. The covered steps are impacts on the triangle wall's segments.
 BranchStep branch_step(const StepResult<Mpfi>& s) {
   BranchStep b;
-  b.event.kind = s.kind;
-  b.event.segment = s.segment;
-  b.event.corner = s.corner;
+  b.event = step_event(s, false);
+  b.event.indirect = false;
   b.periods = s.periods;
   return b;
 }

@@ -350,6 +350,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
   // 1/20 of the range and both its ends lie inside (a branch 0.02 wide in a range 16 wide is
   // otherwise one vertical line): its points and ends, and a tenth of their spread beyond each.
   mpq_class x_lo = r.lo.value(), x_hi = r.hi.value();
+  // An end the branch reached inside the range (drawn as a line), not where it was cut off.
   const auto inside = [](const BranchEnd<T>& e) {
     return e.reason != EndReason::range_end && e.reason != EndReason::max_points;
   };
@@ -450,7 +451,7 @@ Figure branch_figure(const ContinueRequest& r, const Model<T>& m, const Branch<T
     return par + "* = " + backed_short(e.param, e.estimate) + ": " + what;
   };
   for (const BranchEnd<T>* e : {&b.low, &b.high})
-    if (e->reason != EndReason::range_end && e->reason != EndReason::max_points)
+    if (inside(*e))
       vline(e->param, end_label(*e), e->reason == EndReason::fold || e->reason == EndReason::doubling ? Rgb{118, 42, 131} : Rgb{215, 25, 28});
   for (const Bifurcation<T>& x : b.bifurcations)
     vline(x.param, par + "* = " + backed_short(x.param, x.estimate) + ": " +
